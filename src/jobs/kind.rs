@@ -1,0 +1,333 @@
+//! The seam every job kind plugs into.
+//!
+//! A kind is three types — its tag ([`Kind::NAME`]), its spec (the JSON payload, parsed with
+//! unknown fields rejected, then validated) and its output (the result JSON) — plus a pure solve
+//! function. The queue, the store, the HTTP API, `tribod run` and `sweep` only see kinds through the
+//! object-safe [`DynKind`] that every `Kind` gets for free.
+
+use crate::physics::{Observer, SolveError};
+use crate::problem::{ErrorCode, FieldError, Problem};
+use serde::{de::DeserializeOwned, Serialize};
+use serde_json::Value;
+use utoipa::openapi::{schema::Schema, RefOr};
+use utoipa::ToSchema;
+
+/// Server-wide limits on problem size, so one request cannot occupy the pool for hours.
+/// Each kind checks the ones that apply to it in [`Kind::validate`] and reports
+/// `limit_exceeded` with the field path.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
+pub struct Limits {
+    /// Most nodes in one solver grid (circumferential × axial, or EHL nodes).
+    pub max_grid_nodes: usize,
+    /// Most cam angles in one cycle.
+    pub max_angles: usize,
+    /// Most cases in one sweep.
+    pub max_sweep_cases: usize,
+    /// Most solver evaluations in one optimisation.
+    pub max_evaluations: usize,
+}
+
+impl Default for Limits {
+    fn default() -> Self {
+        Limits { max_grid_nodes: 1_000_000, max_angles: 36_000, max_sweep_cases: 1_000, max_evaluations: 2_000 }
+    }
+}
+
+/// Collects field errors while a kind validates its spec. Paths are JSON pointers relative to the
+/// spec (`/grid/axial`); the API prefixes `/spec`.
+#[derive(Debug, Default)]
+pub struct Validation {
+    errors: Vec<FieldError>,
+    limit_errors: Vec<FieldError>,
+}
+
+impl Validation {
+    pub fn new() -> Self {
+        Self::default()
+    }
+
+    /// Record an error at `path` unless `ok`.
+    pub fn check(&mut self, ok: bool, path: &str, message: impl Into<String>) -> &mut Self {
+        if !ok {
+            self.errors.push(FieldError::new(path, message));
+        }
+        self
+    }
+
+    /// `value` must be finite and `> 0`.
+    pub fn positive(&mut self, path: &str, value: f64) -> &mut Self {
+        self.check(value.is_finite() && value > 0.0, path, "must be a finite number > 0")
+    }
+
+    /// `value` must be finite and `≥ 0`.
+    pub fn non_negative(&mut self, path: &str, value: f64) -> &mut Self {
+        self.check(value.is_finite() && value >= 0.0, path, "must be a finite number >= 0")
+    }
+
+    /// `value` must lie in the closed interval `[lo, hi]`.
+    pub fn in_range(&mut self, path: &str, value: f64, lo: f64, hi: f64) -> &mut Self {
+        self.check(
+            value.is_finite() && value >= lo && value <= hi,
+            path,
+            format!("must be in [{lo}, {hi}]"),
+        )
+    }
+
+    /// An integer count in `[lo, hi]`.
+    pub fn count_in_range(&mut self, path: &str, value: usize, lo: usize, hi: usize) -> &mut Self {
+        self.check(value >= lo && value <= hi, path, format!("must be an integer in [{lo}, {hi}]"))
+    }
+
+    /// A problem-size limit of the server: reported as `limit_exceeded` rather than `invalid_spec`.
+    pub fn limit(&mut self, path: &str, value: usize, max: usize, what: &str) -> &mut Self {
+        if value > max {
+            self.limit_errors.push(FieldError::new(
+                path,
+                format!("{what} is {value}; this server accepts at most {max} (configurable)"),
+            ));
+        }
+        self
+    }
+
+    /// Record an error unconditionally.
+    pub fn error(&mut self, path: &str, message: impl Into<String>) -> &mut Self {
+        self.errors.push(FieldError::new(path, message));
+        self
+    }
+
+    pub fn is_ok(&self) -> bool {
+        self.errors.is_empty() && self.limit_errors.is_empty()
+    }
+
+    /// `Ok` or the problem naming every offending field (paths relative to the spec).
+    pub fn finish(self) -> Result<(), Problem> {
+        if !self.errors.is_empty() {
+            let n = self.errors.len() + self.limit_errors.len();
+            let mut errors = self.errors;
+            errors.extend(self.limit_errors);
+            return Err(Problem::new(ErrorCode::InvalidSpec, format!("{n} field(s) broke a rule"))
+                .with_errors(errors));
+        }
+        if !self.limit_errors.is_empty() {
+            return Err(Problem::new(
+                ErrorCode::LimitExceeded,
+                "the problem is larger than this server accepts",
+            )
+            .with_errors(self.limit_errors));
+        }
+        Ok(())
+    }
+}
+
+/// One optional output a client can request through a spec's `outputs` list.
+#[derive(Debug, Clone, Copy, Serialize)]
+pub struct OutputInfo {
+    pub name: &'static str,
+    pub description: &'static str,
+}
+
+/// A job kind. Implement this; registration is one line in `jobs::registry`.
+pub trait Kind: Send + Sync + 'static {
+    /// The tag clients send as `kind` (snake_case).
+    const NAME: &'static str;
+    /// Bump when a change alters results: finished jobs are reused only with the same version.
+    const SOLVER_VERSION: &'static str;
+    /// One-line description for `GET /v1/kinds`.
+    const DESCRIPTION: &'static str;
+    /// Result fields that are tables, servable as CSV (`?table=` picks one; first is default).
+    /// A table is an object of equal-length arrays (columnar) or an array of flat objects.
+    const TABLES: &'static [&'static str] = &[];
+
+    /// The payload. Derive `Deserialize` with `#[serde(deny_unknown_fields)]` and defaults.
+    /// Every field documented with its unit (doc comments become the OpenAPI description).
+    type Spec: DeserializeOwned + Serialize + ToSchema + Send + Sync + 'static;
+    /// The result. Absent quantities are skipped, never `null` (see [`check_finite_json`]).
+    type Output: Serialize + ToSchema + Send + 'static;
+
+    /// An example spec: shown by `GET /v1/kinds`, and must validate.
+    fn example() -> Value;
+    /// Optional outputs selectable in the spec's `outputs` list (empty when the kind has none).
+    fn outputs() -> &'static [OutputInfo] {
+        &[]
+    }
+    /// Range and consistency checks the types cannot express.
+    fn validate(spec: &Self::Spec, limits: &Limits, v: &mut Validation);
+    /// The pure solve: no I/O. Poll `observer.check()` once per outer iteration.
+    fn solve(spec: &Self::Spec, observer: &dyn Observer) -> Result<Self::Output, SolveError>;
+}
+
+/// A spec that parsed and validated, ready to run. `canonical` is the spec re-serialised from its
+/// typed form (defaults filled, keys sorted): the dedup hash is taken of it.
+pub struct Prepared {
+    pub kind: &'static dyn DynKind,
+    pub canonical: Value,
+    run: Box<dyn FnOnce(&dyn Observer) -> Result<Value, SolveError> + Send>,
+}
+
+impl Prepared {
+    /// Run the solver; the output serialised to JSON.
+    pub fn run(self, observer: &dyn Observer) -> Result<Value, SolveError> {
+        (self.run)(observer)
+    }
+}
+
+impl std::fmt::Debug for Prepared {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("Prepared").field("kind", &self.kind.name()).finish_non_exhaustive()
+    }
+}
+
+/// Object-safe view of a [`Kind`], used by everything outside the kind itself.
+pub trait DynKind: Send + Sync {
+    fn name(&self) -> &'static str;
+    fn solver_version(&self) -> &'static str;
+    fn description(&self) -> &'static str;
+    fn tables(&self) -> &'static [&'static str];
+    fn example(&self) -> Value;
+    fn outputs(&self) -> &'static [OutputInfo];
+    /// OpenAPI component names of the spec and output schemas.
+    fn schema_names(&self) -> (String, String);
+    /// Push the spec and output schemas and everything they reference.
+    fn schemas(&self, out: &mut Vec<(String, RefOr<Schema>)>);
+    /// Parse (unknown fields rejected, JSON paths in errors) and validate a spec.
+    /// Error paths are relative to the spec.
+    fn prepare(&'static self, spec: &Value, limits: &Limits) -> Result<Prepared, Problem>;
+}
+
+/// The `DynKind` of a `Kind` type.
+pub struct Registered<K: Kind>(std::marker::PhantomData<K>);
+
+impl<K: Kind> Registered<K> {
+    pub const fn new() -> Self {
+        Registered(std::marker::PhantomData)
+    }
+}
+
+impl<K: Kind> Default for Registered<K> {
+    fn default() -> Self {
+        Self::new()
+    }
+}
+
+impl<K: Kind> DynKind for Registered<K> {
+    fn name(&self) -> &'static str {
+        K::NAME
+    }
+    fn solver_version(&self) -> &'static str {
+        K::SOLVER_VERSION
+    }
+    fn description(&self) -> &'static str {
+        K::DESCRIPTION
+    }
+    fn tables(&self) -> &'static [&'static str] {
+        K::TABLES
+    }
+    fn example(&self) -> Value {
+        K::example()
+    }
+    fn outputs(&self) -> &'static [OutputInfo] {
+        K::outputs()
+    }
+    fn schema_names(&self) -> (String, String) {
+        (K::Spec::name().into_owned(), K::Output::name().into_owned())
+    }
+    fn schemas(&self, out: &mut Vec<(String, RefOr<Schema>)>) {
+        out.push((K::Spec::name().into_owned(), <K::Spec as utoipa::PartialSchema>::schema()));
+        K::Spec::schemas(out);
+        out.push((K::Output::name().into_owned(), <K::Output as utoipa::PartialSchema>::schema()));
+        K::Output::schemas(out);
+    }
+    fn prepare(&'static self, spec: &Value, limits: &Limits) -> Result<Prepared, Problem> {
+        let typed: K::Spec = parse_spec(spec)?;
+        let mut v = Validation::new();
+        K::validate(&typed, limits, &mut v);
+        v.finish()?;
+        let canonical = canonicalize(serde_json::to_value(&typed).map_err(|e| {
+            Problem::new(ErrorCode::InternalError, format!("spec did not serialise: {e}"))
+        })?);
+        Ok(Prepared {
+            kind: self,
+            canonical,
+            run: Box::new(move |observer| {
+                let out = K::solve(&typed, observer)?;
+                let value = serde_json::to_value(&out)
+                    .map_err(|e| SolveError::NonFinite { quantity: format!("result ({e})") })?;
+                crate::jobs::kind::check_finite_json(&value)?;
+                Ok(value)
+            }),
+        })
+    }
+}
+
+/// Deserialise a spec, turning serde's error into a field error with a JSON pointer.
+pub fn parse_spec<T: DeserializeOwned>(spec: &Value) -> Result<T, Problem> {
+    serde_path_to_error::deserialize(spec).map_err(|err| {
+        let pointer = path_to_pointer(err.path());
+        let message = err.inner().to_string();
+        Problem::new(ErrorCode::InvalidSpec, "the spec does not match the kind's schema")
+            .with_errors(vec![FieldError::new(pointer, message)])
+    })
+}
+
+fn path_to_pointer(path: &serde_path_to_error::Path) -> String {
+    use serde_path_to_error::Segment;
+    let mut out = String::new();
+    for seg in path.iter() {
+        match seg {
+            Segment::Seq { index } => out.push_str(&format!("/{index}")),
+            Segment::Map { key } | Segment::Enum { variant: key } => {
+                out.push('/');
+                out.push_str(&key.replace('~', "~0").replace('/', "~1"));
+            }
+            Segment::Unknown => out.push_str("/?"),
+        }
+    }
+    out
+}
+
+/// Sort object keys recursively so that equal specs serialise to equal bytes.
+pub fn canonicalize(value: Value) -> Value {
+    match value {
+        Value::Object(map) => {
+            let mut entries: Vec<(String, Value)> = map.into_iter().collect();
+            entries.sort_by(|a, b| a.0.cmp(&b.0));
+            Value::Object(entries.into_iter().map(|(k, v)| (k, canonicalize(v))).collect())
+        }
+        Value::Array(items) => Value::Array(items.into_iter().map(canonicalize).collect()),
+        other => other,
+    }
+}
+
+/// serde_json turns NaN and infinities into `null`, so a result may contain no `null` at all:
+/// outputs leave absent quantities out (`#[serde(skip_serializing_if = "Option::is_none")]`)
+/// instead of writing `null`. Solvers check their own numbers; this is the last chokepoint before
+/// a result is stored.
+pub fn check_finite_json(value: &Value) -> Result<(), SolveError> {
+    fn walk(v: &Value, path: &mut String) -> Result<(), SolveError> {
+        match v {
+            Value::Null => {
+                return Err(SolveError::NonFinite { quantity: format!("result{path}") });
+            }
+            Value::Array(items) => {
+                for (i, item) in items.iter().enumerate() {
+                    let len = path.len();
+                    path.push_str(&format!("/{i}"));
+                    walk(item, path)?;
+                    path.truncate(len);
+                }
+            }
+            Value::Object(map) => {
+                for (k, item) in map {
+                    let len = path.len();
+                    path.push('/');
+                    path.push_str(k);
+                    walk(item, path)?;
+                    path.truncate(len);
+                }
+            }
+            _ => {}
+        }
+        Ok(())
+    }
+    walk(value, &mut String::new())
+}

@@ -1,0 +1,8 @@
+//! tribod: an HTTP calculation service for valve-train and bearing tribology.
+//!
+//! Data flows one way: HTTP → validated spec → queue (SQLite row) → worker (rayon) → physics →
+//! result → SQLite → HTTP. `physics` never sees the database or the web; `api` never runs a solver.
+
+pub mod jobs;
+pub mod physics;
+pub mod problem;

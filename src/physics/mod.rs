@@ -1,0 +1,13 @@
+//! Pure numerics: plain structs in, plain structs out, SI units, no I/O, no async, no HTTP types.
+//!
+//! Every solver in here reports how it converged ([`Convergence`]), polls an [`Observer`] for
+//! progress and cancellation, and fails with a typed [`SolveError`]. Nothing non-finite leaves a
+//! solver: results pass through [`ensure_finite`] (or an equivalent check) before they are returned.
+
+pub mod contact;
+pub mod lubricant;
+pub mod solver;
+
+pub use solver::{
+    ensure_finite, Convergence, Interrupt, Observer, Silent, SolveError, Termination,
+};

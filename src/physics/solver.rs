@@ -1,0 +1,128 @@
+//! Shared vocabulary of every solver: convergence reports, termination reasons, typed errors and the
+//! observer through which a solver reports progress and learns that it should stop
+//! (argmin's observer / termination-reason split, without its generics).
+
+use serde::{Deserialize, Serialize};
+use utoipa::ToSchema;
+
+/// Why a solver stopped.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, ToSchema)]
+#[serde(rename_all = "snake_case")]
+pub enum Termination {
+    /// A closed-form evaluation: no iteration was needed.
+    ClosedForm,
+    /// The residual fell below the tolerance.
+    Converged,
+    /// The residual stopped decreasing but is within a relaxed acceptance bound; the result is
+    /// usable and the report says how far it is from the tolerance.
+    Stalled,
+}
+
+/// How a solver reached its answer.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, ToSchema)]
+pub struct Convergence {
+    /// Iterations (or sweeps, or Newton steps: the solver's own unit) performed.
+    pub iterations: u32,
+    /// Final residual, in the solver's own (documented, usually relative) norm.
+    pub residual: f64,
+    /// Tolerance the residual was compared against.
+    pub tolerance: f64,
+    /// Why the solver stopped.
+    pub termination: Termination,
+}
+
+impl Convergence {
+    /// The report of a closed-form evaluation.
+    pub fn closed_form() -> Self {
+        Self { iterations: 0, residual: 0.0, tolerance: 0.0, termination: Termination::ClosedForm }
+    }
+}
+
+/// Why a solver was asked to stop before it finished.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Interrupt {
+    /// A user canceled the job.
+    Canceled,
+    /// The job ran past its time limit.
+    TimedOut,
+    /// The service is shutting down; the job will be queued again.
+    Shutdown,
+}
+
+/// Progress and cancellation channel between a running solver and whoever runs it.
+///
+/// Solvers call [`Observer::check`] once per outer iteration (one sweep, one cam angle, one load
+/// balance step) and return `Err(SolveError::Interrupted(..))` when it fails. Progress reports are
+/// cheap to call often: implementations throttle them.
+pub trait Observer: Sync {
+    /// Report the fraction done (0..=1) of the whole job and the current stage.
+    fn progress(&self, _fraction: f64, _stage: &str) {}
+    /// `Err` when the solver should stop now.
+    fn check(&self) -> Result<(), Interrupt> {
+        Ok(())
+    }
+}
+
+/// An observer that ignores progress and never interrupts (tests, benchmarks, nested solves).
+#[derive(Debug, Clone, Copy, Default)]
+pub struct Silent;
+impl Observer for Silent {}
+
+/// A solver failure. The job layer maps each variant to one problem code.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum SolveError {
+    /// An input the validator could not rule out is unusable for this solver (for example a
+    /// combination of fields). `path` is a JSON pointer into the job spec when known.
+    #[error("invalid input at {path}: {message}")]
+    InvalidInput { path: String, message: String },
+    /// The iteration cap was reached before the tolerance.
+    #[error("{solver} did not converge: residual {residual:.3e} > tolerance {tolerance:.3e} after {iterations} iterations")]
+    NotConverged {
+        solver: &'static str,
+        iterations: u32,
+        residual: f64,
+        tolerance: f64,
+        /// Residual after each outer iteration (possibly thinned to the last entries).
+        history: Vec<f64>,
+    },
+    /// The physics has no solution for this input (film closed, follower separation, undercut
+    /// cam, load beyond capacity...). `code` is a stable snake_case identifier.
+    #[error("{message}")]
+    Physical { code: &'static str, message: String },
+    /// A NaN or infinity was produced; a bug or an input far outside a model's range.
+    #[error("non-finite value in {quantity}")]
+    NonFinite { quantity: String },
+    /// The solver was asked to stop.
+    #[error("interrupted: {0:?}")]
+    Interrupted(Interrupt),
+}
+
+impl From<Interrupt> for SolveError {
+    fn from(i: Interrupt) -> Self {
+        SolveError::Interrupted(i)
+    }
+}
+
+impl SolveError {
+    /// Shorthand for [`SolveError::InvalidInput`].
+    pub fn invalid(path: impl Into<String>, message: impl Into<String>) -> Self {
+        SolveError::InvalidInput { path: path.into(), message: message.into() }
+    }
+    /// Shorthand for [`SolveError::Physical`].
+    pub fn physical(code: &'static str, message: impl Into<String>) -> Self {
+        SolveError::Physical { code, message: message.into() }
+    }
+}
+
+/// NaN quarantine at a chokepoint: `Err(NonFinite)` naming `quantity` unless every value is finite.
+pub fn ensure_finite<'a>(
+    quantity: &str,
+    values: impl IntoIterator<Item = &'a f64>,
+) -> Result<(), SolveError> {
+    if values.into_iter().all(|v| v.is_finite()) {
+        Ok(())
+    } else {
+        Err(SolveError::NonFinite { quantity: quantity.to_string() })
+    }
+}
