@@ -3,6 +3,10 @@
 //! Data flows one way: HTTP → validated spec → queue (SQLite row) → worker (rayon) → physics →
 //! result → SQLite → HTTP. `physics` never sees the database or the web; `api` never runs a solver.
 
+pub mod api;
 pub mod jobs;
+pub mod metrics;
 pub mod physics;
 pub mod problem;
+pub mod server;
+pub mod store;

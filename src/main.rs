@@ -1,1 +1,287 @@
-fn main(){}
+//! The `tribod` command line: `serve`, `run`, `openapi`.
+
+use clap::{Parser, Subcommand, ValueEnum};
+use std::io::Read;
+use std::process::ExitCode;
+use std::time::Duration;
+use tribod::api::ApiConfig;
+use tribod::jobs::queue::QueueConfig;
+use tribod::jobs::{registry, runner, table, Limits};
+use tribod::physics::Silent;
+use tribod::problem::{ErrorCode, Problem};
+use tribod::server::{self, ServeConfig};
+
+#[derive(Parser)]
+#[command(name = "tribod", version, about = "Valve-train and bearing tribology calculation service")]
+struct Cli {
+    /// Log format.
+    #[arg(long, global = true, env = "TRIBOD_LOG_FORMAT", value_enum, default_value_t = LogFormat::Pretty)]
+    log_format: LogFormat,
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Clone, Copy, ValueEnum)]
+enum LogFormat {
+    Pretty,
+    Json,
+}
+
+#[derive(Subcommand)]
+enum Command {
+    /// Serve the HTTP API (SQLite file store, worker pool).
+    Serve(ServeArgs),
+    /// Validate and solve one job spec offline; print the result JSON (or a CSV table).
+    Run(RunArgs),
+    /// Print the OpenAPI document.
+    Openapi,
+}
+
+#[derive(clap::Args)]
+struct ServeArgs {
+    /// Address to listen on.
+    #[arg(long, env = "TRIBOD_ADDR", default_value = "127.0.0.1:8080")]
+    addr: String,
+    /// SQLite database (file path or sqlite:// URL), created on first start.
+    #[arg(long, env = "TRIBOD_DATABASE_URL", default_value = "tribod.db")]
+    database_url: String,
+    /// Worker threads (jobs solved at once); default: number of cores.
+    #[arg(long, env = "TRIBOD_WORKERS")]
+    workers: Option<usize>,
+    /// Queued jobs accepted before POST answers 503.
+    #[arg(long, env = "TRIBOD_MAX_QUEUE", default_value_t = 10_000)]
+    max_queue: usize,
+    /// Per-job time limit in seconds (0 = none).
+    #[arg(long, env = "TRIBOD_JOB_TIMEOUT", default_value_t = 600.0)]
+    job_timeout: f64,
+    /// Start attempts before a job interrupted by restarts fails.
+    #[arg(long, env = "TRIBOD_MAX_ATTEMPTS", default_value_t = 3)]
+    max_attempts: i64,
+    /// Seconds running jobs get to finish at shutdown before being re-queued.
+    #[arg(long, env = "TRIBOD_SHUTDOWN_GRACE", default_value_t = 30.0)]
+    shutdown_grace: f64,
+    /// Bearer token(s) required on /v1 routes (comma-separated). Never logged.
+    #[arg(long, env = "TRIBOD_API_TOKEN", value_delimiter = ',', hide_env_values = true)]
+    api_token: Vec<String>,
+    /// File with one bearer token per line (`#` comments).
+    #[arg(long, env = "TRIBOD_API_TOKENS_FILE")]
+    api_tokens_file: Option<std::path::PathBuf>,
+    /// Allowed CORS origins (comma-separated, `*` for any). Default: no CORS.
+    #[arg(long, env = "TRIBOD_CORS_ORIGINS", value_delimiter = ',')]
+    cors_origin: Vec<String>,
+    /// Largest request body, bytes.
+    #[arg(long, env = "TRIBOD_BODY_LIMIT", default_value_t = 1 << 20)]
+    body_limit: usize,
+    /// Longest `Prefer: wait=N` honoured, seconds.
+    #[arg(long, env = "TRIBOD_MAX_WAIT", default_value_t = 300.0)]
+    max_wait: f64,
+    #[command(flatten)]
+    limits: LimitArgs,
+}
+
+#[derive(clap::Args)]
+struct LimitArgs {
+    /// Most nodes in one solver grid.
+    #[arg(long, env = "TRIBOD_MAX_GRID_NODES", default_value_t = Limits::default().max_grid_nodes)]
+    max_grid_nodes: usize,
+    /// Most cam angles in one cycle.
+    #[arg(long, env = "TRIBOD_MAX_ANGLES", default_value_t = Limits::default().max_angles)]
+    max_angles: usize,
+    /// Most cases in one sweep.
+    #[arg(long, env = "TRIBOD_MAX_SWEEP_CASES", default_value_t = Limits::default().max_sweep_cases)]
+    max_sweep_cases: usize,
+    /// Most solver evaluations in one optimisation.
+    #[arg(long, env = "TRIBOD_MAX_EVALUATIONS", default_value_t = Limits::default().max_evaluations)]
+    max_evaluations: usize,
+}
+
+impl LimitArgs {
+    fn limits(&self) -> Limits {
+        Limits {
+            max_grid_nodes: self.max_grid_nodes,
+            max_angles: self.max_angles,
+            max_sweep_cases: self.max_sweep_cases,
+            max_evaluations: self.max_evaluations,
+        }
+    }
+}
+
+#[derive(clap::Args)]
+struct RunArgs {
+    /// Job file `{"kind": ..., "spec": ...}`, or `-` for standard input.
+    spec: String,
+    /// Output format.
+    #[arg(long, value_enum, default_value_t = RunFormat::Json)]
+    format: RunFormat,
+    /// With `--format csv`: which table of the result (default: the kind's first).
+    #[arg(long)]
+    table: Option<String>,
+    /// One-line JSON instead of pretty-printed.
+    #[arg(long)]
+    compact: bool,
+    #[command(flatten)]
+    limits: LimitArgs,
+}
+
+#[derive(Clone, Copy, ValueEnum, PartialEq)]
+enum RunFormat {
+    Json,
+    Csv,
+}
+
+fn main() -> ExitCode {
+    let cli = Cli::parse();
+    match cli.command {
+        Command::Serve(args) => {
+            init_tracing(cli.log_format);
+            serve(args)
+        }
+        Command::Run(args) => {
+            init_tracing(cli.log_format);
+            run(args)
+        }
+        Command::Openapi => {
+            println!("{}", serde_json::to_string_pretty(&tribod::api::openapi()).unwrap_or_default());
+            ExitCode::SUCCESS
+        }
+    }
+}
+
+fn init_tracing(format: LogFormat) {
+    let filter = tracing_subscriber::EnvFilter::try_from_default_env()
+        .unwrap_or_else(|_| tracing_subscriber::EnvFilter::new("info,sqlx=warn,tower_http=info"));
+    let builder = tracing_subscriber::fmt().with_env_filter(filter).with_writer(std::io::stderr);
+    match format {
+        LogFormat::Pretty => builder.init(),
+        LogFormat::Json => builder.json().flatten_event(true).init(),
+    }
+}
+
+fn serve(args: ServeArgs) -> ExitCode {
+    let mut tokens: Vec<String> = args.api_token.iter().map(|t| t.trim().to_string()).filter(|t| !t.is_empty()).collect();
+    if let Some(path) = &args.api_tokens_file {
+        match std::fs::read_to_string(path) {
+            Ok(text) => tokens.extend(
+                text.lines().map(str::trim).filter(|l| !l.is_empty() && !l.starts_with('#')).map(String::from),
+            ),
+            Err(e) => {
+                eprintln!("tribod: cannot read tokens file {}: {e}", path.display());
+                return ExitCode::from(2);
+            }
+        }
+    }
+    let config = ServeConfig {
+        addr: args.addr,
+        database_url: args.database_url,
+        queue: QueueConfig {
+            workers: args.workers.unwrap_or_else(|| QueueConfig::default().workers).max(1),
+            max_backlog: args.max_queue,
+            job_timeout: (args.job_timeout > 0.0).then(|| Duration::from_secs_f64(args.job_timeout)),
+            max_attempts: args.max_attempts.max(1),
+            limits: args.limits.limits(),
+            ..QueueConfig::default()
+        },
+        api: ApiConfig {
+            tokens,
+            cors_origins: args.cors_origin,
+            body_limit: args.body_limit,
+            max_wait: Duration::from_secs_f64(args.max_wait.max(0.0)),
+        },
+        shutdown_grace: Duration::from_secs_f64(args.shutdown_grace.max(0.0)),
+    };
+    if !config.api.tokens.is_empty() {
+        tracing::info!(tokens = config.api.tokens.len(), "bearer authentication on /v1");
+    }
+    let runtime = match tokio::runtime::Builder::new_multi_thread().enable_all().build() {
+        Ok(r) => r,
+        Err(e) => {
+            eprintln!("tribod: cannot start the async runtime: {e}");
+            return ExitCode::FAILURE;
+        }
+    };
+    // One machine-readable line on stdout: scripts and tests started with `--addr …:0` read it.
+    let on_bound = |addr| println!("tribod listening on http://{addr}");
+    match runtime.block_on(server::serve(config, on_bound)) {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(e) => {
+            eprintln!("tribod: {e}");
+            ExitCode::FAILURE
+        }
+    }
+}
+
+/// Print a problem as JSON on stderr and return `code`.
+fn fail(problem: &Problem, code: u8) -> ExitCode {
+    eprintln!("{}", serde_json::to_string_pretty(problem).unwrap_or_default());
+    ExitCode::from(code)
+}
+
+fn run(args: RunArgs) -> ExitCode {
+    let text = if args.spec == "-" {
+        let mut s = String::new();
+        if let Err(e) = std::io::stdin().read_to_string(&mut s) {
+            return fail(&Problem::new(ErrorCode::MalformedJson, format!("reading stdin: {e}")), 2);
+        }
+        s
+    } else {
+        match std::fs::read_to_string(&args.spec) {
+            Ok(s) => s,
+            Err(e) => {
+                return fail(&Problem::new(ErrorCode::MalformedJson, format!("reading {}: {e}", args.spec)), 2);
+            }
+        }
+    };
+    let request: serde_json::Value = match serde_json::from_str(&text) {
+        Ok(v) => v,
+        Err(e) => return fail(&Problem::new(ErrorCode::MalformedJson, e.to_string()), 2),
+    };
+    let request: tribod::api::jobs::JobRequest = match tribod::jobs::kind::parse_value(&request) {
+        Ok(r) => r,
+        Err(e) => {
+            return fail(
+                &Problem::new(ErrorCode::InvalidRequest, format!("{}: {}", e.path, e.message)).with_errors(vec![e]),
+                2,
+            )
+        }
+    };
+    let Some(kind) = registry::find(&request.kind) else {
+        let p = Problem::new(
+            ErrorCode::UnknownKind,
+            format!("no job kind named '{}'; known kinds: {}", request.kind, registry::names().join(", ")),
+        );
+        return fail(&p, 2);
+    };
+    let prepared = match kind.prepare(&request.spec, &args.limits.limits()) {
+        Ok(p) => p,
+        Err(p) => return fail(&p.under("/spec"), 2),
+    };
+    let (outcome, _) = runner::run(prepared, &Silent);
+    let value = match outcome {
+        runner::Outcome::Succeeded(v) => v,
+        runner::Outcome::Failed(p) => return fail(&p, 1),
+        runner::Outcome::Interrupted(i) => {
+            return fail(&Problem::new(ErrorCode::Interrupted, format!("{i:?}")), 1);
+        }
+    };
+    if args.format == RunFormat::Csv {
+        let tables = kind.tables();
+        let name = args.table.as_deref().or(tables.first().copied());
+        let Some(part) = name.filter(|n| tables.contains(n)).and_then(|n| value.get(n)) else {
+            let p = Problem::new(
+                ErrorCode::NotAcceptable,
+                format!("no such table in this result; kind '{}' has: {}", kind.name(), tables.join(", ")),
+            );
+            return fail(&p, 2);
+        };
+        return match table::to_csv(part) {
+            Ok(csv) => {
+                print!("{csv}");
+                ExitCode::SUCCESS
+            }
+            Err(e) => fail(&Problem::new(ErrorCode::InternalError, e), 1),
+        };
+    }
+    let out = if args.compact { serde_json::to_string(&value) } else { serde_json::to_string_pretty(&value) };
+    println!("{}", out.unwrap_or_default());
+    ExitCode::SUCCESS
+}

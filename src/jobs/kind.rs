@@ -261,11 +261,17 @@ impl<K: Kind> DynKind for Registered<K> {
 
 /// Deserialise a spec, turning serde's error into a field error with a JSON pointer.
 pub fn parse_spec<T: DeserializeOwned>(spec: &Value) -> Result<T, Problem> {
-    serde_path_to_error::deserialize(spec).map_err(|err| {
+    parse_value(spec).map_err(|e| {
+        Problem::new(ErrorCode::InvalidSpec, "the spec does not match the kind's schema").with_errors(vec![e])
+    })
+}
+
+/// Deserialise any JSON value; on failure the JSON pointer of the offending field and serde's
+/// message.
+pub fn parse_value<T: DeserializeOwned>(value: &Value) -> Result<T, FieldError> {
+    serde_path_to_error::deserialize(value).map_err(|err| {
         let pointer = path_to_pointer(err.path());
-        let message = err.inner().to_string();
-        Problem::new(ErrorCode::InvalidSpec, "the spec does not match the kind's schema")
-            .with_errors(vec![FieldError::new(pointer, message)])
+        FieldError::new(pointer, err.inner().to_string())
     })
 }
 

@@ -2,6 +2,9 @@
 
 pub mod kind;
 pub mod kinds;
+pub mod queue;
 pub mod registry;
+pub mod runner;
+pub mod table;
 
 pub use kind::{DynKind, Kind, Limits, OutputInfo, Prepared, Validation};

@@ -1,0 +1,419 @@
+//! `/v1/jobs`: submit, list, inspect, fetch results, cancel or delete.
+
+use super::error::{ApiError, ApiResult};
+use super::extract::{ApiJson, ApiQuery};
+use super::AppState;
+use crate::jobs::queue::{Cancellation, Submitted};
+use crate::jobs::{registry, table};
+use crate::problem::{ErrorCode, Problem};
+use crate::store::{JobRow, JobStatus, ListFilter};
+use axum::extract::{Path, State};
+use axum::http::{header, HeaderMap, HeaderValue, StatusCode};
+use axum::response::{IntoResponse, Response};
+use axum::Json;
+use serde::{Deserialize, Serialize};
+use serde_json::Value;
+use std::time::Duration;
+use utoipa::{IntoParams, ToSchema};
+use uuid::Uuid;
+
+/// Body of `POST /v1/jobs`.
+#[derive(Debug, Deserialize, Serialize, ToSchema)]
+#[serde(deny_unknown_fields)]
+pub struct JobRequest {
+    /// The job kind (see `GET /v1/kinds`).
+    #[schema(example = "hertz")]
+    pub kind: String,
+    /// The kind's spec: one of the `*Spec` schemas, chosen by `kind`.
+    #[schema(value_type = Object)]
+    pub spec: Value,
+    /// Free text to find the job again (at most 200 characters).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub label: Option<String>,
+}
+
+/// Progress of a running job.
+#[derive(Debug, Serialize, ToSchema)]
+pub struct Progress {
+    /// Fraction done, 0–1.
+    pub fraction: f64,
+    /// What the solver is doing.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub stage: Option<String>,
+}
+
+/// Links of a job.
+#[derive(Debug, Serialize, ToSchema)]
+pub struct JobLinks {
+    #[serde(rename = "self")]
+    pub self_: String,
+    pub result: String,
+}
+
+/// A job: its state, not its result (see `/v1/jobs/{id}/result`).
+#[derive(Debug, Serialize, ToSchema)]
+pub struct JobView {
+    pub id: Uuid,
+    pub kind: String,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub label: Option<String>,
+    pub status: JobStatus,
+    /// RFC 3339.
+    pub created_at: String,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub started_at: Option<String>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub finished_at: Option<String>,
+    /// Times a worker started this job (more than 1 after a restart interrupted it).
+    pub attempts: i64,
+    pub progress: Progress,
+    /// A cancel was requested while the job was running.
+    pub cancel_requested: bool,
+    /// `true` when this answer is an earlier identical job returned instead of a new one.
+    pub reused: bool,
+    pub solver_version: String,
+    /// sha256 of the kind and canonical spec: the dedup key.
+    pub spec_hash: String,
+    /// The canonical spec (defaults filled in); only on `GET /v1/jobs/{id}`.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    #[schema(value_type = Option<Object>)]
+    pub spec: Option<Value>,
+    /// Why the job failed.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub error: Option<Problem>,
+    pub links: JobLinks,
+}
+
+pub fn rfc3339(ms: i64) -> String {
+    time::OffsetDateTime::from_unix_timestamp_nanos(ms as i128 * 1_000_000)
+        .ok()
+        .and_then(|t| t.format(&time::format_description::well_known::Rfc3339).ok())
+        .unwrap_or_default()
+}
+
+impl JobView {
+    pub fn from_row(row: JobRow, reused: bool) -> Self {
+        let id = row.id;
+        JobView {
+            id,
+            kind: row.kind,
+            label: row.label,
+            status: row.status,
+            created_at: rfc3339(row.created_at),
+            started_at: row.started_at.map(rfc3339),
+            finished_at: row.finished_at.map(rfc3339),
+            attempts: row.attempts,
+            progress: Progress { fraction: row.progress, stage: row.stage },
+            cancel_requested: row.cancel_requested,
+            reused,
+            solver_version: row.solver_version,
+            spec_hash: row.spec_hash,
+            spec: row.spec.and_then(|s| serde_json::from_str(&s).ok()),
+            error: row.error.and_then(|e| serde_json::from_str(&e).ok()),
+            links: JobLinks { self_: format!("/v1/jobs/{id}"), result: format!("/v1/jobs/{id}/result") },
+        }
+    }
+}
+
+/// Query of `POST /v1/jobs`.
+#[derive(Debug, Deserialize, IntoParams)]
+#[serde(deny_unknown_fields)]
+pub struct SubmitQuery {
+    /// Solve again even when an identical succeeded job exists.
+    #[serde(default)]
+    pub fresh: bool,
+}
+
+/// Seconds of `Prefer: wait=N` (RFC 7240), if present.
+fn prefer_wait(headers: &HeaderMap) -> Option<f64> {
+    headers.get_all("prefer").iter().filter_map(|v| v.to_str().ok()).flat_map(|v| v.split([',', ';'])).find_map(|p| {
+        let (k, v) = p.trim().split_once('=')?;
+        (k.trim().eq_ignore_ascii_case("wait")).then(|| v.trim().trim_matches('"').parse::<f64>().ok()).flatten()
+    })
+}
+
+fn job_response(status: StatusCode, view: JobView, extra: Option<(&'static str, String)>) -> Response {
+    let location = view.links.self_.clone();
+    let mut res = (status, Json(view)).into_response();
+    if let Ok(v) = HeaderValue::from_str(&location) {
+        res.headers_mut().insert(header::LOCATION, v);
+    }
+    if let Some((name, value)) = extra {
+        if let Ok(v) = HeaderValue::from_str(&value) {
+            res.headers_mut().insert(name, v);
+        }
+    }
+    res
+}
+
+/// Submit a job.
+///
+/// Validates the spec against its kind, stores the job and queues it. Answers `202 Accepted` with
+/// the job and its `Location`. With `Prefer: wait=N` the server waits up to N seconds (capped by
+/// the server) and answers `200` with the finished job if it finishes in time. An identical spec
+/// that already succeeded with the same solver version is answered at once with that job
+/// (`200`, `reused: true`) unless `?fresh=true`. Invalid specs get a `problem+json` naming each
+/// offending field by JSON pointer; a full queue answers `503` with `Retry-After`.
+#[utoipa::path(post, path = "/v1/jobs", tag = "jobs",
+    params(SubmitQuery, ("Prefer" = Option<String>, Header, description = "`wait=N`: wait up to N seconds for the job to finish (RFC 7240)")),
+    request_body(content = JobRequest, description = "The job kind and its spec"),
+    responses(
+        (status = 202, description = "Accepted and queued", body = JobView, headers(("Location" = String, description = "URL of the job"))),
+        (status = 200, description = "Finished within the wait, or reused", body = JobView),
+        (status = 400, description = "Malformed JSON", body = Problem, content_type = "application/problem+json"),
+        (status = 413, description = "Body too large", body = Problem, content_type = "application/problem+json"),
+        (status = 422, description = "Unknown kind, invalid spec or over a server limit", body = Problem, content_type = "application/problem+json"),
+        (status = 503, description = "Queue full or shutting down", body = Problem, content_type = "application/problem+json"),
+    ))]
+pub async fn submit_job(
+    State(state): State<AppState>,
+    ApiQuery(query): ApiQuery<SubmitQuery>,
+    headers: HeaderMap,
+    ApiJson(req): ApiJson<JobRequest>,
+) -> ApiResult<Response> {
+    if let Some(label) = &req.label {
+        if label.chars().count() > 200 {
+            let mut e = ApiError::new(ErrorCode::InvalidRequest, "label is longer than 200 characters");
+            e.problem.errors = vec![crate::problem::FieldError::new("/label", "at most 200 characters")];
+            return Err(e);
+        }
+    }
+    let wait = prefer_wait(&headers);
+    match state.queue.submit(&req.kind, &req.spec, req.label.clone(), query.fresh).await? {
+        Submitted::Reused(row) => Ok(job_response(StatusCode::OK, JobView::from_row(row, true), None)),
+        Submitted::Accepted(row) => {
+            let id = row.id;
+            if let Some(secs) = wait.filter(|s| *s > 0.0) {
+                let secs = secs.min(state.max_wait.as_secs_f64());
+                let applied = Some(("preference-applied", format!("wait={}", secs.round() as u64)));
+                if let Some(row) = state.queue.wait(id, Duration::from_secs_f64(secs)).await? {
+                    let code = if row.status.is_finished() { StatusCode::OK } else { StatusCode::ACCEPTED };
+                    return Ok(job_response(code, JobView::from_row(row, false), applied));
+                }
+            }
+            Ok(job_response(StatusCode::ACCEPTED, JobView::from_row(row, false), None))
+        }
+    }
+}
+
+/// Query of `GET /v1/jobs`.
+#[derive(Debug, Deserialize, IntoParams)]
+#[serde(deny_unknown_fields)]
+pub struct ListQuery {
+    /// Only jobs in these statuses (comma-separated).
+    #[param(example = "queued,running")]
+    pub status: Option<String>,
+    /// Only jobs of this kind.
+    pub kind: Option<String>,
+    /// Only jobs created after this instant (RFC 3339).
+    pub created_after: Option<String>,
+    /// Only jobs created before this instant (RFC 3339).
+    pub created_before: Option<String>,
+    /// Page size, 1–500 (default 50).
+    pub limit: Option<u32>,
+    /// Cursor: the `next` of the previous page (jobs older than this id).
+    pub after: Option<Uuid>,
+}
+
+/// A page of jobs, newest first.
+#[derive(Debug, Serialize, ToSchema)]
+pub struct JobPage {
+    pub jobs: Vec<JobView>,
+    /// Pass as `after` for the next page; absent on the last page.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub next: Option<Uuid>,
+}
+
+fn parse_time(name: &str, s: &str) -> ApiResult<i64> {
+    time::OffsetDateTime::parse(s, &time::format_description::well_known::Rfc3339)
+        .map(|t| (t.unix_timestamp_nanos() / 1_000_000) as i64)
+        .map_err(|e| {
+            let mut err = ApiError::new(ErrorCode::InvalidQuery, format!("{name}: not an RFC 3339 instant ({e})"));
+            err.problem.errors = vec![crate::problem::FieldError::new(format!("?{name}"), "must be RFC 3339, e.g. 2026-11-22T10:00:00Z")];
+            err
+        })
+}
+
+/// List jobs.
+///
+/// Newest first, filtered by status, kind and creation time, paged by a keyset cursor: pass the
+/// `next` of one page as `after` to get the next.
+#[utoipa::path(get, path = "/v1/jobs", tag = "jobs", params(ListQuery),
+    responses(
+        (status = 200, description = "A page of jobs", body = JobPage),
+        (status = 400, description = "Invalid query", body = Problem, content_type = "application/problem+json"),
+    ))]
+pub async fn list_jobs(State(state): State<AppState>, ApiQuery(q): ApiQuery<ListQuery>) -> ApiResult<Json<JobPage>> {
+    let mut filter = ListFilter { limit: q.limit.unwrap_or(50), ..Default::default() };
+    if !(1..=500).contains(&filter.limit) {
+        let mut err = ApiError::new(ErrorCode::InvalidQuery, "limit must be in [1, 500]");
+        err.problem.errors = vec![crate::problem::FieldError::new("?limit", "must be in [1, 500]")];
+        return Err(err);
+    }
+    if let Some(s) = &q.status {
+        for name in s.split(',').map(str::trim).filter(|n| !n.is_empty()) {
+            let st = JobStatus::parse(name).ok_or_else(|| {
+                let mut err = ApiError::new(ErrorCode::InvalidQuery, format!("unknown status '{name}'"));
+                err.problem.errors = vec![crate::problem::FieldError::new(
+                    "?status",
+                    "must be queued, running, succeeded, failed or canceled",
+                )];
+                err
+            })?;
+            filter.statuses.push(st);
+        }
+    }
+    filter.kind = q.kind.clone();
+    filter.created_after = q.created_after.as_deref().map(|s| parse_time("created_after", s)).transpose()?;
+    filter.created_before = q.created_before.as_deref().map(|s| parse_time("created_before", s)).transpose()?;
+    if let Some(after) = q.after {
+        let seq = state.queue.store().seq_of(after).await.map_err(store_error)?.ok_or_else(|| {
+            let mut err = ApiError::new(ErrorCode::InvalidQuery, "the cursor names no job (deleted?)");
+            err.problem.errors = vec![crate::problem::FieldError::new("?after", "unknown job id")];
+            err
+        })?;
+        filter.before_seq = Some(seq);
+    }
+    let limit = filter.limit as usize;
+    filter.limit += 1;
+    let mut rows = state.queue.store().list(&filter).await.map_err(store_error)?;
+    let more = rows.len() > limit;
+    rows.truncate(limit);
+    let next = if more { rows.last().map(|r| r.id) } else { None };
+    Ok(Json(JobPage { jobs: rows.into_iter().map(|r| JobView::from_row(r, false)).collect(), next }))
+}
+
+pub fn store_error(e: crate::store::StoreError) -> ApiError {
+    tracing::warn!(error = %e, "storage error");
+    ApiError::new(ErrorCode::StorageUnavailable, "the job store could not be reached; try again")
+}
+
+fn not_found(id: Uuid) -> ApiError {
+    ApiError::new(ErrorCode::JobNotFound, format!("no job with id {id}"))
+}
+
+/// Get a job.
+///
+/// Status, progress, timing, the canonical spec and, for a failed job, its problem.
+#[utoipa::path(get, path = "/v1/jobs/{id}", tag = "jobs",
+    params(("id" = Uuid, Path, description = "Job id")),
+    responses(
+        (status = 200, description = "The job", body = JobView),
+        (status = 404, description = "No such job", body = Problem, content_type = "application/problem+json"),
+    ))]
+pub async fn get_job(State(state): State<AppState>, Path(id): Path<Uuid>) -> ApiResult<Json<JobView>> {
+    let row = state.queue.store().get(id).await.map_err(store_error)?.ok_or_else(|| not_found(id))?;
+    Ok(Json(JobView::from_row(row, false)))
+}
+
+/// Query of `GET /v1/jobs/{id}/result`.
+#[derive(Debug, Deserialize, IntoParams)]
+#[serde(deny_unknown_fields)]
+pub struct ResultQuery {
+    /// `json` (default) or `csv`; same as `Accept: text/csv`.
+    pub format: Option<String>,
+    /// For CSV: which table of the result (see the kind's `tables` in `/v1/kinds`); default the first.
+    pub table: Option<String>,
+}
+
+/// Get a job's result.
+///
+/// JSON by default: the kind's result object plus `meta` (kind, solver version, wall time).
+/// With `Accept: text/csv` (or `?format=csv`) a tabular part of the result as CSV, for kinds that
+/// have one (`?table=` picks which). `409 result_not_ready` while the job is queued or running;
+/// `409 result_unavailable` when it failed or was canceled.
+#[utoipa::path(get, path = "/v1/jobs/{id}/result", tag = "jobs",
+    params(("id" = Uuid, Path, description = "Job id"), ResultQuery),
+    responses(
+        (status = 200, description = "The result", content(
+            (Object = "application/json"),
+            (String = "text/csv"),
+        )),
+        (status = 404, description = "No such job", body = Problem, content_type = "application/problem+json"),
+        (status = 406, description = "No CSV for this kind or table", body = Problem, content_type = "application/problem+json"),
+        (status = 409, description = "Not ready, or the job has no result", body = Problem, content_type = "application/problem+json"),
+    ))]
+pub async fn get_result(
+    State(state): State<AppState>,
+    Path(id): Path<Uuid>,
+    headers: HeaderMap,
+    ApiQuery(q): ApiQuery<ResultQuery>,
+) -> ApiResult<Response> {
+    let store = state.queue.store();
+    let row = store.get(id).await.map_err(store_error)?.ok_or_else(|| not_found(id))?;
+    match row.status {
+        JobStatus::Queued | JobStatus::Running => {
+            return Err(ApiError::new(
+                ErrorCode::ResultNotReady,
+                format!("the job is {} ({:.0} % done); poll /v1/jobs/{id} or submit with Prefer: wait=N", row.status.as_str(), row.progress * 100.0),
+            ));
+        }
+        JobStatus::Failed => {
+            let why = row.error.and_then(|e| serde_json::from_str::<Problem>(&e).ok()).map(|p| p.to_string()).unwrap_or_default();
+            return Err(ApiError::new(ErrorCode::ResultUnavailable, format!("the job failed: {why}")));
+        }
+        JobStatus::Canceled => {
+            return Err(ApiError::new(ErrorCode::ResultUnavailable, "the job was canceled"));
+        }
+        JobStatus::Succeeded => {}
+    }
+    let text = store.result(id).await.map_err(store_error)?.ok_or_else(|| {
+        ApiError::new(ErrorCode::InternalError, "the job succeeded but its result is missing")
+    })?;
+    let accept = headers.get(header::ACCEPT).and_then(|v| v.to_str().ok()).unwrap_or("");
+    let wants_csv = match q.format.as_deref() {
+        Some("csv") => true,
+        Some("json") | None => q.format.is_none() && accept.contains("text/csv") && !accept.contains("application/json"),
+        Some(other) => {
+            let mut err = ApiError::new(ErrorCode::InvalidQuery, format!("unknown format '{other}'"));
+            err.problem.errors = vec![crate::problem::FieldError::new("?format", "must be json or csv")];
+            return Err(err);
+        }
+    };
+    if !wants_csv {
+        return Ok(([(header::CONTENT_TYPE, "application/json")], text).into_response());
+    }
+    let tables = registry::find(&row.kind).map(|k| k.tables()).unwrap_or(&[]);
+    let name = match &q.table {
+        Some(t) if tables.contains(&t.as_str()) => t.as_str(),
+        Some(t) => {
+            return Err(ApiError::new(
+                ErrorCode::NotAcceptable,
+                format!("kind '{}' has no table '{t}'; tables: {}", row.kind, tables.join(", ")),
+            ))
+        }
+        None => *tables.first().ok_or_else(|| {
+            ApiError::new(ErrorCode::NotAcceptable, format!("kind '{}' has no tabular result; ask for JSON", row.kind))
+        })?,
+    };
+    let value: Value = serde_json::from_str(&text).map_err(|e| ApiError::new(ErrorCode::InternalError, e.to_string()))?;
+    let Some(part) = value.get(name) else {
+        return Err(ApiError::new(
+            ErrorCode::NotAcceptable,
+            format!("this result has no '{name}' (not requested in the spec's outputs?)"),
+        ));
+    };
+    let csv = table::to_csv(part).map_err(|e| ApiError::new(ErrorCode::InternalError, e))?;
+    Ok(([(header::CONTENT_TYPE, "text/csv; charset=utf-8")], csv).into_response())
+}
+
+/// Cancel or delete a job.
+///
+/// A queued job is canceled at once (`200`, the canceled job). A running job is asked to stop
+/// (`202`, the job with `cancel_requested`); its solver stops within one iteration step. A
+/// finished job is deleted with its result (`204`). Deleting is idempotent: an unknown id also
+/// answers `204`.
+#[utoipa::path(delete, path = "/v1/jobs/{id}", tag = "jobs",
+    params(("id" = Uuid, Path, description = "Job id")),
+    responses(
+        (status = 200, description = "Canceled (was queued)", body = JobView),
+        (status = 202, description = "Cancel requested (running)", body = JobView),
+        (status = 204, description = "Deleted, or never existed"),
+    ))]
+pub async fn delete_job(State(state): State<AppState>, Path(id): Path<Uuid>) -> ApiResult<Response> {
+    Ok(match state.queue.cancel(id).await? {
+        Cancellation::Canceled(row) => (StatusCode::OK, Json(JobView::from_row(row, false))).into_response(),
+        Cancellation::Requested(row) => (StatusCode::ACCEPTED, Json(JobView::from_row(row, false))).into_response(),
+        Cancellation::Deleted => StatusCode::NO_CONTENT.into_response(),
+    })
+}

@@ -1,0 +1,230 @@
+//! The HTTP API: `fn app(state) -> Router`, so tests and the server build the same thing.
+
+pub mod error;
+pub mod extract;
+pub mod jobs;
+pub mod meta;
+
+use crate::jobs::queue::Queue;
+use crate::jobs::registry;
+use crate::problem::{ErrorCode, Problem};
+use axum::extract::{DefaultBodyLimit, Request, State};
+use axum::http::{header, HeaderValue, Method};
+use axum::middleware::{self, Next};
+use axum::response::{IntoResponse, Response};
+use error::ApiError;
+use std::sync::Arc;
+use std::time::Duration;
+use tower_http::cors::{AllowOrigin, Any, CorsLayer};
+use tower_http::trace::TraceLayer;
+use utoipa::openapi::schema::{OneOfBuilder, Schema};
+use utoipa::openapi::{Ref, RefOr};
+use utoipa::OpenApi;
+use utoipa_axum::router::OpenApiRouter;
+use utoipa_axum::routes;
+
+/// Settings of the HTTP layer.
+#[derive(Debug, Clone)]
+pub struct ApiConfig {
+    /// Bearer tokens; empty = no authentication.
+    pub tokens: Vec<String>,
+    /// Allowed CORS origins; `["*"]` = any; empty = no CORS headers.
+    pub cors_origins: Vec<String>,
+    /// Largest request body, bytes.
+    pub body_limit: usize,
+    /// Cap on `Prefer: wait=N`.
+    pub max_wait: Duration,
+}
+
+impl Default for ApiConfig {
+    fn default() -> Self {
+        ApiConfig { tokens: Vec::new(), cors_origins: Vec::new(), body_limit: 1 << 20, max_wait: Duration::from_secs(300) }
+    }
+}
+
+/// What every handler sees.
+#[derive(Clone)]
+pub struct AppState {
+    pub queue: Queue,
+    pub tokens: Arc<Vec<String>>,
+    pub max_wait: Duration,
+    pub openapi: Arc<String>,
+}
+
+#[derive(OpenApi)]
+#[openapi(
+    info(
+        title = "tribod",
+        description = "Calculation service for valve-train and bearing tribology. Submit a job \
+            (`POST /v1/jobs` with a kind and its spec), follow it (`GET /v1/jobs/{id}`, or \
+            `Prefer: wait=N`) and fetch its result as JSON or CSV. SI units throughout unless a \
+            field's name says otherwise (`speed_rpm`, `angle_deg`). Errors are RFC 9457 \
+            `application/problem+json` with a stable `code` and the JSON pointer of each \
+            offending field.",
+        license(name = "MIT OR Apache-2.0"),
+    ),
+    tags(
+        (name = "jobs", description = "Submit, follow, fetch and cancel calculations"),
+        (name = "kinds", description = "What the service can compute"),
+        (name = "operations", description = "Health, readiness, metrics and this document"),
+    ),
+    components(schemas(crate::problem::Problem, crate::problem::FieldError, crate::physics::Convergence, crate::physics::Termination)),
+    modifiers(&BearerScheme),
+)]
+struct ApiDoc;
+
+struct BearerScheme;
+
+impl utoipa::Modify for BearerScheme {
+    fn modify(&self, openapi: &mut utoipa::openapi::OpenApi) {
+        use utoipa::openapi::security::{HttpAuthScheme, HttpBuilder, SecurityScheme};
+        if let Some(components) = openapi.components.as_mut() {
+            components.add_security_scheme(
+                "bearer",
+                SecurityScheme::Http(
+                    HttpBuilder::new()
+                        .scheme(HttpAuthScheme::Bearer)
+                        .description(Some("Needed on /v1 routes when the server runs with --api-token"))
+                        .build(),
+                ),
+            );
+        }
+    }
+}
+
+fn routers() -> (OpenApiRouter<AppState>, OpenApiRouter<AppState>) {
+    let v1 = OpenApiRouter::new()
+        .routes(routes!(jobs::submit_job, jobs::list_jobs))
+        .routes(routes!(jobs::get_job, jobs::delete_job))
+        .routes(routes!(jobs::get_result))
+        .routes(routes!(meta::list_kinds));
+    let open = OpenApiRouter::new()
+        .routes(routes!(meta::healthz))
+        .routes(routes!(meta::readyz))
+        .routes(routes!(meta::metrics))
+        .routes(routes!(meta::openapi_json));
+    (v1, open)
+}
+
+/// The OpenAPI document the server serves (and `tribod openapi` prints).
+pub fn openapi() -> utoipa::openapi::OpenApi {
+    let (v1, open) = routers();
+    let mut doc = OpenApiRouter::<AppState>::with_openapi(ApiDoc::openapi()).merge(v1).merge(open).into_openapi();
+    // The kinds' spec and result schemas, and `JobRequest.spec` as one of the specs.
+    let mut schemas = Vec::new();
+    for k in registry::KINDS {
+        k.schemas(&mut schemas);
+    }
+    let components = doc.components.get_or_insert_with(Default::default);
+    for (name, schema) in schemas {
+        components.schemas.entry(name).or_insert(schema);
+    }
+    let mut one_of = OneOfBuilder::new().description(Some(
+        "The spec of the chosen kind (see `GET /v1/kinds` for each kind's schema and example).",
+    ));
+    for k in registry::KINDS {
+        one_of = one_of.item(Ref::from_schema_name(k.schema_names().0));
+    }
+    if let Some(RefOr::T(Schema::Object(req))) = components.schemas.get_mut("JobRequest") {
+        req.properties.insert("spec".into(), RefOr::T(Schema::OneOf(one_of.build())));
+    }
+    for path in doc.paths.paths.values_mut() {
+        for op in [&mut path.get, &mut path.post, &mut path.delete].into_iter().flatten() {
+            if op.tags.as_ref().is_some_and(|t| t.iter().any(|t| t == "jobs" || t == "kinds")) {
+                let req = utoipa::openapi::security::SecurityRequirement::new::<_, _, &str>("bearer", []);
+                op.security = Some(vec![req, Default::default()]);
+            }
+        }
+    }
+    doc
+}
+
+/// The whole application.
+pub fn app(queue: Queue, config: &ApiConfig) -> axum::Router {
+    let openapi = serde_json::to_string_pretty(&openapi()).unwrap_or_default();
+    let state = AppState {
+        queue,
+        tokens: Arc::new(config.tokens.clone()),
+        max_wait: config.max_wait,
+        openapi: Arc::new(openapi),
+    };
+    let (v1, open) = routers();
+    let v1 = v1.route_layer(middleware::from_fn_with_state(state.clone(), require_token));
+    let (router, _) = OpenApiRouter::new().merge(v1).merge(open).split_for_parts();
+    let mut router = router
+        .fallback(|| async { ApiError::new(ErrorCode::RouteNotFound, "no such route; see /openapi.json") })
+        .method_not_allowed_fallback(|| async {
+            ApiError::new(ErrorCode::MethodNotAllowed, "this route does not answer that method; see /openapi.json")
+        })
+        .layer(DefaultBodyLimit::max(config.body_limit))
+        .layer(middleware::from_fn_with_state(state.clone(), count_requests))
+        .layer(
+            TraceLayer::new_for_http().make_span_with(|req: &Request| {
+                tracing::info_span!("request", method = %req.method(), path = %req.uri().path())
+            }),
+        )
+        .with_state(state);
+    if let Some(cors) = cors_layer(&config.cors_origins) {
+        router = router.layer(cors);
+    }
+    router
+}
+
+fn cors_layer(origins: &[String]) -> Option<CorsLayer> {
+    if origins.is_empty() {
+        return None;
+    }
+    let layer = CorsLayer::new()
+        .allow_methods([Method::GET, Method::POST, Method::DELETE, Method::OPTIONS])
+        .allow_headers([header::CONTENT_TYPE, header::AUTHORIZATION, header::ACCEPT, "prefer".parse().expect("header name")])
+        .expose_headers([header::LOCATION, header::RETRY_AFTER, "preference-applied".parse().expect("header name")]);
+    Some(if origins.iter().any(|o| o == "*") {
+        layer.allow_origin(Any)
+    } else {
+        let list: Vec<HeaderValue> = origins.iter().filter_map(|o| HeaderValue::from_str(o).ok()).collect();
+        layer.allow_origin(AllowOrigin::list(list))
+    })
+}
+
+/// Constant-time comparison, so response timing does not reveal a token's prefix.
+fn token_matches(given: &[u8], expected: &[u8]) -> bool {
+    let mut diff = given.len() ^ expected.len();
+    for (i, b) in expected.iter().enumerate() {
+        diff |= (given.get(i).copied().unwrap_or(0) ^ b) as usize;
+    }
+    diff == 0
+}
+
+async fn require_token(State(state): State<AppState>, req: Request, next: Next) -> Response {
+    if state.tokens.is_empty() || req.method() == Method::OPTIONS {
+        return next.run(req).await;
+    }
+    let given = req
+        .headers()
+        .get(header::AUTHORIZATION)
+        .and_then(|v| v.to_str().ok())
+        .and_then(|v| v.strip_prefix("Bearer ").or_else(|| v.strip_prefix("bearer ")))
+        .map(str::trim);
+    let ok = given.is_some_and(|g| state.tokens.iter().fold(false, |acc, t| acc | token_matches(g.as_bytes(), t.as_bytes())));
+    if ok {
+        next.run(req).await
+    } else {
+        ApiError::from(Problem::new(
+            ErrorCode::Unauthorized,
+            "this server needs `Authorization: Bearer <token>` on /v1 routes",
+        ))
+        .into_response()
+    }
+}
+
+async fn count_requests(State(state): State<AppState>, req: Request, next: Next) -> Response {
+    let method = req.method().to_string();
+    let res = next.run(req).await;
+    state
+        .queue
+        .metrics()
+        .http_requests
+        .get_or_create(&crate::metrics::HttpLabel { method, status: res.status().as_u16() })
+        .inc();
+    res
+}

@@ -1,0 +1,82 @@
+//! Tabular results as CSV. A table is a result field holding either an object of equal-length
+//! arrays (columnar, e.g. a per-angle `series`) or an array of flat objects (rows, e.g. `runs`).
+
+use serde_json::Value;
+
+/// Render the table `value` as CSV (header line first). `Err` names what is not tabular.
+pub fn to_csv(value: &Value) -> Result<String, String> {
+    let mut w = csv::WriterBuilder::new().from_writer(Vec::new());
+    match value {
+        Value::Object(columns) => {
+            let cols: Vec<(&String, &Vec<Value>)> = columns
+                .iter()
+                .filter_map(|(k, v)| v.as_array().map(|a| (k, a)))
+                .collect();
+            if cols.is_empty() {
+                return Err("the field has no array columns".into());
+            }
+            let rows = cols.iter().map(|(_, a)| a.len()).max().unwrap_or(0);
+            if cols.iter().any(|(_, a)| a.len() != rows) {
+                return Err("the columns have different lengths".into());
+            }
+            w.write_record(cols.iter().map(|(k, _)| k.as_str())).map_err(|e| e.to_string())?;
+            for i in 0..rows {
+                w.write_record(cols.iter().map(|(_, a)| cell(&a[i]))).map_err(|e| e.to_string())?;
+            }
+        }
+        Value::Array(rows) => {
+            let mut header: Vec<&String> = Vec::new();
+            for row in rows {
+                let obj = row.as_object().ok_or("the rows are not objects")?;
+                for k in obj.keys() {
+                    if !header.contains(&k) {
+                        header.push(k);
+                    }
+                }
+            }
+            w.write_record(header.iter().map(|k| k.as_str())).map_err(|e| e.to_string())?;
+            for row in rows {
+                let obj = row.as_object().ok_or("the rows are not objects")?;
+                w.write_record(header.iter().map(|k| obj.get(*k).map(cell).unwrap_or_default()))
+                    .map_err(|e| e.to_string())?;
+            }
+        }
+        _ => return Err("the field is neither columns nor rows".into()),
+    }
+    let bytes = w.into_inner().map_err(|e| e.to_string())?;
+    String::from_utf8(bytes).map_err(|e| e.to_string())
+}
+
+fn cell(v: &Value) -> String {
+    match v {
+        Value::Null => String::new(),
+        Value::String(s) => s.clone(),
+        Value::Number(n) => n.to_string(),
+        Value::Bool(b) => b.to_string(),
+        other => other.to_string(),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use serde_json::json;
+
+    #[test]
+    fn columns_keep_field_order() {
+        let csv = to_csv(&json!({"angle_deg": [0.0, 1.5], "lift": [0.0, 1e-4], "flag": [true, false]})).unwrap();
+        assert_eq!(csv, "angle_deg,lift,flag\n0.0,1.5\n".replace("0.0,1.5\n", "0.0,0.0,true\n1.5,0.0001,false\n"));
+    }
+
+    #[test]
+    fn rows_union_their_keys() {
+        let csv = to_csv(&json!([{"a": 1, "b": "x"}, {"a": 2, "c": [1, 2]}])).unwrap();
+        assert_eq!(csv, "a,b,c\n1,x,\n2,,\"[1,2]\"\n");
+    }
+
+    #[test]
+    fn ragged_columns_are_refused() {
+        assert!(to_csv(&json!({"a": [1, 2], "b": [1]})).is_err());
+        assert!(to_csv(&json!(3)).is_err());
+    }
+}

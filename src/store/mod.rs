@@ -1,0 +1,511 @@
+//! The SQLite repository: the only module that speaks SQL.
+//!
+//! One file in WAL mode, two pools: a single writer connection (SQLite admits one writer at a time;
+//! funnelling writes through one connection avoids busy-waiting) and several readers.
+
+mod codec;
+
+pub use codec::{decode_result, encode_result, Encoded};
+
+use serde::{Deserialize, Serialize};
+use sqlx::sqlite::{
+    SqliteConnectOptions, SqliteJournalMode, SqlitePool, SqlitePoolOptions, SqliteRow,
+    SqliteSynchronous,
+};
+use sqlx::{AssertSqlSafe, Row};
+use std::str::FromStr;
+use std::time::Duration;
+use utoipa::ToSchema;
+use uuid::Uuid;
+
+/// Life cycle of a job: `queued → running → succeeded | failed | canceled`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize, ToSchema)]
+#[serde(rename_all = "snake_case")]
+pub enum JobStatus {
+    Queued,
+    Running,
+    Succeeded,
+    Failed,
+    Canceled,
+}
+
+impl JobStatus {
+    pub const ALL: [JobStatus; 5] =
+        [Self::Queued, Self::Running, Self::Succeeded, Self::Failed, Self::Canceled];
+
+    pub fn as_str(self) -> &'static str {
+        match self {
+            Self::Queued => "queued",
+            Self::Running => "running",
+            Self::Succeeded => "succeeded",
+            Self::Failed => "failed",
+            Self::Canceled => "canceled",
+        }
+    }
+
+    pub fn parse(s: &str) -> Option<Self> {
+        Self::ALL.into_iter().find(|x| x.as_str() == s)
+    }
+
+    pub fn is_finished(self) -> bool {
+        matches!(self, Self::Succeeded | Self::Failed | Self::Canceled)
+    }
+}
+
+/// A job row as stored (timestamps in unix milliseconds).
+#[derive(Debug, Clone, PartialEq)]
+pub struct JobRow {
+    pub seq: i64,
+    pub id: Uuid,
+    pub kind: String,
+    pub label: Option<String>,
+    pub status: JobStatus,
+    /// Canonical spec JSON; loaded only by [`Store::get`].
+    pub spec: Option<String>,
+    pub spec_hash: String,
+    pub solver_version: String,
+    pub created_at: i64,
+    pub started_at: Option<i64>,
+    pub finished_at: Option<i64>,
+    pub attempts: i64,
+    pub progress: f64,
+    pub stage: Option<String>,
+    pub cancel_requested: bool,
+    /// problem+json of a failed job.
+    pub error: Option<String>,
+}
+
+/// What the API writes when it accepts a job.
+#[derive(Debug, Clone)]
+pub struct NewJob {
+    pub id: Uuid,
+    pub kind: String,
+    pub label: Option<String>,
+    pub spec: String,
+    pub spec_hash: String,
+    pub solver_version: String,
+    pub created_at: i64,
+}
+
+/// A job a worker has claimed.
+#[derive(Debug, Clone)]
+pub struct ClaimedJob {
+    pub id: Uuid,
+    pub kind: String,
+    pub spec: String,
+    pub attempts: i64,
+}
+
+/// A worker's final word on a job, written by [`Store::finish_batch`].
+#[derive(Debug, Clone)]
+pub enum Finish {
+    Succeeded { id: Uuid, result: Encoded },
+    Failed { id: Uuid, error: String },
+    Canceled { id: Uuid },
+    /// Interrupted by shutdown: back to the queue, the attempt not counted.
+    Requeue { id: Uuid },
+}
+
+/// Filters of `GET /v1/jobs`.
+#[derive(Debug, Clone, Default)]
+pub struct ListFilter {
+    pub statuses: Vec<JobStatus>,
+    pub kind: Option<String>,
+    pub created_after: Option<i64>,
+    pub created_before: Option<i64>,
+    /// Keyset cursor: only jobs older (smaller `seq`) than this one.
+    pub before_seq: Option<i64>,
+    pub limit: u32,
+}
+
+#[derive(Debug, thiserror::Error)]
+pub enum StoreError {
+    #[error("database error: {0}")]
+    Sqlx(#[from] sqlx::Error),
+    #[error("migration error: {0}")]
+    Migrate(#[from] sqlx::migrate::MigrateError),
+    #[error("corrupt row: {0}")]
+    Corrupt(String),
+}
+
+pub type StoreResult<T> = Result<T, StoreError>;
+
+/// Handle to the database (cheap to clone).
+#[derive(Clone, Debug)]
+pub struct Store {
+    writer: SqlitePool,
+    reader: SqlitePool,
+}
+
+const ROW_COLUMNS: &str = "seq, id, kind, label, status, spec_hash, solver_version, created_at, \
+    started_at, finished_at, attempts, progress, stage, cancel_requested, error";
+
+impl Store {
+    /// Open (creating if missing) the database at `url` (`sqlite://path`, a plain path, or
+    /// `sqlite::memory:`), switch to WAL and apply the migrations.
+    pub async fn open(url: &str) -> StoreResult<Store> {
+        let url = if url.starts_with("sqlite:") { url.to_string() } else { format!("sqlite://{url}") };
+        let options = SqliteConnectOptions::from_str(&url)?
+            .create_if_missing(true)
+            .journal_mode(SqliteJournalMode::Wal)
+            .synchronous(SqliteSynchronous::Normal)
+            .foreign_keys(true)
+            .busy_timeout(Duration::from_secs(10));
+        let writer = SqlitePoolOptions::new()
+            .max_connections(1)
+            .min_connections(1)
+            .acquire_timeout(Duration::from_secs(30))
+            .connect_with(options.clone())
+            .await?;
+        sqlx::migrate!("./migrations").run(&writer).await?;
+        let reader = SqlitePoolOptions::new()
+            .max_connections(4)
+            .acquire_timeout(Duration::from_secs(30))
+            .connect_with(options.read_only(true))
+            .await?;
+        Ok(Store { writer, reader })
+    }
+
+    /// Is the database reachable (for `/readyz`)?
+    pub async fn ping(&self) -> StoreResult<()> {
+        sqlx::query("SELECT 1").execute(&self.reader).await?;
+        Ok(())
+    }
+
+    /// Close both pools (checkpoints the WAL).
+    pub async fn close(&self) {
+        self.reader.close().await;
+        self.writer.close().await;
+    }
+
+    /// Insert an accepted job (status `queued`); committed when this returns.
+    pub async fn insert(&self, job: &NewJob) -> StoreResult<JobRow> {
+        let row = sqlx::query(
+            "INSERT INTO jobs (id, kind, label, status, spec, spec_hash, solver_version, created_at) \
+             VALUES (?, ?, ?, 'queued', ?, ?, ?, ?) RETURNING seq",
+        )
+        .bind(job.id.to_string())
+        .bind(&job.kind)
+        .bind(&job.label)
+        .bind(&job.spec)
+        .bind(&job.spec_hash)
+        .bind(&job.solver_version)
+        .bind(job.created_at)
+        .fetch_one(&self.writer)
+        .await?;
+        Ok(JobRow {
+            seq: row.try_get(0)?,
+            id: job.id,
+            kind: job.kind.clone(),
+            label: job.label.clone(),
+            status: JobStatus::Queued,
+            spec: Some(job.spec.clone()),
+            spec_hash: job.spec_hash.clone(),
+            solver_version: job.solver_version.clone(),
+            created_at: job.created_at,
+            started_at: None,
+            finished_at: None,
+            attempts: 0,
+            progress: 0.0,
+            stage: None,
+            cancel_requested: false,
+            error: None,
+        })
+    }
+
+    /// The newest succeeded job with this spec hash and solver version.
+    pub async fn find_reusable(&self, spec_hash: &str, solver_version: &str) -> StoreResult<Option<JobRow>> {
+        let sql = format!(
+            "SELECT {ROW_COLUMNS} FROM jobs WHERE spec_hash = ? AND solver_version = ? \
+             AND status = 'succeeded' ORDER BY seq DESC LIMIT 1"
+        );
+        let row = sqlx::query(AssertSqlSafe(sql))
+            .bind(spec_hash)
+            .bind(solver_version)
+            .fetch_optional(&self.reader)
+            .await?;
+        row.map(|r| job_from_row(&r, false)).transpose()
+    }
+
+    /// One job with its spec.
+    pub async fn get(&self, id: Uuid) -> StoreResult<Option<JobRow>> {
+        let sql = format!("SELECT {ROW_COLUMNS}, spec FROM jobs WHERE id = ?");
+        let row = sqlx::query(AssertSqlSafe(sql)).bind(id.to_string()).fetch_optional(&self.reader).await?;
+        row.map(|r| job_from_row(&r, true)).transpose()
+    }
+
+    /// The `seq` of a job (to turn an id cursor into a keyset position).
+    pub async fn seq_of(&self, id: Uuid) -> StoreResult<Option<i64>> {
+        Ok(sqlx::query_scalar::<_, i64>("SELECT seq FROM jobs WHERE id = ?")
+            .bind(id.to_string())
+            .fetch_optional(&self.reader)
+            .await?)
+    }
+
+    /// Jobs newest first, filtered, at most `limit` (keyset pagination on `seq`).
+    pub async fn list(&self, f: &ListFilter) -> StoreResult<Vec<JobRow>> {
+        let mut sql = format!("SELECT {ROW_COLUMNS} FROM jobs WHERE 1 = 1");
+        if !f.statuses.is_empty() {
+            // Status names come from a closed enum, never from the request text.
+            let names: Vec<String> = f.statuses.iter().map(|s| format!("'{}'", s.as_str())).collect();
+            sql.push_str(&format!(" AND status IN ({})", names.join(", ")));
+        }
+        if f.kind.is_some() {
+            sql.push_str(" AND kind = ?");
+        }
+        if f.created_after.is_some() {
+            sql.push_str(" AND created_at > ?");
+        }
+        if f.created_before.is_some() {
+            sql.push_str(" AND created_at < ?");
+        }
+        if f.before_seq.is_some() {
+            sql.push_str(" AND seq < ?");
+        }
+        sql.push_str(" ORDER BY seq DESC LIMIT ?");
+        let mut q = sqlx::query(AssertSqlSafe(sql));
+        if let Some(k) = &f.kind {
+            q = q.bind(k.clone());
+        }
+        if let Some(t) = f.created_after {
+            q = q.bind(t);
+        }
+        if let Some(t) = f.created_before {
+            q = q.bind(t);
+        }
+        if let Some(s) = f.before_seq {
+            q = q.bind(s);
+        }
+        let rows = q.bind(f.limit as i64).fetch_all(&self.reader).await?;
+        rows.iter().map(|r| job_from_row(r, false)).collect()
+    }
+
+    /// Claim up to `n` queued jobs, oldest first: `running`, attempts + 1.
+    pub async fn claim(&self, n: usize, now: i64) -> StoreResult<Vec<ClaimedJob>> {
+        if n == 0 {
+            return Ok(Vec::new());
+        }
+        let rows = sqlx::query(
+            "UPDATE jobs SET status = 'running', started_at = ?, attempts = attempts + 1, \
+             progress = 0, stage = NULL \
+             WHERE seq IN (SELECT seq FROM jobs WHERE status = 'queued' ORDER BY seq LIMIT ?) \
+             RETURNING id, kind, spec, attempts, seq",
+        )
+        .bind(now)
+        .bind(n as i64)
+        .fetch_all(&self.writer)
+        .await?;
+        let mut jobs = rows
+            .iter()
+            .map(|r| {
+                Ok((
+                    r.try_get::<i64, _>(4)?,
+                    ClaimedJob {
+                        id: parse_uuid(&r.try_get::<String, _>(0)?)?,
+                        kind: r.try_get(1)?,
+                        spec: r.try_get(2)?,
+                        attempts: r.try_get(3)?,
+                    },
+                ))
+            })
+            .collect::<StoreResult<Vec<_>>>()?;
+        jobs.sort_by_key(|(seq, _)| *seq);
+        Ok(jobs.into_iter().map(|(_, j)| j).collect())
+    }
+
+    /// Write several workers' final words in one transaction.
+    pub async fn finish_batch(&self, items: &[Finish], now: i64) -> StoreResult<()> {
+        let mut tx = self.writer.begin().await?;
+        for item in items {
+            match item {
+                Finish::Succeeded { id, result } => {
+                    sqlx::query(
+                        "INSERT OR REPLACE INTO job_results (job_id, encoding, size, body) VALUES (?, ?, ?, ?)",
+                    )
+                    .bind(id.to_string())
+                    .bind(result.encoding)
+                    .bind(result.size as i64)
+                    .bind(&result.body)
+                    .execute(&mut *tx)
+                    .await?;
+                    sqlx::query(
+                        "UPDATE jobs SET status = 'succeeded', finished_at = ?, progress = 1, stage = NULL \
+                         WHERE id = ?",
+                    )
+                    .bind(now)
+                    .bind(id.to_string())
+                    .execute(&mut *tx)
+                    .await?;
+                }
+                Finish::Failed { id, error } => {
+                    sqlx::query("UPDATE jobs SET status = 'failed', finished_at = ?, error = ? WHERE id = ?")
+                        .bind(now)
+                        .bind(error)
+                        .bind(id.to_string())
+                        .execute(&mut *tx)
+                        .await?;
+                }
+                Finish::Canceled { id } => {
+                    sqlx::query("UPDATE jobs SET status = 'canceled', finished_at = ? WHERE id = ?")
+                        .bind(now)
+                        .bind(id.to_string())
+                        .execute(&mut *tx)
+                        .await?;
+                }
+                Finish::Requeue { id } => {
+                    sqlx::query(
+                        "UPDATE jobs SET status = 'queued', started_at = NULL, progress = 0, stage = NULL, \
+                         attempts = MAX(attempts - 1, 0) WHERE id = ? AND status = 'running'",
+                    )
+                    .bind(id.to_string())
+                    .execute(&mut *tx)
+                    .await?;
+                }
+            }
+        }
+        tx.commit().await?;
+        Ok(())
+    }
+
+    /// Record progress of running jobs (one transaction).
+    pub async fn progress_batch(&self, items: &[(Uuid, f64, String)]) -> StoreResult<()> {
+        let mut tx = self.writer.begin().await?;
+        for (id, fraction, stage) in items {
+            sqlx::query("UPDATE jobs SET progress = ?, stage = ? WHERE id = ? AND status = 'running'")
+                .bind(fraction)
+                .bind(stage)
+                .bind(id.to_string())
+                .execute(&mut *tx)
+                .await?;
+        }
+        tx.commit().await?;
+        Ok(())
+    }
+
+    /// Cancel a queued job; `true` when it was queued.
+    pub async fn cancel_queued(&self, id: Uuid, now: i64) -> StoreResult<bool> {
+        let r = sqlx::query(
+            "UPDATE jobs SET status = 'canceled', finished_at = ?, cancel_requested = 1 \
+             WHERE id = ? AND status = 'queued'",
+        )
+        .bind(now)
+        .bind(id.to_string())
+        .execute(&self.writer)
+        .await?;
+        Ok(r.rows_affected() == 1)
+    }
+
+    /// Mark a running job as asked to cancel; `true` when it was running.
+    pub async fn request_cancel(&self, id: Uuid) -> StoreResult<bool> {
+        let r = sqlx::query("UPDATE jobs SET cancel_requested = 1 WHERE id = ? AND status = 'running'")
+            .bind(id.to_string())
+            .execute(&self.writer)
+            .await?;
+        Ok(r.rows_affected() == 1)
+    }
+
+    /// Delete a finished job and its result; `true` when one was deleted.
+    pub async fn delete_finished(&self, id: Uuid) -> StoreResult<bool> {
+        let r = sqlx::query(
+            "DELETE FROM jobs WHERE id = ? AND status IN ('succeeded', 'failed', 'canceled')",
+        )
+        .bind(id.to_string())
+        .execute(&self.writer)
+        .await?;
+        Ok(r.rows_affected() == 1)
+    }
+
+    /// At start-up: jobs left `running` by a previous process were interrupted. Below
+    /// `max_attempts` they are queued again; at the cap they fail with `error`.
+    /// Returns `(requeued, failed)`.
+    pub async fn recover_interrupted(&self, max_attempts: i64, error: &str, now: i64) -> StoreResult<(u64, u64)> {
+        let mut tx = self.writer.begin().await?;
+        let failed = sqlx::query(
+            "UPDATE jobs SET status = 'failed', finished_at = ?, error = ? \
+             WHERE status = 'running' AND attempts >= ?",
+        )
+        .bind(now)
+        .bind(error)
+        .bind(max_attempts)
+        .execute(&mut *tx)
+        .await?
+        .rows_affected();
+        let requeued = sqlx::query(
+            "UPDATE jobs SET status = 'queued', started_at = NULL, progress = 0, stage = NULL \
+             WHERE status = 'running'",
+        )
+        .execute(&mut *tx)
+        .await?
+        .rows_affected();
+        // A cancel requested while the process died is honoured now.
+        sqlx::query(
+            "UPDATE jobs SET status = 'canceled', finished_at = ? WHERE status = 'queued' AND cancel_requested = 1",
+        )
+        .bind(now)
+        .execute(&mut *tx)
+        .await?;
+        tx.commit().await?;
+        Ok((requeued, failed))
+    }
+
+    /// Number of jobs in each status.
+    pub async fn count_by_status(&self) -> StoreResult<Vec<(JobStatus, i64)>> {
+        let rows = sqlx::query("SELECT status, COUNT(*) FROM jobs GROUP BY status").fetch_all(&self.reader).await?;
+        rows.iter()
+            .map(|r| {
+                let s: String = r.try_get(0)?;
+                let status = JobStatus::parse(&s).ok_or_else(|| StoreError::Corrupt(format!("status {s}")))?;
+                Ok((status, r.try_get(1)?))
+            })
+            .collect()
+    }
+
+    /// Number of queued jobs.
+    pub async fn queued_count(&self) -> StoreResult<i64> {
+        Ok(sqlx::query_scalar::<_, i64>("SELECT COUNT(*) FROM jobs WHERE status = 'queued'")
+            .fetch_one(&self.reader)
+            .await?)
+    }
+
+    /// The stored result of a job, decoded to JSON text.
+    pub async fn result(&self, id: Uuid) -> StoreResult<Option<String>> {
+        let row = sqlx::query("SELECT encoding, body FROM job_results WHERE job_id = ?")
+            .bind(id.to_string())
+            .fetch_optional(&self.reader)
+            .await?;
+        match row {
+            None => Ok(None),
+            Some(r) => {
+                let encoding: String = r.try_get(0)?;
+                let body: Vec<u8> = r.try_get(1)?;
+                decode_result(&encoding, &body).map(Some).map_err(StoreError::Corrupt)
+            }
+        }
+    }
+}
+
+fn parse_uuid(s: &str) -> StoreResult<Uuid> {
+    Uuid::parse_str(s).map_err(|e| StoreError::Corrupt(format!("job id {s}: {e}")))
+}
+
+fn job_from_row(r: &SqliteRow, with_spec: bool) -> StoreResult<JobRow> {
+    let status: String = r.try_get("status")?;
+    Ok(JobRow {
+        seq: r.try_get("seq")?,
+        id: parse_uuid(&r.try_get::<String, _>("id")?)?,
+        kind: r.try_get("kind")?,
+        label: r.try_get("label")?,
+        status: JobStatus::parse(&status).ok_or_else(|| StoreError::Corrupt(format!("status {status}")))?,
+        spec: if with_spec { Some(r.try_get("spec")?) } else { None },
+        spec_hash: r.try_get("spec_hash")?,
+        solver_version: r.try_get("solver_version")?,
+        created_at: r.try_get("created_at")?,
+        started_at: r.try_get("started_at")?,
+        finished_at: r.try_get("finished_at")?,
+        attempts: r.try_get("attempts")?,
+        progress: r.try_get("progress")?,
+        stage: r.try_get("stage")?,
+        cancel_requested: r.try_get::<i64, _>("cancel_requested")? != 0,
+        error: r.try_get("error")?,
+    })
+}
