@@ -118,6 +118,9 @@ pub async fn metrics(State(state): State<AppState>) -> Response {
 }
 
 /// This OpenAPI document.
+///
+/// OpenAPI 3.1, generated from the code (the same as `tribod openapi`): every route, every kind's
+/// spec and result schema with units.
 #[utoipa::path(get, path = "/openapi.json", tag = "operations",
     responses((status = 200, description = "OpenAPI 3.1 document", body = Object)))]
 pub async fn openapi_json(State(state): State<AppState>) -> Response {

@@ -6,6 +6,11 @@
 //! outcome (and throttled progress) to one writer task, which commits them in batches and then
 //! wakes `Prefer: wait` waiters and the dispatcher. Cancellation, time limits and shutdown reach a
 //! running solver through a flag its [`Observer`] polls.
+//!
+//! Short jobs are claimed ahead: while the recent mean solve time is below [`PREFETCH_BELOW`], the
+//! dispatcher keeps up to [`PREFETCH_PER_WORKER`] claimed jobs per worker in the pool's queue, so
+//! tiny jobs do not each wait for a database round trip. A prefetched job shows `running` with
+//! progress 0 until a worker takes it; its time limit starts when the worker does.
 
 use super::kind::Limits;
 use super::registry;
@@ -16,7 +21,7 @@ use crate::problem::{ErrorCode, Problem};
 use crate::store::{encode_result, Finish, JobRow, JobStatus, NewJob, Store, StoreError};
 use serde_json::Value;
 use std::collections::HashMap;
-use std::sync::atomic::{AtomicBool, AtomicI64, AtomicU8, AtomicUsize, Ordering};
+use std::sync::atomic::{AtomicBool, AtomicI64, AtomicU64, AtomicU8, AtomicUsize, Ordering};
 use std::sync::{Arc, Mutex};
 use std::time::{Duration, Instant};
 use tokio::sync::{mpsc, oneshot, Notify};
@@ -73,6 +78,11 @@ pub enum Cancellation {
     Deleted,
 }
 
+/// Claim ahead only while jobs take less than this on average.
+pub const PREFETCH_BELOW: Duration = Duration::from_millis(20);
+/// Claimed-but-waiting jobs per worker when prefetching.
+pub const PREFETCH_PER_WORKER: usize = 16;
+
 const FLAG_NONE: u8 = 0;
 const FLAG_CANCEL: u8 = 1;
 const FLAG_SHUTDOWN: u8 = 2;
@@ -91,6 +101,8 @@ struct Inner {
     idle: Notify,
     claiming: AtomicBool,
     active: AtomicUsize,
+    /// Moving average of solve wall time, µs (starts pessimistic: no prefetch until measured).
+    mean_solve_us: AtomicU64,
     backlog: AtomicI64,
     running: Mutex<HashMap<Uuid, Arc<AtomicU8>>>,
     waiters: Mutex<HashMap<Uuid, Vec<oneshot::Sender<()>>>>,
@@ -145,6 +157,7 @@ impl Queue {
             idle: Notify::new(),
             claiming: AtomicBool::new(true),
             active: AtomicUsize::new(0),
+            mean_solve_us: AtomicU64::new(1_000_000),
             backlog: AtomicI64::new(backlog),
             running: Mutex::new(HashMap::new()),
             waiters: Mutex::new(HashMap::new()),
@@ -324,7 +337,9 @@ impl Queue {
             if !inner.claiming.load(Ordering::Relaxed) {
                 return;
             }
-            let free = inner.config.workers.saturating_sub(inner.active.load(Ordering::Relaxed));
+            let fast = inner.mean_solve_us.load(Ordering::Relaxed) < PREFETCH_BELOW.as_micros() as u64;
+            let target = inner.config.workers * if fast { 1 + PREFETCH_PER_WORKER } else { 1 };
+            let free = target.saturating_sub(inner.active.load(Ordering::Relaxed));
             let mut claimed_all = false;
             if free > 0 {
                 match inner.store.claim(free, now_ms()).await {
@@ -342,7 +357,7 @@ impl Queue {
                     Err(e) => warn!(error = %e, "claiming jobs failed; retrying"),
                 }
             }
-            if claimed_all && inner.active.load(Ordering::Relaxed) < inner.config.workers {
+            if claimed_all && inner.active.load(Ordering::Relaxed) < target {
                 continue;
             }
             // Woken by a submission or a finished job; the timeout is a safety net only.
@@ -363,9 +378,10 @@ impl Queue {
             .clone();
         let events = inner.events.clone();
         let limits = inner.config.limits;
-        let deadline = inner.config.job_timeout.map(|t| Instant::now() + t);
+        let timeout = inner.config.job_timeout;
         let interval = inner.config.progress_interval;
         inner.pool.spawn(move || {
+            let deadline = timeout.map(|t| Instant::now() + t);
             let span = info_span!("job", id = %job.id, kind = %job.kind, attempt = job.attempts);
             let _entered = span.enter();
             let observer = JobObserver {
@@ -446,6 +462,9 @@ impl Queue {
                     if status == JobStatus::Succeeded {
                         inner.metrics.solve_seconds.get_or_create(&KindLabel { kind }).observe(wall);
                     }
+                    let us = (wall * 1e6) as u64;
+                    let mean = inner.mean_solve_us.load(Ordering::Relaxed);
+                    inner.mean_solve_us.store((mean * 4 + us) / 5, Ordering::Relaxed);
                 }
                 let active = inner.active.fetch_sub(1, Ordering::Relaxed) - 1;
                 inner.metrics.running.set(active as i64);
