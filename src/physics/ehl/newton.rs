@@ -1,0 +1,657 @@
+//! The semismooth Newton solver of the line-contact EHL problem (equations in [`super`]).
+//!
+//! Unknowns: the pressure at the interior nodes and the rigid approach `H0`. Rows: one
+//! complementarity function per interior node, `φ_i = min(P_i, −F_i/|J_ii|)`, where `F_i` is the
+//! discrete Reynolds residual and `J_ii` its full diagonal derivative (elastic coupling included),
+//! and the load balance `(∫P dX)/(π/2) − 1`. Each step linearises every row — the film at every
+//! node depends on every pressure, so the Jacobian is dense — and solves by LU. A backtracking
+//! line search on `Σ φ_i² Δ + L²` and a fraction-to-boundary rule that keeps the film positive damp
+//! the steps. When a cold start fails (very heavy loads or low speeds), the solution is continued
+//! from a faster entrainment speed (lower Moes M) in steps of four.
+
+use super::elastic::{deflection, influence_coefficients};
+use super::formulas::{moes_central, Groups};
+use super::traction::traction;
+use super::{EhlInput, EhlOptions, EhlSolution, EhlState, PressureSpike, Profiles, Upwind};
+use crate::physics::contact::hertz_line;
+use crate::physics::lubricant::Lubricant;
+use crate::physics::{ensure_finite, Convergence, Observer, SolveError, Termination};
+use faer::prelude::*;
+use faer::Mat;
+
+const PI: f64 = std::f64::consts::PI;
+/// Most halvings of a Newton step in the line search.
+const MAX_HALVINGS: u32 = 30;
+/// Largest `ln(η/η0)` used: keeps `ρH³/η` and the traction finite at absurd trial pressures.
+const LN_ETA_CAP: f64 = 600.0;
+
+/// Discrete problem in the dimensionless variables of [`super`].
+struct Problem {
+    n: usize,
+    dx: f64,
+    /// Node positions `X`.
+    x: Vec<f64>,
+    kernel: Vec<f64>,
+    /// Couette coefficient `λ` (signed).
+    lambda: f64,
+    /// Squeeze coefficient `κ = 12 η0 R²/(b² p_h Δt)`; 0 in steady state.
+    kappa: f64,
+    /// `(ρ̄H)` of the previous time step at the nodes.
+    q_old: Vec<f64>,
+    upwind: Upwind,
+    lubricant: Lubricant,
+    temperature: f64,
+    /// Hertzian pressure, Pa.
+    ph: f64,
+    /// `ln η(0, T)/η0` (the reference of `η̄`).
+    ln_eta_ref: f64,
+}
+
+/// Fields at one iterate.
+#[derive(Clone)]
+struct Fields {
+    h: Vec<f64>,
+    rho: Vec<f64>,
+    drho: Vec<f64>,
+    e: Vec<f64>,
+    /// `∂e/∂P` at fixed `H`.
+    ep: Vec<f64>,
+    /// `∂e/∂H`.
+    eh: Vec<f64>,
+    /// Reynolds residual at the nodes (0 at the two boundary nodes).
+    f: Vec<f64>,
+    /// Load balance residual `(Δ ΣP)/(π/2) − 1`.
+    load: f64,
+}
+
+impl Fields {
+    fn new(n: usize) -> Self {
+        let z = vec![0.0; n];
+        Fields { h: z.clone(), rho: z.clone(), drho: z.clone(), e: z.clone(), ep: z.clone(), eh: z.clone(), f: z, load: 0.0 }
+    }
+}
+
+impl Problem {
+    /// Wedge stencil at node `i`: `(offset, weight)` of `d(ρ̄H)/dX`, upwind for the sign of `λ`.
+    fn wedge(&self, i: usize) -> [(isize, f64); 3] {
+        let h = self.dx;
+        let second = self.upwind == Upwind::Second;
+        if self.lambda >= 0.0 {
+            if second && i >= 2 {
+                [(0, 1.5 / h), (-1, -2.0 / h), (-2, 0.5 / h)]
+            } else {
+                [(0, 1.0 / h), (-1, -1.0 / h), (0, 0.0)]
+            }
+        } else if second && i + 2 < self.n {
+            [(0, -1.5 / h), (1, 2.0 / h), (2, -0.5 / h)]
+        } else {
+            [(0, -1.0 / h), (1, 1.0 / h), (0, 0.0)]
+        }
+    }
+
+    /// Evaluate the film, rheology and residuals at `(p, h0)`. `false` when the film is not
+    /// positive everywhere or a value is not finite.
+    fn evaluate(&self, p: &[f64], h0: f64, v: &mut Fields) -> bool {
+        let n = self.n;
+        deflection(&self.kernel, p, &mut v.h);
+        for i in 0..n {
+            let h = h0 + 0.5 * self.x[i] * self.x[i] - v.h[i];
+            if !(h > 0.0 && h.is_finite()) {
+                return false;
+            }
+            v.h[i] = h;
+            let pd = p[i] * self.ph;
+            let t = self.temperature;
+            let ln_eta = (self.lubricant.ln_viscosity_ratio(pd, t) - self.ln_eta_ref).min(LN_ETA_CAP);
+            let dln_eta = self.lubricant.ln_viscosity_pressure_slope(pd, t) * self.ph;
+            v.rho[i] = self.lubricant.density_ratio(pd, t);
+            v.drho[i] = self.lubricant.density_ratio_pressure_slope(pd, t) * self.ph;
+            v.e[i] = v.rho[i] * h * h * h * (-ln_eta).exp();
+            v.ep[i] = v.e[i] * (v.drho[i] / v.rho[i] - dln_eta);
+            v.eh[i] = 3.0 * v.e[i] / h;
+        }
+        let dx2 = self.dx * self.dx;
+        v.f[0] = 0.0;
+        v.f[n - 1] = 0.0;
+        for i in 1..n - 1 {
+            let er = 0.5 * (v.e[i] + v.e[i + 1]);
+            let el = 0.5 * (v.e[i - 1] + v.e[i]);
+            let mut f = (er * (p[i + 1] - p[i]) - el * (p[i] - p[i - 1])) / dx2;
+            if self.lambda != 0.0 {
+                let mut d = 0.0;
+                for (off, w) in self.wedge(i) {
+                    let m = (i as isize + off) as usize;
+                    d += w * v.rho[m] * v.h[m];
+                }
+                f -= self.lambda * d;
+            }
+            if self.kappa != 0.0 {
+                f -= self.kappa * (v.rho[i] * v.h[i] - self.q_old[i]);
+            }
+            v.f[i] = f;
+        }
+        let sum: f64 = p[1..n - 1].iter().sum();
+        v.load = sum * self.dx / (0.5 * PI) - 1.0;
+        v.f.iter().all(|f| f.is_finite()) && v.load.is_finite()
+    }
+
+    /// Local derivatives of `F_i`: direct in `P` (offsets −2..=2) and through the film `H`
+    /// (offsets −2..=2).
+    fn local_derivatives(&self, p: &[f64], v: &Fields, i: usize) -> ([f64; 5], [f64; 5]) {
+        let mut a = [0.0; 5];
+        let mut g = [0.0; 5];
+        let dx2 = self.dx * self.dx;
+        let er = 0.5 * (v.e[i] + v.e[i + 1]);
+        let el = 0.5 * (v.e[i - 1] + v.e[i]);
+        let dr = p[i + 1] - p[i];
+        let dl = p[i] - p[i - 1];
+        a[3] += (er + 0.5 * v.ep[i + 1] * dr) / dx2;
+        a[2] += (0.5 * v.ep[i] * (dr - dl) - er - el) / dx2;
+        a[1] += (el - 0.5 * v.ep[i - 1] * dl) / dx2;
+        g[3] += 0.5 * v.eh[i + 1] * dr / dx2;
+        g[2] += 0.5 * v.eh[i] * (dr - dl) / dx2;
+        g[1] += -0.5 * v.eh[i - 1] * dl / dx2;
+        if self.lambda != 0.0 {
+            for (off, w) in self.wedge(i) {
+                let m = (i as isize + off) as usize;
+                let k = (off + 2) as usize;
+                a[k] -= self.lambda * w * v.drho[m] * v.h[m];
+                g[k] -= self.lambda * w * v.rho[m];
+            }
+        }
+        if self.kappa != 0.0 {
+            a[2] -= self.kappa * v.drho[i] * v.h[i];
+            g[2] -= self.kappa * v.rho[i];
+        }
+        (a, g)
+    }
+}
+
+/// Outcome of one Newton run.
+struct Run {
+    iterations: u32,
+    residual: f64,
+    history: Vec<f64>,
+    converged: bool,
+}
+
+/// Scaled complementarity residuals `φ_i` (0 at boundaries) for scalings `c`.
+fn phi(p: &[f64], v: &Fields, c: &[f64], out: &mut [f64]) {
+    let n = p.len();
+    out[0] = 0.0;
+    out[n - 1] = 0.0;
+    for i in 1..n - 1 {
+        out[i] = p[i].min(-c[i] * v.f[i]);
+    }
+}
+
+fn merit(phi: &[f64], load: f64, dx: f64) -> f64 {
+    phi.iter().map(|v| v * v).sum::<f64>() * dx + load * load
+}
+
+/// Residual norm of the report: the larger of `max|φ|/max P` and `|load|`.
+fn residual_norm(p: &[f64], phi: &[f64], load: f64) -> f64 {
+    let pmax = p.iter().cloned().fold(0.0_f64, f64::max).max(1e-12);
+    let pr = phi.iter().fold(0.0_f64, |a, v| a.max(v.abs())) / pmax;
+    pr.max(load.abs())
+}
+
+/// Damped semismooth Newton from `(p, h0)`, in place.
+fn newton(
+    prob: &Problem,
+    p: &mut [f64],
+    h0: &mut f64,
+    tol: f64,
+    max_iter: u32,
+    observer: &dyn Observer,
+) -> Result<Run, SolveError> {
+    let n = prob.n;
+    let m = n - 2;
+    let mut v = Fields::new(n);
+    let mut trial = Fields::new(n);
+    let mut history = Vec::new();
+    if !prob.evaluate(p, *h0, &mut v) {
+        return Ok(Run { iterations: 0, residual: f64::INFINITY, history, converged: false });
+    }
+    let mut c = vec![0.0; n];
+    let mut ph = vec![0.0; n];
+    let mut ph_trial = vec![0.0; n];
+    let mut jac = Mat::<f64>::zeros(m + 1, m + 1);
+    let mut rhs = Mat::<f64>::zeros(m + 1, 1);
+    let mut locals: Vec<([f64; 5], [f64; 5])> = vec![([0.0; 5], [0.0; 5]); n];
+    let mut active = vec![false; n];
+    let mut dp = vec![0.0; n];
+    let mut dh = vec![0.0; n];
+    let mut p_trial = vec![0.0; n];
+    let inv_pi = 1.0 / PI;
+    let k = &prob.kernel;
+    for iter in 0..max_iter {
+        observer.check()?;
+        // Local derivatives and the full diagonal for the row scaling.
+        for i in 1..n - 1 {
+            locals[i] = prob.local_derivatives(p, &v, i);
+            let (a, g) = &locals[i];
+            let mut d = a[2];
+            for (o, gv) in g.iter().enumerate() {
+                let mm = i as isize + o as isize - 2;
+                if *gv != 0.0 && mm >= 0 && (mm as usize) < n {
+                    d -= inv_pi * gv * k[(mm as usize).abs_diff(i)];
+                }
+            }
+            c[i] = 1.0 / d.abs().max(1e-300);
+        }
+        phi(p, &v, &c, &mut ph);
+        let res = residual_norm(p, &ph, v.load);
+        history.push(res);
+        if res <= tol {
+            return Ok(Run { iterations: iter, residual: res, history, converged: true });
+        }
+        for i in 1..n - 1 {
+            active[i] = p[i] <= -c[i] * v.f[i];
+        }
+        // Assemble the scaled, active-set Jacobian column by column (column-major storage).
+        for col in 0..m {
+            let j = col + 1;
+            for row in 0..m {
+                let i = row + 1;
+                let val = if active[i] {
+                    if i == j { 1.0 } else { 0.0 }
+                } else {
+                    let (a, g) = &locals[i];
+                    let mut s = 0.0;
+                    for (o, gv) in g.iter().enumerate() {
+                        if *gv != 0.0 {
+                            let mm = i as isize + o as isize - 2;
+                            if mm >= 0 && (mm as usize) < n {
+                                s += gv * k[(mm as usize).abs_diff(j)];
+                            }
+                        }
+                    }
+                    let mut val = -inv_pi * s;
+                    let off = j as isize - i as isize;
+                    if off.abs() <= 2 {
+                        val += a[(off + 2) as usize];
+                    }
+                    c[i] * val
+                };
+                jac[(row, col)] = val;
+            }
+            jac[(m, col)] = prob.dx / (0.5 * PI);
+        }
+        for row in 0..m {
+            let i = row + 1;
+            jac[(row, m)] = if active[i] {
+                0.0
+            } else {
+                let (_, g) = &locals[i];
+                let s: f64 = g.iter().enumerate().filter(|(o, _)| {
+                    let mm = i as isize + *o as isize - 2;
+                    mm >= 0 && (mm as usize) < n
+                }).map(|(_, gv)| gv).sum();
+                c[i] * s
+            };
+            rhs[(row, 0)] = if active[i] { -p[i] } else { -c[i] * v.f[i] };
+        }
+        jac[(m, m)] = 0.0;
+        rhs[(m, 0)] = -v.load;
+        let lu = jac.partial_piv_lu();
+        lu.solve_in_place(rhs.as_mut());
+        let dh0 = rhs[(m, 0)];
+        dp[0] = 0.0;
+        dp[n - 1] = 0.0;
+        for i in 1..n - 1 {
+            dp[i] = rhs[(i - 1, 0)];
+        }
+        if !dp.iter().all(|d| d.is_finite()) || !dh0.is_finite() {
+            return Ok(Run { iterations: iter + 1, residual: res, history, converged: false });
+        }
+        // Fraction to the boundary: the film may shrink at most to 20 % in one step.
+        deflection(k, &dp, &mut dh);
+        let mut alpha: f64 = 1.0;
+        for i in 0..n {
+            let d = dh0 - dh[i];
+            if d < 0.0 {
+                alpha = alpha.min(0.8 * v.h[i] / -d);
+            }
+        }
+        let m0 = merit(&ph, v.load, prob.dx);
+        let mut accepted = false;
+        for _ in 0..MAX_HALVINGS {
+            for i in 0..n {
+                p_trial[i] = p[i] + alpha * dp[i];
+            }
+            let h0_trial = *h0 + alpha * dh0;
+            if prob.evaluate(&p_trial, h0_trial, &mut trial) {
+                phi(&p_trial, &trial, &c, &mut ph_trial);
+                let mt = merit(&ph_trial, trial.load, prob.dx);
+                if mt <= (1.0 - 1e-4 * alpha) * m0 {
+                    p.copy_from_slice(&p_trial);
+                    *h0 = h0_trial;
+                    std::mem::swap(&mut v, &mut trial);
+                    accepted = true;
+                    break;
+                }
+            }
+            alpha *= 0.5;
+        }
+        if !accepted {
+            return Ok(Run { iterations: iter + 1, residual: res, history, converged: false });
+        }
+    }
+    // Final check after the last step.
+    for i in 1..n - 1 {
+        locals[i] = prob.local_derivatives(p, &v, i);
+    }
+    phi(p, &v, &c, &mut ph);
+    let res = residual_norm(p, &ph, v.load);
+    history.push(res);
+    Ok(Run { iterations: max_iter, residual: res, history, converged: res <= tol })
+}
+
+/// Solve one line-contact EHL problem (steady, or one transient step when `input.transient` is
+/// set). Polls `observer` once per Newton step.
+pub fn solve(input: &EhlInput, options: &EhlOptions, observer: &dyn Observer) -> Result<EhlSolution, SolveError> {
+    validate(input, options)?;
+    let w = input.load_per_length;
+    let r = input.reduced_radius;
+    let ep = input.effective_modulus;
+    let t = input.temperature;
+    let um = input.entrainment_velocity;
+    let lub = input.lubricant;
+    // Hertz with E* = E'/2 (contact::hertz_line takes Johnson's E*).
+    let hz = hertz_line(w, r, 0.5 * ep);
+    let (b, ph) = (hz.half_width, hz.max_pressure);
+    let eta0 = lub.viscosity_at(0.0, t);
+    let lambda = 12.0 * eta0 * um * r * r / (b * b * b * ph);
+    let groups = Groups::of(w, r, ep, um, &lub, t);
+    let (moes_m, moes_l) = if um != 0.0 { (groups.moes_m, groups.moes_l) } else { (0.0, 0.0) };
+    let previous = input.transient.map(|s| s.previous).or(input.warm_start);
+    // Film estimate (dimensionless H = hR/b²) for the domain and the cold start.
+    let h_moes = if um != 0.0 { PI * moes_central(moes_m, moes_l) / (8.0 * moes_m) } else { 0.0 };
+    let h_est = match previous {
+        Some(s) => (s.film_at(0.0, r) * r / (b * b)).max(h_moes),
+        None => h_moes,
+    };
+    let up = options.inlet.unwrap_or_else(|| 4.5_f64.max(10.0 * (2.0 * h_est).sqrt()));
+    let down = options.outlet.unwrap_or_else(|| 1.5_f64.max(1.5 * (2.0 * h_est).sqrt()));
+    let (x_in, x_out) = if um >= 0.0 { (-up, down) } else { (-down, up) };
+    let n = options.nodes;
+    let dx = (x_out - x_in) / (n - 1) as f64;
+    let x: Vec<f64> = (0..n).map(|i| x_in + i as f64 * dx).collect();
+    let kernel = influence_coefficients(n, dx);
+    let (kappa, q_old) = match input.transient {
+        Some(s) => (
+            12.0 * eta0 * r * r / (b * b * ph * s.time_step),
+            x.iter().map(|&xi| s.previous.mass_per_area(xi * b, r) * r / (b * b)).collect(),
+        ),
+        None => (0.0, vec![0.0; n]),
+    };
+    if lambda == 0.0 && kappa == 0.0 {
+        return Err(SolveError::physical(
+            "no_entrainment",
+            "a steady film needs entrainment: u_m = 0 without squeeze (no previous state) has no lubricated solution",
+        ));
+    }
+    let ln_eta_ref = lub.ln_viscosity_ratio(0.0, t);
+    let mut prob = Problem {
+        n,
+        dx,
+        x,
+        kernel,
+        lambda,
+        kappa,
+        q_old,
+        upwind: options.upwind,
+        lubricant: lub,
+        temperature: t,
+        ph,
+        ln_eta_ref,
+    };
+
+    // Initial guess.
+    let mut p = vec![0.0; n];
+    let mut h_target = h_est.max(1e-6);
+    match previous {
+        Some(s) => {
+            for i in 1..n - 1 {
+                p[i] = s.pressure_at(prob.x[i] * b) / ph;
+            }
+            h_target = (s.film_at(0.0, r) * r / (b * b)).max(1e-9);
+        }
+        None => hertz_guess(&prob.x, &mut p),
+    }
+    // Rescale the guess to carry the load.
+    let sum: f64 = p.iter().sum::<f64>() * dx;
+    if sum > 0.0 {
+        p.iter_mut().for_each(|v| *v *= 0.5 * PI / sum);
+    } else {
+        hertz_guess(&prob.x, &mut p);
+    }
+    let h0_for = |p: &[f64], prob: &Problem, target: f64| {
+        let mut d = vec![0.0; n];
+        deflection(&prob.kernel, p, &mut d);
+        let centre = ((0.0 - prob.x[0]) / prob.dx).round() as usize;
+        let min_rigid = (0..n).map(|i| 0.5 * prob.x[i] * prob.x[i] - d[i]).fold(f64::INFINITY, f64::min);
+        let at_centre = 0.5 * prob.x[centre] * prob.x[centre] - d[centre];
+        // H0 such that the centre film is the target, and the film is positive everywhere.
+        (target - at_centre).max(0.05 * target - min_rigid)
+    };
+    let mut h0 = h0_for(&p, &prob, h_target);
+
+    let tol = options.tolerance;
+    let mut total_iter = 0;
+    let p_start = p.clone();
+    let h0_start = h0;
+    let mut run = newton(&prob, &mut p, &mut h0, tol, options.max_iterations, observer)?;
+    total_iter += run.iterations;
+    if !run.converged {
+        // Continuation from faster entrainment (thicker film, smaller M): λ·4^k → λ.
+        let lambda_target = prob.lambda;
+        let kappa_target = prob.kappa;
+        let mut ok = false;
+        'stages: for start in [2, 4, 7] {
+            p.copy_from_slice(&p_start);
+            h0 = h0_start;
+            let mut good = true;
+            for k in (0..=start).rev() {
+                let f = 4f64.powi(k);
+                prob.lambda = lambda_target * f;
+                prob.kappa = kappa_target * f;
+                if k == start {
+                    // Cold start at the faster speed: film estimate ∝ (speed)^0.7.
+                    h0 = h0_for(&p, &prob, h_target * f.powf(0.7));
+                }
+                let r2 = newton(&prob, &mut p, &mut h0, if k == 0 { tol } else { tol.max(1e-6) }, options.max_iterations, observer)?;
+                total_iter += r2.iterations;
+                if k == 0 {
+                    run = r2;
+                } else if !r2.converged {
+                    good = false;
+                    break;
+                }
+            }
+            if good && run.converged {
+                ok = true;
+                break 'stages;
+            }
+        }
+        prob.lambda = lambda_target;
+        prob.kappa = kappa_target;
+        if !ok {
+            let mut history = run.history.clone();
+            if history.len() > 20 {
+                history.drain(..history.len() - 20);
+            }
+            return Err(SolveError::NotConverged {
+                solver: "ehl line contact (Newton)",
+                iterations: total_iter,
+                residual: run.residual,
+                tolerance: tol,
+                history,
+            });
+        }
+    }
+    finish(input, options, &prob, &p, h0, b, ph, moes_m, moes_l, total_iter, run.residual)
+}
+
+/// Hertzian pressure `sqrt(1 − X²)`.
+fn hertz_guess(x: &[f64], p: &mut [f64]) {
+    let n = x.len();
+    for i in 0..n {
+        p[i] = if i == 0 || i == n - 1 { 0.0 } else { (1.0 - x[i] * x[i]).max(0.0).sqrt() };
+    }
+}
+
+fn validate(input: &EhlInput, options: &EhlOptions) -> Result<(), SolveError> {
+    let pos = |v: f64, path: &str| {
+        if v.is_finite() && v > 0.0 { Ok(()) } else { Err(SolveError::invalid(path, "must be a finite number > 0")) }
+    };
+    pos(input.load_per_length, "/load_per_length")?;
+    pos(input.reduced_radius, "/reduced_radius")?;
+    pos(input.effective_modulus, "/effective_modulus")?;
+    pos(input.temperature, "/temperature")?;
+    pos(input.lubricant.viscosity, "/lubricant/viscosity")?;
+    pos(input.lubricant.density, "/lubricant/density")?;
+    if !(input.lubricant.pressure_viscosity.is_finite() && input.lubricant.pressure_viscosity >= 0.0) {
+        return Err(SolveError::invalid("/lubricant/pressure_viscosity", "must be a finite number >= 0"));
+    }
+    if !input.entrainment_velocity.is_finite() {
+        return Err(SolveError::invalid("/entrainment_velocity", "must be finite"));
+    }
+    if !input.sliding_velocity.is_finite() {
+        return Err(SolveError::invalid("/sliding_velocity", "must be finite"));
+    }
+    if let Some(s) = input.transient {
+        pos(s.time_step, "/time_step")?;
+        if s.previous.x.len() < 2 {
+            return Err(SolveError::invalid("/previous", "a previous state needs at least two nodes"));
+        }
+    }
+    if options.nodes < 16 {
+        return Err(SolveError::invalid("/nodes", "at least 16 nodes"));
+    }
+    if !(options.tolerance.is_finite() && options.tolerance > 0.0) {
+        return Err(SolveError::invalid("/tolerance", "must be a finite number > 0"));
+    }
+    for (v, path) in [(options.inlet, "/inlet"), (options.outlet, "/outlet")] {
+        if let Some(v) = v {
+            if !(v.is_finite() && v > 1.0) {
+                return Err(SolveError::invalid(path, "must exceed one Hertzian half-width"));
+            }
+        }
+    }
+    Ok(())
+}
+
+/// Parabolic refinement of an extremum at node `i` of `f`: `(position offset in nodes, value)`.
+fn parabolic(f: &[f64], i: usize) -> (f64, f64) {
+    if i == 0 || i + 1 >= f.len() {
+        return (0.0, f[i]);
+    }
+    let (a, b, c) = (f[i - 1], f[i], f[i + 1]);
+    let den = a - 2.0 * b + c;
+    if den == 0.0 {
+        return (0.0, b);
+    }
+    let s = (0.5 * (a - c) / den).clamp(-0.5, 0.5);
+    (s, b - 0.25 * (a - c) * s)
+}
+
+#[allow(clippy::too_many_arguments)]
+fn finish(
+    input: &EhlInput,
+    options: &EhlOptions,
+    prob: &Problem,
+    p: &[f64],
+    h0: f64,
+    b: f64,
+    ph: f64,
+    moes_m: f64,
+    moes_l: f64,
+    iterations: u32,
+    residual: f64,
+) -> Result<EhlSolution, SolveError> {
+    let n = prob.n;
+    let r = input.reduced_radius;
+    let mut v = Fields::new(n);
+    if !prob.evaluate(p, h0, &mut v) {
+        return Err(SolveError::physical("film_collapse", "the converged film is not positive"));
+    }
+    let hs = b * b / r; // film scale
+    let x: Vec<f64> = prob.x.iter().map(|&x| x * b).collect();
+    let pressure: Vec<f64> = p.iter().map(|&p| p.max(0.0) * ph).collect();
+    let film: Vec<f64> = v.h.iter().map(|&h| h * hs).collect();
+    ensure_finite("ehl pressure", &pressure)?;
+    ensure_finite("ehl film", &film)?;
+    let dir = if input.entrainment_velocity >= 0.0 { 1.0 } else { -1.0 };
+    // Central film: linear interpolation at X = 0.
+    let tc = -prob.x[0] / prob.dx;
+    let ic = (tc.floor() as usize).min(n - 2);
+    let fc = tc - ic as f64;
+    let central_film = film[ic] * (1.0 - fc) + film[ic + 1] * fc;
+    let argmin = |range: &mut dyn Iterator<Item = usize>| {
+        range.fold(None, |best: Option<usize>, i| match best {
+            Some(j) if film[j] <= film[i] => Some(j),
+            _ => Some(i),
+        })
+    };
+    let imin = argmin(&mut (0..n)).unwrap_or(0);
+    let (s, min_film) = parabolic(&film, imin);
+    let min_film_position = x[imin] + s * prob.dx * b;
+    let downstream = |i: &usize| prob.x[*i] * dir > 0.0;
+    let iexit = argmin(&mut (0..n).filter(downstream)).unwrap_or(imin);
+    let (_, exit_film) = parabolic(&film, iexit);
+    let imax = (0..n).fold(0, |j, i| if pressure[i] > pressure[j] { i } else { j });
+    let (s, max_pressure) = parabolic(&pressure, imax);
+    let max_pressure_position = x[imax] + s * prob.dx * b;
+    // Spike: the most downstream local maximum beyond the centre that exceeds the Hertzian
+    // pressure at its position.
+    let mut spike = None;
+    for i in 1..n - 1 {
+        let local_max = pressure[i] > pressure[i - 1] && pressure[i] >= pressure[i + 1];
+        let hertz = (1.0 - prob.x[i] * prob.x[i]).max(0.0).sqrt() * ph;
+        if local_max && downstream(&i) && pressure[i] > hertz {
+            let (s, val) = parabolic(&pressure, i);
+            let cand = PressureSpike { pressure: val, position: x[i] + s * prob.dx * b };
+            spike = match spike {
+                Some(PressureSpike { position, .. }) if position * dir > cand.position * dir => spike,
+                _ => Some(cand),
+            };
+        }
+    }
+    let traction = traction(
+        &x,
+        &pressure,
+        &film,
+        &input.lubricant,
+        input.temperature,
+        input.sliding_velocity,
+        input.load_per_length,
+        &input.rheology,
+    );
+    ensure_finite(
+        "ehl traction",
+        [&traction.force_body_1, &traction.force_body_2, &traction.friction_coefficient, &traction.rolling_force],
+    )?;
+    ensure_finite("ehl films", [&central_film, &min_film, &exit_film, &max_pressure])?;
+    let state = EhlState { x: x.clone(), pressure: pressure.clone(), film: film.clone(), density_ratio: v.rho.clone() };
+    let profiles = options.profiles.then(|| Profiles { x, pressure, film });
+    Ok(EhlSolution {
+        hertz_half_width: b,
+        hertz_pressure: ph,
+        moes_m,
+        moes_l,
+        central_film,
+        min_film,
+        min_film_position,
+        exit_film,
+        max_pressure,
+        max_pressure_position,
+        pressure_spike: spike,
+        traction,
+        profiles,
+        state,
+        nodes: n,
+        convergence: Convergence { iterations, residual, tolerance: options.tolerance, termination: Termination::Converged },
+    })
+}
