@@ -8,8 +8,8 @@
 //!   rigid-isoviscous (Martin), rigid-piezoviscous, elastic-isoviscous (Herrebrugh) and
 //!   elastic-piezoviscous (Ertel–Grubin) (Venner & Lubrecht, *Multilevel Methods in Lubrication*,
 //!   2000, §8.5).
-//! * Pan & Hamrock (1989) regressions of compressible Roelands solutions for central and minimum
-//!   film, pressure spike height and position, valid in the elastic-piezoviscous regime.
+//! * Pan & Hamrock (1989) regressions of compressible Roelands solutions for the central and
+//!   minimum film, valid in the elastic-piezoviscous regime.
 //! * Martin's rigid-isoviscous minimum film `h_min = 4.9 η0 u_m R / w'`.
 //!
 //! Every formula takes the Barus coefficient `α`; for a Roelands lubricant pass
@@ -76,16 +76,6 @@ pub fn pan_hamrock_central_film(g: &Groups, radius: f64) -> f64 {
 /// Pan–Hamrock minimum film `h_min/R = 1.714 W^−0.128 U^0.694 G^0.568`, m.
 pub fn pan_hamrock_minimum_film(g: &Groups, radius: f64) -> f64 {
     1.714 * g.load.powf(-0.128) * g.speed.powf(0.694) * g.material.powf(0.568) * radius
-}
-
-/// Pan–Hamrock pressure-spike height `p_sk/E' = 0.648 W^0.185 U^0.275 G^0.391`, Pa.
-pub fn pan_hamrock_spike_pressure(g: &Groups, e_prime: f64) -> f64 {
-    0.648 * g.load.powf(0.185) * g.speed.powf(0.275) * g.material.powf(0.391) * e_prime
-}
-
-/// Pan–Hamrock spike position downstream of the centre `x_sk/R = 1.111 W^0.606 U^0.021 G^0.077`, m.
-pub fn pan_hamrock_spike_position(g: &Groups, radius: f64) -> f64 {
-    1.111 * g.load.powf(0.606) * g.speed.powf(0.021) * g.material.powf(0.077) * radius
 }
 
 /// Martin's rigid-isoviscous minimum film `h_min = 4.9 η0 u_m R / w'`, m.

@@ -71,6 +71,9 @@ pub struct EhlOptions {
     pub outlet: Option<f64>,
     /// Wedge-term discretisation.
     pub upwind: Upwind,
+    /// Grade the grid towards the inlet edge and the exit constriction (see
+    /// [`newton::graded_grid`]); `false`: uniform.
+    pub grading: bool,
     /// Return the pressure and film profiles.
     pub profiles: bool,
 }
@@ -84,6 +87,7 @@ impl Default for EhlOptions {
             inlet: None,
             outlet: None,
             upwind: Upwind::Second,
+            grading: true,
             profiles: false,
         }
     }
@@ -93,7 +97,7 @@ impl Default for EhlOptions {
 /// term of a transient step. Dimensional, in the contact frame (x = 0 at the contact centre).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct EhlState {
-    /// Node positions, m (uniform).
+    /// Node positions, m (increasing, graded).
     pub x: Vec<f64>,
     /// Pressure, Pa.
     pub pressure: Vec<f64>,
@@ -104,38 +108,38 @@ pub struct EhlState {
 }
 
 impl EhlState {
-    /// Linear interpolation of `(ρ/ρ0) h` at `x`; beyond the stored domain the film follows the
-    /// undeformed parabola of radius `radius` from the nearest end, at ambient density.
+    /// Index `i ≥ 1` with `x[i−1] ≤ at ≤ x[i]` and the weight of `x[i]`, for `at` inside the grid.
+    fn locate(&self, at: f64) -> (usize, f64) {
+        let n = self.x.len();
+        let i = self.x.partition_point(|&v| v <= at).clamp(1, n - 1);
+        let t = ((at - self.x[i - 1]) / (self.x[i] - self.x[i - 1])).clamp(0.0, 1.0);
+        (i, t)
+    }
+
+    /// `(ρ/ρ0) h` at `x` (m), linear between nodes; beyond the stored domain the film follows the
+    /// undeformed parabola of radius `radius` from the nearest end, at the end's density.
     pub fn mass_per_area(&self, x: f64, radius: f64) -> f64 {
         let n = self.x.len();
-        let (x0, x1) = (self.x[0], self.x[n - 1]);
-        if x <= x0 {
-            return self.density_ratio[0] * (self.film[0] + (x * x - x0 * x0) / (2.0 * radius));
+        if x <= self.x[0] || x >= self.x[n - 1] {
+            let k = if x <= self.x[0] { 0 } else { n - 1 };
+            return self.density_ratio[k] * self.film_at(x, radius);
         }
-        if x >= x1 {
-            return self.density_ratio[n - 1] * (self.film[n - 1] + (x * x - x1 * x1) / (2.0 * radius));
-        }
-        let t = (x - x0) / (x1 - x0) * (n - 1) as f64;
-        let i = (t.floor() as usize).min(n - 2);
-        let f = t - i as f64;
+        let (i, t) = self.locate(x);
         let q = |k: usize| self.density_ratio[k] * self.film[k];
-        q(i) * (1.0 - f) + q(i + 1) * f
+        q(i - 1) * (1.0 - t) + q(i) * t
     }
 
-    /// Linear interpolation of a stored field at `x` (0 pressure outside the stored domain).
+    /// Pressure at `x` (m), linear between nodes, 0 outside the stored domain.
     pub fn pressure_at(&self, x: f64) -> f64 {
         let n = self.x.len();
-        let (x0, x1) = (self.x[0], self.x[n - 1]);
-        if x <= x0 || x >= x1 {
+        if x <= self.x[0] || x >= self.x[n - 1] {
             return 0.0;
         }
-        let t = (x - x0) / (x1 - x0) * (n - 1) as f64;
-        let i = (t.floor() as usize).min(n - 2);
-        let f = t - i as f64;
-        self.pressure[i] * (1.0 - f) + self.pressure[i + 1] * f
+        let (i, t) = self.locate(x);
+        self.pressure[i - 1] * (1.0 - t) + self.pressure[i] * t
     }
 
-    /// Film at `x` by linear interpolation (parabolic extension outside, see [`Self::mass_per_area`]).
+    /// Film at `x` (m), linear between nodes; the undeformed parabola beyond the ends.
     pub fn film_at(&self, x: f64, radius: f64) -> f64 {
         let n = self.x.len();
         let (x0, x1) = (self.x[0], self.x[n - 1]);
@@ -145,10 +149,8 @@ impl EhlState {
         if x >= x1 {
             return self.film[n - 1] + (x * x - x1 * x1) / (2.0 * radius);
         }
-        let t = (x - x0) / (x1 - x0) * (n - 1) as f64;
-        let i = (t.floor() as usize).min(n - 2);
-        let f = t - i as f64;
-        self.film[i] * (1.0 - f) + self.film[i + 1] * f
+        let (i, t) = self.locate(x);
+        self.film[i - 1] * (1.0 - t) + self.film[i] * t
     }
 }
 

@@ -9,7 +9,7 @@
 //! the steps. When a cold start fails (very heavy loads or low speeds), the solution is continued
 //! from a faster entrainment speed (lower Moes M) in steps of four.
 
-use super::elastic::{deflection, influence_coefficients};
+use super::elastic::Kernel;
 use super::formulas::{moes_central, Groups};
 use super::traction::traction;
 use super::{EhlInput, EhlOptions, EhlSolution, EhlState, PressureSpike, Profiles, Upwind};
@@ -28,10 +28,11 @@ const LN_ETA_CAP: f64 = 600.0;
 /// Discrete problem in the dimensionless variables of [`super`].
 struct Problem {
     n: usize,
-    dx: f64,
-    /// Node positions `X`.
+    /// Node positions `X` (graded, increasing).
     x: Vec<f64>,
-    kernel: Vec<f64>,
+    /// Cell widths: the load quadrature weights and the cells of the elastic kernel.
+    cell: Vec<f64>,
+    kernel: Kernel,
     /// Couette coefficient `λ` (signed).
     lambda: f64,
     /// Squeeze coefficient `κ = 12 η0 R²/(b² p_h Δt)`; 0 in steady state.
@@ -72,20 +73,27 @@ impl Fields {
 }
 
 impl Problem {
-    /// Wedge stencil at node `i`: `(offset, weight)` of `d(ρ̄H)/dX`, upwind for the sign of `λ`.
+    /// Wedge stencil at node `i`: `(offset, weight)` of `d(ρ̄H)/dX`, upwind for the sign of `λ`
+    /// (three-point one-sided derivative on the graded grid for the second-order scheme).
     fn wedge(&self, i: usize) -> [(isize, f64); 3] {
-        let h = self.dx;
+        let x = &self.x;
         let second = self.upwind == Upwind::Second;
         if self.lambda >= 0.0 {
+            let a = x[i] - x[i - 1];
             if second && i >= 2 {
-                [(0, 1.5 / h), (-1, -2.0 / h), (-2, 0.5 / h)]
+                let b = x[i - 1] - x[i - 2];
+                [(0, (2.0 * a + b) / (a * (a + b))), (-1, -(a + b) / (a * b)), (-2, a / (b * (a + b)))]
             } else {
-                [(0, 1.0 / h), (-1, -1.0 / h), (0, 0.0)]
+                [(0, 1.0 / a), (-1, -1.0 / a), (0, 0.0)]
             }
-        } else if second && i + 2 < self.n {
-            [(0, -1.5 / h), (1, 2.0 / h), (2, -0.5 / h)]
         } else {
-            [(0, -1.0 / h), (1, 1.0 / h), (0, 0.0)]
+            let a = x[i + 1] - x[i];
+            if second && i + 2 < self.n {
+                let b = x[i + 2] - x[i + 1];
+                [(0, -(2.0 * a + b) / (a * (a + b))), (1, (a + b) / (a * b)), (2, -a / (b * (a + b)))]
+            } else {
+                [(0, -1.0 / a), (1, 1.0 / a), (0, 0.0)]
+            }
         }
     }
 
@@ -93,7 +101,7 @@ impl Problem {
     /// positive everywhere or a value is not finite.
     fn evaluate(&self, p: &[f64], h0: f64, v: &mut Fields) -> bool {
         let n = self.n;
-        deflection(&self.kernel, p, &mut v.h);
+        self.kernel.deflection(p, &mut v.h);
         for i in 0..n {
             let h = h0 + 0.5 * self.x[i] * self.x[i] - v.h[i];
             if !(h > 0.0 && h.is_finite()) {
@@ -110,13 +118,13 @@ impl Problem {
             v.ep[i] = v.e[i] * (v.drho[i] / v.rho[i] - dln_eta);
             v.eh[i] = 3.0 * v.e[i] / h;
         }
-        let dx2 = self.dx * self.dx;
         v.f[0] = 0.0;
         v.f[n - 1] = 0.0;
         for i in 1..n - 1 {
             let er = 0.5 * (v.e[i] + v.e[i + 1]);
             let el = 0.5 * (v.e[i - 1] + v.e[i]);
-            let mut f = (er * (p[i + 1] - p[i]) - el * (p[i] - p[i - 1])) / dx2;
+            let (hl, hr) = (self.x[i] - self.x[i - 1], self.x[i + 1] - self.x[i]);
+            let mut f = (er * (p[i + 1] - p[i]) / hr - el * (p[i] - p[i - 1]) / hl) / (0.5 * (hl + hr));
             if self.lambda != 0.0 {
                 let mut d = 0.0;
                 for (off, w) in self.wedge(i) {
@@ -130,8 +138,8 @@ impl Problem {
             }
             v.f[i] = f;
         }
-        let sum: f64 = p[1..n - 1].iter().sum();
-        v.load = sum * self.dx / (0.5 * PI) - 1.0;
+        let sum: f64 = p.iter().zip(&self.cell).map(|(p, w)| p * w).sum();
+        v.load = sum / (0.5 * PI) - 1.0;
         v.f.iter().all(|f| f.is_finite()) && v.load.is_finite()
     }
 
@@ -140,17 +148,19 @@ impl Problem {
     fn local_derivatives(&self, p: &[f64], v: &Fields, i: usize) -> ([f64; 5], [f64; 5]) {
         let mut a = [0.0; 5];
         let mut g = [0.0; 5];
-        let dx2 = self.dx * self.dx;
         let er = 0.5 * (v.e[i] + v.e[i + 1]);
         let el = 0.5 * (v.e[i - 1] + v.e[i]);
-        let dr = p[i + 1] - p[i];
-        let dl = p[i] - p[i - 1];
-        a[3] += (er + 0.5 * v.ep[i + 1] * dr) / dx2;
-        a[2] += (0.5 * v.ep[i] * (dr - dl) - er - el) / dx2;
-        a[1] += (el - 0.5 * v.ep[i - 1] * dl) / dx2;
-        g[3] += 0.5 * v.eh[i + 1] * dr / dx2;
-        g[2] += 0.5 * v.eh[i] * (dr - dl) / dx2;
-        g[1] += -0.5 * v.eh[i - 1] * dl / dx2;
+        let (hl, hr) = (self.x[i] - self.x[i - 1], self.x[i + 1] - self.x[i]);
+        let hc = 0.5 * (hl + hr);
+        // Slopes (P_{i+1} − P_i)/h_R and (P_i − P_{i−1})/h_L.
+        let sr = (p[i + 1] - p[i]) / hr;
+        let sl = (p[i] - p[i - 1]) / hl;
+        a[3] += (er / hr + 0.5 * v.ep[i + 1] * sr) / hc;
+        a[2] += (0.5 * v.ep[i] * (sr - sl) - er / hr - el / hl) / hc;
+        a[1] += (el / hl - 0.5 * v.ep[i - 1] * sl) / hc;
+        g[3] += 0.5 * v.eh[i + 1] * sr / hc;
+        g[2] += 0.5 * v.eh[i] * (sr - sl) / hc;
+        g[1] += -0.5 * v.eh[i - 1] * sl / hc;
         if self.lambda != 0.0 {
             for (off, w) in self.wedge(i) {
                 let m = (i as isize + off) as usize;
@@ -185,8 +195,8 @@ fn phi(p: &[f64], v: &Fields, c: &[f64], out: &mut [f64]) {
     }
 }
 
-fn merit(phi: &[f64], load: f64, dx: f64) -> f64 {
-    phi.iter().map(|v| v * v).sum::<f64>() * dx + load * load
+fn merit(phi: &[f64], load: f64, cell: &[f64]) -> f64 {
+    phi.iter().zip(cell).map(|(v, w)| v * v * w).sum::<f64>() + load * load
 }
 
 /// Residual norm of the report: the larger of `max|φ|/max P` and `|load|`.
@@ -224,7 +234,7 @@ fn newton(
     let mut dh = vec![0.0; n];
     let mut p_trial = vec![0.0; n];
     let inv_pi = 1.0 / PI;
-    let k = &prob.kernel;
+    let kernel = &prob.kernel;
     for iter in 0..max_iter {
         observer.check()?;
         // Local derivatives and the full diagonal for the row scaling.
@@ -235,7 +245,7 @@ fn newton(
             for (o, gv) in g.iter().enumerate() {
                 let mm = i as isize + o as isize - 2;
                 if *gv != 0.0 && mm >= 0 && (mm as usize) < n {
-                    d -= inv_pi * gv * k[(mm as usize).abs_diff(i)];
+                    d -= inv_pi * gv * kernel.column(i)[mm as usize];
                 }
             }
             c[i] = 1.0 / d.abs().max(1e-300);
@@ -252,6 +262,7 @@ fn newton(
         // Assemble the scaled, active-set Jacobian column by column (column-major storage).
         for col in 0..m {
             let j = col + 1;
+            let kj = kernel.column(j);
             for row in 0..m {
                 let i = row + 1;
                 let val = if active[i] {
@@ -263,7 +274,7 @@ fn newton(
                         if *gv != 0.0 {
                             let mm = i as isize + o as isize - 2;
                             if mm >= 0 && (mm as usize) < n {
-                                s += gv * k[(mm as usize).abs_diff(j)];
+                                s += gv * kj[mm as usize];
                             }
                         }
                     }
@@ -276,7 +287,7 @@ fn newton(
                 };
                 jac[(row, col)] = val;
             }
-            jac[(m, col)] = prob.dx / (0.5 * PI);
+            jac[(m, col)] = prob.cell[j] / (0.5 * PI);
         }
         for row in 0..m {
             let i = row + 1;
@@ -306,7 +317,7 @@ fn newton(
             return Ok(Run { iterations: iter + 1, residual: res, history, converged: false });
         }
         // Fraction to the boundary: the film may shrink at most to 20 % in one step.
-        deflection(k, &dp, &mut dh);
+        kernel.deflection(&dp, &mut dh);
         let mut alpha: f64 = 1.0;
         for i in 0..n {
             let d = dh0 - dh[i];
@@ -314,7 +325,11 @@ fn newton(
                 alpha = alpha.min(0.8 * v.h[i] / -d);
             }
         }
-        let m0 = merit(&ph, v.load, prob.dx);
+        let m0 = merit(&ph, v.load, &prob.cell);
+        if std::env::var("EHL_DEBUG").is_ok() {
+            let nact = active.iter().filter(|a| **a).count();
+            eprintln!("it {iter} res {res:.3e} merit {m0:.3e} alpha_max {alpha:.3e} active {nact} dh0 {dh0:.3e}");
+        }
         let mut accepted = false;
         for _ in 0..MAX_HALVINGS {
             for i in 0..n {
@@ -323,8 +338,9 @@ fn newton(
             let h0_trial = *h0 + alpha * dh0;
             if prob.evaluate(&p_trial, h0_trial, &mut trial) {
                 phi(&p_trial, &trial, &c, &mut ph_trial);
-                let mt = merit(&ph_trial, trial.load, prob.dx);
+                let mt = merit(&ph_trial, trial.load, &prob.cell);
                 if mt <= (1.0 - 1e-4 * alpha) * m0 {
+                    if std::env::var("EHL_DEBUG").is_ok() { eprintln!("   accepted alpha {alpha:.3e} merit {mt:.3e}"); }
                     p.copy_from_slice(&p_trial);
                     *h0 = h0_trial;
                     std::mem::swap(&mut v, &mut trial);
@@ -375,16 +391,10 @@ pub fn solve(input: &EhlInput, options: &EhlOptions, observer: &dyn Observer) ->
     let up = options.inlet.unwrap_or_else(|| 4.5_f64.max(10.0 * (2.0 * h_est).sqrt()));
     let down = options.outlet.unwrap_or_else(|| 1.5_f64.max(1.5 * (2.0 * h_est).sqrt()));
     let (x_in, x_out) = if um >= 0.0 { (-up, down) } else { (-down, up) };
-    let n = options.nodes;
-    let dx = (x_out - x_in) / (n - 1) as f64;
-    let x: Vec<f64> = (0..n).map(|i| x_in + i as f64 * dx).collect();
-    let kernel = influence_coefficients(n, dx);
-    let (kappa, q_old) = match input.transient {
-        Some(s) => (
-            12.0 * eta0 * r * r / (b * b * ph * s.time_step),
-            x.iter().map(|&xi| s.previous.mass_per_area(xi * b, r) * r / (b * b)).collect(),
-        ),
-        None => (0.0, vec![0.0; n]),
+    let dir = if um >= 0.0 { 1.0 } else { -1.0 };
+    let kappa = match input.transient {
+        Some(s) => 12.0 * eta0 * r * r / (b * b * ph * s.time_step),
+        None => 0.0,
     };
     if lambda == 0.0 && kappa == 0.0 {
         return Err(SolveError::physical(
@@ -392,106 +402,142 @@ pub fn solve(input: &EhlInput, options: &EhlOptions, observer: &dyn Observer) ->
             "a steady film needs entrainment: u_m = 0 without squeeze (no previous state) has no lubricated solution",
         ));
     }
-    let ln_eta_ref = lub.ln_viscosity_ratio(0.0, t);
-    let mut prob = Problem {
-        n,
-        dx,
-        x,
-        kernel,
-        lambda,
-        kappa,
-        q_old,
-        upwind: options.upwind,
-        lubricant: lub,
-        temperature: t,
-        ph,
-        ln_eta_ref,
-    };
-
-    // Initial guess.
-    let mut p = vec![0.0; n];
-    let mut h_target = h_est.max(1e-6);
-    match previous {
-        Some(s) => {
-            for i in 1..n - 1 {
-                p[i] = s.pressure_at(prob.x[i] * b) / ph;
-            }
-            h_target = (s.film_at(0.0, r) * r / (b * b)).max(1e-9);
+    let build = |n: usize| {
+        let x = graded_grid(n, x_in, x_out, h_est, dir, options.grading);
+        let q_old = match input.transient {
+            Some(s) => x.iter().map(|&xi| s.previous.mass_per_area(xi * b, r) * r / (b * b)).collect(),
+            None => vec![0.0; n],
+        };
+        Problem {
+            n,
+            kernel: Kernel::new(&x),
+            cell: cells(&x),
+            x,
+            lambda,
+            kappa,
+            q_old,
+            upwind: options.upwind,
+            lubricant: lub,
+            temperature: t,
+            ph,
+            ln_eta_ref: lub.ln_viscosity_ratio(0.0, t),
         }
-        None => hertz_guess(&prob.x, &mut p),
-    }
-    // Rescale the guess to carry the load.
-    let sum: f64 = p.iter().sum::<f64>() * dx;
-    if sum > 0.0 {
-        p.iter_mut().for_each(|v| *v *= 0.5 * PI / sum);
-    } else {
-        hertz_guess(&prob.x, &mut p);
-    }
+    };
+    // H0 that puts the centre film at `target` (and keeps the film positive everywhere).
     let h0_for = |p: &[f64], prob: &Problem, target: f64| {
+        let n = prob.n;
         let mut d = vec![0.0; n];
-        deflection(&prob.kernel, p, &mut d);
-        let centre = ((0.0 - prob.x[0]) / prob.dx).round() as usize;
+        prob.kernel.deflection(p, &mut d);
+        let centre = prob.x.partition_point(|&x| x < 0.0).min(n - 1);
         let min_rigid = (0..n).map(|i| 0.5 * prob.x[i] * prob.x[i] - d[i]).fold(f64::INFINITY, f64::min);
         let at_centre = 0.5 * prob.x[centre] * prob.x[centre] - d[centre];
-        // H0 such that the centre film is the target, and the film is positive everywhere.
         (target - at_centre).max(0.05 * target - min_rigid)
     };
-    let mut h0 = h0_for(&p, &prob, h_target);
+    // A guess on a grid: dimensionless pressure at X, and the centre film.
+    let from_guess = |prob: &Problem, gx: &[f64], gp: &[f64], hc: f64| {
+        let n = prob.n;
+        let mut p: Vec<f64> = prob.x.iter().map(|&x| if x <= gx[0] || x >= gx[gx.len() - 1] { 0.0 } else { interpolate(gx, gp, x) }).collect();
+        p[0] = 0.0;
+        p[n - 1] = 0.0;
+        let sum: f64 = p.iter().zip(&prob.cell).map(|(p, w)| p * w).sum();
+        if sum > 0.0 {
+            p.iter_mut().for_each(|v| *v *= 0.5 * PI / sum);
+        } else {
+            hertz_guess(&prob.x, &mut p);
+        }
+        let h0 = h0_for(&p, prob, hc);
+        (p, h0)
+    };
+    let cold = |prob: &Problem, hc: f64| {
+        let mut p = vec![0.0; prob.n];
+        hertz_guess(&prob.x, &mut p);
+        let h0 = h0_for(&p, prob, hc);
+        (p, h0)
+    };
 
+    // Nested iteration: from the previous state straight on the target grid; from a cold start,
+    // solve on grids of n/2^k ≥ 64 nodes first and interpolate each solution as the next guess.
+    let n = options.nodes;
+    let mut levels = vec![n];
+    if previous.is_none() {
+        while levels[levels.len() - 1] / 2 >= 64 {
+            let next = levels[levels.len() - 1] / 2;
+            levels.push(next);
+        }
+        levels.reverse();
+    }
+    let mut guess: Option<(Vec<f64>, Vec<f64>, f64)> = previous.map(|s| {
+        let gx: Vec<f64> = s.x.iter().map(|x| x / b).collect();
+        let gp: Vec<f64> = s.pressure.iter().map(|p| p / ph).collect();
+        (gx, gp, (s.film_at(0.0, r) * r / (b * b)).max(1e-9))
+    });
     let tol = options.tolerance;
     let mut total_iter = 0;
-    let p_start = p.clone();
-    let h0_start = h0;
-    let mut run = newton(&prob, &mut p, &mut h0, tol, options.max_iterations, observer)?;
-    total_iter += run.iterations;
-    if !run.converged {
-        // Continuation from faster entrainment (thicker film, smaller M): λ·4^k → λ.
-        let lambda_target = prob.lambda;
-        let kappa_target = prob.kappa;
-        let mut ok = false;
-        'stages: for start in [2, 4, 7] {
-            p.copy_from_slice(&p_start);
-            h0 = h0_start;
-            let mut good = true;
-            for k in (0..=start).rev() {
-                let f = 4f64.powi(k);
-                prob.lambda = lambda_target * f;
-                prob.kappa = kappa_target * f;
-                if k == start {
-                    // Cold start at the faster speed: film estimate ∝ (speed)^0.7.
-                    h0 = h0_for(&p, &prob, h_target * f.powf(0.7));
+    let nlev = levels.len();
+    for (li, &nl) in levels.iter().enumerate() {
+        let finest = li + 1 == nlev;
+        let mut prob = build(nl);
+        let (mut p, mut h0) = match &guess {
+            Some((gx, gp, hc)) => from_guess(&prob, gx, gp, *hc),
+            None => cold(&prob, h_est.max(1e-6)),
+        };
+        let mut run = newton(&prob, &mut p, &mut h0, tol, options.max_iterations, observer)?;
+        total_iter += run.iterations;
+        if !run.converged && finest {
+            // Continuation from faster entrainment (thicker film, smaller M): λ·4^k → λ.
+            let (lambda_target, kappa_target) = (prob.lambda, prob.kappa);
+            for start in [2, 4, 7] {
+                let mut good = true;
+                for k in (0..=start).rev() {
+                    let f = 4f64.powi(k);
+                    prob.lambda = lambda_target * f;
+                    prob.kappa = kappa_target * f;
+                    if k == start {
+                        (p, h0) = cold(&prob, h_est.max(1e-6) * f.powf(0.7));
+                    }
+                    let stage_tol = if k == 0 { tol } else { tol.max(1e-6) };
+                    let r2 = newton(&prob, &mut p, &mut h0, stage_tol, options.max_iterations, observer)?;
+                    total_iter += r2.iterations;
+                    if k == 0 {
+                        run = r2;
+                    } else if !r2.converged {
+                        good = false;
+                        break;
+                    }
                 }
-                let r2 = newton(&prob, &mut p, &mut h0, if k == 0 { tol } else { tol.max(1e-6) }, options.max_iterations, observer)?;
-                total_iter += r2.iterations;
-                if k == 0 {
-                    run = r2;
-                } else if !r2.converged {
-                    good = false;
+                if good && run.converged {
                     break;
                 }
             }
-            if good && run.converged {
-                ok = true;
-                break 'stages;
-            }
+            prob.lambda = lambda_target;
+            prob.kappa = kappa_target;
         }
-        prob.lambda = lambda_target;
-        prob.kappa = kappa_target;
-        if !ok {
-            let mut history = run.history.clone();
-            if history.len() > 20 {
-                history.drain(..history.len() - 20);
+        if finest {
+            if !run.converged {
+                let mut history = run.history.clone();
+                if history.len() > 20 {
+                    history.drain(..history.len() - 20);
+                }
+                return Err(SolveError::NotConverged {
+                    solver: "ehl line contact (Newton)",
+                    iterations: total_iter,
+                    residual: run.residual,
+                    tolerance: tol,
+                    history,
+                });
             }
-            return Err(SolveError::NotConverged {
-                solver: "ehl line contact (Newton)",
-                iterations: total_iter,
-                residual: run.residual,
-                tolerance: tol,
-                history,
-            });
+            return finish(input, options, &prob, &p, h0, b, ph, moes_m, moes_l, total_iter, run.residual);
         }
+        // A coarse level: its solution (converged or the last finite iterate) is the next guess.
+        let mut v = Fields::new(nl);
+        guess = if prob.evaluate(&p, h0, &mut v) && p.iter().all(|p| p.is_finite()) {
+            let hc = interpolate(&prob.x, &v.h, 0.0);
+            Some((prob.x.clone(), p, hc))
+        } else {
+            None
+        };
     }
-    finish(input, options, &prob, &p, h0, b, ph, moes_m, moes_l, total_iter, run.residual)
+    unreachable!("the finest level returns")
 }
 
 /// Hertzian pressure `sqrt(1 − X²)`.
@@ -543,18 +589,90 @@ fn validate(input: &EhlInput, options: &EhlOptions) -> Result<(), SolveError> {
     Ok(())
 }
 
-/// Parabolic refinement of an extremum at node `i` of `f`: `(position offset in nodes, value)`.
-fn parabolic(f: &[f64], i: usize) -> (f64, f64) {
+/// Vertex `(x, f)` of the parabola through the nodes `i − 1, i, i + 1` (an extremum's refined
+/// position and value), kept within the neighbouring nodes; the node itself at the ends.
+fn vertex(x: &[f64], f: &[f64], i: usize) -> (f64, f64) {
     if i == 0 || i + 1 >= f.len() {
-        return (0.0, f[i]);
+        return (x[i], f[i]);
     }
-    let (a, b, c) = (f[i - 1], f[i], f[i + 1]);
-    let den = a - 2.0 * b + c;
-    if den == 0.0 {
-        return (0.0, b);
+    let (x0, x1, x2) = (x[i - 1], x[i], x[i + 1]);
+    let (f0, f1, f2) = (f[i - 1], f[i], f[i + 1]);
+    // Divided differences: f ≈ f1 + d1 (x − x1) + d2 (x − x1)(x − x0) ... in Newton form.
+    let a = (f2 - f1) / (x2 - x1);
+    let c = (f1 - f0) / (x1 - x0);
+    let curv = (a - c) / (x2 - x0); // f''/2
+    if curv == 0.0 || !curv.is_finite() {
+        return (x1, f1);
     }
-    let s = (0.5 * (a - c) / den).clamp(-0.5, 0.5);
-    (s, b - 0.25 * (a - c) * s)
+    // Slope at x1 of the parabola: (c (x2 − x1) + a (x1 − x0)) / (x2 − x0).
+    let slope = (c * (x2 - x1) + a * (x1 - x0)) / (x2 - x0);
+    let dx = (-slope / (2.0 * curv)).clamp(x0 - x1, x2 - x1);
+    (x1 + dx, f1 + slope * dx + curv * dx * dx)
+}
+
+/// Linear interpolation of `f(x)` at `at` (clamped to the ends).
+fn interpolate(x: &[f64], f: &[f64], at: f64) -> f64 {
+    let n = x.len();
+    let i = x.partition_point(|&v| v <= at).clamp(1, n - 1);
+    let t = ((at - x[i - 1]) / (x[i] - x[i - 1])).clamp(0.0, 1.0);
+    f[i - 1] * (1.0 - t) + f[i] * t
+}
+
+/// Cell widths of a grid: from midpoint to midpoint, half cells at the two ends.
+fn cells(x: &[f64]) -> Vec<f64> {
+    let n = x.len();
+    (0..n)
+        .map(|j| {
+            let a = if j == 0 { x[0] } else { 0.5 * (x[j - 1] + x[j]) };
+            let b = if j + 1 == n { x[n - 1] } else { 0.5 * (x[j] + x[j + 1]) };
+            b - a
+        })
+        .collect()
+}
+
+/// The nodes on `[x_in, x_out]`: uniform, or graded towards the inlet edge of the Hertzian zone
+/// (`X = −1 − w/4` upstream, where the film is formed) and the exit constriction (`X = 1 − w/3`
+/// downstream, the pressure spike), with bump widths `w = 3 H^(2/3)` from the film estimate `H` (the
+/// scale of the inlet zone where the Hertzian gap equals the film). The node density is a smooth
+/// sum: a quarter of the nodes uniform, a quarter on the Hertzian zone and a quarter in each
+/// Gaussian bump; the nodes are placed by inverting its cumulative integral.
+pub fn graded_grid(n: usize, x_in: f64, x_out: f64, h_est: f64, dir: f64, grading: bool) -> Vec<f64> {
+    let uniform = || (0..n).map(|i| x_in + (x_out - x_in) * i as f64 / (n - 1) as f64).collect();
+    if !grading || !(h_est.is_finite() && h_est > 0.0) || h_est > 0.3 {
+        return uniform();
+    }
+    let w = (3.0 * h_est.powf(2.0 / 3.0)).clamp(0.01, 0.5);
+    let (c_in, c_out) = (-dir * (1.0 + 0.25 * w), dir * (1.0 - w / 3.0));
+    let len = x_out - x_in;
+    let sq_pi = PI.sqrt();
+    let density = |x: f64| {
+        let zone = 0.5 * (((x + 1.05) / 0.05).tanh() - ((x - 1.05) / 0.05).tanh()) / 2.1;
+        let g = |c: f64| (-((x - c) / w).powi(2)).exp() / (w * sq_pi);
+        0.25 / len + 0.25 * zone + 0.25 * g(c_in) + 0.25 * g(c_out)
+    };
+    let fine = 40 * n.max(500);
+    let hstep = len / fine as f64;
+    let mut cum = vec![0.0; fine + 1];
+    let mut prev = density(x_in);
+    for k in 1..=fine {
+        let d = density(x_in + k as f64 * hstep);
+        cum[k] = cum[k - 1] + 0.5 * (prev + d) * hstep;
+        prev = d;
+    }
+    let total = cum[fine];
+    let mut x = Vec::with_capacity(n);
+    let mut k = 0;
+    for i in 0..n {
+        let target = total * i as f64 / (n - 1) as f64;
+        while k + 1 < fine && cum[k + 1] < target {
+            k += 1;
+        }
+        let t = ((target - cum[k]) / (cum[k + 1] - cum[k]).max(1e-300)).clamp(0.0, 1.0);
+        x.push(x_in + (k as f64 + t) * hstep);
+    }
+    x[0] = x_in;
+    x[n - 1] = x_out;
+    x
 }
 
 #[allow(clippy::too_many_arguments)]
@@ -584,11 +702,7 @@ fn finish(
     ensure_finite("ehl pressure", &pressure)?;
     ensure_finite("ehl film", &film)?;
     let dir = if input.entrainment_velocity >= 0.0 { 1.0 } else { -1.0 };
-    // Central film: linear interpolation at X = 0.
-    let tc = -prob.x[0] / prob.dx;
-    let ic = (tc.floor() as usize).min(n - 2);
-    let fc = tc - ic as f64;
-    let central_film = film[ic] * (1.0 - fc) + film[ic + 1] * fc;
+    let central_film = interpolate(&x, &film, 0.0);
     let argmin = |range: &mut dyn Iterator<Item = usize>| {
         range.fold(None, |best: Option<usize>, i| match best {
             Some(j) if film[j] <= film[i] => Some(j),
@@ -596,14 +710,12 @@ fn finish(
         })
     };
     let imin = argmin(&mut (0..n)).unwrap_or(0);
-    let (s, min_film) = parabolic(&film, imin);
-    let min_film_position = x[imin] + s * prob.dx * b;
+    let (min_film_position, min_film) = vertex(&x, &film, imin);
     let downstream = |i: &usize| prob.x[*i] * dir > 0.0;
     let iexit = argmin(&mut (0..n).filter(downstream)).unwrap_or(imin);
-    let (_, exit_film) = parabolic(&film, iexit);
+    let (_, exit_film) = vertex(&x, &film, iexit);
     let imax = (0..n).fold(0, |j, i| if pressure[i] > pressure[j] { i } else { j });
-    let (s, max_pressure) = parabolic(&pressure, imax);
-    let max_pressure_position = x[imax] + s * prob.dx * b;
+    let (max_pressure_position, max_pressure) = vertex(&x, &pressure, imax);
     // Spike: the most downstream local maximum beyond the centre that exceeds the Hertzian
     // pressure at its position.
     let mut spike = None;
@@ -611,8 +723,8 @@ fn finish(
         let local_max = pressure[i] > pressure[i - 1] && pressure[i] >= pressure[i + 1];
         let hertz = (1.0 - prob.x[i] * prob.x[i]).max(0.0).sqrt() * ph;
         if local_max && downstream(&i) && pressure[i] > hertz {
-            let (s, val) = parabolic(&pressure, i);
-            let cand = PressureSpike { pressure: val, position: x[i] + s * prob.dx * b };
+            let (position, val) = vertex(&x, &pressure, i);
+            let cand = PressureSpike { pressure: val, position };
             spike = match spike {
                 Some(PressureSpike { position, .. }) if position * dir > cand.position * dir => spike,
                 _ => Some(cand),

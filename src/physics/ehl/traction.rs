@@ -51,7 +51,7 @@ fn stress(tau_newtonian: f64, p: f64, rheology: &Rheology) -> f64 {
     tau
 }
 
-/// Traction of the film `(x, p, h)` (m, Pa, m; uniform grid) at temperature `t`.
+/// Traction of the film `(x, p, h)` (m, Pa, m; increasing nodes) at temperature `t`.
 pub fn traction(
     x: &[f64],
     p: &[f64],
@@ -66,22 +66,16 @@ pub fn traction(
     if n < 3 {
         return TractionResult::default();
     }
-    let dx = (x[n - 1] - x[0]) / (n - 1) as f64;
     let ln_eta0 = lubricant.viscosity_at(0.0, t).ln();
     let (mut f1, mut f2, mut roll) = (0.0, 0.0, 0.0);
     for i in 0..n {
-        let dpdx = if i == 0 {
-            (p[1] - p[0]) / dx
-        } else if i == n - 1 {
-            (p[n - 1] - p[n - 2]) / dx
-        } else {
-            (p[i + 1] - p[i - 1]) / (2.0 * dx)
-        };
+        let (a, b) = (i.saturating_sub(1), (i + 1).min(n - 1));
+        let dpdx = (p[b] - p[a]) / (x[b] - x[a]);
         let eta = (ln_eta0 + lubricant.ln_viscosity_ratio(p[i], t)).min(600.0).exp();
         let couette = eta * sliding_velocity / h[i];
         let poiseuille = 0.5 * h[i] * dpdx;
         // Trapezoidal weights.
-        let w = if i == 0 || i == n - 1 { 0.5 * dx } else { dx };
+        let w = 0.5 * (x[b] - x[a]);
         f1 += w * stress(-couette - poiseuille, p[i], rheology);
         f2 += w * stress(couette - poiseuille, p[i], rheology);
         roll -= w * poiseuille;
