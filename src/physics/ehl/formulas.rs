@@ -1,8 +1,9 @@
 //! Closed-form line-contact film formulas and the dimensionless groups they use.
 //!
 //! Hamrock–Dowson groups (all with the EHL modulus `E' = 2E*`, see [`crate::physics::contact`]):
-//! `W = w'/(E'R)`, `U = η0 |u_m|/(E'R)`, `G = α E'`; Moes groups `M = W U^(−1/2)`,
-//! `L = G U^(1/4)`, film `H_M = (h/R) U^(−1/2)`.
+//! `W = w'/(E'R)`, `U = η0 |u_m|/(E'R)` with the mean velocity `u_m`, `G = α E'`. Moes' groups
+//! use the *sum* velocity `u1 + u2 = 2u_m` (Venner & Lubrecht's convention): `U_Σ = 2U`,
+//! `M = W U_Σ^(−1/2)`, `L = G U_Σ^(1/4)`, film `H_M = (h/R) U_Σ^(−1/2)`.
 //!
 //! * Moes (1992) central film, the smooth interpolation between the four asymptotes
 //!   rigid-isoviscous (Martin), rigid-piezoviscous, elastic-isoviscous (Herrebrugh) and
@@ -23,13 +24,13 @@ use crate::physics::lubricant::Lubricant;
 pub struct Groups {
     /// Load `W = w'/(E'R)`.
     pub load: f64,
-    /// Speed `U = η0 |u_m| /(E'R)`.
+    /// Speed `U = η0 |u_m| /(E'R)` (mean velocity).
     pub speed: f64,
     /// Material `G = α E'`.
     pub material: f64,
-    /// Moes load `M = W U^(−1/2)`.
+    /// Moes load `M = W (2U)^(−1/2)`.
     pub moes_m: f64,
-    /// Moes material `L = G U^(1/4)`.
+    /// Moes material `L = G (2U)^(1/4)`.
     pub moes_l: f64,
 }
 
@@ -40,7 +41,8 @@ impl Groups {
         let w = load_per_length / (e_prime * radius);
         let u = eta0 * speed.abs() / (e_prime * radius);
         let g = alpha * e_prime;
-        Groups { load: w, speed: u, material: g, moes_m: w / u.sqrt(), moes_l: g * u.powf(0.25) }
+        let u_sum = 2.0 * u;
+        Groups { load: w, speed: u, material: g, moes_m: w / u_sum.sqrt(), moes_l: g * u_sum.powf(0.25) }
     }
 
     /// Groups of a lubricant at temperature `t` (K): `η0 = η(0, t)`, `α` the lubricant's
@@ -51,7 +53,7 @@ impl Groups {
     }
 }
 
-/// Moes' central film `H_M = (h_c/R) U^(−1/2)` for line contacts (Venner & Lubrecht eq. 8.12).
+/// Moes' central film `H_M = (h_c/R) (2U)^(−1/2)` for line contacts (Venner & Lubrecht §8.5).
 pub fn moes_central(m: f64, l: f64) -> f64 {
     let h_ri = 3.0 / m;
     let h_ei = 2.621 * m.powf(-0.2);
@@ -65,7 +67,7 @@ pub fn moes_central(m: f64, l: f64) -> f64 {
 
 /// Moes' central film, m.
 pub fn moes_central_film(g: &Groups, radius: f64) -> f64 {
-    moes_central(g.moes_m, g.moes_l) * radius * g.speed.sqrt()
+    moes_central(g.moes_m, g.moes_l) * radius * (2.0 * g.speed).sqrt()
 }
 
 /// Pan–Hamrock central film `h_c/R = 2.922 W^−0.166 U^0.692 G^0.470`, as a film in m.
@@ -102,11 +104,11 @@ mod tests {
     #[test]
     fn groups_by_hand() {
         // w' = 1e5 N/m, R = 0.01 m, E' = 2.2e11 Pa, u = 2 m/s, η0 = 0.04 Pa·s, α = 2e-8 1/Pa:
-        // W = 4.545e-5, U = 3.636e-11, G = 4400, M = 7.537, L = 10.805.
+        // W = 4.545e-5, U = 3.636e-11, G = 4400; U_Σ = 7.273e-11: M = 5.3300, L = 12.8493.
         let g = Groups::new(1e5, 0.01, 2.2e11, 2.0, 0.04, 2e-8);
         assert!((g.load / 4.5454545e-5 - 1.0).abs() < 1e-6);
         assert!((g.speed / 3.6363636e-11 - 1.0).abs() < 1e-6);
-        assert!((g.moes_m / 7.5378 - 1.0).abs() < 1e-4, "{}", g.moes_m);
-        assert!((g.moes_l / 10.80487 - 1.0).abs() < 1e-5, "{}", g.moes_l);
+        assert!((g.moes_m / 5.32999 - 1.0).abs() < 1e-5, "{}", g.moes_m);
+        assert!((g.moes_l / 12.84923 - 1.0).abs() < 1e-5, "{}", g.moes_l);
     }
 }

@@ -65,7 +65,7 @@ pub struct EhlOptions {
     /// Most Newton steps (per continuation stage).
     pub max_iterations: u32,
     /// Inlet distance from the contact centre in Hertzian half-widths, upstream; `None` chooses
-    /// `max(4.5, 10 sqrt(2 H_est))` from a film estimate (far enough for a fully flooded inlet).
+    /// `max(4.5, 16 sqrt(2 H_est))` from a film estimate (far enough for a fully flooded inlet).
     pub inlet: Option<f64>,
     /// Outlet distance in half-widths, downstream; `None` chooses `max(1.5, 1.5 sqrt(2 H_est))`.
     pub outlet: Option<f64>,

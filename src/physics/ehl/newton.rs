@@ -326,10 +326,6 @@ fn newton(
             }
         }
         let m0 = merit(&ph, v.load, &prob.cell);
-        if std::env::var("EHL_DEBUG").is_ok() {
-            let nact = active.iter().filter(|a| **a).count();
-            eprintln!("it {iter} res {res:.3e} merit {m0:.3e} alpha_max {alpha:.3e} active {nact} dh0 {dh0:.3e}");
-        }
         let mut accepted = false;
         for _ in 0..MAX_HALVINGS {
             for i in 0..n {
@@ -340,7 +336,6 @@ fn newton(
                 phi(&p_trial, &trial, &c, &mut ph_trial);
                 let mt = merit(&ph_trial, trial.load, &prob.cell);
                 if mt <= (1.0 - 1e-4 * alpha) * m0 {
-                    if std::env::var("EHL_DEBUG").is_ok() { eprintln!("   accepted alpha {alpha:.3e} merit {mt:.3e}"); }
                     p.copy_from_slice(&p_trial);
                     *h0 = h0_trial;
                     std::mem::swap(&mut v, &mut trial);
@@ -388,7 +383,7 @@ pub fn solve(input: &EhlInput, options: &EhlOptions, observer: &dyn Observer) ->
         Some(s) => (s.film_at(0.0, r) * r / (b * b)).max(h_moes),
         None => h_moes,
     };
-    let up = options.inlet.unwrap_or_else(|| 4.5_f64.max(10.0 * (2.0 * h_est).sqrt()));
+    let up = options.inlet.unwrap_or_else(|| 4.5_f64.max(16.0 * (2.0 * h_est).sqrt()));
     let down = options.outlet.unwrap_or_else(|| 1.5_f64.max(1.5 * (2.0 * h_est).sqrt()));
     let (x_in, x_out) = if um >= 0.0 { (-up, down) } else { (-down, up) };
     let dir = if um >= 0.0 { 1.0 } else { -1.0 };
@@ -443,14 +438,14 @@ pub fn solve(input: &EhlInput, options: &EhlOptions, observer: &dyn Observer) ->
         if sum > 0.0 {
             p.iter_mut().for_each(|v| *v *= 0.5 * PI / sum);
         } else {
-            hertz_guess(&prob.x, &mut p);
+            hertz_guess(&prob.x, &mut p, 1.0);
         }
         let h0 = h0_for(&p, prob, hc);
         (p, h0)
     };
     let cold = |prob: &Problem, hc: f64| {
         let mut p = vec![0.0; prob.n];
-        hertz_guess(&prob.x, &mut p);
+        hertz_guess(&prob.x, &mut p, 1f64.max((2.0 * h_est).sqrt()));
         let h0 = h0_for(&p, prob, hc);
         (p, h0)
     };
@@ -540,11 +535,13 @@ pub fn solve(input: &EhlInput, options: &EhlOptions, observer: &dyn Observer) ->
     unreachable!("the finest level returns")
 }
 
-/// Hertzian pressure `sqrt(1 − X²)`.
-fn hertz_guess(x: &[f64], p: &mut [f64]) {
+/// Semi-elliptical pressure of half-width `a` carrying the load: `sqrt(1 − (X/a)²)/a` (Hertz for
+/// `a = 1`; wider for light loads, where the pressure spreads over `~sqrt(2H)`).
+fn hertz_guess(x: &[f64], p: &mut [f64], a: f64) {
     let n = x.len();
     for i in 0..n {
-        p[i] = if i == 0 || i == n - 1 { 0.0 } else { (1.0 - x[i] * x[i]).max(0.0).sqrt() };
+        let s = x[i] / a;
+        p[i] = if i == 0 || i == n - 1 { 0.0 } else { (1.0 - s * s).max(0.0).sqrt() / a };
     }
 }
 
@@ -717,12 +714,12 @@ fn finish(
     let imax = (0..n).fold(0, |j, i| if pressure[i] > pressure[j] { i } else { j });
     let (max_pressure_position, max_pressure) = vertex(&x, &pressure, imax);
     // Spike: the most downstream local maximum beyond the centre that exceeds the Hertzian
-    // pressure at its position.
+    // pressure at its position and a fifth of the peak pressure.
     let mut spike = None;
     for i in 1..n - 1 {
         let local_max = pressure[i] > pressure[i - 1] && pressure[i] >= pressure[i + 1];
         let hertz = (1.0 - prob.x[i] * prob.x[i]).max(0.0).sqrt() * ph;
-        if local_max && downstream(&i) && pressure[i] > hertz {
+        if local_max && downstream(&i) && pressure[i] > hertz && pressure[i] >= 0.2 * pressure[imax] {
             let (position, val) = vertex(&x, &pressure, i);
             let cand = PressureSpike { pressure: val, position };
             spike = match spike {
