@@ -450,89 +450,102 @@ pub fn solve(input: &EhlInput, options: &EhlOptions, observer: &dyn Observer) ->
         (p, h0)
     };
 
-    // Nested iteration: from the previous state straight on the target grid; from a cold start,
-    // solve on grids of n/2^k ≥ 64 nodes first and interpolate each solution as the next guess.
+    // Nested iteration: from the previous state straight on the target grid; from a cold start
+    // (or when the warm start fails), solve on grids of n/2^k ≥ 64 nodes first and interpolate
+    // each solution as the next guess.
     let n = options.nodes;
-    let mut levels = vec![n];
-    if previous.is_none() {
-        while levels[levels.len() - 1] / 2 >= 64 {
-            let next = levels[levels.len() - 1] / 2;
-            levels.push(next);
-        }
-        levels.reverse();
-    }
-    let mut guess: Option<(Vec<f64>, Vec<f64>, f64)> = previous.map(|s| {
-        let gx: Vec<f64> = s.x.iter().map(|x| x / b).collect();
-        let gp: Vec<f64> = s.pressure.iter().map(|p| p / ph).collect();
-        (gx, gp, (s.film_at(0.0, r) * r / (b * b)).max(1e-9))
-    });
     let tol = options.tolerance;
     let mut total_iter = 0;
-    let nlev = levels.len();
-    for (li, &nl) in levels.iter().enumerate() {
-        let finest = li + 1 == nlev;
-        let mut prob = build(nl);
-        let (mut p, mut h0) = match &guess {
-            Some((gx, gp, hc)) => from_guess(&prob, gx, gp, *hc),
-            None => cold(&prob, h_est.max(1e-6)),
-        };
-        let mut run = newton(&prob, &mut p, &mut h0, tol, options.max_iterations, observer)?;
-        total_iter += run.iterations;
-        if !run.converged && finest {
-            // Continuation from faster entrainment (thicker film, smaller M): λ·4^k → λ.
-            let (lambda_target, kappa_target) = (prob.lambda, prob.kappa);
-            for start in [2, 4, 7] {
-                let mut good = true;
-                for k in (0..=start).rev() {
-                    let f = 4f64.powi(k);
-                    prob.lambda = lambda_target * f;
-                    prob.kappa = kappa_target * f;
-                    if k == start {
-                        (p, h0) = cold(&prob, h_est.max(1e-6) * f.powf(0.7));
-                    }
-                    let stage_tol = if k == 0 { tol } else { tol.max(1e-6) };
-                    let r2 = newton(&prob, &mut p, &mut h0, stage_tol, options.max_iterations, observer)?;
-                    total_iter += r2.iterations;
-                    if k == 0 {
-                        run = r2;
-                    } else if !r2.converged {
-                        good = false;
-                        break;
-                    }
-                }
-                if good && run.converged {
-                    break;
-                }
-            }
-            prob.lambda = lambda_target;
-            prob.kappa = kappa_target;
+    let mut failure = None;
+    for warm in [true, false] {
+        if warm && previous.is_none() {
+            continue;
         }
-        if finest {
-            if !run.converged {
-                let mut history = run.history.clone();
-                if history.len() > 20 {
-                    history.drain(..history.len() - 20);
-                }
-                return Err(SolveError::NotConverged {
-                    solver: "ehl line contact (Newton)",
-                    iterations: total_iter,
-                    residual: run.residual,
-                    tolerance: tol,
-                    history,
-                });
+        let mut levels = vec![n];
+        if !warm {
+            while levels[levels.len() - 1] / 2 >= 64 {
+                let next = levels[levels.len() - 1] / 2;
+                levels.push(next);
             }
-            return finish(input, options, &prob, &p, h0, b, ph, moes_m, moes_l, total_iter, run.residual);
+            levels.reverse();
         }
-        // A coarse level: its solution (converged or the last finite iterate) is the next guess.
-        let mut v = Fields::new(nl);
-        guess = if prob.evaluate(&p, h0, &mut v) && p.iter().all(|p| p.is_finite()) {
-            let hc = interpolate(&prob.x, &v.h, 0.0);
-            Some((prob.x.clone(), p, hc))
+        let mut guess: Option<(Vec<f64>, Vec<f64>, f64)> = if warm {
+            previous.map(|s| {
+                let gx: Vec<f64> = s.x.iter().map(|x| x / b).collect();
+                let gp: Vec<f64> = s.pressure.iter().map(|p| p / ph).collect();
+                (gx, gp, (s.film_at(0.0, r) * r / (b * b)).max(1e-9))
+            })
         } else {
             None
         };
+        let nlev = levels.len();
+        for (li, &nl) in levels.iter().enumerate() {
+            let finest = li + 1 == nlev;
+            let mut prob = build(nl);
+            let (mut p, mut h0) = match &guess {
+                Some((gx, gp, hc)) => from_guess(&prob, gx, gp, *hc),
+                None => cold(&prob, h_est.max(1e-6)),
+            };
+            let mut run = newton(&prob, &mut p, &mut h0, tol, options.max_iterations, observer)?;
+            total_iter += run.iterations;
+            if !run.converged && finest {
+                // Continuation from faster entrainment (thicker film, smaller M): λ·4^k → λ.
+                let (lambda_target, kappa_target) = (prob.lambda, prob.kappa);
+                for start in [2, 4, 7] {
+                    let mut good = true;
+                    for k in (0..=start).rev() {
+                        let f = 4f64.powi(k);
+                        prob.lambda = lambda_target * f;
+                        prob.kappa = kappa_target * f;
+                        if k == start {
+                            (p, h0) = cold(&prob, h_est.max(1e-6) * f.powf(0.7));
+                        }
+                        let stage_tol = if k == 0 { tol } else { tol.max(1e-6) };
+                        let r2 = newton(&prob, &mut p, &mut h0, stage_tol, options.max_iterations, observer)?;
+                        total_iter += r2.iterations;
+                        if k == 0 {
+                            run = r2;
+                        } else if !r2.converged {
+                            good = false;
+                            break;
+                        }
+                    }
+                    if good && run.converged {
+                        break;
+                    }
+                }
+                prob.lambda = lambda_target;
+                prob.kappa = kappa_target;
+            }
+            if finest {
+                if !run.converged {
+                    let mut history = run.history.clone();
+                    if history.len() > 20 {
+                        history.drain(..history.len() - 20);
+                    }
+                    failure = Some(SolveError::NotConverged {
+                        solver: "ehl line contact (Newton)",
+                        iterations: total_iter,
+                        residual: run.residual,
+                        tolerance: tol,
+                        history,
+                    });
+                    break;
+                }
+                return finish(input, options, &prob, &p, h0, b, ph, moes_m, moes_l, total_iter, run.residual);
+            }
+            // A coarse level: its solution (converged or the last finite iterate) is the next guess.
+            let mut v = Fields::new(nl);
+            guess = if prob.evaluate(&p, h0, &mut v) && p.iter().all(|p| p.is_finite()) {
+                let hc = interpolate(&prob.x, &v.h, 0.0);
+                Some((prob.x.clone(), p, hc))
+            } else {
+                None
+            };
+    
+        }
     }
-    unreachable!("the finest level returns")
+    Err(failure.expect("at least one attempt ran"))
 }
 
 /// Semi-elliptical pressure of half-width `a` carrying the load: `sqrt(1 − (X/a)²)/a` (Hertz for
@@ -647,7 +660,7 @@ pub fn graded_grid(n: usize, x_in: f64, x_out: f64, h_est: f64, dir: f64, gradin
         let g = |c: f64| (-((x - c) / w).powi(2)).exp() / (w * sq_pi);
         0.25 / len + 0.25 * zone + 0.25 * g(c_in) + 0.25 * g(c_out)
     };
-    let fine = 40 * n.max(500);
+    let fine = 8 * n + 2000;
     let hstep = len / fine as f64;
     let mut cum = vec![0.0; fine + 1];
     let mut prev = density(x_in);
