@@ -74,6 +74,18 @@ fn cycle(nodes: usize, tol: f64) -> (Vec<f64>, Vec<f64>, u32) {
 
 fn main() {
     faer::set_global_parallelism(faer::Par::Seq);
+    // `cargo bench --bench ehl -- point` or `-- cycle` runs one table only.
+    let args: Vec<String> = std::env::args().skip(1).filter(|a| !a.starts_with('-')).collect();
+    let want = |name: &str| args.is_empty() || args.iter().any(|a| a == name);
+    if want("point") {
+        point_table();
+    }
+    if want("cycle") {
+        cycle_table();
+    }
+}
+
+fn point_table() {
     let grids = [64, 128, 256, 512, 1024, 2048, 4096];
     let inp = point(12500.0 / 0.021, 0.0105, 3.98);
     let mut rows = Vec::new();
@@ -108,6 +120,9 @@ fn main() {
         );
     }
 
+}
+
+fn cycle_table() {
     println!("\n### Transient cycle: 720 steps (950 rpm, load 2.25–12.5 kN, u_m = 4 cos θ + 1.5 m/s, squeeze)\n");
     let (_, (hc_ref, hm_ref, _)) = best_of(1, || cycle(1024, 1e-8));
     println!("reference: the same cycle on 1024 nodes, tolerance 1e-8\n");
