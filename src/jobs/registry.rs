@@ -6,6 +6,7 @@ use super::kinds;
 /// Every kind the service runs, in the order `GET /v1/kinds` and the OpenAPI document list them.
 pub static KINDS: &[&dyn DynKind] = &[
     &Registered::<kinds::hertz::Hertz>::new(),
+    &Registered::<kinds::ehl_point::EhlPoint>::new(),
 ];
 
 /// Kinds compiled only into test builds (feature `test-kinds`): runnable, but neither listed nor

@@ -103,6 +103,56 @@ impl Lubricant {
         }
     }
 
+    /// `ln(η(p, t)/η0)`, the logarithm of the viscosity ratio (never overflows: EHL solvers work
+    /// with it where `η` itself would exceed `f64` at absurd trial pressures).
+    pub fn ln_viscosity_ratio(&self, p: f64, t: f64) -> f64 {
+        let p = p.max(0.0);
+        let dt = t - self.reference_temperature;
+        match self.viscosity_model {
+            ViscosityModel::Barus => self.pressure_viscosity * p - self.temperature_viscosity * dt,
+            ViscosityModel::Roelands => {
+                let a1 = self.roelands_a1();
+                let z = self.roelands_z();
+                let t0 = self.reference_temperature;
+                let s0 = self.temperature_viscosity * (t0 - 138.0) / a1;
+                let thermal = ((t - 138.0).max(1.0) / (t0 - 138.0)).powf(-s0);
+                a1 * (-1.0 + (1.0 + p / ROELANDS_PRESSURE).powf(z) * thermal)
+            }
+        }
+    }
+
+    /// `∂ ln η / ∂p` at `(p, t)`, 1/Pa (0 below ambient pressure, where `p` is clamped).
+    pub fn ln_viscosity_pressure_slope(&self, p: f64, t: f64) -> f64 {
+        if p < 0.0 {
+            return 0.0;
+        }
+        match self.viscosity_model {
+            ViscosityModel::Barus => self.pressure_viscosity,
+            ViscosityModel::Roelands => {
+                let a1 = self.roelands_a1();
+                let z = self.roelands_z();
+                let t0 = self.reference_temperature;
+                let s0 = self.temperature_viscosity * (t0 - 138.0) / a1;
+                let thermal = ((t - 138.0).max(1.0) / (t0 - 138.0)).powf(-s0);
+                a1 * z * (1.0 + p / ROELANDS_PRESSURE).powf(z - 1.0) / ROELANDS_PRESSURE * thermal
+            }
+        }
+    }
+
+    /// `∂(ρ/ρ0)/∂p` at `(p, t)`, 1/Pa (0 below ambient pressure, where `p` is clamped).
+    pub fn density_ratio_pressure_slope(&self, p: f64, _t: f64) -> f64 {
+        match self.density_model {
+            DensityModel::Incompressible => 0.0,
+            DensityModel::DowsonHigginson => {
+                if p < 0.0 {
+                    0.0
+                } else {
+                    DH_C1 / (1.0 + DH_C2 * p).powi(2)
+                }
+            }
+        }
+    }
+
     /// Viscosity at pressure `p` and the reference temperature.
     pub fn viscosity_at_pressure(&self, p: f64) -> f64 {
         self.viscosity_at(p, self.reference_temperature)
@@ -197,6 +247,25 @@ mod tests {
         // p → ∞: 1 + C1/C2 = 1.3529.
         let r = oil.density_ratio(1e13, oil.reference_temperature);
         assert!((r - (1.0 + DH_C1 / DH_C2)).abs() < 1e-3);
+    }
+
+    #[test]
+    fn log_viscosity_and_slopes_match_finite_differences() {
+        for model in [ViscosityModel::Barus, ViscosityModel::Roelands] {
+            let oil = Lubricant { viscosity_model: model, ..Lubricant::SEED000 };
+            let t = oil.reference_temperature + 7.0;
+            for p in [1e6, 3e8, 1.2e9, 3e9] {
+                let ln = oil.ln_viscosity_ratio(p, t);
+                assert!((ln - (oil.viscosity_at(p, t) / oil.viscosity).ln()).abs() < 1e-9 * ln.abs().max(1.0));
+                let dp = 1e3;
+                let fd = (oil.ln_viscosity_ratio(p + dp, t) - oil.ln_viscosity_ratio(p - dp, t)) / (2.0 * dp);
+                let slope = oil.ln_viscosity_pressure_slope(p, t);
+                assert!((fd / slope - 1.0).abs() < 1e-6, "{model:?} {p}: {fd} vs {slope}");
+                let fd = (oil.density_ratio(p + dp, t) - oil.density_ratio(p - dp, t)) / (2.0 * dp);
+                let slope = oil.density_ratio_pressure_slope(p, t);
+                assert!((fd / slope - 1.0).abs() < 1e-6, "density {p}: {fd} vs {slope}");
+            }
+        }
     }
 
     #[test]

@@ -1,0 +1,428 @@
+//! `ehl_point`: one lubricated line contact solved numerically (`physics::ehl`): film, pressure
+//! spike, traction, and on request the pressure and film profiles.
+
+use crate::jobs::kind::{Kind, Limits, OutputInfo, Validation};
+use crate::physics::contact::{effective_modulus, Elastic};
+use crate::physics::ehl::formulas::{
+    moes_central_film, pan_hamrock_central_film, pan_hamrock_minimum_film, Groups,
+};
+use crate::physics::ehl::{solve, EhlInput, EhlOptions, Rheology, Upwind};
+use crate::physics::lubricant::{DensityModel, Lubricant, ViscosityModel};
+use crate::physics::{Convergence, Observer, SolveError};
+use serde::{Deserialize, Serialize};
+use serde_json::{json, Value};
+use utoipa::ToSchema;
+
+pub struct EhlPoint;
+
+/// Elastic constants of one body.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, ToSchema)]
+#[serde(deny_unknown_fields)]
+pub struct Material {
+    /// Young's modulus, Pa. Default 210e9 (steel).
+    #[serde(default = "default_e")]
+    pub youngs_modulus: f64,
+    /// Poisson's ratio. Default 0.3.
+    #[serde(default = "default_nu")]
+    pub poisson_ratio: f64,
+}
+
+impl Default for Material {
+    fn default() -> Self {
+        Material { youngs_modulus: default_e(), poisson_ratio: default_nu() }
+    }
+}
+
+fn default_e() -> f64 {
+    Elastic::STEEL.youngs_modulus
+}
+fn default_nu() -> f64 {
+    Elastic::STEEL.poisson_ratio
+}
+
+/// Lubricant rheology. Defaults: the seed 000 oil (η0 = 0.152 Pa·s, α = 2.2e-8 1/Pa,
+/// β = 0.042 1/K, T0 = 303 K, ρ0 = 870 kg/m³, Roelands, Dowson–Higginson).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, ToSchema)]
+#[serde(deny_unknown_fields)]
+pub struct LubricantSpec {
+    /// Viscosity at ambient pressure and the reference temperature, Pa·s.
+    #[serde(default = "d_eta")]
+    pub viscosity: f64,
+    /// Pressure–viscosity coefficient α, 1/Pa (Barus; the low-pressure slope for Roelands).
+    #[serde(default = "d_alpha")]
+    pub pressure_viscosity: f64,
+    /// Temperature–viscosity coefficient β, 1/K.
+    #[serde(default = "d_beta")]
+    pub temperature_viscosity: f64,
+    /// Reference temperature T0, K.
+    #[serde(default = "d_t0")]
+    pub reference_temperature: f64,
+    /// Density at ambient pressure and T0, kg/m³.
+    #[serde(default = "d_rho")]
+    pub density: f64,
+    /// `barus` or `roelands` (default).
+    #[serde(default)]
+    pub viscosity_model: ViscosityModel,
+    /// `incompressible` or `dowson_higginson` (default).
+    #[serde(default)]
+    pub density_model: DensityModel,
+}
+
+fn d_eta() -> f64 {
+    Lubricant::SEED000.viscosity
+}
+fn d_alpha() -> f64 {
+    Lubricant::SEED000.pressure_viscosity
+}
+fn d_beta() -> f64 {
+    Lubricant::SEED000.temperature_viscosity
+}
+fn d_t0() -> f64 {
+    Lubricant::SEED000.reference_temperature
+}
+fn d_rho() -> f64 {
+    Lubricant::SEED000.density
+}
+
+impl Default for LubricantSpec {
+    fn default() -> Self {
+        let l = Lubricant::SEED000;
+        LubricantSpec {
+            viscosity: l.viscosity,
+            pressure_viscosity: l.pressure_viscosity,
+            temperature_viscosity: l.temperature_viscosity,
+            reference_temperature: l.reference_temperature,
+            density: l.density,
+            viscosity_model: l.viscosity_model,
+            density_model: l.density_model,
+        }
+    }
+}
+
+impl LubricantSpec {
+    fn lubricant(&self) -> Lubricant {
+        Lubricant {
+            viscosity: self.viscosity,
+            pressure_viscosity: self.pressure_viscosity,
+            temperature_viscosity: self.temperature_viscosity,
+            reference_temperature: self.reference_temperature,
+            density: self.density,
+            viscosity_model: self.viscosity_model,
+            density_model: self.density_model,
+        }
+    }
+}
+
+/// Shear law for the traction (the film itself is Newtonian and isothermal).
+#[derive(Debug, Clone, Copy, PartialEq, Default, Serialize, Deserialize, ToSchema)]
+#[serde(deny_unknown_fields)]
+pub struct RheologySpec {
+    /// Eyring stress τ0, Pa (seed 001 eq. 25; seed 001 Table 1 uses 5e6). Absent: Newtonian.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub eyring_stress: Option<f64>,
+    /// Limiting shear stress pressure coefficient Λ (`τ_L = τ_L0 + Λ p`). Absent: no limit.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub limiting_shear_coefficient: Option<f64>,
+    /// Limiting shear stress at ambient pressure τ_L0, Pa. Default 0.
+    #[serde(default)]
+    pub limiting_shear_stress: f64,
+}
+
+/// Optional outputs of an `ehl_point` job.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, ToSchema)]
+#[serde(rename_all = "snake_case")]
+pub enum EhlPointOutput {
+    /// Pressure and film along the rolling direction.
+    Profile,
+}
+
+/// Spec of an `ehl_point` job: a smooth, isothermal, fully flooded line contact in steady state.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, ToSchema)]
+#[serde(deny_unknown_fields)]
+pub struct EhlPointSpec {
+    /// Normal load, N.
+    pub load: f64,
+    /// Contact length, m (the load is spread uniformly along it).
+    pub length: f64,
+    /// Reduced radius of curvature in the rolling direction `1/R = 1/r1 + 1/r2`, m.
+    pub reduced_radius: f64,
+    /// Entrainment (mean rolling) velocity `(u1 + u2)/2`, m/s; its sign sets the inlet side.
+    pub entrainment_velocity: f64,
+    /// Sliding velocity `u1 − u2`, m/s (traction only). Default 0.
+    #[serde(default)]
+    pub sliding_velocity: f64,
+    #[serde(default)]
+    pub body_1: Material,
+    #[serde(default)]
+    pub body_2: Material,
+    #[serde(default)]
+    pub lubricant: LubricantSpec,
+    /// Film temperature, K (isothermal; thermal effects are not modelled). Default: the
+    /// lubricant's reference temperature.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub temperature: Option<f64>,
+    #[serde(default)]
+    pub rheology: RheologySpec,
+    /// Grid nodes across the domain (graded towards inlet and exit). Default 256; 512 resolves
+    /// the central and minimum film to ≈ 0.3 %, 128 to ≈ 3 % (see BENCHMARKS.md).
+    #[serde(default = "d_nodes")]
+    pub nodes: usize,
+    /// Residual tolerance (relative). Default 1e-8.
+    #[serde(default = "d_tol")]
+    pub tolerance: f64,
+    /// Most Newton steps per stage. Default 60.
+    #[serde(default = "d_iter")]
+    pub max_iterations: u32,
+    /// Optional outputs: `profile`.
+    #[serde(default)]
+    pub outputs: Vec<EhlPointOutput>,
+}
+
+fn d_nodes() -> usize {
+    256
+}
+fn d_tol() -> f64 {
+    1e-8
+}
+fn d_iter() -> u32 {
+    60
+}
+
+/// Pressure and film along the rolling direction.
+#[derive(Debug, Clone, PartialEq, Serialize, ToSchema)]
+pub struct ProfileTable {
+    /// Position from the contact centre, m (positive in the direction of positive entrainment).
+    pub x: Vec<f64>,
+    /// Pressure, Pa.
+    pub pressure: Vec<f64>,
+    /// Film thickness, m.
+    pub film: Vec<f64>,
+}
+
+/// The exit pressure spike.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, ToSchema)]
+pub struct SpikeResult {
+    /// Pa.
+    pub pressure: f64,
+    /// m from the contact centre.
+    pub position: f64,
+}
+
+/// Closed-form films for comparison (the `fast` fidelity).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, ToSchema)]
+pub struct ClosedForms {
+    /// Moes central film (fits Barus, incompressible solutions), m.
+    pub moes_central_film: f64,
+    /// Pan–Hamrock central film, m.
+    pub pan_hamrock_central_film: f64,
+    /// Pan–Hamrock minimum film, m.
+    pub pan_hamrock_min_film: f64,
+}
+
+/// Result of an `ehl_point` job.
+#[derive(Debug, Clone, PartialEq, Serialize, ToSchema)]
+pub struct EhlPointResult {
+    /// `E' = 2E*`, Pa.
+    pub effective_modulus: f64,
+    /// Load per unit length, N/m.
+    pub load_per_length: f64,
+    /// Hertzian half-width, m.
+    pub hertz_half_width: f64,
+    /// Hertzian peak pressure, Pa.
+    pub hertz_pressure: f64,
+    /// Moes load parameter M (sum-velocity convention).
+    pub moes_m: f64,
+    /// Moes material parameter L.
+    pub moes_l: f64,
+    /// Film at the contact centre, m.
+    pub central_film: f64,
+    /// Smallest film, m.
+    pub min_film: f64,
+    /// Where the smallest film is, m from the centre.
+    pub min_film_position: f64,
+    /// Smallest film downstream of the centre (exit constriction), m.
+    pub exit_film: f64,
+    /// Largest pressure, Pa.
+    pub max_pressure: f64,
+    /// Where the largest pressure is, m.
+    pub max_pressure_position: f64,
+    /// The exit pressure spike; absent when the solution has none.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub pressure_spike: Option<SpikeResult>,
+    /// Sliding friction coefficient `(F2 − F1)/(2w')`, signed like the sliding velocity.
+    pub friction_coefficient: f64,
+    /// Shear force on body 1 along +x, N/m.
+    pub traction_body_1: f64,
+    /// Shear force on body 2 along +x, N/m.
+    pub traction_body_2: f64,
+    /// Rolling (Poiseuille) resistance on each body, N/m.
+    pub rolling_force: f64,
+    pub closed_forms: ClosedForms,
+    /// Grid nodes used.
+    pub nodes: usize,
+    /// Newton steps (all grid levels) and the final relative residual.
+    pub convergence: Convergence,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub profile: Option<ProfileTable>,
+}
+
+impl Kind for EhlPoint {
+    const NAME: &'static str = "ehl_point";
+    const SOLVER_VERSION: &'static str = "ehl_point-1";
+    const DESCRIPTION: &'static str = "Numerical elastohydrodynamic line contact (isothermal, \
+        compressible Reynolds, elastic half-space, cavitation): central and minimum film, pressure \
+        spike, traction, optional pressure/film profile.";
+    const TABLES: &'static [&'static str] = &["profile"];
+    type Spec = EhlPointSpec;
+    type Output = EhlPointResult;
+
+    fn example() -> Value {
+        // Seed 001 nose position: F = 12.5 kN over 21 mm, R = 10.5 mm, u = 3.98 m/s.
+        json!({
+            "load": 12500.0,
+            "length": 0.021,
+            "reduced_radius": 0.0105,
+            "entrainment_velocity": 3.98,
+            "sliding_velocity": 0.04,
+            "body_1": {"youngs_modulus": 200e9, "poisson_ratio": 0.3},
+            "body_2": {"youngs_modulus": 200e9, "poisson_ratio": 0.3},
+            "lubricant": {"viscosity": 0.013, "pressure_viscosity": 1.84e-8},
+            "rheology": {"eyring_stress": 5e6},
+            "nodes": 256,
+            "outputs": ["profile"]
+        })
+    }
+
+    fn outputs() -> &'static [OutputInfo] {
+        &[OutputInfo { name: "profile", description: "pressure and film thickness along the rolling direction" }]
+    }
+
+    fn validate(spec: &EhlPointSpec, limits: &Limits, v: &mut Validation) {
+        v.positive("/load", spec.load);
+        v.positive("/length", spec.length);
+        v.positive("/reduced_radius", spec.reduced_radius);
+        v.check(spec.entrainment_velocity.is_finite() && spec.entrainment_velocity != 0.0,
+            "/entrainment_velocity", "must be a finite non-zero number (a steady film needs entrainment)");
+        v.check(spec.sliding_velocity.is_finite(), "/sliding_velocity", "must be finite");
+        for (name, m) in [("/body_1", &spec.body_1), ("/body_2", &spec.body_2)] {
+            v.positive(&format!("{name}/youngs_modulus"), m.youngs_modulus);
+            v.check(m.poisson_ratio.is_finite() && (-1.0..0.5).contains(&m.poisson_ratio),
+                &format!("{name}/poisson_ratio"), "must be in [-1, 0.5)");
+        }
+        let l = &spec.lubricant;
+        v.positive("/lubricant/viscosity", l.viscosity);
+        v.in_range("/lubricant/pressure_viscosity", l.pressure_viscosity, 0.0, 1e-7);
+        v.in_range("/lubricant/temperature_viscosity", l.temperature_viscosity, 0.0, 1.0);
+        v.in_range("/lubricant/reference_temperature", l.reference_temperature, 200.0, 600.0);
+        v.positive("/lubricant/density", l.density);
+        if let Some(t) = spec.temperature {
+            v.in_range("/temperature", t, 200.0, 600.0);
+        }
+        if let Some(t0) = spec.rheology.eyring_stress {
+            v.positive("/rheology/eyring_stress", t0);
+        }
+        if let Some(c) = spec.rheology.limiting_shear_coefficient {
+            v.in_range("/rheology/limiting_shear_coefficient", c, 0.0, 1.0);
+        }
+        v.non_negative("/rheology/limiting_shear_stress", spec.rheology.limiting_shear_stress);
+        v.count_in_range("/nodes", spec.nodes, 32, 4096);
+        v.limit("/nodes", spec.nodes, limits.max_grid_nodes, "the number of grid nodes");
+        v.in_range("/tolerance", spec.tolerance, 1e-14, 1e-2);
+        v.count_in_range("/max_iterations", spec.max_iterations as usize, 1, 1000);
+    }
+
+    fn solve(spec: &EhlPointSpec, observer: &dyn Observer) -> Result<EhlPointResult, SolveError> {
+        let e1 = Elastic { youngs_modulus: spec.body_1.youngs_modulus, poisson_ratio: spec.body_1.poisson_ratio };
+        let e2 = Elastic { youngs_modulus: spec.body_2.youngs_modulus, poisson_ratio: spec.body_2.poisson_ratio };
+        let ep = effective_modulus(e1, e2);
+        let lubricant = spec.lubricant.lubricant();
+        let temperature = spec.temperature.unwrap_or(lubricant.reference_temperature);
+        let w = spec.load / spec.length;
+        let input = EhlInput {
+            load_per_length: w,
+            reduced_radius: spec.reduced_radius,
+            effective_modulus: ep,
+            entrainment_velocity: spec.entrainment_velocity,
+            sliding_velocity: spec.sliding_velocity,
+            lubricant,
+            temperature,
+            rheology: Rheology {
+                eyring_stress: spec.rheology.eyring_stress,
+                limiting_shear_coefficient: spec.rheology.limiting_shear_coefficient,
+                limiting_shear_stress: spec.rheology.limiting_shear_stress,
+            },
+            transient: None,
+            warm_start: None,
+        };
+        let options = EhlOptions {
+            nodes: spec.nodes,
+            tolerance: spec.tolerance,
+            max_iterations: spec.max_iterations,
+            upwind: Upwind::Second,
+            profiles: spec.outputs.contains(&EhlPointOutput::Profile),
+            ..EhlOptions::default()
+        };
+        let s = solve(&input, &options, observer)?;
+        let g = Groups::of(w, spec.reduced_radius, ep, spec.entrainment_velocity, &lubricant, temperature);
+        let r = spec.reduced_radius;
+        Ok(EhlPointResult {
+            effective_modulus: ep,
+            load_per_length: w,
+            hertz_half_width: s.hertz_half_width,
+            hertz_pressure: s.hertz_pressure,
+            moes_m: s.moes_m,
+            moes_l: s.moes_l,
+            central_film: s.central_film,
+            min_film: s.min_film,
+            min_film_position: s.min_film_position,
+            exit_film: s.exit_film,
+            max_pressure: s.max_pressure,
+            max_pressure_position: s.max_pressure_position,
+            pressure_spike: s.pressure_spike.map(|p| SpikeResult { pressure: p.pressure, position: p.position }),
+            friction_coefficient: s.traction.friction_coefficient,
+            traction_body_1: s.traction.force_body_1,
+            traction_body_2: s.traction.force_body_2,
+            rolling_force: s.traction.rolling_force,
+            closed_forms: ClosedForms {
+                moes_central_film: moes_central_film(&g, r),
+                pan_hamrock_central_film: pan_hamrock_central_film(&g, r),
+                pan_hamrock_min_film: pan_hamrock_minimum_film(&g, r),
+            },
+            nodes: s.nodes,
+            convergence: s.convergence,
+            profile: s.profiles.map(|p| ProfileTable { x: p.x, pressure: p.pressure, film: p.film }),
+        })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::jobs::registry;
+    use crate::physics::Silent;
+
+    #[test]
+    fn example_runs_and_profile_only_on_request() {
+        let kind = registry::find("ehl_point").expect("registered");
+        let out = kind.prepare(&kind.example(), &Limits::default()).unwrap().run(&Silent).unwrap();
+        let hc = out["central_film"].as_f64().unwrap();
+        // Seed 001 quotes ≈ 0.27 µm central film at the nose (its Figure 9 discussion).
+        assert!(hc > 0.2e-6 && hc < 0.35e-6, "{hc}");
+        assert_eq!(out["profile"]["x"].as_array().unwrap().len(), 256);
+        let mut spec = kind.example();
+        spec["outputs"] = json!([]);
+        let out = kind.prepare(&spec, &Limits::default()).unwrap().run(&Silent).unwrap();
+        assert!(out.get("profile").is_none());
+    }
+
+    #[test]
+    fn bad_fields_are_named() {
+        let kind = registry::find("ehl_point").unwrap();
+        let mut spec = kind.example();
+        spec["entrainment_velocity"] = json!(0.0);
+        spec["nodes"] = json!(8);
+        let err = kind.prepare(&spec, &Limits::default()).unwrap_err();
+        let text = serde_json::to_string(&err).unwrap();
+        assert!(text.contains("/entrainment_velocity") && text.contains("/nodes"), "{text}");
+    }
+}

@@ -1,0 +1,209 @@
+//! Validation of the numerical line-contact EHL solver (`physics::ehl`) against its limits and
+//! closed forms: dry Hertz, rigid–isoviscous (Martin), Moes (Barus, incompressible) and
+//! Pan–Hamrock (Roelands, Dowson–Higginson) films, grid convergence, squeeze and reversal.
+
+use tribod::physics::ehl::formulas::*;
+use tribod::physics::ehl::*;
+use tribod::physics::lubricant::{DensityModel, Lubricant, ViscosityModel};
+use tribod::physics::Silent;
+
+/// Steel on steel: E' = 2/(2(1 − 0.3²)/210e9) = 230.8 GPa.
+const E_PRIME: f64 = 210e9 / 0.91;
+
+fn oil(eta0: f64, alpha: f64) -> Lubricant {
+    Lubricant { viscosity: eta0, pressure_viscosity: alpha, ..Lubricant::SEED000 }
+}
+
+fn input(w: f64, r: f64, u: f64, lub: Lubricant) -> EhlInput<'static> {
+    EhlInput {
+        load_per_length: w,
+        reduced_radius: r,
+        effective_modulus: E_PRIME,
+        entrainment_velocity: u,
+        sliding_velocity: 0.0,
+        lubricant: lub,
+        temperature: lub.reference_temperature,
+        rheology: Rheology::default(),
+        transient: None,
+        warm_start: None,
+    }
+}
+
+fn opts(nodes: usize) -> EhlOptions {
+    EhlOptions { nodes, ..Default::default() }
+}
+
+/// Load `w'` and mean speed `u_m` giving Moes `M`, `L` (sum-velocity convention) for radius `r`,
+/// viscosity `η0`, `α`.
+fn load_speed_for(m: f64, l: f64, r: f64, eta0: f64, alpha: f64) -> (f64, f64) {
+    let g = alpha * E_PRIME;
+    let u_sum = (l / g).powi(4);
+    let w_dimless = m * u_sum.sqrt();
+    (w_dimless * E_PRIME * r, 0.5 * u_sum * E_PRIME * r / eta0)
+}
+
+fn rel(a: f64, b: f64) -> f64 {
+    (a - b).abs() / b.abs()
+}
+
+#[test]
+fn dry_limit_heavy_load_low_speed_gives_hertz_pressure() {
+    // p_h = 2.0 GPa, u_m = 0.01 m/s: M ≈ 1130.
+    let lub = oil(0.02, 2e-8);
+    let r = 0.01;
+    let w = (2.0e9f64).powi(2) * 2.0 * std::f64::consts::PI * r / E_PRIME;
+    let s = solve(&input(w, r, 0.01, lub), &opts(512), &Silent).unwrap();
+    println!("M {} pmax/ph {} spike {:?}", s.moes_m, s.max_pressure / s.hertz_pressure, s.pressure_spike);
+    assert!(s.moes_m > 1000.0, "M = {}", s.moes_m);
+    assert!(rel(s.max_pressure, s.hertz_pressure) < 0.02, "{} vs {}", s.max_pressure, s.hertz_pressure);
+    let st = &s.state;
+    let b = s.hertz_half_width;
+    let mut worst: f64 = 0.0;
+    for (x, p) in st.x.iter().zip(&st.pressure) {
+        let xx = x / b;
+        if xx.abs() < 0.9 {
+            let hertz = (1.0 - xx * xx).sqrt();
+            worst = worst.max((p / s.hertz_pressure - hertz).abs());
+        }
+    }
+    assert!(worst < 0.02, "largest deviation from Hertz in |x| < 0.9 b: {worst}");
+    // The film is thin and flat in the Hertzian zone.
+    assert!(s.central_film < 0.02 * b * b / r * 10.0);
+}
+
+#[test]
+fn rigid_isoviscous_limit_matches_martin() {
+    // α = 0, incompressible, very light load: M = 0.05, so the deflection is negligible.
+    let lub = Lubricant {
+        pressure_viscosity: 0.0,
+        viscosity_model: ViscosityModel::Barus,
+        density_model: DensityModel::Incompressible,
+        ..oil(0.05, 0.0)
+    };
+    let r = 0.02;
+    // Choose U = 1e-10, then W = M sqrt(U).
+    let u_dimless: f64 = 1e-10;
+    let w = 0.05 * u_dimless.sqrt() * E_PRIME * r;
+    let u = u_dimless * E_PRIME * r / 0.05;
+    let mut inp = input(w, r, u, lub);
+    inp.lubricant.pressure_viscosity = 0.0;
+    let s = solve(&inp, &EhlOptions { nodes: 1024, ..Default::default() }, &Silent).unwrap();
+    let g = Groups::new(w, r, E_PRIME, u, 0.05, 0.0);
+    let martin = martin_minimum_film(&g, r);
+    println!("martin {martin:.5e} solver {:.5e} ({:+.2} %)", s.min_film, 100.0 * (s.min_film / martin - 1.0));
+    assert!(rel(s.min_film, martin) < 0.015, "h_min {} vs Martin {}", s.min_film, martin);
+}
+
+#[test]
+fn central_film_matches_moes_for_barus_incompressible() {
+    // Moes' formula fits Barus, incompressible solutions; valid within a few per cent.
+    let (r, eta0, alpha) = (0.01, 0.04, 2e-8);
+    for (m, l) in [(5.0, 5.0), (20.0, 10.0), (50.0, 10.0), (100.0, 5.0)] {
+        let (w, u) = load_speed_for(m, l, r, eta0, alpha);
+        let lub = Lubricant {
+            viscosity_model: ViscosityModel::Barus,
+            density_model: DensityModel::Incompressible,
+            ..oil(eta0, alpha)
+        };
+        let s = solve(&input(w, r, u, lub), &opts(512), &Silent).unwrap();
+        let g = Groups::new(w, r, E_PRIME, u, eta0, alpha);
+        let moes = moes_central_film(&g, r);
+        println!("M {m} L {l}: h_c {:.4e} Moes {:.4e} ({:+.2} %)", s.central_film, moes, 100.0 * (s.central_film / moes - 1.0));
+        // Measured (512 nodes, grid-converged to 0.2 %): +5.6, +5.4, +4.3, +2.1 %. Moes' fit of
+        // Venner's solutions is itself good to a few per cent; 6 % bounds it here.
+        assert!(rel(s.central_film, moes) < 0.06, "M {m} L {l}: {} vs {}", s.central_film, moes);
+    }
+}
+
+#[test]
+fn films_are_near_pan_hamrock() {
+    // Roelands + Dowson–Higginson, the physics Pan & Hamrock regressed.
+    let r = 0.01;
+    for (w, u, eta0) in [(2e5, 1.0, 0.04), (5e5, 1.0, 0.04), (5e5, 5.0, 0.04), (1e6, 2.0, 0.04), (3e5, 3.0, 0.08)] {
+        let lub = oil(eta0, 2e-8);
+        let s = solve(&input(w, r, u, lub), &opts(512), &Silent).unwrap();
+        let g = Groups::of(w, r, E_PRIME, u, &lub, lub.reference_temperature);
+        let (hc, hm) = (pan_hamrock_central_film(&g, r), pan_hamrock_minimum_film(&g, r));
+        println!(
+            "W {:.2e} U {:.2e} M {:.1} L {:.1}: h_c {:+.2} %, h_min {:+.2} %",
+            g.load, g.speed, g.moes_m, g.moes_l,
+            100.0 * (s.central_film / hc - 1.0),
+            100.0 * (s.min_film / hm - 1.0)
+        );
+        // Measured: h_c +7.6 … +13.7 %, h_min +4.7 … +9.0 % (the solver's films are thicker, more
+        // so at large L). Pan & Hamrock's Roelands parameters are not those of `Lubricant`
+        // (Z from α here), so the regression is a sanity bound, not a 5 % reference: the 5 %
+        // validation is the Moes test above, with the physics Moes fitted.
+        assert!(rel(s.central_film, hc) < 0.15, "central {} vs {}", s.central_film, hc);
+        assert!(rel(s.min_film, hm) < 0.10, "minimum {} vs {}", s.min_film, hm);
+    }
+}
+
+#[test]
+fn grid_convergence_is_second_order() {
+    // Seed 001 base circle: F = 2250 N over 21 mm, R = 15.2 mm, u = 4.62 m/s, η0 = 0.013 Pa·s.
+    let lub = oil(0.013, 1.84e-8);
+    let inp = input(2250.0 / 0.021, 0.0152, 4.62, lub);
+    let hc: Vec<f64> = [128, 256, 512, 1024]
+        .iter()
+        .map(|&n| solve(&inp, &opts(n), &Silent).unwrap().central_film)
+        .collect();
+    let d1 = hc[1] - hc[0];
+    let d2 = hc[2] - hc[1];
+    let d3 = hc[3] - hc[2];
+    println!("h_c {hc:?}; ratios {} {}", d1 / d2, d2 / d3);
+    // Successive differences shrink by about four (second order) and the finest is converged.
+    assert!(d1.abs() / d2.abs() > 2.5 && d2.abs() / d3.abs() > 2.5);
+    let extrapolated = hc[3] + d3 / 3.0;
+    assert!(rel(hc[2], extrapolated) < 0.005, "512 nodes {} vs extrapolated {}", hc[2], extrapolated);
+}
+
+#[test]
+fn squeeze_carries_load_without_entrainment() {
+    let lub = oil(0.04, 2e-8);
+    let (w, r) = (3e5, 0.01);
+    let steady = solve(&input(w, r, 1.0, lub), &opts(256), &Silent).unwrap();
+    // Entrainment stops: the film is squeezed out, more slowly the thinner it gets.
+    let mut state = steady.state.clone();
+    let mut films = vec![steady.central_film];
+    for _ in 0..5 {
+        let mut inp = input(w, r, 0.0, lub);
+        inp.transient = Some(Transient { previous: &state, time_step: 1e-4 });
+        let s = solve(&inp, &opts(256), &Silent).unwrap();
+        assert!(s.convergence.iterations < 30);
+        films.push(s.central_film);
+        state = s.state;
+    }
+    println!("central film under pure squeeze: {films:?}");
+    for k in 1..films.len() {
+        assert!(films[k] < films[k - 1], "{films:?}");
+        assert!(films[k] > 0.0);
+    }
+    assert!(films[1] - films[2] > films[4] - films[5]);
+}
+
+#[test]
+fn entrainment_reversal_mirrors_the_solution() {
+    let lub = oil(0.04, 2e-8);
+    let (w, r) = (3e5, 0.01);
+    let fwd = solve(&input(w, r, 1.5, lub), &opts(256), &Silent).unwrap();
+    let back = solve(&input(w, r, -1.5, lub), &opts(256), &Silent).unwrap();
+    assert!(rel(fwd.central_film, back.central_film) < 1e-9);
+    assert!(rel(fwd.min_film, back.min_film) < 1e-9);
+    assert!((fwd.min_film_position + back.min_film_position).abs() < 1e-9 * fwd.hertz_half_width);
+    // Transient steps through the reversal converge from the previous state; after a while
+    // the exit constriction has moved to the new downstream side.
+    let mut state = fwd.state.clone();
+    let mut last = None;
+    for k in 0..12 {
+        let u = 1.5 - 0.25 * k as f64;
+        let mut inp = input(w, r, u, lub);
+        inp.transient = Some(Transient { previous: &state, time_step: 2e-4 });
+        let s = solve(&inp, &opts(256), &Silent).unwrap();
+        state = s.state.clone();
+        last = Some(s);
+    }
+    let s = last.unwrap();
+    println!("after reversal: h_c {} h_min {} at {}", s.central_film, s.min_film, s.min_film_position);
+    assert!(s.min_film_position < 0.0, "the exit moves upstream: {}", s.min_film_position);
+}
