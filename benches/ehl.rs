@@ -8,7 +8,7 @@
 //! Times are the best of several repetitions (single thread for the solver's own work).
 
 use std::time::Instant;
-use tribod::physics::ehl::{solve, EhlInput, EhlOptions, EhlState, Rheology, Transient};
+use tribod::physics::ehl::{solve, EhlInput, EhlOptions, EhlState, Extrapolation, Rheology, Transient, TransientSolver};
 use tribod::physics::lubricant::Lubricant;
 use tribod::physics::Silent;
 
@@ -72,6 +72,34 @@ fn cycle(nodes: usize, tol: f64) -> (Vec<f64>, Vec<f64>, u32) {
     (hc, hm, iters)
 }
 
+/// The same cycle through `TransientSolver` (kept grid, factors and workspace; optionally
+/// Richardson extrapolation of two grids on two threads).
+fn cycle_ts(nodes: usize, tol: f64, ex: Extrapolation) -> (Vec<f64>, Vec<f64>, String) {
+    let steps = 720;
+    let dt = 60.0 / 950.0 / steps as f64;
+    let opts = EhlOptions { nodes, tolerance: tol, ..EhlOptions::default() };
+    let mut ts = TransientSolver::new(opts, ex);
+    let (mut hc, mut hm) = (Vec::with_capacity(steps), Vec::with_capacity(steps));
+    for k in 0..steps {
+        let th = 2.0 * std::f64::consts::PI * k as f64 / steps as f64;
+        let f = 2250.0 + (12500.0 - 2250.0) * (0.5 - 0.5 * th.cos()).powi(2);
+        let r = 0.0152 - 0.0047 * (0.5 - 0.5 * th.cos());
+        let u = 4.0 * th.cos() + 1.5;
+        let inp = point(f / 0.021, r, u);
+        let s = ts.step(&inp, Some(dt), &Silent).unwrap_or_else(|e| panic!("step {k}: {e}"));
+        hc.push(s.central_film);
+        hm.push(s.min_film);
+    }
+    let (st, lc) = ts.stats();
+    let info = format!(
+        "{:.2} Newton/step, {} LU, {:.1} GMRES it/Newton, {lc} layouts",
+        st.newton_steps as f64 / steps as f64,
+        st.factorisations,
+        st.gmres_iterations as f64 / st.newton_steps.max(1) as f64
+    );
+    (hc, hm, info)
+}
+
 fn main() {
     faer::set_global_parallelism(faer::Par::Seq);
     // `cargo bench --bench ehl -- point` or `-- cycle` runs one table only.
@@ -82,6 +110,34 @@ fn main() {
     }
     if want("cycle") {
         cycle_table();
+    }
+    if let Some(n) = args.iter().find_map(|a| a.strip_prefix("once=")) {
+        let n: usize = n.parse().unwrap();
+        let t = Instant::now();
+        let (_, _, it) = cycle(n, 1e-6);
+        println!("cycle {n}: {:.3} s, {it} Newton steps", t.elapsed().as_secs_f64());
+    }
+    for (key, ex) in [("ts=", Extrapolation::None), ("rich=", Extrapolation::Richardson)] {
+        if let Some(n) = args.iter().find_map(|a| a.strip_prefix(key)) {
+            let n: usize = n.parse().unwrap();
+            let t = Instant::now();
+            let (hc, hm, info) = cycle_ts(n, 1e-6, ex);
+            println!("{key}{n}: {:.3} s, {info}", t.elapsed().as_secs_f64());
+            let mut out = String::new();
+            for k in 0..hc.len() {
+                out += &format!("{k} {:.9e} {:.9e}\n", hc[k], hm[k]);
+            }
+            std::fs::write(format!("/tmp/ehl2_{}{n}.txt", key.trim_end_matches('=')), out).unwrap();
+        }
+    }
+    if let Some(n) = args.iter().find_map(|a| a.strip_prefix("dump=")) {
+        let n: usize = n.parse().unwrap();
+        let (hc, hm, _) = cycle(n, 1e-8);
+        let mut out = String::new();
+        for k in 0..hc.len() {
+            out += &format!("{k} {:.9e} {:.9e}\n", hc[k], hm[k]);
+        }
+        std::fs::write(format!("/tmp/ehl2_cycle_{n}.txt"), out).unwrap();
     }
 }
 

@@ -16,17 +16,27 @@ pub struct Kernel {
 }
 
 impl Kernel {
-    /// The influence matrix of the nodes `x` (increasing).
+    /// The influence matrix of the nodes `x` (increasing). Cell `j` spans the midpoints
+    /// `[m_j, m_{j+1}]` (`m_0 = x_0`, `m_n = x_{n−1}`), so `K_ij = F(x_i − m_j) − F(x_i − m_{j+1})`
+    /// with `F(s) = s (ln|s| − 1)`: `n (n + 1)` logarithms.
     pub fn new(x: &[f64]) -> Self {
         let n = x.len();
         // ∫ ln|s| ds = s (ln|s| − 1); zero at s = 0.
         let f = |s: f64| if s == 0.0 { 0.0 } else { s * (s.abs().ln() - 1.0) };
+        let mut mid = Vec::with_capacity(n + 1);
+        mid.push(x[0]);
+        for j in 1..n {
+            mid.push(0.5 * (x[j - 1] + x[j]));
+        }
+        mid.push(x[n - 1]);
         let mut by_column = vec![0.0; n * n];
-        for j in 0..n {
-            let a = if j == 0 { x[0] } else { 0.5 * (x[j - 1] + x[j]) };
-            let b = if j + 1 == n { x[n - 1] } else { 0.5 * (x[j] + x[j + 1]) };
-            for i in 0..n {
-                by_column[j * n + i] = f(x[i] - a) - f(x[i] - b);
+        let mut row = vec![0.0; n + 1];
+        for i in 0..n {
+            for (r, m) in row.iter_mut().zip(&mid) {
+                *r = f(x[i] - m);
+            }
+            for j in 0..n {
+                by_column[j * n + i] = row[j] - row[j + 1];
             }
         }
         Kernel { n, by_column }

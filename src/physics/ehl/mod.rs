@@ -33,11 +33,14 @@
 
 pub mod elastic;
 pub mod formulas;
+pub mod grid;
 pub mod newton;
 pub mod traction;
+pub mod transient;
 
-pub use newton::solve;
+pub use newton::{solve, LinearStats};
 pub use traction::{Rheology, TractionResult};
+pub use transient::{Extrapolation, TransientSolver};
 
 use crate::physics::lubricant::Lubricant;
 use crate::physics::Convergence;

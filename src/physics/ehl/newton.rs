@@ -4,35 +4,105 @@
 //! complementarity function per interior node, `φ_i = min(P_i, −F_i/|J_ii|)`, where `F_i` is the
 //! discrete Reynolds residual and `J_ii` its full diagonal derivative (elastic coupling included),
 //! and the load balance `(∫P dX)/(π/2) − 1`. Each step linearises every row — the film at every
-//! node depends on every pressure, so the Jacobian is dense — and solves by LU. A backtracking
-//! line search on `Σ φ_i² Δ + L²` and a fraction-to-boundary rule that keeps the film positive damp
-//! the steps. When a cold start fails (very heavy loads or low speeds), the solution is continued
-//! from a faster entrainment speed (lower Moes M) in steps of four.
+//! node depends on every pressure, so the Jacobian is dense. A backtracking line search on
+//! `Σ φ_i² Δ + L²` and a fraction-to-boundary rule that keeps the film positive damp the steps.
+//! When a cold start fails (very heavy loads or low speeds), the solution is continued from a
+//! faster entrainment speed (lower Moes M) in steps of four.
+//!
+//! # Linear solves: a kept factorisation as preconditioner
+//! The Jacobian `J = D_a + D_g K` (banded Reynolds derivatives `D_a`, `D_g` times the dense,
+//! constant influence matrix `K`) changes little from one Newton step to the next and from one cam
+//! angle to the next. Each step first solves `J δ = −φ` by GMRES, right-preconditioned with the LU
+//! factors of the last Jacobian factorised *on the same grid* (possibly several steps or angles
+//! old), with a matrix-free product (`K v` plus banded terms, `O(n²)`); only when GMRES does not
+//! reach its tolerance in [`GMRES_MAX`] iterations is the current Jacobian assembled and factorised
+//! (`O(n³)`), and the step solved with the fresh factors. An inexact Newton step (relative linear
+//! residual ≤ [`GMRES_TOL`]) keeps the Newton convergence; [`Engine`] keeps the factors, the
+//! workspace and the grids across solves.
 
-use super::elastic::Kernel;
 use super::formulas::{moes_central, Groups};
+use super::grid::{Grid, GridCache, Layout};
 use super::traction::traction;
 use super::{EhlInput, EhlOptions, EhlSolution, EhlState, PressureSpike, Profiles, Upwind};
 use crate::physics::contact::hertz_line;
-use crate::physics::lubricant::Lubricant;
+use crate::physics::lubricant::{DensityModel, Lubricant, ViscosityModel, DH_C1, DH_C2, DH_C3, ROELANDS_PRESSURE};
 use crate::physics::{ensure_finite, Convergence, Observer, SolveError, Termination};
-use faer::prelude::*;
-use faer::Mat;
+use faer::dyn_stack::{MemBuffer, MemStack};
+use faer::{MatMut, MatRef, Par};
+use std::sync::Arc;
+
+pub use super::grid::graded_grid;
 
 const PI: f64 = std::f64::consts::PI;
 /// Most halvings of a Newton step in the line search.
 const MAX_HALVINGS: u32 = 30;
 /// Largest `ln(η/η0)` used: keeps `ρH³/η` and the traction finite at absurd trial pressures.
 const LN_ETA_CAP: f64 = 600.0;
+/// Relative residual of the preconditioned GMRES solve of a Newton step.
+const GMRES_TOL: f64 = 1e-4;
+/// Most GMRES iterations before the Jacobian is factorised afresh.
+const GMRES_MAX: usize = 12;
 
-/// Discrete problem in the dimensionless variables of [`super`].
+/// Pressure dependence of `ln η̄ = ln(η/η(0,T))` and `ρ̄ = ρ/ρ0` at the (uniform) temperature,
+/// with the temperature factors evaluated once per problem (same laws as [`Lubricant`]).
+#[derive(Debug, Clone, Copy)]
+struct Rheology {
+    /// Barus: `ln η̄ = α p`. Roelands: `ln η̄ = A1 θ ((1 + p/p_r)^Z − 1)`.
+    roelands: bool,
+    alpha: f64,
+    /// Roelands `A1 θ` and `Z`.
+    a1_theta: f64,
+    z: f64,
+    /// Dowson–Higginson thermal term `1 − C3 (T − T0)` (1 when incompressible, and then no
+    /// pressure dependence).
+    compressible: bool,
+    rho_thermal: f64,
+}
+
+impl Rheology {
+    fn new(lub: &Lubricant, t: f64) -> Self {
+        let roelands = lub.viscosity_model == ViscosityModel::Roelands;
+        // ln η̄ = ln η(p,T)/η0 − ln η(0,T)/η0; for Roelands both share A1 θ with
+        // θ = ((T − 138)/(T0 − 138))^(−S0): recover A1 θ from the ratio at one pressure.
+        let (a1_theta, z) = if roelands {
+            let z = lub.roelands_z();
+            let pr = ROELANDS_PRESSURE;
+            // ln η̄(p_r) = A1 θ (2^Z − 1).
+            let l = lub.ln_viscosity_ratio(pr, t) - lub.ln_viscosity_ratio(0.0, t);
+            (l / (2f64.powf(z) - 1.0), z)
+        } else {
+            (0.0, 0.0)
+        };
+        let compressible = lub.density_model == DensityModel::DowsonHigginson;
+        let rho_thermal = if compressible { 1.0 - DH_C3 * (t - lub.reference_temperature) } else { 1.0 };
+        Rheology { roelands, alpha: lub.pressure_viscosity, a1_theta, z, compressible, rho_thermal }
+    }
+
+    /// `(ln η̄, d ln η̄/dp, ρ̄, dρ̄/dp)` at gauge pressure `p` (Pa; clamped at 0, slopes 0 below).
+    #[inline]
+    fn at(&self, p: f64) -> (f64, f64, f64, f64) {
+        let pc = p.max(0.0);
+        let on = if p < 0.0 { 0.0 } else { 1.0 };
+        let (ln_eta, dln) = if self.roelands {
+            let s = 1.0 + pc / ROELANDS_PRESSURE;
+            let q = s.powf(self.z);
+            (self.a1_theta * (q - 1.0), on * self.a1_theta * self.z * q / (s * ROELANDS_PRESSURE))
+        } else {
+            (self.alpha * pc, on * self.alpha)
+        };
+        let (rho, drho) = if self.compressible {
+            let d = 1.0 + DH_C2 * pc;
+            (self.rho_thermal + DH_C1 * pc / d, on * DH_C1 / (d * d))
+        } else {
+            (1.0, 0.0)
+        };
+        (ln_eta, dln, rho, drho)
+    }
+}
+
+/// Discrete problem in the dimensionless variables of [`super`] on one grid.
 struct Problem {
-    n: usize,
-    /// Node positions `X` (graded, increasing).
-    x: Vec<f64>,
-    /// Cell widths: the load quadrature weights and the cells of the elastic kernel.
-    cell: Vec<f64>,
-    kernel: Kernel,
+    grid: Arc<Grid>,
     /// Couette coefficient `λ` (signed).
     lambda: f64,
     /// Squeeze coefficient `κ = 12 η0 R²/(b² p_h Δt)`; 0 in steady state.
@@ -40,16 +110,13 @@ struct Problem {
     /// `(ρ̄H)` of the previous time step at the nodes.
     q_old: Vec<f64>,
     upwind: Upwind,
-    lubricant: Lubricant,
-    temperature: f64,
+    rheology: Rheology,
     /// Hertzian pressure, Pa.
     ph: f64,
-    /// `ln η(0, T)/η0` (the reference of `η̄`).
-    ln_eta_ref: f64,
 }
 
 /// Fields at one iterate.
-#[derive(Clone)]
+#[derive(Clone, Default)]
 struct Fields {
     h: Vec<f64>,
     rho: Vec<f64>,
@@ -61,7 +128,7 @@ struct Fields {
     eh: Vec<f64>,
     /// Reynolds residual at the nodes (0 at the two boundary nodes).
     f: Vec<f64>,
-    /// Load balance residual `(Δ ΣP)/(π/2) − 1`.
+    /// Load balance residual `(Σ P Δ)/(π/2) − 1`.
     load: f64,
 }
 
@@ -73,10 +140,14 @@ impl Fields {
 }
 
 impl Problem {
+    fn n(&self) -> usize {
+        self.grid.n
+    }
+
     /// Wedge stencil at node `i`: `(offset, weight)` of `d(ρ̄H)/dX`, upwind for the sign of `λ`
     /// (three-point one-sided derivative on the graded grid for the second-order scheme).
     fn wedge(&self, i: usize) -> [(isize, f64); 3] {
-        let x = &self.x;
+        let x = &self.grid.x;
         let second = self.upwind == Upwind::Second;
         if self.lambda >= 0.0 {
             let a = x[i] - x[i - 1];
@@ -88,7 +159,7 @@ impl Problem {
             }
         } else {
             let a = x[i + 1] - x[i];
-            if second && i + 2 < self.n {
+            if second && i + 2 < self.n() {
                 let b = x[i + 2] - x[i + 1];
                 [(0, -(2.0 * a + b) / (a * (a + b))), (1, (a + b) / (a * b)), (2, -a / (b * (a + b)))]
             } else {
@@ -100,22 +171,21 @@ impl Problem {
     /// Evaluate the film, rheology and residuals at `(p, h0)`. `false` when the film is not
     /// positive everywhere or a value is not finite.
     fn evaluate(&self, p: &[f64], h0: f64, v: &mut Fields) -> bool {
-        let n = self.n;
-        self.kernel.deflection(p, &mut v.h);
+        let n = self.n();
+        let x = &self.grid.x;
+        self.grid.kernel.deflection(p, &mut v.h);
         for i in 0..n {
-            let h = h0 + 0.5 * self.x[i] * self.x[i] - v.h[i];
+            let h = h0 + 0.5 * x[i] * x[i] - v.h[i];
             if !(h > 0.0 && h.is_finite()) {
                 return false;
             }
             v.h[i] = h;
-            let pd = p[i] * self.ph;
-            let t = self.temperature;
-            let ln_eta = (self.lubricant.ln_viscosity_ratio(pd, t) - self.ln_eta_ref).min(LN_ETA_CAP);
-            let dln_eta = self.lubricant.ln_viscosity_pressure_slope(pd, t) * self.ph;
-            v.rho[i] = self.lubricant.density_ratio(pd, t);
-            v.drho[i] = self.lubricant.density_ratio_pressure_slope(pd, t) * self.ph;
-            v.e[i] = v.rho[i] * h * h * h * (-ln_eta).exp();
-            v.ep[i] = v.e[i] * (v.drho[i] / v.rho[i] - dln_eta);
+            let (ln_eta, dln, rho, drho) = self.rheology.at(p[i] * self.ph);
+            let ln_eta = ln_eta.min(LN_ETA_CAP);
+            v.rho[i] = rho;
+            v.drho[i] = drho * self.ph;
+            v.e[i] = rho * h * h * h * (-ln_eta).exp();
+            v.ep[i] = v.e[i] * (v.drho[i] / rho - dln * self.ph);
             v.eh[i] = 3.0 * v.e[i] / h;
         }
         v.f[0] = 0.0;
@@ -123,7 +193,7 @@ impl Problem {
         for i in 1..n - 1 {
             let er = 0.5 * (v.e[i] + v.e[i + 1]);
             let el = 0.5 * (v.e[i - 1] + v.e[i]);
-            let (hl, hr) = (self.x[i] - self.x[i - 1], self.x[i + 1] - self.x[i]);
+            let (hl, hr) = (x[i] - x[i - 1], x[i + 1] - x[i]);
             let mut f = (er * (p[i + 1] - p[i]) / hr - el * (p[i] - p[i - 1]) / hl) / (0.5 * (hl + hr));
             if self.lambda != 0.0 {
                 let mut d = 0.0;
@@ -138,7 +208,7 @@ impl Problem {
             }
             v.f[i] = f;
         }
-        let sum: f64 = p.iter().zip(&self.cell).map(|(p, w)| p * w).sum();
+        let sum: f64 = p.iter().zip(&self.grid.cell).map(|(p, w)| p * w).sum();
         v.load = sum / (0.5 * PI) - 1.0;
         v.f.iter().all(|f| f.is_finite()) && v.load.is_finite()
     }
@@ -146,11 +216,12 @@ impl Problem {
     /// Local derivatives of `F_i`: direct in `P` (offsets −2..=2) and through the film `H`
     /// (offsets −2..=2).
     fn local_derivatives(&self, p: &[f64], v: &Fields, i: usize) -> ([f64; 5], [f64; 5]) {
+        let x = &self.grid.x;
         let mut a = [0.0; 5];
         let mut g = [0.0; 5];
         let er = 0.5 * (v.e[i] + v.e[i + 1]);
         let el = 0.5 * (v.e[i - 1] + v.e[i]);
-        let (hl, hr) = (self.x[i] - self.x[i - 1], self.x[i + 1] - self.x[i]);
+        let (hl, hr) = (x[i] - x[i - 1], x[i + 1] - x[i]);
         let hc = 0.5 * (hl + hr);
         // Slopes (P_{i+1} − P_i)/h_R and (P_i − P_{i−1})/h_L.
         let sr = (p[i + 1] - p[i]) / hr;
@@ -175,6 +246,357 @@ impl Problem {
         }
         (a, g)
     }
+}
+
+/// The scaled, active-set linear system of one Newton step, in banded form: for an interior node
+/// `i` (row `i − 1`), `Σ_o aa[o][i] δP_{i+o−2} + Σ_o cg[o][i] δH_{i+o−2}` with
+/// `δH = δH0 − (1/π) K δP`; the last row is the load balance. Active (cavitated) rows are the
+/// identity. Out-of-range stencil entries are zero.
+#[derive(Default)]
+struct System {
+    aa: [Vec<f64>; 5],
+    cg: [Vec<f64>; 5],
+    /// `Σ_o cg[o][i]`: the `δH0` column.
+    gsum: Vec<f64>,
+    rhs: Vec<f64>,
+}
+
+/// Saved LU factors (with partial pivoting) of a Jacobian on one grid.
+struct Factor {
+    /// Grid the factors belong to (0: none).
+    grid_id: u64,
+    dim: usize,
+    lu: Vec<f64>,
+    perm: Vec<usize>,
+    perm_inv: Vec<usize>,
+    stack: MemBuffer,
+    par: Par,
+}
+
+impl Factor {
+    fn empty() -> Self {
+        Factor { grid_id: 0, dim: 0, lu: Vec::new(), perm: Vec::new(), perm_inv: Vec::new(), stack: MemBuffer::new(faer::dyn_stack::StackReq::EMPTY), par: Par::Seq }
+    }
+
+    fn resize(&mut self, dim: usize) {
+        if self.dim != dim {
+            self.dim = dim;
+            self.lu = vec![0.0; dim * dim];
+            self.perm = vec![0; dim];
+            self.perm_inv = vec![0; dim];
+            // The parallel LU pays off only for large systems; small ones stay on this thread
+            // (the transient solver runs two grids side by side).
+            self.par = if dim >= 384 { faer::get_global_parallelism() } else { Par::Seq };
+            let req = faer::linalg::lu::partial_pivoting::factor::lu_in_place_scratch::<usize, f64>(dim, dim, self.par, Default::default())
+                .or(faer::linalg::lu::partial_pivoting::solve::solve_in_place_scratch::<usize, f64>(dim, 1, self.par));
+            self.stack = MemBuffer::new(req);
+        }
+        self.grid_id = 0;
+    }
+
+    /// Factorise the matrix stored (column-major) in `self.lu`, in place.
+    fn factorise(&mut self, grid_id: u64) -> bool {
+        let dim = self.dim;
+        let a = MatMut::from_column_major_slice_mut(&mut self.lu, dim, dim);
+        faer::linalg::lu::partial_pivoting::factor::lu_in_place(
+            a,
+            &mut self.perm,
+            &mut self.perm_inv,
+            self.par,
+            MemStack::new(&mut self.stack),
+            Default::default(),
+        );
+        // A zero pivot (singular Jacobian) makes the factors useless.
+        let ok = (0..dim).all(|k| {
+            let d = self.lu[k * dim + k];
+            d.is_finite() && d != 0.0
+        });
+        self.grid_id = if ok { grid_id } else { 0 };
+        ok
+    }
+
+    /// `x ← A⁻¹ x` with the stored factors.
+    fn solve(&mut self, x: &mut [f64]) {
+        let dim = self.dim;
+        let lu = MatRef::from_column_major_slice(&self.lu, dim, dim);
+        let perm = unsafe { faer::perm::PermRef::new_unchecked(&self.perm, &self.perm_inv, dim) };
+        let rhs = MatMut::from_column_major_slice_mut(x, dim, 1);
+        faer::linalg::lu::partial_pivoting::solve::solve_in_place(lu, lu, perm, rhs, self.par, MemStack::new(&mut self.stack));
+    }
+}
+
+/// Scratch of the GMRES solver and the matrix-free product.
+#[derive(Default)]
+struct Krylov {
+    /// Orthonormal basis, `(GMRES_MAX + 1)` vectors of the system dimension.
+    basis: Vec<f64>,
+    /// Hessenberg matrix, column `k` at `k (GMRES_MAX + 1)`.
+    hess: Vec<f64>,
+    cs: Vec<f64>,
+    sn: Vec<f64>,
+    g: Vec<f64>,
+    w: Vec<f64>,
+    z: Vec<f64>,
+    /// Padded (two zeros each side) `δP` and `δH` at the nodes, and the deflection.
+    dp: Vec<f64>,
+    dh: Vec<f64>,
+    defl: Vec<f64>,
+}
+
+/// Counters of the linear algebra (for benchmarks and diagnostics).
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub struct LinearStats {
+    /// Newton steps taken.
+    pub newton_steps: u64,
+    /// Jacobians assembled and factorised.
+    pub factorisations: u64,
+    /// GMRES iterations (each one matrix-free product and one solve with the kept factors).
+    pub gmres_iterations: u64,
+}
+
+/// Per-grid-size workspace of the Newton solver and the kept factorisation.
+pub(crate) struct Workspace {
+    n: usize,
+    v: Fields,
+    trial: Fields,
+    c: Vec<f64>,
+    ph: Vec<f64>,
+    ph_trial: Vec<f64>,
+    dp: Vec<f64>,
+    dh: Vec<f64>,
+    p_trial: Vec<f64>,
+    sol: Vec<f64>,
+    sys: System,
+    factor: Factor,
+    krylov: Krylov,
+    pub(crate) stats: LinearStats,
+}
+
+impl Workspace {
+    pub(crate) fn new() -> Self {
+        Workspace {
+            n: 0,
+            v: Fields::default(),
+            trial: Fields::default(),
+            c: Vec::new(),
+            ph: Vec::new(),
+            ph_trial: Vec::new(),
+            dp: Vec::new(),
+            dh: Vec::new(),
+            p_trial: Vec::new(),
+            sol: Vec::new(),
+            sys: System::default(),
+            factor: Factor::empty(),
+            krylov: Krylov::default(),
+            stats: LinearStats::default(),
+        }
+    }
+
+    /// Size every buffer for `n` nodes (keeps the kept factors when `n` is unchanged).
+    fn ensure(&mut self, n: usize) {
+        if self.n == n {
+            return;
+        }
+        self.n = n;
+        let dim = n - 1; // n − 2 interior pressures and H0
+        let z = vec![0.0; n];
+        self.v = Fields::new(n);
+        self.trial = Fields::new(n);
+        self.c = z.clone();
+        self.ph = z.clone();
+        self.ph_trial = z.clone();
+        self.dp = z.clone();
+        self.dh = z.clone();
+        self.p_trial = z.clone();
+        self.sol = vec![0.0; dim];
+        self.sys = System {
+            aa: std::array::from_fn(|_| z.clone()),
+            cg: std::array::from_fn(|_| z.clone()),
+            gsum: z.clone(),
+            rhs: vec![0.0; dim],
+        };
+        self.factor.resize(dim);
+        let k = GMRES_MAX + 1;
+        self.krylov = Krylov {
+            basis: vec![0.0; k * dim],
+            hess: vec![0.0; k * GMRES_MAX],
+            cs: vec![0.0; GMRES_MAX],
+            sn: vec![0.0; GMRES_MAX],
+            g: vec![0.0; k],
+            w: vec![0.0; dim],
+            z: vec![0.0; dim],
+            dp: vec![0.0; n + 4],
+            dh: vec![0.0; n + 4],
+            defl: vec![0.0; n],
+        };
+    }
+}
+
+/// `y = A z` for the system `sys` on `grid` (matrix-free: one dense `K δP`).
+fn apply(sys: &System, grid: &Grid, kr: &mut Krylov, z: &[f64], y: &mut [f64]) {
+    let n = grid.n;
+    let m = n - 2;
+    kr.dp.iter_mut().for_each(|v| *v = 0.0);
+    kr.dp[3..3 + m].copy_from_slice(&z[..m]);
+    grid.kernel.deflection(&kr.dp[2..2 + n], &mut kr.defl);
+    let dh0 = z[m];
+    for k in 0..n {
+        kr.dh[k + 2] = dh0 - kr.defl[k];
+    }
+    // Row i − 1 reads the padded index i + o (node i + o − 2).
+    let out = &mut y[..m];
+    out.iter_mut().for_each(|v| *v = 0.0);
+    for o in 0..5 {
+        let (aa, cg) = (&sys.aa[o][1..n - 1], &sys.cg[o][1..n - 1]);
+        let (dp, dh) = (&kr.dp[1 + o..1 + o + m], &kr.dh[1 + o..1 + o + m]);
+        for r in 0..m {
+            out[r] += aa[r] * dp[r] + cg[r] * dh[r];
+        }
+    }
+    let load: f64 = kr.dp[2..2 + n].iter().zip(&grid.cell).map(|(p, w)| p * w).sum();
+    y[m] = load / (0.5 * PI);
+}
+
+/// Assemble the system matrix explicitly (column-major) into `out`.
+fn assemble(sys: &System, grid: &Grid, kr: &mut Krylov, out: &mut [f64]) {
+    let n = grid.n;
+    let m = n - 2;
+    let dim = m + 1;
+    let inv_pi = 1.0 / PI;
+    // Elastic part: J[i−1, j−1] = −(1/π) Σ_o cg[o][i] K[i+o−2, j].
+    for j in 1..n - 1 {
+        let col = &mut out[(j - 1) * dim..j * dim];
+        kr.dp[2..2 + n].copy_from_slice(grid.kernel.column(j));
+        let rows = &mut col[..m];
+        rows.iter_mut().for_each(|v| *v = 0.0);
+        for o in 0..5 {
+            let cg = &sys.cg[o][1..n - 1];
+            let k = &kr.dp[1 + o..1 + o + m];
+            for r in 0..m {
+                rows[r] -= inv_pi * cg[r] * k[r];
+            }
+        }
+        // Banded part.
+        for i in j.saturating_sub(2).max(1)..=(j + 2).min(n - 2) {
+            rows[i - 1] += sys.aa[j + 2 - i][i];
+        }
+        col[m] = grid.cell[j] / (0.5 * PI);
+    }
+    let last = &mut out[m * dim..(m + 1) * dim];
+    last[..m].copy_from_slice(&sys.gsum[1..n - 1]);
+    last[m] = 0.0;
+    // The padded buffer is shared with `apply`: clear its ends again.
+    kr.dp.iter_mut().for_each(|v| *v = 0.0);
+}
+
+/// Right-preconditioned GMRES for `A x = b` (`A` from `sys`), preconditioned by `factor`, from
+/// `x = 0`. Returns the iterations when the relative residual reached `tol` within `GMRES_MAX`.
+fn gmres(sys: &System, grid: &Grid, factor: &mut Factor, kr: &mut Krylov, x: &mut [f64], tol: f64) -> Option<usize> {
+    let dim = grid.n - 1;
+    let k1 = GMRES_MAX + 1;
+    let b = &sys.rhs;
+    let beta = b.iter().map(|v| v * v).sum::<f64>().sqrt();
+    x.iter_mut().for_each(|v| *v = 0.0);
+    if beta == 0.0 {
+        return Some(0);
+    }
+    for (v, bv) in kr.basis[..dim].iter_mut().zip(b) {
+        *v = bv / beta;
+    }
+    kr.g.iter_mut().for_each(|v| *v = 0.0);
+    kr.g[0] = beta;
+    let mut done = None;
+    for k in 0..GMRES_MAX {
+        // w = A M⁻¹ v_k.
+        kr.z.copy_from_slice(&kr.basis[k * dim..(k + 1) * dim]);
+        factor.solve(&mut kr.z);
+        let z = std::mem::take(&mut kr.z);
+        let mut w = std::mem::take(&mut kr.w);
+        apply(sys, grid, kr, &z, &mut w);
+        kr.z = z;
+        // Modified Gram–Schmidt.
+        let h = &mut kr.hess[k * k1..(k + 1) * k1];
+        for j in 0..=k {
+            let vj = &kr.basis[j * dim..(j + 1) * dim];
+            let d: f64 = w.iter().zip(vj).map(|(a, b)| a * b).sum();
+            h[j] = d;
+            for (wv, vv) in w.iter_mut().zip(vj) {
+                *wv -= d * vv;
+            }
+        }
+        let norm = w.iter().map(|v| v * v).sum::<f64>().sqrt();
+        h[k + 1] = norm;
+        if norm > 0.0 {
+            for (v, wv) in kr.basis[(k + 1) * dim..(k + 2) * dim].iter_mut().zip(&w) {
+                *v = wv / norm;
+            }
+        }
+        kr.w = w;
+        // Apply the previous rotations, then a new one to zero h[k+1].
+        for j in 0..k {
+            let (c, s) = (kr.cs[j], kr.sn[j]);
+            let (a, bb) = (h[j], h[j + 1]);
+            h[j] = c * a + s * bb;
+            h[j + 1] = -s * a + c * bb;
+        }
+        let r = h[k].hypot(h[k + 1]);
+        if r == 0.0 || !r.is_finite() {
+            return None;
+        }
+        let (c, s) = (h[k] / r, h[k + 1] / r);
+        kr.cs[k] = c;
+        kr.sn[k] = s;
+        h[k] = r;
+        h[k + 1] = 0.0;
+        kr.g[k + 1] = -s * kr.g[k];
+        kr.g[k] *= c;
+        if kr.g[k + 1].abs() <= tol * beta || norm == 0.0 {
+            done = Some(k + 1);
+            break;
+        }
+    }
+    let iters = done?;
+    // Back substitution H y = g (y stored in g), then x = M⁻¹ V y.
+    for i in (0..iters).rev() {
+        let mut s = kr.g[i];
+        for j in i + 1..iters {
+            s -= kr.hess[j * k1 + i] * kr.g[j];
+        }
+        kr.g[i] = s / kr.hess[i * k1 + i];
+    }
+    for j in 0..iters {
+        let y = kr.g[j];
+        for (xv, vv) in x.iter_mut().zip(&kr.basis[j * dim..(j + 1) * dim]) {
+            *xv += y * vv;
+        }
+    }
+    factor.solve(x);
+    Some(iters)
+}
+
+/// Solve the Newton system in `ws.sys` into `ws.sol`: GMRES with the kept factors when they
+/// belong to this grid, else (or when GMRES stalls) a fresh factorisation. `false` when the
+/// Jacobian is singular.
+fn linear_solve(ws: &mut Workspace, grid: &Grid) -> bool {
+    if ws.factor.grid_id == grid.id {
+        if let Some(it) = gmres(&ws.sys, grid, &mut ws.factor, &mut ws.krylov, &mut ws.sol, GMRES_TOL) {
+            ws.stats.gmres_iterations += it as u64;
+            return true;
+        }
+        ws.stats.gmres_iterations += GMRES_MAX as u64;
+    }
+    let mut lu = std::mem::take(&mut ws.factor.lu);
+    assemble(&ws.sys, grid, &mut ws.krylov, &mut lu);
+    ws.factor.lu = lu;
+    ws.stats.factorisations += 1;
+    if !ws.factor.factorise(grid.id) {
+        return false;
+    }
+    ws.sol.copy_from_slice(&ws.sys.rhs);
+    let mut sol = std::mem::take(&mut ws.sol);
+    ws.factor.solve(&mut sol);
+    ws.sol = sol;
+    true
 }
 
 /// Outcome of one Newton run.
@@ -209,136 +631,97 @@ fn residual_norm(p: &[f64], phi: &[f64], load: f64) -> f64 {
 /// Damped semismooth Newton from `(p, h0)`, in place.
 fn newton(
     prob: &Problem,
+    ws: &mut Workspace,
     p: &mut [f64],
     h0: &mut f64,
     tol: f64,
     max_iter: u32,
     observer: &dyn Observer,
 ) -> Result<Run, SolveError> {
-    let n = prob.n;
+    let grid = prob.grid.clone();
+    let n = grid.n;
     let m = n - 2;
-    let mut v = Fields::new(n);
-    let mut trial = Fields::new(n);
+    ws.ensure(n);
     let mut history = Vec::new();
-    if !prob.evaluate(p, *h0, &mut v) {
+    if !prob.evaluate(p, *h0, &mut ws.v) {
         return Ok(Run { iterations: 0, residual: f64::INFINITY, history, converged: false });
     }
-    let mut c = vec![0.0; n];
-    let mut ph = vec![0.0; n];
-    let mut ph_trial = vec![0.0; n];
-    let mut jac = Mat::<f64>::zeros(m + 1, m + 1);
-    let mut rhs = Mat::<f64>::zeros(m + 1, 1);
-    let mut locals: Vec<([f64; 5], [f64; 5])> = vec![([0.0; 5], [0.0; 5]); n];
-    let mut active = vec![false; n];
-    let mut dp = vec![0.0; n];
-    let mut dh = vec![0.0; n];
-    let mut p_trial = vec![0.0; n];
     let inv_pi = 1.0 / PI;
-    let kernel = &prob.kernel;
+    let kernel = &grid.kernel;
     for iter in 0..max_iter {
         observer.check()?;
-        // Local derivatives and the full diagonal for the row scaling.
+        // Local derivatives, the full diagonal for the row scaling, and the scaled system.
         for i in 1..n - 1 {
-            locals[i] = prob.local_derivatives(p, &v, i);
-            let (a, g) = &locals[i];
+            let (a, g) = prob.local_derivatives(p, &ws.v, i);
+            let kc = kernel.column(i);
             let mut d = a[2];
             for (o, gv) in g.iter().enumerate() {
-                let mm = i as isize + o as isize - 2;
-                if *gv != 0.0 && mm >= 0 && (mm as usize) < n {
-                    d -= inv_pi * gv * kernel.column(i)[mm as usize];
+                let mm = i + o;
+                if *gv != 0.0 && mm >= 2 && mm - 2 < n {
+                    d -= inv_pi * gv * kc[mm - 2];
                 }
             }
-            c[i] = 1.0 / d.abs().max(1e-300);
+            let c = 1.0 / d.abs().max(1e-300);
+            ws.c[i] = c;
+            let active = p[i] <= -c * ws.v.f[i];
+            let sys = &mut ws.sys;
+            let mut gs = 0.0;
+            for o in 0..5 {
+                let in_range = i + o >= 2 && i + o - 2 < n;
+                if active {
+                    sys.aa[o][i] = if o == 2 { 1.0 } else { 0.0 };
+                    sys.cg[o][i] = 0.0;
+                } else {
+                    sys.aa[o][i] = c * a[o];
+                    sys.cg[o][i] = if in_range { c * g[o] } else { 0.0 };
+                    gs += sys.cg[o][i];
+                }
+            }
+            sys.gsum[i] = gs;
+            sys.rhs[i - 1] = if active { -p[i] } else { -c * ws.v.f[i] };
         }
-        phi(p, &v, &c, &mut ph);
-        let res = residual_norm(p, &ph, v.load);
+        phi(p, &ws.v, &ws.c, &mut ws.ph);
+        let res = residual_norm(p, &ws.ph, ws.v.load);
         history.push(res);
         if res <= tol {
             return Ok(Run { iterations: iter, residual: res, history, converged: true });
         }
-        for i in 1..n - 1 {
-            active[i] = p[i] <= -c[i] * v.f[i];
+        ws.sys.rhs[m] = -ws.v.load;
+        ws.stats.newton_steps += 1;
+        if !linear_solve(ws, &grid) {
+            return Ok(Run { iterations: iter + 1, residual: res, history, converged: false });
         }
-        // Assemble the scaled, active-set Jacobian column by column (column-major storage).
-        for col in 0..m {
-            let j = col + 1;
-            let kj = kernel.column(j);
-            for row in 0..m {
-                let i = row + 1;
-                let val = if active[i] {
-                    if i == j { 1.0 } else { 0.0 }
-                } else {
-                    let (a, g) = &locals[i];
-                    let mut s = 0.0;
-                    for (o, gv) in g.iter().enumerate() {
-                        if *gv != 0.0 {
-                            let mm = i as isize + o as isize - 2;
-                            if mm >= 0 && (mm as usize) < n {
-                                s += gv * kj[mm as usize];
-                            }
-                        }
-                    }
-                    let mut val = -inv_pi * s;
-                    let off = j as isize - i as isize;
-                    if off.abs() <= 2 {
-                        val += a[(off + 2) as usize];
-                    }
-                    c[i] * val
-                };
-                jac[(row, col)] = val;
-            }
-            jac[(m, col)] = prob.cell[j] / (0.5 * PI);
-        }
-        for row in 0..m {
-            let i = row + 1;
-            jac[(row, m)] = if active[i] {
-                0.0
-            } else {
-                let (_, g) = &locals[i];
-                let s: f64 = g.iter().enumerate().filter(|(o, _)| {
-                    let mm = i as isize + *o as isize - 2;
-                    mm >= 0 && (mm as usize) < n
-                }).map(|(_, gv)| gv).sum();
-                c[i] * s
-            };
-            rhs[(row, 0)] = if active[i] { -p[i] } else { -c[i] * v.f[i] };
-        }
-        jac[(m, m)] = 0.0;
-        rhs[(m, 0)] = -v.load;
-        let lu = jac.partial_piv_lu();
-        lu.solve_in_place(rhs.as_mut());
-        let dh0 = rhs[(m, 0)];
-        dp[0] = 0.0;
-        dp[n - 1] = 0.0;
-        for i in 1..n - 1 {
-            dp[i] = rhs[(i - 1, 0)];
-        }
-        if !dp.iter().all(|d| d.is_finite()) || !dh0.is_finite() {
+        let dh0 = ws.sol[m];
+        ws.dp[0] = 0.0;
+        ws.dp[n - 1] = 0.0;
+        ws.dp[1..n - 1].copy_from_slice(&ws.sol[..m]);
+        if !ws.dp.iter().all(|d| d.is_finite()) || !dh0.is_finite() {
+            ws.factor.grid_id = 0;
             return Ok(Run { iterations: iter + 1, residual: res, history, converged: false });
         }
         // Fraction to the boundary: the film may shrink at most to 20 % in one step.
-        kernel.deflection(&dp, &mut dh);
+        kernel.deflection(&ws.dp, &mut ws.dh);
         let mut alpha: f64 = 1.0;
         for i in 0..n {
-            let d = dh0 - dh[i];
+            let d = dh0 - ws.dh[i];
             if d < 0.0 {
-                alpha = alpha.min(0.8 * v.h[i] / -d);
+                alpha = alpha.min(0.8 * ws.v.h[i] / -d);
             }
         }
-        let m0 = merit(&ph, v.load, &prob.cell);
+        let m0 = merit(&ws.ph, ws.v.load, &grid.cell);
         let mut accepted = false;
         for _ in 0..MAX_HALVINGS {
             for i in 0..n {
-                p_trial[i] = p[i] + alpha * dp[i];
+                ws.p_trial[i] = p[i] + alpha * ws.dp[i];
             }
             let h0_trial = *h0 + alpha * dh0;
-            if prob.evaluate(&p_trial, h0_trial, &mut trial) {
-                phi(&p_trial, &trial, &c, &mut ph_trial);
-                let mt = merit(&ph_trial, trial.load, &prob.cell);
+            if prob.evaluate(&ws.p_trial, h0_trial, &mut ws.trial) {
+                phi(&ws.p_trial, &ws.trial, &ws.c, &mut ws.ph_trial);
+                let mt = merit(&ws.ph_trial, ws.trial.load, &grid.cell);
                 if mt <= (1.0 - 1e-4 * alpha) * m0 {
-                    p.copy_from_slice(&p_trial);
+                    p.copy_from_slice(&ws.p_trial);
                     *h0 = h0_trial;
-                    std::mem::swap(&mut v, &mut trial);
+                    std::mem::swap(&mut ws.v, &mut ws.trial);
                     accepted = true;
                     break;
                 }
@@ -351,18 +734,36 @@ fn newton(
     }
     // Final check after the last step.
     for i in 1..n - 1 {
-        locals[i] = prob.local_derivatives(p, &v, i);
+        let (a, g) = prob.local_derivatives(p, &ws.v, i);
+        let kc = kernel.column(i);
+        let mut d = a[2];
+        for (o, gv) in g.iter().enumerate() {
+            let mm = i + o;
+            if *gv != 0.0 && mm >= 2 && mm - 2 < n {
+                d -= inv_pi * gv * kc[mm - 2];
+            }
+        }
+        ws.c[i] = 1.0 / d.abs().max(1e-300);
     }
-    phi(p, &v, &c, &mut ph);
-    let res = residual_norm(p, &ph, v.load);
+    phi(p, &ws.v, &ws.c, &mut ws.ph);
+    let res = residual_norm(p, &ws.ph, ws.v.load);
     history.push(res);
     Ok(Run { iterations: max_iter, residual: res, history, converged: res <= tol })
 }
 
-/// Solve one line-contact EHL problem (steady, or one transient step when `input.transient` is
-/// set). Polls `observer` once per Newton step.
-pub fn solve(input: &EhlInput, options: &EhlOptions, observer: &dyn Observer) -> Result<EhlSolution, SolveError> {
-    validate(input, options)?;
+/// Hertzian scales and the dimensionless coefficients of one input.
+struct Scales {
+    b: f64,
+    ph: f64,
+    lambda: f64,
+    kappa: f64,
+    moes_m: f64,
+    moes_l: f64,
+    /// Film estimate `H = hR/b²`: the previous centre film or Moes, whichever is thicker.
+    h_est: f64,
+}
+
+fn scales(input: &EhlInput) -> Scales {
     let w = input.load_per_length;
     let r = input.reduced_radius;
     let ep = input.effective_modulus;
@@ -377,177 +778,277 @@ pub fn solve(input: &EhlInput, options: &EhlOptions, observer: &dyn Observer) ->
     let groups = Groups::of(w, r, ep, um, &lub, t);
     let (moes_m, moes_l) = if um != 0.0 { (groups.moes_m, groups.moes_l) } else { (0.0, 0.0) };
     let previous = input.transient.map(|s| s.previous).or(input.warm_start);
-    // Film estimate (dimensionless H = hR/b²) for the domain and the cold start.
     let h_moes = if um != 0.0 { PI * moes_central(moes_m, moes_l) / (8.0 * moes_m) } else { 0.0 };
     let h_est = match previous {
         Some(s) => (s.film_at(0.0, r) * r / (b * b)).max(h_moes),
         None => h_moes,
     };
-    let up = options.inlet.unwrap_or_else(|| 4.5_f64.max(16.0 * (2.0 * h_est).sqrt()));
-    let down = options.outlet.unwrap_or_else(|| 1.5_f64.max(1.5 * (2.0 * h_est).sqrt()));
-    let (x_in, x_out) = if um >= 0.0 { (-up, down) } else { (-down, up) };
-    let dir = if um >= 0.0 { 1.0 } else { -1.0 };
     let kappa = match input.transient {
         Some(s) => 12.0 * eta0 * r * r / (b * b * ph * s.time_step),
         None => 0.0,
     };
-    if lambda == 0.0 && kappa == 0.0 {
-        return Err(SolveError::physical(
-            "no_entrainment",
-            "a steady film needs entrainment: u_m = 0 without squeeze (no previous state) has no lubricated solution",
-        ));
-    }
-    let build = |n: usize| {
-        let x = graded_grid(n, x_in, x_out, h_est, dir, options.grading);
-        let q_old = match input.transient {
-            Some(s) => x.iter().map(|&xi| s.previous.mass_per_area(xi * b, r) * r / (b * b)).collect(),
-            None => vec![0.0; n],
-        };
-        Problem {
-            n,
-            kernel: Kernel::new(&x),
-            cell: cells(&x),
-            x,
-            lambda,
-            kappa,
-            q_old,
-            upwind: options.upwind,
-            lubricant: lub,
-            temperature: t,
-            ph,
-            ln_eta_ref: lub.ln_viscosity_ratio(0.0, t),
-        }
-    };
-    // H0 that puts the centre film at `target` (and keeps the film positive everywhere).
-    let h0_for = |p: &[f64], prob: &Problem, target: f64| {
-        let n = prob.n;
-        let mut d = vec![0.0; n];
-        prob.kernel.deflection(p, &mut d);
-        let centre = prob.x.partition_point(|&x| x < 0.0).min(n - 1);
-        let min_rigid = (0..n).map(|i| 0.5 * prob.x[i] * prob.x[i] - d[i]).fold(f64::INFINITY, f64::min);
-        let at_centre = 0.5 * prob.x[centre] * prob.x[centre] - d[centre];
-        (target - at_centre).max(0.05 * target - min_rigid)
-    };
-    // A guess on a grid: dimensionless pressure at X, and the centre film.
-    let from_guess = |prob: &Problem, gx: &[f64], gp: &[f64], hc: f64| {
-        let n = prob.n;
-        let mut p: Vec<f64> = prob.x.iter().map(|&x| if x <= gx[0] || x >= gx[gx.len() - 1] { 0.0 } else { interpolate(gx, gp, x) }).collect();
-        p[0] = 0.0;
-        p[n - 1] = 0.0;
-        let sum: f64 = p.iter().zip(&prob.cell).map(|(p, w)| p * w).sum();
-        if sum > 0.0 {
-            p.iter_mut().for_each(|v| *v *= 0.5 * PI / sum);
-        } else {
-            hertz_guess(&prob.x, &mut p, 1.0);
-        }
-        let h0 = h0_for(&p, prob, hc);
-        (p, h0)
-    };
-    let cold = |prob: &Problem, hc: f64| {
-        let mut p = vec![0.0; prob.n];
-        hertz_guess(&prob.x, &mut p, 1f64.max((2.0 * h_est).sqrt()));
-        let h0 = h0_for(&p, prob, hc);
-        (p, h0)
-    };
+    Scales { b, ph, lambda, kappa, moes_m, moes_l, h_est }
+}
 
-    // Nested iteration: from the previous state straight on the target grid; from a cold start
-    // (or when the warm start fails), solve on grids of n/2^k ≥ 64 nodes first and interpolate
-    // each solution as the next guess.
-    let n = options.nodes;
-    let tol = options.tolerance;
-    let mut total_iter = 0;
-    let mut failure = None;
-    for warm in [true, false] {
-        if warm && previous.is_none() {
-            continue;
+/// The film estimate `H = hR/b²` a solve of `input` designs its grid for (the previous state's
+/// centre film or Moes' central film, whichever is thicker), and the entrainment direction.
+pub(crate) fn film_estimate(input: &EhlInput) -> (f64, f64) {
+    let s = scales(input);
+    (s.h_est, if input.entrainment_velocity >= 0.0 { 1.0 } else { -1.0 })
+}
+
+/// A reusable solver: grids (with their influence matrices), Newton workspaces and the kept
+/// factorisations survive from one solve to the next. [`solve`] uses a fresh one; the transient
+/// solver keeps one per grid size across a cycle.
+pub(crate) struct Engine {
+    grids: GridCache,
+    workspaces: Vec<Workspace>,
+}
+
+impl Engine {
+    pub(crate) fn new() -> Self {
+        Engine { grids: GridCache::default(), workspaces: Vec::new() }
+    }
+
+    /// Linear-algebra counters summed over the workspaces.
+    pub(crate) fn stats(&self) -> LinearStats {
+        let mut s = LinearStats::default();
+        for w in &self.workspaces {
+            s.newton_steps += w.stats.newton_steps;
+            s.factorisations += w.stats.factorisations;
+            s.gmres_iterations += w.stats.gmres_iterations;
         }
-        let mut levels = vec![n];
-        if !warm {
-            while levels[levels.len() - 1] / 2 >= 64 {
-                let next = levels[levels.len() - 1] / 2;
-                levels.push(next);
+        s
+    }
+
+    fn workspace(&mut self, n: usize) -> &mut Workspace {
+        let k = match self.workspaces.iter().position(|w| w.n == n) {
+            Some(k) => k,
+            None => {
+                if self.workspaces.len() == 3 {
+                    self.workspaces.remove(0);
+                }
+                let mut w = Workspace::new();
+                w.ensure(n);
+                self.workspaces.push(w);
+                self.workspaces.len() - 1
             }
-            levels.reverse();
-        }
-        let mut guess: Option<(Vec<f64>, Vec<f64>, f64)> = if warm {
-            previous.map(|s| {
-                let gx: Vec<f64> = s.x.iter().map(|x| x / b).collect();
-                let gp: Vec<f64> = s.pressure.iter().map(|p| p / ph).collect();
-                (gx, gp, (s.film_at(0.0, r) * r / (b * b)).max(1e-9))
-            })
-        } else {
-            None
         };
-        let nlev = levels.len();
-        for (li, &nl) in levels.iter().enumerate() {
-            let finest = li + 1 == nlev;
-            let mut prob = build(nl);
-            let (mut p, mut h0) = match &guess {
-                Some((gx, gp, hc)) => from_guess(&prob, gx, gp, *hc),
-                None => cold(&prob, h_est.max(1e-6)),
+        &mut self.workspaces[k]
+    }
+
+    /// Solve one problem (steady, or one transient step when `input.transient` is set). `layout`
+    /// fixes the grid's domain and grading (its direction must be the entrainment's); `None`
+    /// designs it from the film estimate. A `prediction` on that grid is tried first; when Newton
+    /// does not converge from it, the solve falls back to the warm start and then to a cold start.
+    pub(crate) fn solve(
+        &mut self,
+        input: &EhlInput,
+        options: &EhlOptions,
+        layout: Option<Layout>,
+        prediction: Option<Prediction>,
+        observer: &dyn Observer,
+    ) -> Result<EhlSolution, SolveError> {
+        validate(input, options)?;
+        let r = input.reduced_radius;
+        let t = input.temperature;
+        let um = input.entrainment_velocity;
+        let lub = input.lubricant;
+        let sc = scales(input);
+        let (b, ph, h_est) = (sc.b, sc.ph, sc.h_est);
+        let previous = input.transient.map(|s| s.previous).or(input.warm_start);
+        let dir = if um >= 0.0 { 1.0 } else { -1.0 };
+        if sc.lambda == 0.0 && sc.kappa == 0.0 {
+            return Err(SolveError::physical(
+                "no_entrainment",
+                "a steady film needs entrainment: u_m = 0 without squeeze (no previous state) has no lubricated solution",
+            ));
+        }
+        let layout = layout.unwrap_or_else(|| Layout::for_film(h_est, dir, options.inlet, options.outlet, options.grading));
+        let rheology = Rheology::new(&lub, t);
+        let build = |grids: &mut GridCache, n: usize| {
+            let grid = grids.get(n, layout);
+            let q_old = match input.transient {
+                Some(s) => grid.x.iter().map(|&xi| s.previous.mass_per_area(xi * b, r) * r / (b * b)).collect(),
+                None => Vec::new(),
             };
-            let mut run = newton(&prob, &mut p, &mut h0, tol, options.max_iterations, observer)?;
-            total_iter += run.iterations;
-            if !run.converged && finest {
-                // Continuation from faster entrainment (thicker film, smaller M): λ·4^k → λ.
-                let (lambda_target, kappa_target) = (prob.lambda, prob.kappa);
-                for start in [2, 4, 7] {
-                    let mut good = true;
-                    for k in (0..=start).rev() {
-                        let f = 4f64.powi(k);
-                        prob.lambda = lambda_target * f;
-                        prob.kappa = kappa_target * f;
-                        if k == start {
-                            (p, h0) = cold(&prob, h_est.max(1e-6) * f.powf(0.7));
-                        }
-                        let stage_tol = if k == 0 { tol } else { tol.max(1e-6) };
-                        let r2 = newton(&prob, &mut p, &mut h0, stage_tol, options.max_iterations, observer)?;
-                        total_iter += r2.iterations;
-                        if k == 0 {
-                            run = r2;
-                        } else if !r2.converged {
-                            good = false;
-                            break;
-                        }
-                    }
-                    if good && run.converged {
-                        break;
-                    }
-                }
-                prob.lambda = lambda_target;
-                prob.kappa = kappa_target;
+            Problem { grid, lambda: sc.lambda, kappa: sc.kappa, q_old, upwind: options.upwind, rheology, ph }
+        };
+        // Nested iteration: from the previous state straight on the target grid; from a cold
+        // start (or when the warm start fails), solve on grids of n/2^k ≥ 64 nodes first and
+        // interpolate each solution as the next guess.
+        let n = options.nodes;
+        let tol = options.tolerance;
+        let mut total_iter = 0;
+        let mut failure = None;
+        let prediction = prediction.filter(|g| g.pressure.len() == n && g.centre_film > 0.0);
+        for attempt in [Attempt::Predicted, Attempt::Warm, Attempt::Cold] {
+            let warm = attempt != Attempt::Cold;
+            if (attempt == Attempt::Warm && previous.is_none()) || (attempt == Attempt::Predicted && prediction.is_none()) {
+                continue;
             }
-            if finest {
-                if !run.converged {
-                    let mut history = run.history.clone();
-                    if history.len() > 20 {
-                        history.drain(..history.len() - 20);
-                    }
-                    failure = Some(SolveError::NotConverged {
-                        solver: "ehl line contact (Newton)",
-                        iterations: total_iter,
-                        residual: run.residual,
-                        tolerance: tol,
-                        history,
-                    });
-                    break;
+            let mut levels = vec![n];
+            if !warm {
+                while levels[levels.len() - 1] / 2 >= 64 {
+                    let next = levels[levels.len() - 1] / 2;
+                    levels.push(next);
                 }
-                return finish(input, options, &prob, &p, h0, b, ph, moes_m, moes_l, total_iter, run.residual);
+                levels.reverse();
             }
-            // A coarse level: its solution (converged or the last finite iterate) is the next guess.
-            let mut v = Fields::new(nl);
-            guess = if prob.evaluate(&p, h0, &mut v) && p.iter().all(|p| p.is_finite()) {
-                let hc = interpolate(&prob.x, &v.h, 0.0);
-                Some((prob.x.clone(), p, hc))
+            let mut guess: Option<(Vec<f64>, Vec<f64>, f64)> = if warm {
+                previous.map(|s| {
+                    let gx: Vec<f64> = s.x.iter().map(|x| x / b).collect();
+                    let gp: Vec<f64> = s.pressure.iter().map(|p| p / ph).collect();
+                    (gx, gp, (s.film_at(0.0, r) * r / (b * b)).max(1e-9))
+                })
             } else {
                 None
             };
-    
+            let nlev = levels.len();
+            for (li, &nl) in levels.iter().enumerate() {
+                let finest = li + 1 == nlev;
+                let mut prob = build(&mut self.grids, nl);
+                let (mut p, mut h0) = match (&guess, &prediction) {
+                    (_, Some(g)) if attempt == Attempt::Predicted => {
+                        let mut p: Vec<f64> = g.pressure.iter().map(|p| p.max(0.0)).collect();
+                        p[0] = 0.0;
+                        p[nl - 1] = 0.0;
+                        let h0 = h0_for(&p, &prob, g.centre_film * r / (b * b));
+                        (p, h0)
+                    }
+                    (Some((gx, gp, hc)), _) => from_guess(&prob, gx, gp, *hc),
+                    (None, _) => cold(&prob, h_est.max(1e-6), h_est),
+                };
+                let ws = self.workspace(nl);
+                let mut run = newton(&prob, ws, &mut p, &mut h0, tol, options.max_iterations, observer)?;
+                total_iter += run.iterations;
+                if attempt == Attempt::Predicted && !run.converged {
+                    break;
+                }
+                if !run.converged && finest {
+                    // Continuation from faster entrainment (thicker film, smaller M): λ·4^k → λ.
+                    let (lambda_target, kappa_target) = (prob.lambda, prob.kappa);
+                    for start in [2, 4, 7] {
+                        let mut good = true;
+                        for k in (0..=start).rev() {
+                            let f = 4f64.powi(k);
+                            prob.lambda = lambda_target * f;
+                            prob.kappa = kappa_target * f;
+                            if k == start {
+                                (p, h0) = cold(&prob, h_est.max(1e-6) * f.powf(0.7), h_est);
+                            }
+                            let stage_tol = if k == 0 { tol } else { tol.max(1e-6) };
+                            let r2 = newton(&prob, ws, &mut p, &mut h0, stage_tol, options.max_iterations, observer)?;
+                            total_iter += r2.iterations;
+                            if k == 0 {
+                                run = r2;
+                            } else if !r2.converged {
+                                good = false;
+                                break;
+                            }
+                        }
+                        if good && run.converged {
+                            break;
+                        }
+                    }
+                    prob.lambda = lambda_target;
+                    prob.kappa = kappa_target;
+                }
+                if finest {
+                    if !run.converged {
+                        let mut history = run.history.clone();
+                        if history.len() > 20 {
+                            history.drain(..history.len() - 20);
+                        }
+                        failure = Some(SolveError::NotConverged {
+                            solver: "ehl line contact (Newton)",
+                            iterations: total_iter,
+                            residual: run.residual,
+                            tolerance: tol,
+                            history,
+                        });
+                        break;
+                    }
+                    let meta = Meta { b, ph, moes_m: sc.moes_m, moes_l: sc.moes_l, iterations: total_iter, residual: run.residual };
+                    return finish(input, options, &prob, &p, h0, &meta);
+                }
+                // A coarse level: its solution (converged or the last finite iterate) is the next guess.
+                let mut v = Fields::new(nl);
+                guess = if prob.evaluate(&p, h0, &mut v) && p.iter().all(|p| p.is_finite()) {
+                    let hc = interpolate(&prob.grid.x, &v.h, 0.0);
+                    Some((prob.grid.x.clone(), p, hc))
+                } else {
+                    None
+                };
+            }
         }
+        Err(failure.expect("at least one attempt ran"))
     }
-    Err(failure.expect("at least one attempt ran"))
 }
 
+/// Which start a solve tries.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Attempt {
+    /// A caller's prediction on the target grid.
+    Predicted,
+    /// The previous state, interpolated.
+    Warm,
+    /// Nested iteration from a Hertzian guess.
+    Cold,
+}
+
+/// A predicted solution on the grid of a solve (for instance extrapolated in time from the two
+/// previous steps): dimensionless pressure `P = p/p_h` at the grid's nodes and the centre film, m.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct Prediction<'a> {
+    pub pressure: &'a [f64],
+    pub centre_film: f64,
+}
+
+/// Solve one line-contact EHL problem (steady, or one transient step when `input.transient` is
+/// set). Polls `observer` once per Newton step. For a sequence of related problems (a cam
+/// cycle), [`super::TransientSolver`] keeps grids and factorisations between the steps.
+pub fn solve(input: &EhlInput, options: &EhlOptions, observer: &dyn Observer) -> Result<EhlSolution, SolveError> {
+    Engine::new().solve(input, options, None, None, observer)
+}
+
+/// `H0` that puts the centre film at `target` (and keeps the film positive everywhere).
+fn h0_for(p: &[f64], prob: &Problem, target: f64) -> f64 {
+    let n = prob.n();
+    let x = &prob.grid.x;
+    let mut d = vec![0.0; n];
+    prob.grid.kernel.deflection(p, &mut d);
+    let centre = x.partition_point(|&x| x < 0.0).min(n - 1);
+    let min_rigid = (0..n).map(|i| 0.5 * x[i] * x[i] - d[i]).fold(f64::INFINITY, f64::min);
+    let at_centre = 0.5 * x[centre] * x[centre] - d[centre];
+    (target - at_centre).max(0.05 * target - min_rigid)
+}
+
+/// A guess on a grid from a dimensionless pressure `gp` at `gx` and the centre film `hc`: the
+/// interpolated pressure scaled to carry the load.
+fn from_guess(prob: &Problem, gx: &[f64], gp: &[f64], hc: f64) -> (Vec<f64>, f64) {
+    let n = prob.n();
+    let x = &prob.grid.x;
+    let mut p: Vec<f64> = x.iter().map(|&x| if x <= gx[0] || x >= gx[gx.len() - 1] { 0.0 } else { interpolate(gx, gp, x) }).collect();
+    p[0] = 0.0;
+    p[n - 1] = 0.0;
+    let sum: f64 = p.iter().zip(&prob.grid.cell).map(|(p, w)| p * w).sum();
+    if sum > 0.0 {
+        p.iter_mut().for_each(|v| *v *= 0.5 * PI / sum);
+    } else {
+        hertz_guess(x, &mut p, 1.0);
+    }
+    let h0 = h0_for(&p, prob, hc);
+    (p, h0)
+}
+
+/// A cold start: a (widened, for light loads) Hertzian pressure and the centre film `hc`.
+fn cold(prob: &Problem, hc: f64, h_est: f64) -> (Vec<f64>, f64) {
+    let mut p = vec![0.0; prob.n()];
+    hertz_guess(&prob.grid.x, &mut p, 1f64.max((2.0 * h_est).sqrt()));
+    let h0 = h0_for(&p, prob, hc);
+    (p, h0)
+}
 /// Semi-elliptical pressure of half-width `a` carrying the load: `sqrt(1 − (X/a)²)/a` (Hertz for
 /// `a = 1`; wider for light loads, where the pressure spreads over `~sqrt(2H)`).
 fn hertz_guess(x: &[f64], p: &mut [f64], a: f64) {
@@ -628,85 +1129,26 @@ fn interpolate(x: &[f64], f: &[f64], at: f64) -> f64 {
     f[i - 1] * (1.0 - t) + f[i] * t
 }
 
-/// Cell widths of a grid: from midpoint to midpoint, half cells at the two ends.
-fn cells(x: &[f64]) -> Vec<f64> {
-    let n = x.len();
-    (0..n)
-        .map(|j| {
-            let a = if j == 0 { x[0] } else { 0.5 * (x[j - 1] + x[j]) };
-            let b = if j + 1 == n { x[n - 1] } else { 0.5 * (x[j] + x[j + 1]) };
-            b - a
-        })
-        .collect()
-}
-
-/// The nodes on `[x_in, x_out]`: uniform, or graded towards the inlet edge of the Hertzian zone
-/// (`X = −1 − w/4` upstream, where the film is formed) and the exit constriction (`X = 1 − w/3`
-/// downstream, the pressure spike), with bump widths `w = 3 H^(2/3)` from the film estimate `H` (the
-/// scale of the inlet zone where the Hertzian gap equals the film). The node density is a smooth
-/// sum: a quarter of the nodes uniform, a quarter on the Hertzian zone and a quarter in each
-/// Gaussian bump; the nodes are placed by inverting its cumulative integral.
-pub fn graded_grid(n: usize, x_in: f64, x_out: f64, h_est: f64, dir: f64, grading: bool) -> Vec<f64> {
-    let uniform = || (0..n).map(|i| x_in + (x_out - x_in) * i as f64 / (n - 1) as f64).collect();
-    if !grading || !(h_est.is_finite() && h_est > 0.0) || h_est > 0.3 {
-        return uniform();
-    }
-    let w = (3.0 * h_est.powf(2.0 / 3.0)).clamp(0.01, 0.5);
-    let (c_in, c_out) = (-dir * (1.0 + 0.25 * w), dir * (1.0 - w / 3.0));
-    let len = x_out - x_in;
-    let sq_pi = PI.sqrt();
-    let density = |x: f64| {
-        let zone = 0.5 * (((x + 1.05) / 0.05).tanh() - ((x - 1.05) / 0.05).tanh()) / 2.1;
-        let g = |c: f64| (-((x - c) / w).powi(2)).exp() / (w * sq_pi);
-        0.25 / len + 0.25 * zone + 0.25 * g(c_in) + 0.25 * g(c_out)
-    };
-    let fine = 8 * n + 2000;
-    let hstep = len / fine as f64;
-    let mut cum = vec![0.0; fine + 1];
-    let mut prev = density(x_in);
-    for k in 1..=fine {
-        let d = density(x_in + k as f64 * hstep);
-        cum[k] = cum[k - 1] + 0.5 * (prev + d) * hstep;
-        prev = d;
-    }
-    let total = cum[fine];
-    let mut x = Vec::with_capacity(n);
-    let mut k = 0;
-    for i in 0..n {
-        let target = total * i as f64 / (n - 1) as f64;
-        while k + 1 < fine && cum[k + 1] < target {
-            k += 1;
-        }
-        let t = ((target - cum[k]) / (cum[k + 1] - cum[k]).max(1e-300)).clamp(0.0, 1.0);
-        x.push(x_in + (k as f64 + t) * hstep);
-    }
-    x[0] = x_in;
-    x[n - 1] = x_out;
-    x
-}
-
-#[allow(clippy::too_many_arguments)]
-fn finish(
-    input: &EhlInput,
-    options: &EhlOptions,
-    prob: &Problem,
-    p: &[f64],
-    h0: f64,
+/// Scales and convergence of a finished solve.
+struct Meta {
     b: f64,
     ph: f64,
     moes_m: f64,
     moes_l: f64,
     iterations: u32,
     residual: f64,
-) -> Result<EhlSolution, SolveError> {
-    let n = prob.n;
+}
+
+fn finish(input: &EhlInput, options: &EhlOptions, prob: &Problem, p: &[f64], h0: f64, meta: &Meta) -> Result<EhlSolution, SolveError> {
+    let &Meta { b, ph, moes_m, moes_l, iterations, residual } = meta;
+    let n = prob.n();
     let r = input.reduced_radius;
     let mut v = Fields::new(n);
     if !prob.evaluate(p, h0, &mut v) {
         return Err(SolveError::physical("film_collapse", "the converged film is not positive"));
     }
     let hs = b * b / r; // film scale
-    let x: Vec<f64> = prob.x.iter().map(|&x| x * b).collect();
+    let x: Vec<f64> = prob.grid.x.iter().map(|&x| x * b).collect();
     let pressure: Vec<f64> = p.iter().map(|&p| p.max(0.0) * ph).collect();
     let film: Vec<f64> = v.h.iter().map(|&h| h * hs).collect();
     ensure_finite("ehl pressure", &pressure)?;
@@ -721,7 +1163,7 @@ fn finish(
     };
     let imin = argmin(&mut (0..n)).unwrap_or(0);
     let (min_film_position, min_film) = vertex(&x, &film, imin);
-    let downstream = |i: &usize| prob.x[*i] * dir > 0.0;
+    let downstream = |i: &usize| prob.grid.x[*i] * dir > 0.0;
     let iexit = argmin(&mut (0..n).filter(downstream)).unwrap_or(imin);
     let (_, exit_film) = vertex(&x, &film, iexit);
     let imax = (0..n).fold(0, |j, i| if pressure[i] > pressure[j] { i } else { j });
@@ -731,7 +1173,7 @@ fn finish(
     let mut spike = None;
     for i in 1..n - 1 {
         let local_max = pressure[i] > pressure[i - 1] && pressure[i] >= pressure[i + 1];
-        let hertz = (1.0 - prob.x[i] * prob.x[i]).max(0.0).sqrt() * ph;
+        let hertz = (1.0 - prob.grid.x[i] * prob.grid.x[i]).max(0.0).sqrt() * ph;
         if local_max && downstream(&i) && pressure[i] > hertz && pressure[i] >= 0.2 * pressure[imax] {
             let (position, val) = vertex(&x, &pressure, i);
             let cand = PressureSpike { pressure: val, position };
@@ -776,4 +1218,81 @@ fn finish(
         nodes: n,
         convergence: Convergence { iterations, residual, tolerance: options.tolerance, termination: Termination::Converged },
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::physics::lubricant::Lubricant;
+
+    #[test]
+    fn rheology_matches_the_lubricant() {
+        for vm in [ViscosityModel::Roelands, ViscosityModel::Barus] {
+            for dm in [DensityModel::DowsonHigginson, DensityModel::Incompressible] {
+                let lub = Lubricant { viscosity_model: vm, density_model: dm, ..Lubricant::SEED000 };
+                for t in [303.0, 353.0] {
+                    let r = Rheology::new(&lub, t);
+                    for p in [-1e6, 0.0, 1e7, 3e8, 1.2e9, 3e9] {
+                        let (l, dl, rho, drho) = r.at(p);
+                        let want_l = lub.ln_viscosity_ratio(p, t) - lub.ln_viscosity_ratio(0.0, t);
+                        assert!((l - want_l).abs() < 1e-9 * (1.0 + want_l.abs()), "{vm:?} {t} {p}: {l} vs {want_l}");
+                        let want_dl = lub.ln_viscosity_pressure_slope(p, t);
+                        assert!((dl - want_dl).abs() <= 1e-9 * want_dl.abs(), "{dl} vs {want_dl}");
+                        assert!((rho - lub.density_ratio(p, t)).abs() < 1e-12);
+                        assert!((drho - lub.density_ratio_pressure_slope(p, t)).abs() < 1e-21);
+                    }
+                }
+            }
+        }
+    }
+
+    /// A Newton system of a real problem: the matrix-free product equals the assembled matrix,
+    /// the kept LU factors solve it, and GMRES preconditioned by them converges at once.
+    #[test]
+    fn matrix_free_product_assembly_and_factors_agree() {
+        let lub = Lubricant { viscosity: 0.04, ..Lubricant::SEED000 };
+        let input = EhlInput {
+            load_per_length: 3e5,
+            reduced_radius: 0.01,
+            effective_modulus: 2.3e11,
+            entrainment_velocity: 1.0,
+            sliding_velocity: 0.0,
+            lubricant: lub,
+            temperature: lub.reference_temperature,
+            rheology: Default::default(),
+            transient: None,
+            warm_start: None,
+        };
+        let sc = scales(&input);
+        let layout = Layout::for_film(sc.h_est, 1.0, None, None, true);
+        let grid = Arc::new(Grid::new(80, layout));
+        let prob = Problem { grid: grid.clone(), lambda: sc.lambda, kappa: 0.0, q_old: Vec::new(), upwind: Upwind::Second, rheology: Rheology::new(&lub, input.temperature), ph: sc.ph };
+        let (mut p, mut h0) = cold(&prob, sc.h_est, sc.h_est);
+        let mut ws = Workspace::new();
+        // Two Newton steps to get an active set with cavitated nodes, then inspect the system.
+        let _ = newton(&prob, &mut ws, &mut p, &mut h0, 0.0, 2, &crate::physics::Silent).unwrap();
+        let dim = grid.n - 1;
+        let mut mat = vec![0.0; dim * dim];
+        assemble(&ws.sys, &grid, &mut ws.krylov, &mut mat);
+        let z: Vec<f64> = (0..dim).map(|k| ((k * 7919) % 13) as f64 / 13.0 - 0.4).collect();
+        let mut y = vec![0.0; dim];
+        apply(&ws.sys, &grid, &mut ws.krylov, &z, &mut y);
+        for r in 0..dim {
+            let want: f64 = (0..dim).map(|c| mat[c * dim + r] * z[c]).sum();
+            assert!((y[r] - want).abs() <= 1e-10 * (1.0 + want.abs()), "row {r}: {} vs {want}", y[r]);
+        }
+        ws.factor.lu.copy_from_slice(&mat);
+        assert!(ws.factor.factorise(grid.id));
+        let mut x = y.clone();
+        ws.factor.solve(&mut x);
+        for k in 0..dim {
+            assert!((x[k] - z[k]).abs() < 1e-8, "{k}: {} vs {}", x[k], z[k]);
+        }
+        ws.sys.rhs.copy_from_slice(&y);
+        let it = gmres(&ws.sys, &grid, &mut ws.factor, &mut ws.krylov, &mut x, 1e-10).unwrap();
+        assert!(it <= 2, "{it} iterations with exact factors");
+        for k in 0..dim {
+            assert!((x[k] - z[k]).abs() < 1e-7, "{k}: {} vs {}", x[k], z[k]);
+        }
+    }
 }
