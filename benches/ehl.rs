@@ -8,7 +8,7 @@
 //! Times are the best of several repetitions (single thread for the solver's own work).
 
 use std::time::Instant;
-use tribod::physics::ehl::{solve, EhlInput, EhlOptions, EhlState, Extrapolation, Rheology, Transient, TransientSolver};
+use tribod::physics::ehl::{error_model, solve, EhlInput, EhlOptions, EhlState, Extrapolation, Rheology, Transient, TransientSolver};
 use tribod::physics::lubricant::Lubricant;
 use tribod::physics::Silent;
 
@@ -45,64 +45,90 @@ fn best_of<T>(reps: usize, mut f: impl FnMut() -> T) -> (f64, T) {
     (best, out.unwrap())
 }
 
-/// Cam-like cycle: 720 steps over one revolution at 950 rpm; load 2.25–12.5 kN over 21 mm,
-/// radius 10.5–15.2 mm, entrainment `u_m = 4 cos θ + 1.5` m/s (reverses twice per cycle).
-fn cycle(nodes: usize, tol: f64) -> (Vec<f64>, Vec<f64>, u32) {
-    let steps = 720;
-    let dt = 60.0 / 950.0 / steps as f64;
+/// The benchmark cycle (`error_model::cycle_input`): 720 steps over one revolution at 950 rpm;
+/// load 2.25–12.5 kN over 21 mm, radius 15.2–10.5 mm, entrainment `u_m = 4 cos θ + 1.5` m/s
+/// (reverses twice per cycle).
+fn cycle_input(k: usize, steps: usize) -> EhlInput<'static> {
+    error_model::cycle_input(k, steps)
+}
+
+const STEPS: usize = 720;
+
+fn time_step() -> f64 {
+    60.0 / 950.0 / STEPS as f64
+}
+
+/// Central and minimum film at every angle, and a note on the work done.
+struct CycleRun {
+    hc: Vec<f64>,
+    hm: Vec<f64>,
+    newton_per_step: f64,
+    factorisations: u64,
+    gmres_per_newton: f64,
+    layouts: u64,
+}
+
+/// The cycle with `solve()` at every angle (the phase-1 path: grid, influence matrix and
+/// factorisation built afresh at each angle), warm-started from the previous state.
+fn cycle_solve(nodes: usize, tol: f64) -> CycleRun {
     let mut state: Option<EhlState> = None;
-    let (mut hc, mut hm) = (Vec::with_capacity(steps), Vec::with_capacity(steps));
+    let (mut hc, mut hm) = (Vec::with_capacity(STEPS), Vec::with_capacity(STEPS));
     let mut iters = 0;
-    for k in 0..steps {
-        let th = 2.0 * std::f64::consts::PI * k as f64 / steps as f64;
-        let f = 2250.0 + (12500.0 - 2250.0) * (0.5 - 0.5 * th.cos()).powi(2);
-        let r = 0.0152 - 0.0047 * (0.5 - 0.5 * th.cos());
-        let u = 4.0 * th.cos() + 1.5;
-        let mut inp = point(f / 0.021, r, u);
+    let opts = EhlOptions { nodes, tolerance: tol, ..EhlOptions::default() };
+    for k in 0..STEPS {
+        let mut inp = cycle_input(k, STEPS);
         if let Some(s) = &state {
-            inp.transient = Some(Transient { previous: s, time_step: dt });
+            inp.transient = Some(Transient { previous: s, time_step: time_step() });
         }
-        let opts = EhlOptions { nodes, tolerance: tol, ..EhlOptions::default() };
         let s = solve(&inp, &opts, &Silent).unwrap_or_else(|e| panic!("step {k}: {e}"));
         iters += s.convergence.iterations;
         hc.push(s.central_film);
         hm.push(s.min_film);
         state = Some(s.state);
     }
-    (hc, hm, iters)
+    CycleRun { hc, hm, newton_per_step: iters as f64 / STEPS as f64, factorisations: 0, gmres_per_newton: 0.0, layouts: STEPS as u64 }
 }
 
-/// The same cycle through `TransientSolver` (kept grid, factors and workspace; optionally
-/// Richardson extrapolation of two grids on two threads).
-fn cycle_ts(nodes: usize, tol: f64, ex: Extrapolation) -> (Vec<f64>, Vec<f64>, String) {
-    let steps = 720;
-    let dt = 60.0 / 950.0 / steps as f64;
+/// The cycle through `TransientSolver` (kept grid, factors and workspace; optionally Richardson
+/// extrapolation of two grids on two threads).
+fn cycle_ts(nodes: usize, tol: f64, ex: Extrapolation) -> CycleRun {
     let opts = EhlOptions { nodes, tolerance: tol, ..EhlOptions::default() };
     let mut ts = TransientSolver::new(opts, ex);
-    let (mut hc, mut hm) = (Vec::with_capacity(steps), Vec::with_capacity(steps));
-    for k in 0..steps {
-        let th = 2.0 * std::f64::consts::PI * k as f64 / steps as f64;
-        let f = 2250.0 + (12500.0 - 2250.0) * (0.5 - 0.5 * th.cos()).powi(2);
-        let r = 0.0152 - 0.0047 * (0.5 - 0.5 * th.cos());
-        let u = 4.0 * th.cos() + 1.5;
-        let inp = point(f / 0.021, r, u);
-        let s = ts.step(&inp, Some(dt), &Silent).unwrap_or_else(|e| panic!("step {k}: {e}"));
+    let (mut hc, mut hm) = (Vec::with_capacity(STEPS), Vec::with_capacity(STEPS));
+    for k in 0..STEPS {
+        let s = ts.step(&cycle_input(k, STEPS), Some(time_step()), &Silent).unwrap_or_else(|e| panic!("step {k}: {e}"));
         hc.push(s.central_film);
         hm.push(s.min_film);
     }
-    let (st, lc) = ts.stats();
-    let info = format!(
-        "{:.2} Newton/step, {} LU, {:.1} GMRES it/Newton, {lc} layouts",
-        st.newton_steps as f64 / steps as f64,
-        st.factorisations,
-        st.gmres_iterations as f64 / st.newton_steps.max(1) as f64
-    );
-    (hc, hm, info)
+    let (st, layouts) = ts.stats();
+    CycleRun {
+        hc,
+        hm,
+        newton_per_step: st.newton_steps as f64 / STEPS as f64,
+        factorisations: st.factorisations,
+        gmres_per_newton: st.gmres_iterations as f64 / st.newton_steps.max(1) as f64,
+        layouts,
+    }
+}
+
+/// Worst relative error over the angles (and its angle index), and the error of the cycle's
+/// smallest value.
+fn errors(x: &[f64], reference: &[f64]) -> (f64, usize, f64) {
+    let (mut worst, mut at) = (0.0, 0);
+    for (k, (a, b)) in x.iter().zip(reference).enumerate() {
+        let e = (a / b - 1.0).abs();
+        if e > worst {
+            (worst, at) = (e, k);
+        }
+    }
+    let min = |v: &[f64]| v.iter().cloned().fold(f64::INFINITY, f64::min);
+    (worst, at, min(x) / min(reference) - 1.0)
 }
 
 fn main() {
     faer::set_global_parallelism(faer::Par::Seq);
-    // `cargo bench --bench ehl -- point` or `-- cycle` runs one table only.
+    // `cargo bench --bench ehl -- point` or `-- cycle` runs one table only; `-- run=rich:193`
+    // (or `ts:192`, `solve:128`, optionally `@1e-8`) times one cycle.
     let args: Vec<String> = std::env::args().skip(1).filter(|a| !a.starts_with('-')).collect();
     let want = |name: &str| args.is_empty() || args.iter().any(|a| a == name);
     if want("point") {
@@ -111,33 +137,28 @@ fn main() {
     if want("cycle") {
         cycle_table();
     }
-    if let Some(n) = args.iter().find_map(|a| a.strip_prefix("once=")) {
-        let n: usize = n.parse().unwrap();
+    if args.iter().any(|a| a == "error-map") {
+        error_map();
+    }
+    for a in args.iter().filter_map(|a| a.strip_prefix("run=")) {
+        let (spec, tol) = a.split_once('@').unwrap_or((a, "1e-6"));
+        let (mode, n) = spec.split_once(':').expect("run=MODE:NODES");
+        let (n, tol): (usize, f64) = (n.parse().unwrap(), tol.parse().unwrap());
         let t = Instant::now();
-        let (_, _, it) = cycle(n, 1e-6);
-        println!("cycle {n}: {:.3} s, {it} Newton steps", t.elapsed().as_secs_f64());
-    }
-    for (key, ex) in [("ts=", Extrapolation::None), ("rich=", Extrapolation::Richardson)] {
-        if let Some(n) = args.iter().find_map(|a| a.strip_prefix(key)) {
-            let n: usize = n.parse().unwrap();
-            let t = Instant::now();
-            let (hc, hm, info) = cycle_ts(n, 1e-6, ex);
-            println!("{key}{n}: {:.3} s, {info}", t.elapsed().as_secs_f64());
-            let mut out = String::new();
-            for k in 0..hc.len() {
-                out += &format!("{k} {:.9e} {:.9e}\n", hc[k], hm[k]);
-            }
-            std::fs::write(format!("/tmp/ehl2_{}{n}.txt", key.trim_end_matches('=')), out).unwrap();
-        }
-    }
-    if let Some(n) = args.iter().find_map(|a| a.strip_prefix("dump=")) {
-        let n: usize = n.parse().unwrap();
-        let (hc, hm, _) = cycle(n, 1e-8);
-        let mut out = String::new();
-        for k in 0..hc.len() {
-            out += &format!("{k} {:.9e} {:.9e}\n", hc[k], hm[k]);
-        }
-        std::fs::write(format!("/tmp/ehl2_cycle_{n}.txt"), out).unwrap();
+        let r = match mode {
+            "solve" => cycle_solve(n, tol),
+            "ts" => cycle_ts(n, tol, Extrapolation::None),
+            "rich" => cycle_ts(n, tol, Extrapolation::Richardson),
+            _ => panic!("mode solve | ts | rich"),
+        };
+        println!(
+            "{a}: {:.3} s, {:.2} Newton/step, {} LU, {:.1} GMRES/Newton, {} layouts",
+            t.elapsed().as_secs_f64(),
+            r.newton_per_step,
+            r.factorisations,
+            r.gmres_per_newton,
+            r.layouts
+        );
     }
 }
 
@@ -180,19 +201,89 @@ fn point_table() {
 
 fn cycle_table() {
     println!("\n### Transient cycle: 720 steps (950 rpm, load 2.25–12.5 kN, u_m = 4 cos θ + 1.5 m/s, squeeze)\n");
-    let (_, (hc_ref, hm_ref, _)) = best_of(1, || cycle(1024, 1e-8));
-    println!("reference: the same cycle on 1024 nodes, tolerance 1e-8\n");
-    println!("| nodes | tolerance | time (s) | ms/step | Newton steps/step | max error h_c | max error h_min |");
-    println!("| ---: | ---: | ---: | ---: | ---: | ---: | ---: |");
-    for (n, tol) in [(64, 1e-6), (96, 1e-6), (128, 1e-6), (192, 1e-6), (256, 1e-6), (512, 1e-8)] {
-        let (t, (hc, hm, iters)) = best_of(3, || cycle(n, tol));
-        let err = |a: &[f64], b: &[f64]| a.iter().zip(b).map(|(x, y)| (x / y - 1.0).abs()).fold(0.0, f64::max);
+    let t = Instant::now();
+    let reference = cycle_ts(1023, 1e-8, Extrapolation::Richardson);
+    println!(
+        "reference: the same cycle (same time steps) by TransientSolver, Richardson extrapolation of 512 and 1023 nodes, tolerance 1e-8 ({:.0} s)\n",
+        t.elapsed().as_secs_f64()
+    );
+    println!("| method | nodes | time (s) | ms/step | Newton steps/step | LU | GMRES it/Newton | max error h_c (angle) | max error h_min (angle) | error of the cycle's min h_min |");
+    println!("| --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: |");
+    let rows: [(&str, usize, Extrapolation, bool); 9] = [
+        ("solve() per angle", 192, Extrapolation::None, true),
+        ("TransientSolver", 128, Extrapolation::None, false),
+        ("TransientSolver", 192, Extrapolation::None, false),
+        ("TransientSolver", 256, Extrapolation::None, false),
+        ("TransientSolver", 384, Extrapolation::None, false),
+        ("TransientSolver + Richardson", 129, Extrapolation::Richardson, false),
+        ("TransientSolver + Richardson", 161, Extrapolation::Richardson, false),
+        ("TransientSolver + Richardson", 193, Extrapolation::Richardson, false),
+        ("TransientSolver + Richardson", 257, Extrapolation::Richardson, false),
+    ];
+    for (name, n, ex, per_angle) in rows {
+        let (t, r) = best_of(5, || if per_angle { cycle_solve(n, 1e-6) } else { cycle_ts(n, 1e-6, ex) });
+        let (ec, kc, _) = errors(&r.hc, &reference.hc);
+        let (em, km, emin) = errors(&r.hm, &reference.hm);
+        let nodes = if ex == Extrapolation::Richardson { format!("{} + {n}", (n - 1) / 2 + 1) } else { n.to_string() };
+        let lu = if per_angle { "every step".to_string() } else { r.factorisations.to_string() };
+        let gm = if per_angle { "–".to_string() } else { format!("{:.1}", r.gmres_per_newton) };
         println!(
-            "| {n} | {tol:.0e} | {t:.3} | {:.2} | {:.1} | {:.2} % | {:.2} % |",
-            t * 1e3 / 720.0,
-            iters as f64 / 720.0,
-            100.0 * err(&hc, &hc_ref),
-            100.0 * err(&hm, &hm_ref)
+            "| {name} | {nodes} | {t:.3} | {:.2} | {:.2} | {lu} | {gm} | {:.2} % ({kc}) | {:.2} % ({km}) | {:+.2} % |",
+            t * 1e3 / STEPS as f64,
+            r.newton_per_step,
+            100.0 * ec,
+            100.0 * em,
+            100.0 * emin
         );
     }
+}
+
+/// Measure the closed-form error maps of `physics::ehl::error_model` and print them as Rust
+/// source (`cargo bench --bench ehl -- error-map`).
+fn error_map() {
+    use error_model::{measure_squeeze, measure_steady, squeeze_table, MAX_ALPHA_PH, STEADY_L, STEADY_M};
+    let t = Instant::now();
+    let mut central = String::new();
+    let mut minimum = String::new();
+    for &m in &STEADY_M {
+        let (mut c, mut n) = (Vec::new(), Vec::new());
+        for &l in &STEADY_L {
+            if l * (m / (2.0 * std::f64::consts::PI)).sqrt() > MAX_ALPHA_PH {
+                c.push("None".to_string());
+                n.push("None".to_string());
+                continue;
+            }
+            match measure_steady(m, l, 511, &Silent) {
+                Ok((ec, em)) => {
+                    c.push(format!("Some({ec:.4})"));
+                    n.push(format!("Some({em:.4})"));
+                }
+                Err(e) => {
+                    eprintln!("M {m} L {l}: {e}");
+                    c.push("None".to_string());
+                    n.push("None".to_string());
+                }
+            }
+        }
+        central += &format!("    [{}], // M = {m}\n", c.join(", "));
+        minimum += &format!("    [{}], // M = {m}\n", n.join(", "));
+    }
+    println!("pub const STEADY_CENTRAL: [[Option<f64>; 6]; 8] = [\n{central}];");
+    println!("pub const STEADY_MINIMUM: [[Option<f64>; 6]; 8] = [\n{minimum}];");
+    println!("// steady map: {:.1} s", t.elapsed().as_secs_f64());
+    let t = Instant::now();
+    let mut samples = Vec::new();
+    for factor in [4.0, 1.0, 0.25] {
+        let period = factor * 60.0 / 950.0;
+        let s = measure_squeeze(period, 720, 193, 1e-7, &Silent).unwrap();
+        let worst = s.iter().fold(0.0f64, |a, x| a.max(x.central.abs()));
+        println!("// period {period:.4} s: {} samples, xi {:.2e}..{:.2e}, worst |e_t| central {worst:.3}", s.len(),
+            s.iter().map(|x| x.xi).fold(f64::INFINITY, f64::min), s.iter().map(|x| x.xi).fold(0.0, f64::max));
+        samples.extend(s);
+    }
+    let (c, m) = squeeze_table(&samples);
+    let fmt = |v: &[Option<f64>; 8]| v.iter().map(|x| match x { Some(x) => format!("Some({x:.4})"), None => "None".into() }).collect::<Vec<_>>().join(", ");
+    println!("pub const SQUEEZE_CENTRAL: [Option<f64>; 8] = [{}];", fmt(&c));
+    println!("pub const SQUEEZE_MINIMUM: [Option<f64>; 8] = [{}];", fmt(&m));
+    println!("// squeeze map: {:.1} s", t.elapsed().as_secs_f64());
 }

@@ -3,7 +3,7 @@
 //! h > 0, everything finite), or fails with a typed error — never NaN.
 
 use proptest::prelude::*;
-use tribod::physics::ehl::{solve, EhlInput, EhlOptions, Rheology, Transient};
+use tribod::physics::ehl::{solve, EhlInput, EhlOptions, Extrapolation, Rheology, Transient, TransientSolver};
 use tribod::physics::lubricant::{DensityModel, Lubricant, ViscosityModel};
 use tribod::physics::{Silent, SolveError};
 
@@ -106,5 +106,41 @@ proptest! {
         let mut next = input(p0 * load_change.sqrt(), 0.01, u1, eta0, 2e-8, true, 0.0);
         next.transient = Some(Transient { previous: &s.state, time_step: 10f64.powf(log_dt) });
         check(&next, &opts, true)?;
+    }
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 16, ..ProptestConfig::default() })]
+
+    /// A random sequence of squeeze steps (load, speed and radius jumping, entrainment possibly
+    /// reversing) through `TransientSolver` with Richardson extrapolation: every step converges
+    /// with positive, finite, consistently ordered films, or fails with a typed error.
+    #[test]
+    fn transient_solver_sequence_converges_or_fails_cleanly(
+        p0 in 0.3e9..2.0e9f64,
+        eta0 in 0.01..0.2f64,
+        speeds in prop::collection::vec(-2.0..5.0f64, 6),
+        loads in prop::collection::vec(0.7..1.3f64, 6),
+        log_dt in -5.0..-3.5f64,
+    ) {
+        let opts = EhlOptions { nodes: 97, tolerance: 1e-7, max_iterations: 40, ..EhlOptions::default() };
+        let mut ts = TransientSolver::new(opts, Extrapolation::Richardson);
+        let first = input(p0, 0.01, 2.0, eta0, 2e-8, true, 0.0);
+        ts.step(&first, None, &Silent).map_err(|e| TestCaseError::fail(format!("first step: {e}")))?;
+        for (u, l) in speeds.iter().zip(&loads) {
+            let inp = input(p0 * l.sqrt(), 0.01, *u, eta0, 2e-8, true, 0.02);
+            match ts.step(&inp, Some(10f64.powf(log_dt)), &Silent) {
+                Ok(s) => {
+                    prop_assert!(s.convergence.residual <= opts.tolerance);
+                    prop_assert!(s.min_film > 0.0 && s.min_film <= s.central_film && s.min_film <= s.exit_film);
+                    for v in [s.central_film, s.min_film, s.exit_film, s.traction.friction_coefficient] {
+                        prop_assert!(v.is_finite());
+                    }
+                    prop_assert!(s.state.pressure.iter().all(|p| p.is_finite() && *p >= 0.0));
+                }
+                Err(SolveError::NotConverged { .. }) | Err(SolveError::Physical { .. }) => {}
+                Err(e) => return Err(TestCaseError::fail(format!("unexpected error {e}"))),
+            }
+        }
     }
 }

@@ -48,17 +48,20 @@ impl Kernel {
         &self.by_column[j * self.n..(j + 1) * self.n]
     }
 
-    /// `V_i = (1/π) Σ_j K_ij P_j` for every node, written into `out`.
+    /// `V_i = (1/π) Σ_j K_ij P_j` for every node, written into `out`: a dense product over the
+    /// columns from the first to the last non-zero `P_j` (faer's matrix–vector product, which
+    /// picks the widest SIMD instructions of the machine at run time).
     pub fn deflection(&self, p: &[f64], out: &mut [f64]) {
-        out.iter_mut().for_each(|v| *v = 0.0);
-        for (j, &pj) in p.iter().enumerate() {
-            if pj != 0.0 {
-                let s = pj * std::f64::consts::FRAC_1_PI;
-                for (o, k) in out.iter_mut().zip(self.column(j)) {
-                    *o += s * k;
-                }
-            }
-        }
+        let n = self.n;
+        let Some(j0) = p.iter().position(|&v| v != 0.0) else {
+            out.iter_mut().for_each(|v| *v = 0.0);
+            return;
+        };
+        let j1 = p.iter().rposition(|&v| v != 0.0).map_or(n, |j| j + 1);
+        let k = faer::MatRef::from_column_major_slice(&self.by_column, n, n).subcols(j0, j1 - j0);
+        let rhs = faer::MatRef::from_column_major_slice(&p[j0..j1], j1 - j0, 1);
+        let dst = faer::MatMut::from_column_major_slice_mut(&mut out[..n], n, 1);
+        faer::linalg::matmul::matmul(dst, faer::Accum::Replace, k, rhs, std::f64::consts::FRAC_1_PI, faer::Par::Seq);
     }
 }
 

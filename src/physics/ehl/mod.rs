@@ -32,6 +32,7 @@
 //! choice); non-Newtonian behaviour enters only the traction ([`traction`]). Surfaces are smooth.
 
 pub mod elastic;
+pub mod error_model;
 pub mod formulas;
 pub mod grid;
 pub mod newton;
@@ -39,6 +40,7 @@ pub mod traction;
 pub mod transient;
 
 pub use newton::{solve, LinearStats};
+pub use error_model::{closed_form_errors, estimate_closed_form_error, squeeze_number, ClosedFormError, ContactState};
 pub use traction::{Rheology, TractionResult};
 pub use transient::{Extrapolation, TransientSolver};
 

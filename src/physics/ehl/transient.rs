@@ -26,7 +26,7 @@ use crate::physics::{Observer, SolveError};
 
 /// Largest ratio between the film estimate of a step and the film a grid was graded for before
 /// the grid is redesigned.
-pub const LAYOUT_BAND: f64 = 1.5;
+pub const LAYOUT_BAND: f64 = 1.25;
 
 /// How [`TransientSolver`] turns grids into a result.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
