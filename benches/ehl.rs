@@ -137,8 +137,19 @@ fn main() {
     if want("cycle") {
         cycle_table();
     }
+    for a in args.iter().filter_map(|a| a.strip_prefix("cell=")) {
+        let v: Vec<f64> = a.split(',').map(|x| x.parse().unwrap()).collect();
+        for n in [129, 257, 511, 1023] {
+            let r = error_model::measure_steady(v[0], v[1], n, &Silent);
+            let s = solve(&error_model::reference_contact(v[0], v[1]), &EhlOptions { nodes: n, tolerance: 1e-9, ..EhlOptions::default() }, &Silent).unwrap();
+            println!("M {} L {} n {n}: {r:?}  single h_c {:.5e} h_min {:.5e} iters {}", v[0], v[1], s.central_film, s.min_film, s.convergence.iterations);
+        }
+    }
     if args.iter().any(|a| a == "error-map") {
         error_map();
+    }
+    if want("error-check") {
+        error_check();
     }
     for a in args.iter().filter_map(|a| a.strip_prefix("run=")) {
         let (spec, tol) = a.split_once('@').unwrap_or((a, "1e-6"));
@@ -268,12 +279,12 @@ fn error_map() {
         central += &format!("    [{}], // M = {m}\n", c.join(", "));
         minimum += &format!("    [{}], // M = {m}\n", n.join(", "));
     }
-    println!("pub const STEADY_CENTRAL: [[Option<f64>; 6]; 8] = [\n{central}];");
-    println!("pub const STEADY_MINIMUM: [[Option<f64>; 6]; 8] = [\n{minimum}];");
+    println!("pub const STEADY_CENTRAL: [[Option<f64>; NL]; NM] = [\n{central}];");
+    println!("pub const STEADY_MINIMUM: [[Option<f64>; NL]; NM] = [\n{minimum}];");
     println!("// steady map: {:.1} s", t.elapsed().as_secs_f64());
     let t = Instant::now();
     let mut samples = Vec::new();
-    for factor in [4.0, 1.0, 0.25] {
+    for factor in [4.0, 2.0, 1.0, 0.5, 0.25] {
         let period = factor * 60.0 / 950.0;
         let s = measure_squeeze(period, 720, 193, 1e-7, &Silent).unwrap();
         let worst = s.iter().fold(0.0f64, |a, x| a.max(x.central.abs()));
@@ -286,4 +297,51 @@ fn error_map() {
     println!("pub const SQUEEZE_CENTRAL: [Option<f64>; 8] = [{}];", fmt(&c));
     println!("pub const SQUEEZE_MINIMUM: [Option<f64>; 8] = [{}];", fmt(&m));
     println!("// squeeze map: {:.1} s", t.elapsed().as_secs_f64());
+}
+
+/// The error model against the truth on the benchmark cycle (a lubricant other than the one the
+/// steady map was measured with): at every angle the estimated and the actual relative error of
+/// Moes' central and Pan–Hamrock's minimum film (actual: against the transient solution,
+/// Richardson 97 + 193 nodes).
+fn error_check() {
+    use error_model::{closed_form_errors, squeeze_number, ContactState};
+    use tribod::physics::ehl::formulas::{moes_central_film, pan_hamrock_minimum_film, Groups};
+    let mut ts = TransientSolver::new(EhlOptions { nodes: 193, tolerance: 1e-7, ..EhlOptions::default() }, Extrapolation::Richardson);
+    let dt = time_step();
+    let groups = |k: usize| {
+        let i = cycle_input(k % STEPS, STEPS);
+        Groups::of(i.load_per_length, i.reduced_radius, i.effective_modulus, i.entrainment_velocity, &i.lubricant, i.temperature)
+    };
+    let moes = |k: usize| moes_central_film(&groups(k), cycle_input(k % STEPS, STEPS).reduced_radius);
+    let mut rows = Vec::new();
+    for k in 0..2 * STEPS {
+        let input = cycle_input(k % STEPS, STEPS);
+        let s = ts.step(&input, Some(dt), &Silent).unwrap();
+        if k < STEPS {
+            continue;
+        }
+        let g = groups(k);
+        let r = input.reduced_radius;
+        let (a, b) = (moes(k + STEPS - 1), moes(k + 1));
+        let xi = squeeze_number(s.hertz_half_width, input.entrainment_velocity, (b.ln() - a.ln()) / (2.0 * dt));
+        let est = closed_form_errors(&ContactState::new(&g, 0.01, xi));
+        let act_c = (moes_central_film(&g, r) / s.central_film - 1.0).abs();
+        let act_m = (pan_hamrock_minimum_film(&g, r) / s.min_film - 1.0).abs();
+        rows.push((est.central.max(est.minimum), act_c.max(act_m), est, act_c, act_m, g.moes_m, xi));
+    }
+    let n = rows.len();
+    let finite = rows.iter().filter(|r| r.0.is_finite()).count();
+    let bounded = rows.iter().filter(|r| r.0.is_finite() && r.0 >= r.1).count();
+    println!("\n### Closed-form error model on the benchmark cycle (950 rpm, 720 angles)\n");
+    println!("estimate finite at {finite} of {n} angles; estimate ≥ actual error at {bounded} of those\n");
+    println!("| tolerance | angles with estimate ≤ tolerance (closed form usable) | worst actual error there | angles where actual > tolerance |");
+    println!("| ---: | ---: | ---: | ---: |");
+    for tol in [0.02, 0.05, 0.1, 0.2, 0.3] {
+        let used: Vec<_> = rows.iter().filter(|r| r.0 <= tol).collect();
+        let worst = used.iter().fold(0.0f64, |a, r| a.max(r.1));
+        let over = used.iter().filter(|r| r.1 > tol).count();
+        println!("| {:.0} % | {} | {:.1} % | {over} |", 100.0 * tol, used.len(), 100.0 * worst);
+    }
+    let worst_under = rows.iter().filter(|r| r.0.is_finite() && r.1 > r.0).fold((0.0f64, 0.0, 0.0, 0.0), |a, r| if r.1 - r.0 > a.0 { (r.1 - r.0, r.1, r.5, r.6) } else { a });
+    println!("\nlargest under-estimate: actual exceeds estimate by {:.1} points (actual {:.1} %, M {:.1}, ξ {:.3})", 100.0 * worst_under.0, 100.0 * worst_under.1, worst_under.2, worst_under.3);
 }
