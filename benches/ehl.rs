@@ -1,11 +1,19 @@
 //! Run time against error of the numerical line-contact EHL solver (`physics::ehl`).
 //!
-//! `cargo bench --bench ehl` prints two markdown tables:
+//! `cargo bench --bench ehl` prints three markdown tables (or one: `-- point`, `-- cycle`,
+//! `-- error-check`):
 //! 1. one contact point (seed 001 nose) at 64…4096 nodes, errors of the central and minimum film
 //!    against the Richardson extrapolation of the two finest grids;
-//! 2. a 720-step transient cam-like cycle (sinusoidal load, entrainment reversing twice, squeeze)
-//!    at several grids, errors against the same cycle on 1024 nodes.
-//! Times are the best of several repetitions (single thread for the solver's own work).
+//! 2. a 720-step transient cam-like cycle (load and radius varying, entrainment reversing twice,
+//!    squeeze) by `solve()` per angle and by `TransientSolver` with and without Richardson
+//!    extrapolation, errors against the same cycle extrapolated from 512 and 1023 nodes;
+//! 3. the closed-form error model's estimate against the actual error on that cycle.
+//!
+//! Also: `-- error-map` measures and prints the tables of `physics::ehl::error_model` as Rust
+//! source; `-- cell=M,L` prints that measurement for one cell at four grids; `-- run=rich:193`
+//! (modes `solve`, `ts`, `rich`; optional `@TOL`) times one cycle.
+//! Times are the best of several repetitions; the solver's own linear algebra is single-threaded
+//! (`faer::Par::Seq`), Richardson runs its two grids on two rayon threads.
 
 use std::time::Instant;
 use tribod::physics::ehl::{error_model, solve, EhlInput, EhlOptions, EhlState, Extrapolation, Rheology, Transient, TransientSolver};

@@ -268,7 +268,7 @@ pub struct EhlPointResult {
 
 impl Kind for EhlPoint {
     const NAME: &'static str = "ehl_point";
-    const SOLVER_VERSION: &'static str = "ehl_point-1";
+    const SOLVER_VERSION: &'static str = "ehl_point-2";
     const DESCRIPTION: &'static str = "Numerical elastohydrodynamic line contact (isothermal, \
         compressible Reynolds, elastic half-space, cavitation): central and minimum film, pressure \
         spike, traction, optional pressure/film profile.";

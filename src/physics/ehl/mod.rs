@@ -17,14 +17,28 @@
 //! # Method
 //! A damped semismooth Newton method on the fully coupled system `(P, H0)` ([`newton`]):
 //! second-order upwind finite differences for the wedge term (first order selectable), central
-//! differences for the Poiseuille term, exact cell integrals for the elastic kernel, a dense
-//! Jacobian (the elastic coupling is global) factorised by LU with partial pivoting (faer), and
-//! the complementarity handled by the `min(P, −F/|J_ii|)` reformulation (a primal–dual active set).
-//! Chosen over Venner–Lubrecht multigrid by measurement of what the service needs (see
-//! `BENCHMARKS.md`, "Numerical EHL"): at the 128–512 nodes that resolve the central and minimum
-//! films to well under 1 %, a Newton step costs < 1 ms–20 ms and 4–8 steps from a cold start (2–3
-//! from the previous cam angle) reach a residual of 1e-8; the cost grows as `n³`, so 4096 nodes
-//! take seconds.
+//! differences for the Poiseuille term, exact cell integrals for the elastic kernel, and the
+//! complementarity handled by the `min(P, −F/|J_ii|)` reformulation (a primal–dual active set).
+//! The Jacobian is dense (the elastic coupling is global); each Newton step solves it by GMRES
+//! preconditioned with the LU factors of an earlier Jacobian on the same grid, and factorises
+//! afresh (faer, partial pivoting) only when that stops converging. Chosen over Venner–Lubrecht
+//! multigrid by measurement of what the service needs (see `BENCHMARKS.md`, "Numerical EHL"):
+//! at the 128–512 nodes that resolve the films to well under 1 % the direct method is robust from
+//! light loads to the dry limit, and a cam angle warm-started from the previous one costs 1–2
+//! Newton steps.
+//!
+//! # Sequences of problems
+//! [`TransientSolver`] solves the angles of a cycle one after the other and keeps what does not
+//! change between them: the grid in Hertzian coordinates and its influence matrix
+//! ([`grid`]), the LU factors, the workspace, and the last two solutions for a time predictor.
+//! With [`Extrapolation::Richardson`] it marches two grids side by side (two threads) and
+//! extrapolates the films; a 720-angle cycle then takes about half a second with the films within
+//! 0.5 % of the grid-converged cycle. Use it rather than calling [`solve`] per angle.
+//!
+//! # The closed forms' error
+//! [`error_model`] estimates the error of Moes' central and Pan–Hamrock's minimum film for a
+//! contact state from maps measured with this solver — what the `auto` fidelity needs to decide
+//! where the closed form is good enough.
 //!
 //! # Not modelled
 //! Thermal effects (seed 000 eq. 7–8) are not modelled: the film is isothermal at
