@@ -146,11 +146,12 @@ fn main() {
         cycle_table();
     }
     for a in args.iter().filter_map(|a| a.strip_prefix("cell=")) {
+        // cell=M,L[,η0[,α]]: the steady closed-form errors of one cell at four grid pairs.
         let v: Vec<f64> = a.split(',').map(|x| x.parse().unwrap()).collect();
+        let inp = error_model::reference_contact_with(v[0], v[1], v.get(2).copied().unwrap_or(0.04), v.get(3).copied().unwrap_or(2e-8));
         for n in [129, 257, 511, 1023] {
-            let r = error_model::measure_steady(v[0], v[1], n, &Silent);
-            let s = solve(&error_model::reference_contact(v[0], v[1]), &EhlOptions { nodes: n, tolerance: 1e-9, ..EhlOptions::default() }, &Silent).unwrap();
-            println!("M {} L {} n {n}: {r:?}  single h_c {:.5e} h_min {:.5e} iters {}", v[0], v[1], s.central_film, s.min_film, s.convergence.iterations);
+            let r = error_model::measure_steady_for(&inp, n, &Silent);
+            println!("M {} L {} η0 {} Z {:.3} n {n}: {r:?}", v[0], v[1], inp.lubricant.viscosity, inp.lubricant.roelands_z());
         }
     }
     if args.iter().any(|a| a == "error-map") {
@@ -260,36 +261,66 @@ fn cycle_table() {
 /// Measure the closed-form error maps of `physics::ehl::error_model` and print them as Rust
 /// source (`cargo bench --bench ehl -- error-map`).
 fn error_map() {
-    use error_model::{measure_squeeze, measure_steady, squeeze_table, MAX_ALPHA_PH, STEADY_L, STEADY_M};
+    use error_model::{measure_squeeze, measure_steady, reference_pressure, squeeze_table, MAX_PH, NA, NL, NM, STEADY_ALPHA, STEADY_L, STEADY_M};
     let t = Instant::now();
-    let mut central = String::new();
-    let mut minimum = String::new();
-    for &m in &STEADY_M {
-        let (mut c, mut n) = (Vec::new(), Vec::new());
-        for &l in &STEADY_L {
-            if l * (m / (2.0 * std::f64::consts::PI)).sqrt() > MAX_ALPHA_PH {
-                c.push("None".to_string());
-                n.push("None".to_string());
+    let mut table_c = [[[None::<f64>; NL]; NM]; NA];
+    let mut table_m = table_c;
+    let (mut central, mut minimum) = (String::new(), String::new());
+    for (k, &alpha) in STEADY_ALPHA.iter().enumerate() {
+        central += &format!("    [ // α = {alpha:e}\n");
+        minimum += &format!("    [ // α = {alpha:e}\n");
+        for (i, &m) in STEADY_M.iter().enumerate() {
+            let (mut c, mut n) = (Vec::new(), Vec::new());
+            for (j, &l) in STEADY_L.iter().enumerate() {
+                let r = if reference_pressure(m, l, alpha) > MAX_PH { None } else { measure_steady(m, l, alpha, 511, &Silent).map_err(|e| eprintln!("M {m} L {l} α {alpha}: {e}")).ok() };
+                match r {
+                    Some((ec, em)) => {
+                        c.push(format!("Some({ec:.4})"));
+                        n.push(format!("Some({em:.4})"));
+                        table_c[k][i][j] = Some(ec);
+                        table_m[k][i][j] = Some(em);
+                    }
+                    None => {
+                        c.push("None".to_string());
+                        n.push("None".to_string());
+                    }
+                }
+            }
+            central += &format!("        [{}], // M = {m}\n", c.join(", "));
+            minimum += &format!("        [{}], // M = {m}\n", n.join(", "));
+        }
+        central += "    ],\n";
+        minimum += "    ],\n";
+    }
+    println!("pub const STEADY_CENTRAL: [[[Option<f64>; NL]; NM]; NA] = [\n{central}];");
+    println!("pub const STEADY_MINIMUM: [[[Option<f64>; NL]; NM]; NA] = [\n{minimum}];");
+    println!("// steady map: {:.1} s", t.elapsed().as_secs_f64());
+    // The spread over the ambient viscosity at the same M, L, α = 2e-8 (between the layers
+    // 1.6e-8 and 2.4e-8: compared with the interpolated map), at every other cell.
+    let t = Instant::now();
+    let (mut sc, mut sm) = (0.0f64, 0.0f64);
+    for &m in STEADY_M.iter().step_by(2) {
+        for &l in STEADY_L.iter().step_by(2) {
+            let base = error_model::measure_steady(m, l, 2e-8, 511, &Silent);
+            let Ok((bc, bm)) = base else { continue };
+            if reference_pressure(m, l, 2e-8) > MAX_PH {
                 continue;
             }
-            match measure_steady(m, l, 511, &Silent) {
-                Ok((ec, em)) => {
-                    c.push(format!("Some({ec:.4})"));
-                    n.push(format!("Some({em:.4})"));
-                }
-                Err(e) => {
-                    eprintln!("M {m} L {l}: {e}");
-                    c.push("None".to_string());
-                    n.push("None".to_string());
+            for eta0 in [0.38, 0.0118] {
+                let inp = error_model::reference_contact_with(m, l, eta0, 2e-8);
+                match error_model::measure_steady_for(&inp, 511, &Silent) {
+                    Ok((c, n)) => {
+                        sc = sc.max((c - bc).abs());
+                        sm = sm.max((n - bm).abs());
+                    }
+                    Err(e) => eprintln!("M {m} L {l} η0 {eta0}: {e}"),
                 }
             }
         }
-        central += &format!("    [{}], // M = {m}\n", c.join(", "));
-        minimum += &format!("    [{}], // M = {m}\n", n.join(", "));
     }
-    println!("pub const STEADY_CENTRAL: [[Option<f64>; NL]; NM] = [\n{central}];");
-    println!("pub const STEADY_MINIMUM: [[Option<f64>; NL]; NM] = [\n{minimum}];");
-    println!("// steady map: {:.1} s", t.elapsed().as_secs_f64());
+    println!("pub const RHEOLOGY_SPREAD_CENTRAL: f64 = {:.4};", sc);
+    println!("pub const RHEOLOGY_SPREAD_MINIMUM: f64 = {:.4};", sm);
+    println!("// rheology spread: {:.1} s", t.elapsed().as_secs_f64());
     let t = Instant::now();
     let mut samples = Vec::new();
     for factor in [4.0, 2.0, 1.0, 0.5, 0.25] {
@@ -332,7 +363,7 @@ fn error_check() {
         let r = input.reduced_radius;
         let (a, b) = (moes(k + STEPS - 1), moes(k + 1));
         let xi = squeeze_number(s.hertz_half_width, input.entrainment_velocity, (b.ln() - a.ln()) / (2.0 * dt));
-        let est = closed_form_errors(&ContactState::new(&g, 0.01, xi));
+        let est = closed_form_errors(&ContactState::new(&g, input.lubricant.pressure_viscosity, 0.01, xi));
         let act_c = (moes_central_film(&g, r) / s.central_film - 1.0).abs();
         let act_m = (pan_hamrock_minimum_film(&g, r) / s.min_film - 1.0).abs();
         rows.push((est.central.max(est.minimum), act_c.max(act_m), est, act_c, act_m, g.moes_m, xi));
