@@ -108,7 +108,8 @@ fn cycle_ts(nodes: usize, tol: f64, ex: Extrapolation) -> CycleRun {
         hc.push(s.central_film);
         hm.push(s.min_film);
     }
-    let (st, layouts) = ts.stats();
+    let st = ts.stats();
+    let layouts = st.layouts;
     CycleRun {
         hc,
         hm,

@@ -53,7 +53,7 @@ pub mod newton;
 pub mod traction;
 pub mod transient;
 
-pub use newton::{solve, LinearStats};
+pub use newton::{solve, SolverStats};
 pub use error_model::{closed_form_errors, estimate_closed_form_error, squeeze_number, ClosedFormError, ContactState};
 pub use traction::{Rheology, TractionResult};
 pub use transient::{Extrapolation, TransientSolver};

@@ -343,15 +343,17 @@ struct Krylov {
     defl: Vec<f64>,
 }
 
-/// Counters of the linear algebra (for benchmarks and diagnostics).
+/// Work counters of a solver (for benchmarks and diagnostics).
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
-pub struct LinearStats {
+pub struct SolverStats {
     /// Newton steps taken.
     pub newton_steps: u64,
     /// Jacobians assembled and factorised.
     pub factorisations: u64,
     /// GMRES iterations (each one matrix-free product and one solve with the kept factors).
     pub gmres_iterations: u64,
+    /// Grid layouts designed ([`super::TransientSolver`] only).
+    pub layouts: u64,
 }
 
 /// Per-grid-size workspace of the Newton solver and the kept factorisation.
@@ -369,7 +371,7 @@ pub(crate) struct Workspace {
     sys: System,
     factor: Factor,
     krylov: Krylov,
-    pub(crate) stats: LinearStats,
+    pub(crate) stats: SolverStats,
 }
 
 impl Workspace {
@@ -388,7 +390,7 @@ impl Workspace {
             sys: System::default(),
             factor: Factor::empty(),
             krylov: Krylov::default(),
-            stats: LinearStats::default(),
+            stats: SolverStats::default(),
         }
     }
 
@@ -811,8 +813,8 @@ impl Engine {
     }
 
     /// Linear-algebra counters summed over the workspaces.
-    pub(crate) fn stats(&self) -> LinearStats {
-        let mut s = LinearStats::default();
+    pub(crate) fn stats(&self) -> SolverStats {
+        let mut s = SolverStats::default();
         for w in &self.workspaces {
             s.newton_steps += w.stats.newton_steps;
             s.factorisations += w.stats.factorisations;

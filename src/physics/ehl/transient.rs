@@ -21,7 +21,7 @@
 //! 192 nodes alone are up to 3.7 % off; the cycle takes ≈ 0.4 s.
 
 use super::grid::Layout;
-use super::newton::{film_estimate, Engine, LinearStats, Prediction};
+use super::newton::{film_estimate, Engine, Prediction, SolverStats};
 use super::{EhlInput, EhlOptions, EhlSolution, EhlState, Transient};
 use crate::physics::{Observer, SolveError};
 
@@ -184,9 +184,9 @@ impl TransientSolver {
         }
     }
 
-    /// Linear-algebra counters of all grids so far (Newton steps, factorisations, GMRES
-    /// iterations) and how often the grid layout changed.
-    pub fn stats(&self) -> (LinearStats, u64) {
+    /// Work counters of all grids so far: Newton steps, factorisations, GMRES iterations and
+    /// how many grid layouts were designed.
+    pub fn stats(&self) -> SolverStats {
         let mut s = self.fine.engine.stats();
         if let Some(c) = &self.coarse {
             let t = c.engine.stats();
@@ -194,7 +194,8 @@ impl TransientSolver {
             s.factorisations += t.factorisations;
             s.gmres_iterations += t.gmres_iterations;
         }
-        (s, self.layout_changes)
+        s.layouts = self.layout_changes;
+        s
     }
 
     /// Solve the next problem of the sequence. `input.transient` and `input.warm_start` are
@@ -273,5 +274,16 @@ impl TransientSolver {
         self.layout = Some(l);
         self.layout_changes += 1;
         l
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_transient_solver_can_move_between_threads() {
+        fn send<T: Send>() {}
+        send::<TransientSolver>();
     }
 }
