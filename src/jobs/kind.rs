@@ -27,6 +27,16 @@ pub struct Limits {
     pub max_evaluations: usize,
 }
 
+impl Limits {
+    /// No limits (offline use, and cases already checked against the server's limits).
+    pub const UNLIMITED: Limits = Limits {
+        max_grid_nodes: usize::MAX,
+        max_angles: usize::MAX,
+        max_sweep_cases: usize::MAX,
+        max_evaluations: usize::MAX,
+    };
+}
+
 impl Default for Limits {
     fn default() -> Self {
         Limits { max_grid_nodes: 1_000_000, max_angles: 36_000, max_sweep_cases: 1_000, max_evaluations: 2_000 }
@@ -95,6 +105,23 @@ impl Validation {
         self
     }
 
+    /// Take over the field errors of a nested problem (e.g. a sweep case's own validation),
+    /// each path rewritten by `map`. Limit problems stay limit errors.
+    pub fn absorb(&mut self, problem: &Problem, map: impl Fn(&str) -> String) -> &mut Self {
+        let target = if problem.code == ErrorCode::LimitExceeded.as_str() {
+            &mut self.limit_errors
+        } else {
+            &mut self.errors
+        };
+        if problem.errors.is_empty() {
+            target.push(FieldError::new(map(""), problem.detail.clone()));
+        }
+        for e in &problem.errors {
+            target.push(FieldError::new(map(&e.path), e.message.clone()));
+        }
+        self
+    }
+
     pub fn is_ok(&self) -> bool {
         self.errors.is_empty() && self.limit_errors.is_empty()
     }
@@ -149,6 +176,11 @@ pub trait Kind: Send + Sync + 'static {
     /// Optional outputs selectable in the spec's `outputs` list (empty when the kind has none).
     fn outputs() -> &'static [OutputInfo] {
         &[]
+    }
+    /// The version that decides reuse: `SOLVER_VERSION`, except for composite kinds (`sweep`),
+    /// which fold in the versions of the kinds they run.
+    fn solver_version() -> &'static str {
+        Self::SOLVER_VERSION
     }
     /// Range and consistency checks the types cannot express.
     fn validate(spec: &Self::Spec, limits: &Limits, v: &mut Validation);
@@ -214,7 +246,7 @@ impl<K: Kind> DynKind for Registered<K> {
         K::NAME
     }
     fn solver_version(&self) -> &'static str {
-        K::SOLVER_VERSION
+        K::solver_version()
     }
     fn description(&self) -> &'static str {
         K::DESCRIPTION

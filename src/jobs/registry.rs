@@ -7,6 +7,7 @@ use super::kinds;
 pub static KINDS: &[&dyn DynKind] = &[
     &Registered::<kinds::hertz::Hertz>::new(),
     &Registered::<kinds::ehl_point::EhlPoint>::new(),
+    &Registered::<kinds::sweep::Sweep>::new(),
 ];
 
 /// Kinds compiled only into test builds (feature `test-kinds`): runnable, but neither listed nor

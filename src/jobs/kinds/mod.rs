@@ -2,5 +2,6 @@
 
 pub mod ehl_point;
 pub mod hertz;
+pub mod sweep;
 #[cfg(feature = "test-kinds")]
 pub mod test_sleep;
