@@ -302,8 +302,13 @@ pub fn parse_spec<T: DeserializeOwned>(spec: &Value) -> Result<T, Problem> {
 /// message.
 pub fn parse_value<T: DeserializeOwned>(value: &Value) -> Result<T, FieldError> {
     serde_path_to_error::deserialize(value).map_err(|err| {
-        let pointer = path_to_pointer(err.path());
-        FieldError::new(pointer, err.inner().to_string())
+        let mut pointer = path_to_pointer(err.path());
+        let message = err.inner().to_string();
+        // serde names a missing field in its message only; point at the field itself.
+        if let Some(name) = message.strip_prefix("missing field `").and_then(|m| m.split('`').next()) {
+            pointer = format!("{pointer}/{name}");
+        }
+        FieldError::new(pointer, message)
     })
 }
 

@@ -392,9 +392,11 @@ impl Queue {
                 interval,
                 last: Mutex::new(None),
             };
-            let (outcome, wall) = match prepare(&job.kind, &job.spec, &limits) {
-                Ok(prepared) => runner::run(prepared, &observer),
-                Err(problem) => (Outcome::Failed(problem), 0.0),
+            // Canceled (or shut down) while it waited in the pool's queue: do not start it.
+            let (outcome, wall) = match (observer.check(), prepare(&job.kind, &job.spec, &limits)) {
+                (Err(interrupt), _) => (Outcome::Interrupted(interrupt), 0.0),
+                (Ok(()), Ok(prepared)) => runner::run(prepared, &observer),
+                (Ok(()), Err(problem)) => (Outcome::Failed(problem), 0.0),
             };
             let (finish, status) = match outcome {
                 Outcome::Succeeded(mut value) => {
