@@ -5,6 +5,7 @@
 //! solver: results pass through [`ensure_finite`] (or an equivalent check) before they are returned.
 
 pub mod contact;
+pub mod journal;
 pub mod lubricant;
 pub mod solver;
 
