@@ -30,7 +30,7 @@ impl Misalignment {
     /// Offset `(dX, dY)` of the journal centre at `Z` relative to the mid-plane centre.
     #[inline]
     pub fn offset(&self, z: f64) -> (f64, f64) {
-        let s = 1.0 - 2.0 * z; // seed 002 eq. (10): |1 − 2Z| with the side signs of eq. (11)
+        let s = 1.0 - 2.0 * z; // seed 002 eq. (10)-(11): |1 − 2Z| with the side signs of eq. (11)
         (-self.vertical * s, self.horizontal * s)
     }
     pub fn is_zero(&self) -> bool {

@@ -3,3 +3,7 @@
 
 pub mod film;
 pub mod multigrid;
+pub mod analysis;
+
+pub use analysis::{analyse, Analysis, Bearing, Fields, Guess, Operating, Settings, Supply, Workspace};
+pub use film::{Film, Misalignment, Profile};

@@ -125,6 +125,10 @@ pub struct Level {
     /// 1 where the node is fixed at zero pressure in the current linear solve (boundary or
     /// cavitated), 2 for boundary nodes (always fixed), 0 free.
     fixed: Vec<u8>,
+    /// 1 at free nodes, 0 at fixed ones (branch-free loops).
+    mask: Vec<f64>,
+    /// `1/diag` at free nodes, 0 at fixed ones.
+    inv_d: Vec<f64>,
     // linear multigrid work arrays (correction scheme)
     x: Vec<f64>,
     b: Vec<f64>,
@@ -158,6 +162,8 @@ impl Level {
             h: vec![0.0; n],
             u: vec![0.0; n],
             fixed: vec![FREE; n],
+            mask: vec![0.0; n],
+            inv_d: vec![0.0; n],
             x: vec![0.0; n],
             b: vec![0.0; n],
             r: vec![0.0; n],
@@ -233,6 +239,16 @@ impl Level {
                 self.diag[k] = self.ce[k] + self.ce[kw] + self.cn[k] + self.cn[k - nt];
             }
         }
+        self.refresh_masks();
+    }
+
+    /// Recompute `mask` and `inv_d` from `fixed` and `diag`.
+    fn refresh_masks(&mut self) {
+        for k in 0..self.fixed.len() {
+            let free = self.fixed[k] == FREE;
+            self.mask[k] = if free { 1.0 } else { 0.0 };
+            self.inv_d[k] = if free { 1.0 / self.diag[k] } else { 0.0 };
+        }
     }
 
     /// `Σ c_nb v_nb` at node `k` (neighbour sum of the operator).
@@ -263,87 +279,131 @@ impl Level {
 
     /// `out = A v` restricted to the free nodes (0 at fixed nodes).
     fn apply_free(&self, v: &[f64], out: &mut [f64]) {
-        let nt = self.nt;
-        out[..nt].fill(0.0);
-        out[(self.nz - 1) * nt..].fill(0.0);
-        for j in 1..self.nz - 1 {
-            let row = j * nt;
-            for i in 0..nt {
-                let k = row + i;
-                if self.fixed[k] != FREE {
-                    out[k] = 0.0;
-                    continue;
-                }
-                let kw = if i == 0 { row + nt - 1 } else { k - 1 };
-                let ke = if i + 1 == nt { row } else { k + 1 };
-                out[k] = self.diag[k] * v[k] - self.nb_sum(v, k, kw, ke);
-            }
-        }
+        self.apply_masked(v, out, false);
     }
 
     /// Red–black Gauss–Seidel on the free nodes for `A x = b`; `reverse` swaps the colour order
-    /// (the post-smoother of a symmetric cycle).
+    /// (the post-smoother of a symmetric cycle). The two colours are fused in one pass over
+    /// memory: row `j` of the first colour, then row `j − 1` of the second.
     fn smooth(&mut self, sweeps: usize, reverse: bool) {
         let nt = self.nt;
         let nz = self.nz;
-        let ce = &self.ce;
-        let cn = &self.cn;
-        let diag = &self.diag;
-        let b = &self.b;
-        let fixed = &self.fixed;
-        let x = &mut self.x;
-        #[inline(always)]
-        #[allow(clippy::too_many_arguments)]
-        fn upd(x: &mut [f64], ce: &[f64], cn: &[f64], diag: &[f64], b: &[f64], fixed: &[u8], k: usize, kw: usize, ke: usize, nt: usize) {
-            if fixed[k] == FREE {
-                let s = b[k] + ce[k] * x[ke] + ce[kw] * x[kw] + cn[k] * x[k + nt] + cn[k - nt] * x[k - nt];
-                x[k] = s / diag[k];
-            }
-        }
+        let first = if reverse { 1 } else { 0 };
         for _ in 0..sweeps {
-            for c in 0..2 {
-                let color = if reverse { 1 - c } else { c };
-                for j in 1..nz - 1 {
-                    let row = j * nt;
-                    let mut i = (color + j) % 2;
-                    if i == 0 {
-                        upd(x, ce, cn, diag, b, fixed, row, row + nt - 1, row + 1, nt);
-                        i = 2;
-                    }
-                    while i + 1 < nt {
-                        let k = row + i;
-                        upd(x, ce, cn, diag, b, fixed, k, k - 1, k + 1, nt);
-                        i += 2;
-                    }
-                    if i + 1 == nt {
-                        let k = row + i;
-                        upd(x, ce, cn, diag, b, fixed, k, k - 1, row, nt);
-                    }
+            for j in 1..nz {
+                if j < nz - 1 {
+                    self.smooth_row(j, first);
+                }
+                if j >= 2 {
+                    self.smooth_row(j - 1, 1 - first);
                 }
             }
+        }
+        let _ = nt;
+    }
+
+    /// Gauss–Seidel update of the nodes of colour `color` (`(i + j) % 2`) in row `j`.
+    #[inline(always)]
+    fn smooth_row(&mut self, j: usize, color: usize) {
+        let nt = self.nt;
+        let row = j * nt;
+        let ce = &self.ce[row..row + nt];
+        let cn_s = &self.cn[row - nt..row];
+        let cn_n = &self.cn[row..row + nt];
+        let inv = &self.inv_d[row..row + nt];
+        let b = &self.b[row..row + nt];
+        let (below, rest) = self.x.split_at_mut(row);
+        let below = &below[row - nt..];
+        let (cur, above) = rest.split_at_mut(nt);
+        let above = &above[..nt];
+        #[inline(always)]
+        #[allow(clippy::too_many_arguments)]
+        fn upd(cur: &mut [f64], b: &[f64], ce: &[f64], cn_n: &[f64], cn_s: &[f64], above: &[f64], below: &[f64], inv: &[f64], i: usize, iw: usize, ie: usize) {
+            let s = b[i] + ce[i] * cur[ie] + ce[iw] * cur[iw] + cn_n[i] * above[i] + cn_s[i] * below[i];
+            cur[i] = s * inv[i];
+        }
+        let mut i = (color + j) % 2;
+        if i == 0 {
+            upd(cur, b, ce, cn_n, cn_s, above, below, inv, 0, nt - 1, 1);
+            i = 2;
+        }
+        let end = if (nt - 1) % 2 == i % 2 { nt - 1 } else { nt };
+        // interior nodes of this colour: 1 ≤ i ≤ nt − 2, step 2
+        let mut k = i;
+        while k + 1 < nt {
+            // SAFETY: 1 ≤ k − 1 < k + 1 < nt and every slice has length nt.
+            unsafe {
+                let s = *b.get_unchecked(k)
+                    + *ce.get_unchecked(k) * *cur.get_unchecked(k + 1)
+                    + *ce.get_unchecked(k - 1) * *cur.get_unchecked(k - 1)
+                    + *cn_n.get_unchecked(k) * *above.get_unchecked(k)
+                    + *cn_s.get_unchecked(k) * *below.get_unchecked(k);
+                *cur.get_unchecked_mut(k) = s * *inv.get_unchecked(k);
+            }
+            k += 2;
+        }
+        let _ = end;
+        if k + 1 == nt {
+            upd(cur, b, ce, cn_n, cn_s, above, below, inv, k, k - 1, 0);
         }
     }
 
     /// `r = b − A x` at free nodes, 0 at fixed nodes.
     fn residual_into_r(&mut self) {
-        let nt = self.nt;
         let mut r = std::mem::take(&mut self.r);
-        r[..nt].fill(0.0);
-        r[(self.nz - 1) * nt..].fill(0.0);
+        let x = std::mem::take(&mut self.x);
+        self.apply_masked(&x, &mut r, true);
+        self.x = x;
+        self.r = r;
+    }
+
+    /// `out = mask·(b − A v)` when `minus_from_b`, else `out = mask·(A v)`.
+    fn apply_masked(&self, v: &[f64], out: &mut [f64], minus_from_b: bool) {
+        let nt = self.nt;
+        out[..nt].fill(0.0);
+        out[(self.nz - 1) * nt..].fill(0.0);
         for j in 1..self.nz - 1 {
             let row = j * nt;
-            for i in 0..nt {
-                let k = row + i;
-                if self.fixed[k] != FREE {
-                    r[k] = 0.0;
-                    continue;
+            let ce = &self.ce[row..row + nt];
+            let cs = &self.cn[row - nt..row];
+            let cnn = &self.cn[row..row + nt];
+            let d = &self.diag[row..row + nt];
+            let m = &self.mask[row..row + nt];
+            let vb = &v[row - nt..row];
+            let vc = &v[row..row + nt];
+            let va = &v[row + nt..row + 2 * nt];
+            let o = &mut out[row..row + nt];
+            let b = &self.b[row..row + nt];
+            #[inline(always)]
+            #[allow(clippy::too_many_arguments)]
+            fn f(d: &[f64], ce: &[f64], cnn: &[f64], cs: &[f64], vc: &[f64], va: &[f64], vb: &[f64], i: usize, iw: usize, ie: usize) -> f64 {
+                d[i] * vc[i] - ce[i] * vc[ie] - ce[iw] * vc[iw] - cnn[i] * va[i] - cs[i] * vb[i]
+            }
+            let a0 = f(d, ce, cnn, cs, vc, va, vb, 0, nt - 1, 1);
+            let an = f(d, ce, cnn, cs, vc, va, vb, nt - 1, nt - 2, 0);
+            // interior, written on equal-length slices so that the loop vectorises
+            let n = nt - 2;
+            let (d1, ce0, ce1, cn1, cs1) = (&d[1..n + 1], &ce[0..n], &ce[1..n + 1], &cnn[1..n + 1], &cs[1..n + 1]);
+            let (vw, vcc, ve, va1, vb1) = (&vc[0..n], &vc[1..n + 1], &vc[2..n + 2], &va[1..n + 1], &vb[1..n + 1]);
+            let (m1, b1) = (&m[1..n + 1], &b[1..n + 1]);
+            let o1 = &mut o[1..n + 1];
+            if minus_from_b {
+                o[0] = m[0] * (b[0] - a0);
+                o[nt - 1] = m[nt - 1] * (b[nt - 1] - an);
+                let o1 = &mut o[1..n + 1];
+                for i in 0..n {
+                    let a = d1[i] * vcc[i] - ce1[i] * ve[i] - ce0[i] * vw[i] - cn1[i] * va1[i] - cs1[i] * vb1[i];
+                    o1[i] = m1[i] * (b1[i] - a);
                 }
-                let kw = if i == 0 { row + nt - 1 } else { k - 1 };
-                let ke = if i + 1 == nt { row } else { k + 1 };
-                r[k] = self.b[k] - (self.diag[k] * self.x[k] - self.nb_sum(&self.x, k, kw, ke));
+            } else {
+                for i in 0..n {
+                    let a = d1[i] * vcc[i] - ce1[i] * ve[i] - ce0[i] * vw[i] - cn1[i] * va1[i] - cs1[i] * vb1[i];
+                    o1[i] = m1[i] * a;
+                }
+                o[0] = m[0] * a0;
+                o[nt - 1] = m[nt - 1] * an;
             }
         }
-        self.r = r;
     }
 }
 
@@ -354,6 +414,11 @@ pub struct Hierarchy {
     pub alpha: f64,
     /// Red–black sweeps before and after the coarse-grid correction.
     pub sweeps: usize,
+    /// V-cycles spent on each level since the hierarchy was built (work accounting).
+    pub cycle_count: Vec<u32>,
+    /// Active-set steps on each level since the hierarchy was built.
+    pub step_count: Vec<u32>,
+    scratch: [Vec<f64>; 5],
 }
 
 /// Outcome of one LCP solve on one level.
@@ -408,7 +473,8 @@ impl Hierarchy {
             fine.tmp = vec![0.0; nz_c * nt];
             levels.push(Level::new(nt_c, nz_c, groove));
         }
-        Hierarchy { levels, alpha, sweeps: 1 }
+        let n = levels.len();
+        Hierarchy { levels, alpha, sweeps: 1, cycle_count: vec![0; n], step_count: vec![0; n], scratch: Default::default() }
     }
 
     /// Rebuild the coefficients of every level for `film`, node 0 at angle `theta0`.
@@ -454,9 +520,13 @@ impl Hierarchy {
         let mut steps = 0;
         let mut cycles = 0;
         let mut converged = false;
-        let mut lam = vec![0.0; self.levels[k].u.len()];
+        let mut lam = std::mem::take(&mut self.scratch[4]);
+        lam.resize(self.levels[k].u.len(), 0.0);
+        // Inexact steps while the active set still moves: a linear solve to `loose` is enough
+        // to decide the next active set; the last solve (set unchanged) is taken to `tol`.
+        let loose = tol.max(1e-4);
+        let mut tight = loose <= tol;
         while steps < max_steps && cycles < max_cycles {
-            // new active set: λ − d·P > 0  (d: the diagonal, a per-node scale)
             let l = &mut self.levels[k];
             l.lambda(&l.u, &mut lam);
             let mut changed = false;
@@ -464,6 +534,7 @@ impl Hierarchy {
                 if l.fixed[idx] == BOUNDARY {
                     continue;
                 }
+                // new active set: λ − d·P > 0  (d: the diagonal, a per-node scale)
                 let active = lam[idx] - l.diag[idx] * l.u[idx] > 0.0;
                 let flag = if active { CAVITATED } else { FREE };
                 if flag != l.fixed[idx] {
@@ -475,19 +546,25 @@ impl Hierarchy {
                 }
             }
             if !changed && steps > 0 {
-                converged = true;
-                break;
+                if tight {
+                    converged = true;
+                    break;
+                }
+                tight = true;
             }
             if changed || steps == 0 {
+                self.levels[k].refresh_masks();
                 self.inject_active_set(k);
             }
             steps += 1;
-            let (c, ok) = self.pcg(k, tol, max_cycles - cycles);
+            let t = if tight { tol } else { loose };
+            let (c, ok) = self.pcg(k, t, max_cycles - cycles);
             cycles += c;
             if !ok {
                 break;
             }
         }
+        self.scratch[4] = lam;
         // the pressure is non-negative by construction up to the linear tolerance
         let l = &mut self.levels[k];
         for v in &mut l.u {
@@ -496,6 +573,8 @@ impl Hierarchy {
             }
         }
         let residual = self.lcp_residual(k);
+        self.cycle_count[k] += cycles;
+        self.step_count[k] += steps;
         LcpReport { steps, cycles, residual, converged }
     }
 
@@ -503,13 +582,22 @@ impl Hierarchy {
     /// `levels[k].u`, preconditioned by one symmetric V-cycle. Returns (iterations, converged).
     fn pcg(&mut self, k: usize, tol: f64, max_iter: u32) -> (u32, bool) {
         let n = self.levels[k].u.len();
-        let mut r = vec![0.0; n];
-        let mut p = vec![0.0; n];
-        let mut q = vec![0.0; n];
-        let mut z = vec![0.0; n];
+        let [mut r, mut p, mut q, mut z, lam] = std::mem::take(&mut self.scratch);
+        for v in [&mut r, &mut p, &mut q, &mut z] {
+            v.clear();
+            v.resize(n, 0.0);
+        }
+        let out = self.pcg_inner(k, tol, max_iter, &mut r, &mut p, &mut q, &mut z);
+        self.scratch = [r, p, q, z, lam];
+        out
+    }
+
+    #[allow(clippy::too_many_arguments)]
+    fn pcg_inner(&mut self, k: usize, tol: f64, max_iter: u32, r: &mut [f64], p: &mut [f64], q: &mut [f64], z: &mut [f64]) -> (u32, bool) {
+        let n = r.len();
         let l = &self.levels[k];
         // r = f − A u on free nodes
-        l.apply_free(&l.u, &mut q);
+        l.apply_free(&l.u, q);
         let mut fnorm = 0.0;
         for i in 0..n {
             if l.fixed[i] == FREE {
@@ -522,15 +610,15 @@ impl Hierarchy {
         if rnorm <= tol * fnorm {
             return (0, true);
         }
-        self.precondition(k, &r, &mut z);
-        p.copy_from_slice(&z);
-        let mut rz: f64 = r.iter().zip(&z).map(|(a, b)| a * b).sum();
+        self.precondition(k, r, z);
+        p.copy_from_slice(z);
+        let mut rz: f64 = r.iter().zip(z.iter()).map(|(a, b)| a * b).sum();
         let mut it = 0;
         while it < max_iter {
             it += 1;
             let l = &self.levels[k];
-            l.apply_free(&p, &mut q);
-            let pq: f64 = p.iter().zip(&q).map(|(a, b)| a * b).sum();
+            l.apply_free(p, q);
+            let pq: f64 = p.iter().zip(q.iter()).map(|(a, b)| a * b).sum();
             if pq <= 0.0 {
                 break;
             }
@@ -544,8 +632,8 @@ impl Hierarchy {
             if rnorm <= tol * fnorm {
                 return (it, true);
             }
-            self.precondition(k, &r, &mut z);
-            let rz_new: f64 = r.iter().zip(&z).map(|(a, b)| a * b).sum();
+            self.precondition(k, r, z);
+            let rz_new: f64 = r.iter().zip(z.iter()).map(|(a, b)| a * b).sum();
             let beta = rz_new / rz;
             rz = rz_new;
             for i in 0..n {
@@ -616,6 +704,7 @@ impl Hierarchy {
                     coarse.fixed[kc] = if fine.fixed[jf * fine.nt + iff] == FREE { FREE } else { CAVITATED };
                 }
             }
+            coarse.refresh_masks();
         }
     }
 
@@ -722,11 +811,11 @@ fn prolong_add(coarse: &Level, fine: &mut Level) {
     for j in 1..nzf - 1 {
         let (a, b, w) = (tz.p_lo[j], tz.p_hi[j], tz.p_w[j]);
         let row = j * ntf;
+        let (ta, tb) = (&tmp[a * ntf..(a + 1) * ntf], &tmp[b * ntf..(b + 1) * ntf]);
+        let m = &fine.mask[row..row + ntf];
+        let x = &mut fine.x[row..row + ntf];
         for i in 0..ntf {
-            let k = row + i;
-            if fine.fixed[k] == FREE {
-                fine.x[k] += (1.0 - w) * tmp[a * ntf + i] + w * tmp[b * ntf + i];
-            }
+            x[i] += m[i] * ((1.0 - w) * ta[i] + w * tb[i]);
         }
     }
 }
