@@ -6,6 +6,8 @@ use super::kinds;
 /// Every kind the service runs, in the order `GET /v1/kinds` lists them.
 pub static KINDS: &[&dyn DynKind] = &[
     &Registered::<kinds::hertz::Hertz>::new(),
+    &Registered::<kinds::bearing::BearingKind>::new(),
+    &Registered::<kinds::bearing_optimisation::BearingOptimisation>::new(),
     #[cfg(feature = "test-kinds")]
     &Registered::<kinds::test_sleep::TestSleep>::new(),
 ];

@@ -143,12 +143,13 @@ pub struct Analysis {
     /// `F̄ = F c/(ηωR²L)`: shear force on the journal, Couette shear over the whole circumference
     /// (Raimondi & Boyd) plus the pressure-gradient term.
     pub friction_force: f64,
-    /// Couette shear over the whole circumference alone (seed 002 eq. 9 reading, see the kind docs).
+    /// Couette shear over the whole circumference alone.
     pub couette_force: f64,
-    /// `(R/c) f` from `friction_force` (Raimondi & Boyd definition).
+    /// `(R/c) f` of the journal from `friction_force` (Raimondi & Boyd definition).
     pub friction_variable: Option<f64>,
-    /// `(R/c) f` from `couette_force` (seed 002 eq. 9 reading).
-    pub friction_variable_seed002: Option<f64>,
+    /// `(R/c) f` of the bush: Couette shear minus the pressure-gradient term (seed 002 eq. 9
+    /// with the opposite sign of its `½ε(...)` term).
+    pub friction_variable_bush: Option<f64>,
     /// `Q/(R c N L)`: circumferential inflow across the supply line (periodic film: across the
     /// mid-plane's max-film line).
     pub flow_variable: f64,
@@ -565,7 +566,8 @@ fn load_balance(
         for _ in 0..40 {
             let (e1, b1) = (*eps + t * de, *beta + t * db);
             if e1 > 0.0 && p.feasible(e1, b1) {
-                let t_p = inexact(err);
+                // near convergence the trial is likely the answer: solve it fully at once
+                let t_p = if err < 1e3 * tol { full } else { inexact(err) };
                 let ev1 = p.eval_tol(k, e1, b1, false, t_p)?;
                 exact = t_p <= full;
                 let r1 = load_residual(&ev1, w);
@@ -711,8 +713,8 @@ fn figures(
     couette *= dz;
     press *= dz;
     let friction_force = couette + press;
-    let (friction_variable, friction_variable_seed002, sommerfeld) = if load > 0.0 {
-        (Some(friction_force / (6.0 * load)), Some(couette / (6.0 * load)), Some(1.0 / (6.0 * PI * load)))
+    let (friction_variable, friction_variable_bush, sommerfeld) = if load > 0.0 {
+        (Some(friction_force / (6.0 * load)), Some((couette - press) / (6.0 * load)), Some(1.0 / (6.0 * PI * load)))
     } else {
         (None, None, None)
     };
@@ -775,7 +777,7 @@ fn figures(
         friction_force,
         couette_force: couette,
         friction_variable,
-        friction_variable_seed002,
+        friction_variable_bush,
         flow_variable: flow,
         side_flow_variable: side,
         side_flow_ratio,

@@ -4,6 +4,7 @@
 pub mod film;
 pub mod multigrid;
 pub mod analysis;
+pub mod taguchi;
 
 pub use analysis::{analyse, Analysis, Bearing, Fields, Guess, Operating, Settings, Supply, Workspace};
 pub use film::{Film, Misalignment, Profile};
