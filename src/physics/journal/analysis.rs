@@ -386,7 +386,30 @@ pub fn analyse(
             }
             Operating::Eccentricity(_) => attitude_search(&mut prob, k, eps, &mut beta, cold, tol_load, cap, observer)?,
             Operating::Load(w) => {
-                load_balance(&mut prob, k, w, &mut eps, &mut beta, &mut jac, cold, tol_load, cap, observer)?
+                match load_balance(&mut prob, k, w, &mut eps, &mut beta, &mut jac, cold, tol_load, cap, observer) {
+                    Err(SolveError::NotConverged { .. }) if k == ks => {
+                        // Newton from the starting guess stalled on the coarse grid (misalignment
+                        // can make the force map far from linear): scan the journal positions for
+                        // the best start and try once more.
+                        let (e0, b0) = scan_positions(&mut prob, k, w)?;
+                        eps = e0;
+                        beta = b0;
+                        jac = None;
+                        match load_balance(&mut prob, k, w, &mut eps, &mut beta, &mut jac, false, tol_load, cap, observer) {
+                            Err(SolveError::NotConverged { residual, .. }) => {
+                                return Err(SolveError::physical(
+                                    "no_equilibrium_position",
+                                    format!(
+                                        "no journal position carries this load along the load line (best relative load residual {residual:.3e}); \
+                                         the misalignment's own film force is comparable with the load"
+                                    ),
+                                ));
+                            }
+                            other => other?,
+                        }
+                    }
+                    other => other?,
+                }
             }
         };
         steps_per_grid.push((dims(&prob, k).0, dims(&prob, k).1, steps));
@@ -400,6 +423,13 @@ pub fn analyse(
     let film = bearing.film(eps, beta);
     let out = figures(prob.h, bearing, &film, eps, beta, &ev, conv, steps_per_grid, want_fields)?;
     Ok(out)
+}
+
+fn no_attitude(eps: f64) -> SolveError {
+    SolveError::physical(
+        "no_equilibrium_attitude",
+        format!("with this misalignment no attitude angle puts the film force on the load line at eccentricity ratio {eps}"),
+    )
 }
 
 fn film_closed(settings: &Settings) -> SolveError {
@@ -463,15 +493,18 @@ fn attitude_search(
     if eps == 0.0 {
         return Ok((ev, Convergence { iterations: 0, residual: 0.0, tolerance: tol, termination: Termination::Converged }, 0));
     }
+    let mut scanned = false;
+    let mut slope = 1.0f64;
     while r.abs() > tol {
         observer.check()?;
         if it >= cap {
             return Err(SolveError::NotConverged { solver: "journal attitude search", iterations: it, residual: r.abs(), tolerance: tol, history });
         }
         it += 1;
-        // the force turns with the journal: d(angle)/dβ ≈ 1 (exactly 1 without misalignment
-        // and with a groove that follows the journal)
-        let mut step = -r;
+        // Newton on the force angle with a secant slope: the force turns with the journal,
+        // d(angle)/dβ = 1 exactly without misalignment and with a groove that follows the
+        // journal, otherwise the slope is learnt from the steps taken.
+        let mut step = (-r / slope).clamp(-1.0, 1.0);
         let mut accepted = false;
         for _ in 0..30 {
             let b = *beta + step;
@@ -479,6 +512,10 @@ fn attitude_search(
                 let e2 = p.eval(k, eps, b, false)?;
                 let r2 = resid(&e2);
                 if r2.abs() < r.abs() {
+                    let s_new = (r2 - r) / (b - *beta);
+                    if s_new.is_finite() && s_new.abs() > 1e-3 {
+                        slope = s_new;
+                    }
                     *beta = b;
                     ev = e2;
                     r = r2;
@@ -490,7 +527,48 @@ fn attitude_search(
         }
         history.push(r.abs());
         if !accepted {
-            return Err(SolveError::NotConverged { solver: "journal attitude search", iterations: it, residual: r.abs(), tolerance: tol, history });
+            if scanned {
+                return Err(no_attitude(eps));
+            }
+            // misalignment can make the force angle a non-monotone function of β: scan the
+            // circle for a sign change of the residual and bisect it
+            scanned = true;
+            let n = 72;
+            let mut prev: Option<(f64, f64)> = None;
+            let mut bracket = None;
+            for m in 0..=n {
+                let b = m as f64 * TAU / n as f64;
+                if !p.feasible(eps, b) {
+                    prev = None;
+                    continue;
+                }
+                let e2 = p.eval(k, eps, b, false)?;
+                let r2 = resid(&e2);
+                if let Some((b0, r0)) = prev {
+                    if r0 * r2 <= 0.0 && (r0 - r2).abs() < PI {
+                        bracket = Some((b0, r0, b));
+                        break;
+                    }
+                }
+                prev = Some((b, r2));
+            }
+            let (mut a, ra, mut b) = bracket.ok_or_else(|| no_attitude(eps))?;
+            for _ in 0..60 {
+                let m = 0.5 * (a + b);
+                let e2 = p.eval(k, eps, m, false)?;
+                let rm = resid(&e2);
+                ev = e2;
+                r = rm;
+                *beta = m;
+                if rm.abs() <= tol {
+                    break;
+                }
+                if (rm > 0.0) == (ra > 0.0) { a = m } else { b = m }
+            }
+            history.push(r.abs());
+            if r.abs() > tol {
+                return Err(no_attitude(eps));
+            }
         }
     }
     *beta = wrap_pm(*beta);
@@ -534,6 +612,9 @@ fn load_balance(
         }
         observer.check()?;
         if it >= cap {
+            if r[0] < 0.0 && near_closure(p, *eps, *beta) {
+                return Err(film_closed(p.settings));
+            }
             return Err(SolveError::NotConverged { solver: "journal load balance", iterations: it, residual: err, tolerance: tol, history });
         }
         it += 1;
@@ -608,6 +689,9 @@ fn load_balance(
             // a stale Jacobian: rebuild it once before giving up
             blocked += 1;
             if blocked > 2 {
+                if r[0] < 0.0 && near_closure(p, *eps, *beta) {
+                    return Err(film_closed(p.settings));
+                }
                 return Err(SolveError::NotConverged { solver: "journal load balance", iterations: it, residual: err, tolerance: tol, history });
             }
             *jac = Some(fd_jacobian(p, k, w, *eps, *beta, &r)?);
@@ -616,6 +700,37 @@ fn load_balance(
     }
     *beta = wrap_pm(*beta);
     Ok((ev, Convergence { iterations: it, residual: err, tolerance: tol, termination: Termination::Converged }, it))
+}
+
+/// Evaluate the load residual over a polar grid of mid-plane positions on level `k` and return
+/// the best feasible one.
+fn scan_positions(p: &mut Problem, k: usize, w: f64) -> Result<(f64, f64), SolveError> {
+    let mut best = (f64::INFINITY, 0.5, 0.0);
+    for ie in 1..=19 {
+        let e = ie as f64 * 0.05;
+        for ib in 0..24 {
+            let b = ib as f64 * TAU / 24.0;
+            if !p.feasible(e, b) {
+                continue;
+            }
+            let ev = p.eval(k, e, b, false)?;
+            let err = relative_load_error(&ev, w);
+            if err < best.0 {
+                best = (err, e, b);
+            }
+        }
+    }
+    if best.0.is_infinite() {
+        return Err(film_closed(p.settings));
+    }
+    p.eval(k, best.1, best.2, false)?;
+    Ok((best.1, best.2))
+}
+
+/// The film at the position is within a factor 10 of the closure floor: a load that still
+/// cannot be reached there needs a closed film.
+fn near_closure(p: &Problem, eps: f64, beta: f64) -> bool {
+    p.bearing.film(eps, beta).min_film().0 < 10.0 * p.settings.min_film
 }
 
 /// Forward-difference Jacobian of the load residual in (ε, β); restores the level's pressure.
