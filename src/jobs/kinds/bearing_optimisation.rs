@@ -331,27 +331,26 @@ impl Kind for BearingOptimisation {
         let (op, guess, target) = resolve_load(base, observer)?;
         let mut evaluations = if base.load.aligned_eccentricity_ratio.is_some() { 1 } else { 0 };
         let load = target.unwrap_or(0.0);
-        // the unprofiled base first: its position starts every design
-        let ev0 = Evaluator { op, guess };
-        let (mut baseline, g0) = ev0.design(base, None, None, observer)?;
-        evaluations += 1;
-        let ev = Evaluator { op, guess: Some(g0) };
+        let ev = Evaluator { op, guess };
         observer.progress(0.1, "orthogonal array");
         let array = spec.method.array();
         let rows = array.rows();
         let f = &spec.factors;
         let profile = |r: &[usize; 3]| ProfileSpec { order: f.order[r[0]], height: f.height[r[1]], length_fraction: f.length_fraction[r[2]] };
-        // cases in parallel; each worker keeps a workspace (grids) between its cases
-        let designs: Vec<Design> = rows
+        // the unprofiled base and the runs in parallel; each worker keeps a workspace (grids)
+        // between its cases, and every case starts from the reference position
+        let cases: Vec<Option<ProfileSpec>> = std::iter::once(None).chain(rows.iter().map(|r| Some(profile(r)))).collect();
+        let mut all: Vec<Design> = cases
             .par_iter()
-            .map_init(|| None::<Workspace>, |ws, r| {
+            .map_init(|| None::<Workspace>, |ws, p| {
                 observer.check()?;
-                let p = profile(r);
                 let w = ws.get_or_insert_with(|| Workspace::new(&base.bearing(), &base.settings()));
-                ev.design(base, Some(p), Some(w), observer).map(|d| d.0)
+                ev.design(base, *p, Some(w), observer).map(|d| d.0)
             })
             .collect::<Result<_, _>>()?;
-        evaluations += designs.len();
+        evaluations += all.len();
+        let mut baseline = all.remove(0);
+        let designs = all;
         let crit: Vec<Criteria> = designs.iter().map(criteria).collect();
         let reference = Reference::of(&crit);
         let weights = Weights { film: spec.weights.film, pressure: spec.weights.pressure, friction: spec.weights.friction };

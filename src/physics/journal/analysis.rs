@@ -44,6 +44,12 @@ impl Bearing {
     pub fn alpha(&self) -> f64 {
         1.0 / (4.0 * self.length_to_diameter * self.length_to_diameter)
     }
+    /// The solution turns rigidly with the journal: aligned, unprofiled or profiled (the profile
+    /// is axisymmetric), with the supply following the largest film or no supply line.
+    pub fn rotation_invariant(&self) -> bool {
+        self.misalignment.is_zero() && !matches!(self.supply, Supply::Angle(_))
+    }
+
     fn film(&self, eps: f64, beta: f64) -> Film {
         Film {
             x_mid: eps * beta.cos(),
@@ -184,6 +190,10 @@ impl Workspace {
             alpha: bearing.alpha(),
             dims: (settings.circumferential, settings.axial),
         }
+    }
+    /// Red–black sweeps before and after each coarse-grid correction (default 1).
+    pub fn set_smoothing_sweeps(&mut self, n: usize) {
+        self.hierarchy.sweeps = n.max(1);
     }
     /// V-cycles spent per level (finest first) since the workspace was built.
     pub fn cycles(&self) -> Vec<u32> {
@@ -492,6 +502,15 @@ fn attitude_search(
     let mut history = vec![r.abs()];
     if eps == 0.0 {
         return Ok((ev, Convergence { iterations: 0, residual: 0.0, tolerance: tol, termination: Termination::Converged }, 0));
+    }
+    if p.bearing.rotation_invariant() {
+        // aligned film, supply following the journal or none: turning the journal turns the
+        // pressure field and the force rigidly, so one exact step puts the force on the load line
+        let mag = ev.fv.hypot(ev.fh);
+        *beta = wrap_pm(*beta - r);
+        ev.fv = -mag;
+        ev.fh = 0.0;
+        return Ok((ev, Convergence { iterations: 1, residual: 0.0, tolerance: tol, termination: Termination::Converged }, 1));
     }
     let mut scanned = false;
     let mut slope = 1.0f64;

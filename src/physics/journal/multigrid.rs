@@ -129,6 +129,8 @@ pub struct Level {
     mask: Vec<f64>,
     /// `1/diag` at free nodes, 0 at fixed ones.
     inv_d: Vec<f64>,
+    /// 1 at every node that is not on the boundary (edges, supply line).
+    interior: Vec<f64>,
     // linear multigrid work arrays (correction scheme)
     x: Vec<f64>,
     b: Vec<f64>,
@@ -164,6 +166,7 @@ impl Level {
             fixed: vec![FREE; n],
             mask: vec![0.0; n],
             inv_d: vec![0.0; n],
+            interior: vec![0.0; n],
             x: vec![0.0; n],
             b: vec![0.0; n],
             r: vec![0.0; n],
@@ -175,6 +178,8 @@ impl Level {
             for i in 0..nt {
                 if j == 0 || j + 1 == nz || (groove && i == 0) {
                     l.fixed[j * nt + i] = BOUNDARY;
+                } else {
+                    l.interior[j * nt + i] = 1.0;
                 }
             }
         }
@@ -252,6 +257,7 @@ impl Level {
     }
 
     /// `Σ c_nb v_nb` at node `k` (neighbour sum of the operator).
+    #[cfg(test)]
     #[inline(always)]
     fn nb_sum(&self, v: &[f64], k: usize, kw: usize, ke: usize) -> f64 {
         let nt = self.nt;
@@ -261,25 +267,17 @@ impl Level {
     /// `out = A v − f` at every non-boundary node (the LCP multiplier `λ` when `v` solves the
     /// inactive equations), 0 at boundary nodes.
     fn lambda(&self, v: &[f64], out: &mut [f64]) {
-        let nt = self.nt;
-        for j in 1..self.nz - 1 {
-            let row = j * nt;
-            for i in 0..nt {
-                let k = row + i;
-                if self.fixed[k] == BOUNDARY {
-                    out[k] = 0.0;
-                    continue;
-                }
-                let kw = if i == 0 { row + nt - 1 } else { k - 1 };
-                let ke = if i + 1 == nt { row } else { k + 1 };
-                out[k] = self.diag[k] * v[k] - self.nb_sum(v, k, kw, ke) - self.src[k];
-            }
-        }
+        self.kernel::<{ Self::MINUS_SUB }>(v, out, &self.interior, &self.src);
     }
 
     /// `out = A v` restricted to the free nodes (0 at fixed nodes).
     fn apply_free(&self, v: &[f64], out: &mut [f64]) {
-        self.apply_masked(v, out, false);
+        self.kernel::<{ Self::PLAIN }>(v, out, &self.mask, &self.src);
+    }
+
+    /// `out = f − A v` at the free nodes, 0 at fixed nodes.
+    fn residual_free(&self, v: &[f64], out: &mut [f64]) {
+        self.kernel::<{ Self::SUB_MINUS }>(v, out, &self.mask, &self.src);
     }
 
     /// Red–black Gauss–Seidel on the free nodes for `A x = b`; `reverse` swaps the colour order
@@ -351,57 +349,53 @@ impl Level {
     /// `r = b − A x` at free nodes, 0 at fixed nodes.
     fn residual_into_r(&mut self) {
         let mut r = std::mem::take(&mut self.r);
-        let x = std::mem::take(&mut self.x);
-        self.apply_masked(&x, &mut r, true);
-        self.x = x;
+        self.kernel::<{ Self::SUB_MINUS }>(&self.x, &mut r, &self.mask, &self.b);
         self.r = r;
     }
 
-    /// `out = mask·(b − A v)` when `minus_from_b`, else `out = mask·(A v)`.
-    fn apply_masked(&self, v: &[f64], out: &mut [f64], minus_from_b: bool) {
+    const PLAIN: u8 = 0;
+    const MINUS_SUB: u8 = 1;
+    const SUB_MINUS: u8 = 2;
+
+    /// One pass of the five-point operator: `out = m·(A v)` (`PLAIN`), `m·(A v − s)`
+    /// (`MINUS_SUB`) or `m·(s − A v)` (`SUB_MINUS`); 0 on the edge rows. The interior of each
+    /// row is written on equal-length slices so that the loop vectorises.
+    fn kernel<const MODE: u8>(&self, v: &[f64], out: &mut [f64], mask: &[f64], sub: &[f64]) {
         let nt = self.nt;
         out[..nt].fill(0.0);
         out[(self.nz - 1) * nt..].fill(0.0);
+        #[inline(always)]
+        fn finish<const MODE: u8>(m: f64, a: f64, s: f64) -> f64 {
+            match MODE {
+                0 => m * a,
+                1 => m * (a - s),
+                _ => m * (s - a),
+            }
+        }
         for j in 1..self.nz - 1 {
             let row = j * nt;
             let ce = &self.ce[row..row + nt];
             let cs = &self.cn[row - nt..row];
             let cnn = &self.cn[row..row + nt];
             let d = &self.diag[row..row + nt];
-            let m = &self.mask[row..row + nt];
+            let m = &mask[row..row + nt];
+            let sb = &sub[row..row + nt];
             let vb = &v[row - nt..row];
             let vc = &v[row..row + nt];
             let va = &v[row + nt..row + 2 * nt];
             let o = &mut out[row..row + nt];
-            let b = &self.b[row..row + nt];
-            #[inline(always)]
-            #[allow(clippy::too_many_arguments)]
-            fn f(d: &[f64], ce: &[f64], cnn: &[f64], cs: &[f64], vc: &[f64], va: &[f64], vb: &[f64], i: usize, iw: usize, ie: usize) -> f64 {
-                d[i] * vc[i] - ce[i] * vc[ie] - ce[iw] * vc[iw] - cnn[i] * va[i] - cs[i] * vb[i]
-            }
-            let a0 = f(d, ce, cnn, cs, vc, va, vb, 0, nt - 1, 1);
-            let an = f(d, ce, cnn, cs, vc, va, vb, nt - 1, nt - 2, 0);
-            // interior, written on equal-length slices so that the loop vectorises
+            let a0 = d[0] * vc[0] - ce[0] * vc[1] - ce[nt - 1] * vc[nt - 1] - cnn[0] * va[0] - cs[0] * vb[0];
+            let an = d[nt - 1] * vc[nt - 1] - ce[nt - 1] * vc[0] - ce[nt - 2] * vc[nt - 2] - cnn[nt - 1] * va[nt - 1] - cs[nt - 1] * vb[nt - 1];
+            o[0] = finish::<MODE>(m[0], a0, sb[0]);
+            o[nt - 1] = finish::<MODE>(m[nt - 1], an, sb[nt - 1]);
             let n = nt - 2;
             let (d1, ce0, ce1, cn1, cs1) = (&d[1..n + 1], &ce[0..n], &ce[1..n + 1], &cnn[1..n + 1], &cs[1..n + 1]);
             let (vw, vcc, ve, va1, vb1) = (&vc[0..n], &vc[1..n + 1], &vc[2..n + 2], &va[1..n + 1], &vb[1..n + 1]);
-            let (m1, b1) = (&m[1..n + 1], &b[1..n + 1]);
+            let (m1, s1) = (&m[1..n + 1], &sb[1..n + 1]);
             let o1 = &mut o[1..n + 1];
-            if minus_from_b {
-                o[0] = m[0] * (b[0] - a0);
-                o[nt - 1] = m[nt - 1] * (b[nt - 1] - an);
-                let o1 = &mut o[1..n + 1];
-                for i in 0..n {
-                    let a = d1[i] * vcc[i] - ce1[i] * ve[i] - ce0[i] * vw[i] - cn1[i] * va1[i] - cs1[i] * vb1[i];
-                    o1[i] = m1[i] * (b1[i] - a);
-                }
-            } else {
-                for i in 0..n {
-                    let a = d1[i] * vcc[i] - ce1[i] * ve[i] - ce0[i] * vw[i] - cn1[i] * va1[i] - cs1[i] * vb1[i];
-                    o1[i] = m1[i] * a;
-                }
-                o[0] = m[0] * a0;
-                o[nt - 1] = m[nt - 1] * an;
+            for i in 0..n {
+                let a = d1[i] * vcc[i] - ce1[i] * ve[i] - ce0[i] * vw[i] - cn1[i] * va1[i] - cs1[i] * vb1[i];
+                o1[i] = finish::<MODE>(m1[i], a, s1[i]);
             }
         }
     }
@@ -474,7 +468,7 @@ impl Hierarchy {
             levels.push(Level::new(nt_c, nz_c, groove));
         }
         let n = levels.len();
-        Hierarchy { levels, alpha, sweeps: 1, cycle_count: vec![0; n], step_count: vec![0; n], scratch: Default::default() }
+        Hierarchy { levels, alpha, sweeps: 2, cycle_count: vec![0; n], step_count: vec![0; n], scratch: Default::default() }
     }
 
     /// Rebuild the coefficients of every level for `film`, node 0 at angle `theta0`.
@@ -584,60 +578,55 @@ impl Hierarchy {
         let n = self.levels[k].u.len();
         let [mut r, mut p, mut q, mut z, lam] = std::mem::take(&mut self.scratch);
         for v in [&mut r, &mut p, &mut q, &mut z] {
-            v.clear();
-            v.resize(n, 0.0);
+            if v.len() < n {
+                v.resize(n, 0.0);
+            }
         }
-        let out = self.pcg_inner(k, tol, max_iter, &mut r, &mut p, &mut q, &mut z);
+        let out = self.pcg_inner(k, tol, max_iter, &mut r[..n], &mut p[..n], &mut q[..n], &mut z[..n]);
         self.scratch = [r, p, q, z, lam];
         out
     }
 
     #[allow(clippy::too_many_arguments)]
     fn pcg_inner(&mut self, k: usize, tol: f64, max_iter: u32, r: &mut [f64], p: &mut [f64], q: &mut [f64], z: &mut [f64]) -> (u32, bool) {
-        let n = r.len();
         let l = &self.levels[k];
         // r = f − A u on free nodes
-        l.apply_free(&l.u, q);
-        let mut fnorm = 0.0;
-        for i in 0..n {
-            if l.fixed[i] == FREE {
-                r[i] = l.src[i] - q[i];
-                fnorm += l.src[i] * l.src[i];
-            }
-        }
-        let fnorm = fnorm.sqrt().max(1e-300);
-        let mut rnorm = r.iter().map(|v| v * v).sum::<f64>().sqrt();
+        l.residual_free(&l.u, r);
+        let fnorm = l.src.iter().zip(&l.mask).map(|(f, m)| m * f * f).sum::<f64>().sqrt().max(1e-300);
+        let mut rnorm = dot(r, r).sqrt();
         if rnorm <= tol * fnorm {
             return (0, true);
         }
         self.precondition(k, r, z);
         p.copy_from_slice(z);
-        let mut rz: f64 = r.iter().zip(z.iter()).map(|(a, b)| a * b).sum();
+        let mut rz = dot(r, z);
         let mut it = 0;
         while it < max_iter {
             it += 1;
             let l = &self.levels[k];
             l.apply_free(p, q);
-            let pq: f64 = p.iter().zip(q.iter()).map(|(a, b)| a * b).sum();
+            let pq = dot(p, q);
             if pq <= 0.0 {
                 break;
             }
             let a = rz / pq;
             let l = &mut self.levels[k];
-            for i in 0..n {
-                l.u[i] += a * p[i];
-                r[i] -= a * q[i];
+            let mut rr = 0.0;
+            for (((u, r), p), q) in l.u.iter_mut().zip(r.iter_mut()).zip(p.iter()).zip(q.iter()) {
+                *u += a * p;
+                *r -= a * q;
+                rr += *r * *r;
             }
-            rnorm = r.iter().map(|v| v * v).sum::<f64>().sqrt();
+            rnorm = rr.sqrt();
             if rnorm <= tol * fnorm {
                 return (it, true);
             }
             self.precondition(k, r, z);
-            let rz_new: f64 = r.iter().zip(z.iter()).map(|(a, b)| a * b).sum();
+            let rz_new = dot(r, z);
             let beta = rz_new / rz;
             rz = rz_new;
-            for i in 0..n {
-                p[i] = z[i] + beta * p[i];
+            for (p, z) in p.iter_mut().zip(z.iter()) {
+                *p = z + beta * *p;
             }
         }
         (it, rnorm <= tol * fnorm)
@@ -751,6 +740,10 @@ impl Hierarchy {
             }
         }
     }
+}
+
+fn dot(a: &[f64], b: &[f64]) -> f64 {
+    a.iter().zip(b).map(|(x, y)| x * y).sum()
 }
 
 /// `coarse.b = Pᵀ fine.r` (full weighting for nested grids), zero at coarse fixed nodes.
