@@ -164,9 +164,12 @@ fn petroff_as_eccentricity_vanishes() {
 fn seed_002_table_2_aligned() {
     // ε = 0.6, L/D = 1.25, the paper's 361 × 181 grid: P0 = 0.6444, H0 = 0.4.
     let a = at_eps(1.25, 0.6, &grid(361, 181));
-    eprintln!("aligned: P0 {} H0 {} (R/c)f {:?} bush {:?} S {:?} att {}", a.max_pressure, a.min_film, a.friction_variable, a.friction_variable_bush, a.sommerfeld, a.attitude.to_degrees());
+    eprintln!("aligned: P0 {} H0 {} (R/c)f {:?} seed002 {:?} S {:?} att {}", a.max_pressure, a.min_film, a.friction_variable, a.friction_variable_seed002, a.sommerfeld, a.attitude.to_degrees());
     assert!((a.max_pressure / 0.6444 - 1.0).abs() < 0.002, "P0 {}", a.max_pressure);
     assert!((a.min_film - 0.4).abs() < 1e-12);
+    // f = 2.2178 with the striated-cavity reading of eq. (9)
+    let f = a.friction_variable_seed002.unwrap();
+    assert!((f / 2.2178 - 1.0).abs() < 0.006, "f {f}");
 }
 
 /// Richardson extrapolation of three values on grids refined by 2: (order, extrapolated value).

@@ -12,9 +12,10 @@
 //!   Sommerfeld number `S = (R/c)² μN/P_avg = 1/(6πW̄)` with `P_avg = w/(LD)`.
 //! - Friction: `friction_variable` is Raimondi & Boyd's `(R/c) f` of the journal: Couette shear
 //!   over the whole circumference (the clearance taken as full of oil) plus the pressure-gradient
-//!   term. Seed 002 eq. (9) (Lund & Thomsen) is the same quantity when its `½ε(F_X sinβ − F_Y cosβ)`
-//!   term is taken with the journal's sign; with the opposite sign it is the friction on the bush,
-//!   reported as `friction_variable_bush`.
+//!   term — it reproduces their tables. `friction_variable_seed002` reads seed 002 eq. (9)
+//!   (Lund & Thomsen's power loss) with the cavitated zone filled by streamers: there only the
+//!   fraction `h_c/h` of the gap is sheared, `h_c` being the film at the rupture line; it
+//!   reproduces the paper's aligned f = 2.2178 (Table 2) within 0.4 %.
 
 use crate::jobs::kind::{Kind, Limits, OutputInfo, Validation};
 use crate::physics::journal::{self, Analysis, Bearing, Guess, Misalignment, Operating, Profile, Settings, Supply, Workspace};
@@ -317,9 +318,10 @@ pub struct BearingResult {
     /// (R/c) f of the journal (Raimondi & Boyd; = seed 002 eq. 9 with the journal's sign).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub friction_variable: Option<f64>,
-    /// (R/c) f of the bush (seed 002 eq. 9 with the opposite sign of its pressure term).
+    /// (R/c) f as seed 002 eq. (9) is read here: streamers in the cavitated zone shear only the
+    /// fraction h_c/h of the gap (h_c: film at the rupture line), plus the pressure term.
     #[serde(skip_serializing_if = "Option::is_none")]
-    pub friction_variable_bush: Option<f64>,
+    pub friction_variable_seed002: Option<f64>,
     /// Friction coefficient f of the journal (with dimensions).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub friction_coefficient: Option<f64>,
@@ -621,7 +623,7 @@ pub fn to_result(spec: &BearingSpec, a: &Analysis, target: Option<f64>) -> Beari
         min_film_location: Location { angle_deg: a.min_film_theta.to_degrees(), z: a.min_film_z },
         min_film: d.map(|d| a.min_film * d.clearance),
         friction_variable: a.friction_variable,
-        friction_variable_bush: a.friction_variable_bush,
+        friction_variable_seed002: a.friction_variable_seed002,
         friction_coefficient: d.and_then(|d| a.friction_variable.map(|f| f * d.clearance / d.radius)),
         flow_variable: a.flow_variable,
         side_flow_variable: a.side_flow_variable,

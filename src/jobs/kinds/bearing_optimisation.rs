@@ -6,8 +6,8 @@
 //! best value among the array's runs and oriented so that 1 is best — `H0/H0_best`,
 //! `P0_best/P0`, `f_best/f` — and weighted (default 0.5 film, 0.25 pressure, 0.25 friction).
 //! The continuous search keeps the array's normalisation, so its scores compare directly (a score
-//! above 1 beats the best run in every weighted criterion). Friction is Raimondi & Boyd's
-//! `(R/c) f` of the journal. S/N ratios are larger-the-better, `20 log10(score)`, dB; the best
+//! above 1 beats the best run in every weighted criterion). Friction is seed 002's eq. (9) as
+//! read by the `bearing` kind (`friction: seed002`, default) or Raimondi & Boyd's journal friction. S/N ratios are larger-the-better, `20 log10(score)`, dB; the best
 //! level of each factor is the one with the largest mean S/N.
 
 use super::bearing::{resolve_load, solve_spec, validate_bearing, BearingSpec, ProfileSpec};
@@ -78,6 +78,18 @@ impl Default for WeightsSpec {
     }
 }
 
+/// Which friction figure the score uses.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize, ToSchema)]
+#[serde(rename_all = "snake_case")]
+pub enum FrictionDefinition {
+    /// Seed 002 eq. (9) as read by the `bearing` kind (`friction_variable_seed002`: streamers in
+    /// the cavitated zone). Default, as in the paper's Table 3.
+    #[default]
+    Seed002,
+    /// Raimondi & Boyd's journal friction (`friction_variable`).
+    RaimondiBoyd,
+}
+
 /// The continuous search after the array.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, ToSchema)]
 #[serde(deny_unknown_fields, default)]
@@ -114,6 +126,9 @@ pub struct OptimisationSpec {
     pub factors: Factors,
     #[serde(default)]
     pub weights: WeightsSpec,
+    /// Friction figure of the score. Default `seed002`.
+    #[serde(default)]
+    pub friction: FrictionDefinition,
     #[serde(default)]
     pub continuous: ContinuousSpec,
 }
@@ -130,7 +145,7 @@ pub struct Design {
     pub max_pressure_dimensionless: f64,
     /// H0
     pub min_film_dimensionless: f64,
-    /// (R/c) f
+    /// (R/c) f of the spec's `friction` definition.
     pub friction_variable: f64,
     /// Weighted score, eq. (19), on the array's normalisation.
     pub score: f64,
@@ -234,6 +249,7 @@ fn planned_evaluations(spec: &OptimisationSpec) -> usize {
 
 /// Analyse one profile on the base (the load is already resolved).
 struct Evaluator {
+    friction: FrictionDefinition,
     op: Operating,
     guess: Option<Guess>,
 }
@@ -243,7 +259,11 @@ impl Evaluator {
         let mut s = spec.clone();
         s.profile = p;
         let (a, r) = solve_spec(&s, (self.op, self.guess, None), ws, observer)?;
-        let f = r.friction_variable.ok_or_else(|| SolveError::physical("no_load", "the design carries no load"))?;
+        let f = match self.friction {
+            FrictionDefinition::Seed002 => r.friction_variable_seed002,
+            FrictionDefinition::RaimondiBoyd => r.friction_variable,
+        }
+        .ok_or_else(|| SolveError::physical("no_load", "the design carries no load"))?;
         Ok((
             Design {
                 order: p.map_or(0, |p| p.order),
@@ -331,7 +351,7 @@ impl Kind for BearingOptimisation {
         let (op, guess, target) = resolve_load(base, observer)?;
         let mut evaluations = if base.load.aligned_eccentricity_ratio.is_some() { 1 } else { 0 };
         let load = target.unwrap_or(0.0);
-        let ev = Evaluator { op, guess };
+        let ev = Evaluator { friction: spec.friction, op, guess };
         observer.progress(0.1, "orthogonal array");
         let array = spec.method.array();
         let rows = array.rows();

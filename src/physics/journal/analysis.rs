@@ -153,9 +153,13 @@ pub struct Analysis {
     pub couette_force: f64,
     /// `(R/c) f` of the journal from `friction_force` (Raimondi & Boyd definition).
     pub friction_variable: Option<f64>,
-    /// `(R/c) f` of the bush: Couette shear minus the pressure-gradient term (seed 002 eq. 9
-    /// with the opposite sign of its `½ε(...)` term).
-    pub friction_variable_bush: Option<f64>,
+    /// `(R/c) f` as seed 002 eq. (9) is read here (Lund & Thomsen's power loss): in the
+    /// cavitated zone the oil forms streamers that carry the rupture line's Couette flow, so only
+    /// the fraction `H_c/H` of the gap is sheared (`H_c`: film at the rupture line of each
+    /// cross-section); plus the pressure-gradient term of the journal.
+    pub friction_variable_seed002: Option<f64>,
+    /// Couette shear of that reading (the `1/H` integral with the film fraction), `F̄` units.
+    pub striated_couette_force: f64,
     /// `Q/(R c N L)`: circumferential inflow across the supply line (periodic film: across the
     /// mid-plane's max-film line).
     pub flow_variable: f64,
@@ -847,8 +851,9 @@ fn figures(
     couette *= dz;
     press *= dz;
     let friction_force = couette + press;
-    let (friction_variable, friction_variable_bush, sommerfeld) = if load > 0.0 {
-        (Some(friction_force / (6.0 * load)), Some((couette - press) / (6.0 * load)), Some(1.0 / (6.0 * PI * load)))
+    let striated = striated_couette(l, film);
+    let (friction_variable, friction_variable_seed002, sommerfeld) = if load > 0.0 {
+        (Some(friction_force / (6.0 * load)), Some((striated + press) / (6.0 * load)), Some(1.0 / (6.0 * PI * load)))
     } else {
         (None, None, None)
     };
@@ -911,7 +916,8 @@ fn figures(
         friction_force,
         couette_force: couette,
         friction_variable,
-        friction_variable_bush,
+        friction_variable_seed002,
+        striated_couette_force: striated,
         flow_variable: flow,
         side_flow_variable: side,
         side_flow_ratio,
@@ -931,6 +937,45 @@ fn figures(
         ensure_finite("pressure field", f.pressure.iter())?;
     }
     Ok(out)
+}
+
+/// Couette shear `∫∫ φ/H dθ dZ` with the film fraction `φ = 1` where the film is pressurised
+/// and `φ = H_c/H` in the cavitated zone of each cross-section, `H_c` being the film at the
+/// rupture line (located between nodes from `√P`, which is linear in θ there because the
+/// Reynolds condition makes `P` and `∂P/∂θ` vanish together). A cross-section without a
+/// rupture line (the edges, or pressure up to the supply line) counts as full.
+fn striated_couette(l: &super::multigrid::Level, film: &Film) -> f64 {
+    let (nt, nz, dt, dz) = (l.nt, l.nz, l.dt, l.dz);
+    let u = &l.u;
+    let mut total = 0.0;
+    for j in 0..nz {
+        let wz = if j == 0 || j + 1 == nz { 0.5 } else { 1.0 };
+        let row = &u[j * nt..(j + 1) * nt];
+        let h = &l.h[j * nt..(j + 1) * nt];
+        // rupture: a pressurised node followed by a cavitated one (not the supply node 0)
+        let mut hc = None;
+        for i in 0..nt {
+            let i1 = (i + 1) % nt;
+            if i1 != 0 && row[i] > 0.0 && row[i1] <= 0.0 {
+                let iw = (i + nt - 1) % nt;
+                let (s1, s2) = (row[iw].max(0.0).sqrt(), row[i].sqrt());
+                let t = if s1 > s2 { (s2 / (s1 - s2)).min(1.0) } else { 1.0 };
+                let theta_c = l.theta(i) + t * dt;
+                let z = j as f64 * dz;
+                hc = Some(film.h(theta_c, z));
+            }
+        }
+        let mut s = 0.0;
+        for i in 0..nt {
+            let phi = match hc {
+                Some(c) if row[i] <= 0.0 => (c / h[i]).min(1.0),
+                _ => 1.0,
+            };
+            s += phi / h[i];
+        }
+        total += wz * s * dt;
+    }
+    total * dz
 }
 
 fn validate(bearing: &Bearing, operating: &Operating, s: &Settings) -> Result<(), SolveError> {
