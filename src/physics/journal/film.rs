@@ -15,9 +15,17 @@ use serde::{Deserialize, Serialize};
 /// Shaft misalignment (seed 002 eq. 10–11), dimensionless deviations `Δ = δ/c` at the bearing
 /// edges. The journal axis is straight and tilted about the mid-plane: the journal centre at the
 /// edge `Z = 0` is displaced from the mid-plane centre by `(−vertical, +horizontal)` and at
-/// `Z = 1` by `(+vertical, −horizontal)`, linearly in between (`(1 − 2Z)` law of eq. 10). With
-/// this reading eq. (11) reads `X(Z) = X_m − Δv0 (1 − 2Z)`, `Y(Z) = Y_m + Δh0 (1 − 2Z)`, which
-/// reproduces seed 002 Table 2 (see `tests/journal_validation.rs`).
+/// `Z = 1` by `(+vertical, −horizontal)`, linearly in between (`(1 − 2Z)` law of eq. 10):
+/// eq. (11) read literally with its side signs, `X(Z) = X_m − Δv0 (1 − 2Z)`,
+/// `Y(Z) = Y_m + Δh0 (1 − 2Z)`.
+///
+/// Why this reading: of the straight-tilt readings (each sign of each component, any tilt
+/// direction) it is the only one that keeps the film open at Δv0 = Δh0 = 0.56 under the aligned
+/// ε = 0.6 load of seed 002, and with it the paper's L9 array picks the paper's best levels
+/// (n = 2, ξ = 0.4, ψ = 0.2). It does not reproduce the paper's misaligned Table 2 values
+/// (here P0 = 1.396, H0 = 0.0403 against 0.8735, 0.0820); no reading tried did (a scan of tilt
+/// directions and magnitudes, a bent-shaft |1 − 2Z| reading, a balance of the load magnitude
+/// only), see the note in BENCHMARKS.md.
 #[derive(Debug, Clone, Copy, PartialEq, Default, Serialize, Deserialize)]
 pub struct Misalignment {
     /// `Δv0`: deviation along the load line at the edges, per unit radial clearance.
