@@ -231,6 +231,8 @@ struct Problem<'a> {
     bearing: &'a Bearing,
     settings: &'a Settings,
     h: &'a mut Hierarchy,
+    /// Coarse grids serve only as starting guesses (no load balance): solve them loosely.
+    coarse_loose: bool,
 }
 
 impl Problem<'_> {
@@ -238,8 +240,16 @@ impl Problem<'_> {
         eps >= 0.0 && self.bearing.film(eps, beta).min_film().0 > self.settings.min_film
     }
 
+    /// Pressure tolerance on level `k`: the requested one on the finest grid; coarser grids only
+    /// start the next grid (and, in a load balance, steer it), so they stop earlier.
     fn tol_at(&self, k: usize) -> f64 {
-        if k == 0 { self.settings.pressure_tolerance } else { self.settings.pressure_tolerance.max(1e-8) }
+        if k == 0 {
+            self.settings.pressure_tolerance
+        } else if self.coarse_loose {
+            self.settings.pressure_tolerance.max(1e-5)
+        } else {
+            self.settings.pressure_tolerance.max(1e-7)
+        }
     }
 
     /// Pressure solve on level `k` at the position, warm-started from the level's current pressure.
@@ -327,7 +337,8 @@ pub fn analyse(
         }
     }
     let ks = ks.min(nlev - 1);
-    let mut prob = Problem { bearing, settings, h: &mut ws.hierarchy };
+    let coarse_loose = !matches!(operating, Operating::Load(_)) && bearing.rotation_invariant();
+    let mut prob = Problem { bearing, settings, h: &mut ws.hierarchy, coarse_loose };
     let mut steps_per_grid = Vec::new();
 
     // unknowns and starting point
