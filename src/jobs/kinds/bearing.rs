@@ -155,7 +155,7 @@ pub enum SupplySpec {
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, ToSchema)]
 #[serde(deny_unknown_fields, default)]
 pub struct SolverSpec {
-    /// Relative residual of the pressure solves (1e-12 to 1e-4). Default 1e-8.
+    /// Relative residual of the pressure solves (1e-12 to 1e-4). Default 1e-7.
     pub pressure_tolerance: f64,
     /// Relative load residual `‖F + W‖/W` of the load balance (1e-10 to 1e-2). Default 1e-6.
     pub load_tolerance: f64,

@@ -104,7 +104,7 @@ impl Default for Settings {
         Settings {
             circumferential: 181,
             axial: 91,
-            pressure_tolerance: 1e-8,
+            pressure_tolerance: 1e-7,
             load_tolerance: 1e-6,
             max_load_iterations: 40,
             max_cycles: 400,
