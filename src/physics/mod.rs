@@ -6,6 +6,7 @@
 
 pub mod contact;
 pub mod ehl;
+pub mod journal;
 pub mod lubricant;
 pub mod solver;
 

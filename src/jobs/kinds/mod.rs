@@ -1,5 +1,7 @@
 //! One module per job kind: its spec, its output, validation and the call into `physics`.
 
+pub mod bearing;
+pub mod bearing_optimisation;
 pub mod ehl_point;
 pub mod hertz;
 pub mod sweep;
