@@ -4,6 +4,7 @@
 //! progress and cancellation, and fails with a typed [`SolveError`]. Nothing non-finite leaves a
 //! solver: results pass through [`ensure_finite`] (or an equivalent check) before they are returned.
 
+pub mod cam;
 pub mod contact;
 pub mod lubricant;
 pub mod solver;
