@@ -6,8 +6,12 @@
 
 pub mod cam;
 pub mod contact;
+pub mod film;
+pub mod friction;
 pub mod lubricant;
+pub mod roller;
 pub mod solver;
+pub mod thermal;
 
 pub use solver::{
     ensure_finite, Convergence, Interrupt, Observer, Silent, SolveError, Termination,
