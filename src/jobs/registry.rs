@@ -6,6 +6,7 @@ use super::kinds;
 /// Every kind the service runs, in the order `GET /v1/kinds` lists them.
 pub static KINDS: &[&dyn DynKind] = &[
     &Registered::<kinds::hertz::Hertz>::new(),
+    &Registered::<kinds::cam_cycle::CamCycle>::new(),
     #[cfg(feature = "test-kinds")]
     &Registered::<kinds::test_sleep::TestSleep>::new(),
 ];

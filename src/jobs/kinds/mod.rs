@@ -1,5 +1,7 @@
 //! One module per job kind: its spec, its output, validation and the call into `physics`.
 
+pub mod cam_common;
+pub mod cam_cycle;
 pub mod hertz;
 #[cfg(feature = "test-kinds")]
 pub mod test_sleep;
