@@ -658,7 +658,8 @@ fn deg(x: f64) -> f64 {
 }
 
 impl CamCycleSpec {
-    fn needs(&self) -> Needs {
+    /// What the spec's `outputs` ask the cycle to compute (dependencies included).
+    pub fn needs(&self) -> Needs {
         let has = |o| self.outputs.contains(&o);
         Needs {
             loads: has(CamOutput::Loads),
@@ -719,7 +720,8 @@ impl CamCycleSpec {
         })
     }
 
-    fn cycle_spec(&self) -> Result<CycleSpec, SolveError> {
+    /// The physics description of this spec.
+    pub fn cycle_spec(&self) -> Result<CycleSpec, SolveError> {
         let profile = self.profile()?;
         let (follower_elastic, follower_rq) = self.follower_elastic();
         let cam_elastic = Elastic { youngs_modulus: self.cam.youngs_modulus, poisson_ratio: self.cam.poisson_ratio };
