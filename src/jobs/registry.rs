@@ -7,6 +7,7 @@ use super::kinds;
 pub static KINDS: &[&dyn DynKind] = &[
     &Registered::<kinds::hertz::Hertz>::new(),
     &Registered::<kinds::cam_cycle::CamCycle>::new(),
+    &Registered::<kinds::cam_point::CamPoint>::new(),
     #[cfg(feature = "test-kinds")]
     &Registered::<kinds::test_sleep::TestSleep>::new(),
 ];

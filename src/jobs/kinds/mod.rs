@@ -2,6 +2,7 @@
 
 pub mod cam_common;
 pub mod cam_cycle;
+pub mod cam_point;
 pub mod hertz;
 #[cfg(feature = "test-kinds")]
 pub mod test_sleep;

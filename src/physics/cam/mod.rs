@@ -10,6 +10,7 @@ pub mod kinematics;
 pub mod lift;
 pub mod loads;
 pub mod profile;
+pub mod seed004;
 pub mod spline;
 
 pub use jet::Jet;

@@ -17,9 +17,11 @@
 
 pub mod crown;
 pub mod pin;
+pub mod point;
 
 pub use crown::{Crown, CrownedContact};
 pub use pin::{pin_torque, pin_torque_warm, PinFriction};
+pub use point::{PointBalance, PointCase};
 
 use crate::physics::film::{ContactInput, FilmModel, FilmSolution, Traction};
 use crate::physics::SolveError;
