@@ -826,23 +826,27 @@ fn extreme(v: &[f64], better: impl Fn(f64, f64) -> bool) -> (usize, f64) {
     best
 }
 
-/// Time-average of `v` over the revolution: trapezoid in time, periodic for steady running.
+/// Time-average of `v` over the revolution: trapezoid in time with the wrap for steady running;
+/// for a startup, the value at the end of each step over that step (what the implicit step
+/// computes), so that the instant of rest at t = 0 carries no weight.
 fn time_mean(v: &[f64], time: &[f64], duration: f64, periodic: bool) -> f64 {
     let n = v.len();
     if n == 1 {
         return v[0];
     }
     let mut integral = 0.0;
-    for i in 0..n - 1 {
-        integral += 0.5 * (v[i] + v[i + 1]) * (time[i + 1] - time[i]);
-    }
-    let span = if periodic {
+    if periodic {
+        for i in 0..n - 1 {
+            integral += 0.5 * (v[i] + v[i + 1]) * (time[i + 1] - time[i]);
+        }
         integral += 0.5 * (v[n - 1] + v[0]) * (duration - time[n - 1]);
-        duration
+        integral / duration
     } else {
-        time[n - 1] - time[0]
-    };
-    integral / span
+        for i in 1..n {
+            integral += v[i] * (time[i] - time[i - 1]);
+        }
+        integral / (time[n - 1] - time[0])
+    }
 }
 
 fn solve_spec(spec: &CamCycleSpec, observer: &dyn Observer) -> Result<CamCycleResult, SolveError> {
