@@ -68,6 +68,8 @@ fn main() {
         // For `perf record`: the steady roller cycle only.
         let s = with(&roller, |s| s["angles"] = 3600.into());
         println!("profile: {:.3} ms", physics_ms(&s, 30));
+        println!("convergence: {}", job(&s, 1).1["convergence"]);
+
         return;
     }
     let all = ["kinematics", "loads", "contact", "film", "friction", "slip", "temperature"];
