@@ -435,3 +435,28 @@ fn examples_validate_and_run() {
         run(kind, &k.example()).unwrap();
     }
 }
+
+#[test]
+fn kinds_publish_their_schemas_and_tables() {
+    for (kind, table) in [("cam_cycle", "series"), ("cam_point", "rows")] {
+        let k = registry::find(kind).unwrap();
+        let mut schemas = Vec::new();
+        k.schemas(&mut schemas);
+        assert!(schemas.len() > 5, "{kind}");
+        assert_eq!(k.tables(), &[table]);
+        let out = run(kind, &k.example()).unwrap();
+        let t = &out[table];
+        match t {
+            // Columnar: equal-length arrays of numbers.
+            Value::Object(cols) => {
+                let n = cols["angle_deg"].as_array().unwrap().len();
+                for (name, c) in cols {
+                    assert_eq!(c.as_array().unwrap().len(), n, "{name}");
+                }
+            }
+            // Rows: flat objects.
+            Value::Array(rows) => assert!(rows.iter().all(|r| r.as_object().unwrap().values().all(|v| v.is_number()))),
+            _ => panic!("{kind}: table {table} has the wrong shape"),
+        }
+    }
+}
