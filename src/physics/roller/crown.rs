@@ -13,7 +13,7 @@
 //! slice load is `w'(y) = (δ − g(y))⁺/c`; the total load fixes δ through
 //! `G(δ) = ∫ (δ − g)⁺ dy = c F`, which is closed-form for this profile and inverted by Newton
 //! (`G'(δ)` is the loaded length). `c` depends on the peak slice load through `b`, so the solve
-//! is repeated with the updated `c` (three passes reach 1e-9).
+//! is repeated with the updated `c` (three passes: the load then integrates back within 1e-3).
 
 /// Crowned roller profile, m.
 #[derive(Debug, Clone, Copy, PartialEq)]

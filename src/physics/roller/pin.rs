@@ -72,9 +72,8 @@ fn eccentricity_q(s: f64, q_start: f64) -> (f64, f64) {
         return (0.0, 0.0);
     }
     let pi2 = std::f64::consts::PI * std::f64::consts::PI;
-    // Newton on q = −ln(1 − ε) (resolves ε → 1) for ln f(ε(q)) = ln s, safeguarded by
-    // bisection on [0, 40]; d ln f/dq = (1 − ε)(1/ε + (16 − π²)ε/A + 4ε/(1 − ε²)).
-    let target = s.ln();
+    // Newton on q = −ln(1 − ε) (resolves ε → 1) for f(ε(q)) = s, safeguarded by bisection on
+    // [0, 40]; d ln f/dq = (1 − ε)(1/ε + (16 − π²)ε/A + 4ε/(1 − ε²)).
     let (mut lo, mut hi) = (0.0_f64, 40.0_f64);
     // Start from the asymptotes: f ≈ πε (light load), f ≈ 4/(1 − ε²)² (heavy load).
     let mut q = if q_start.is_finite() && q_start > 0.0 {
@@ -86,13 +85,16 @@ fn eccentricity_q(s: f64, q_start: f64) -> (f64, f64) {
         let e2 = e * e;
         let a = pi2 + (16.0 - pi2) * e2;
         let one_m = 1.0 - e2;
-        let g = (e * a.sqrt() / (one_m * one_m)).ln() - target;
-        if g.abs() < 1e-13 {
+        // Newton on f − s (no logarithm per step): d(f − s)/dq = f · d ln f/dq.
+        let f = e * a.sqrt() / (one_m * one_m);
+        let g = f - s;
+        if g.abs() < 1e-13 * s {
             break;
         }
         if g < 0.0 { lo = q } else { hi = q }
-        let dg = (1.0 - e) * (1.0 / e + (16.0 - pi2) * e / a + 4.0 * e / one_m);
-        let next = q - g / dg;
+        let dg = f * (1.0 - e) * (1.0 / e + (16.0 - pi2) * e / a + 4.0 * e / one_m);
+        // Far from the root the logarithmic step is the robust one.
+        let next = if (g / s).abs() > 0.5 { q - (f / s).ln() / (dg / f) } else { q - g / dg };
         let next = if next > lo && next < hi && dg > 0.0 { next } else { 0.5 * (lo + hi) };
         let done = (next - q).abs() < 1e-11 * q.max(1e-9) || hi - lo < 1e-14;
         q = next;
