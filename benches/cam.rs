@@ -3,7 +3,8 @@
 //!
 //! "physics" times `physics::cam::cycle::run_cycle` alone; "job" times the whole job as the
 //! service runs it (spec preparation excluded; solve, result serialisation to JSON and the
-//! finite-number check included).
+//! finite-number check included). `CAM_BENCH_PROFILE=1` runs only the steady roller cycle (for
+//! `perf record` on the bench binary).
 
 use serde_json::Value;
 use std::time::Instant;

@@ -464,3 +464,13 @@ fn kinds_publish_their_schemas_and_tables() {
         }
     }
 }
+
+#[test]
+fn contact_running_off_a_small_flat_face_is_refused() {
+    // Peak contact offset of the seed 003 cam is s'_max = 2h/β = 10.2 mm.
+    let spec = with(&example("seed003_cycloidal_flat"), |s| s["follower"]["face_radius"] = json!(0.008));
+    match run("cam_cycle", &spec) {
+        Err(Failure::Solve(SolveError::Physical { code, .. })) => assert_eq!(code, "contact_off_face"),
+        other => panic!("{other:?}"),
+    }
+}
