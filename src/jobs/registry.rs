@@ -8,6 +8,8 @@ pub static KINDS: &[&dyn DynKind] = &[
     &Registered::<kinds::hertz::Hertz>::new(),
     &Registered::<kinds::bearing::BearingKind>::new(),
     &Registered::<kinds::bearing_optimisation::BearingOptimisation>::new(),
+    &Registered::<kinds::cam_cycle::CamCycle>::new(),
+    &Registered::<kinds::cam_point::CamPoint>::new(),
     &Registered::<kinds::ehl_point::EhlPoint>::new(),
     &Registered::<kinds::sweep::Sweep>::new(),
 ];

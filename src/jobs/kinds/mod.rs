@@ -2,6 +2,9 @@
 
 pub mod bearing;
 pub mod bearing_optimisation;
+pub mod cam_common;
+pub mod cam_cycle;
+pub mod cam_point;
 pub mod ehl_point;
 pub mod hertz;
 pub mod sweep;

@@ -1,0 +1,140 @@
+//! Cam-cycle benchmarks: run time against angle resolution against error.
+//! `cargo bench --bench cam` (release). Plain `Instant` timing, best of N repetitions.
+//!
+//! "physics" times `physics::cam::cycle::run_cycle` alone; "job" times the whole job as the
+//! service runs it (spec preparation excluded; solve, result serialisation to JSON and the
+//! finite-number check included). `CAM_BENCH_PROFILE=1` runs only the steady roller cycle (for
+//! `perf record` on the bench binary).
+
+use serde_json::Value;
+use std::time::Instant;
+use tribod::jobs::kinds::cam_cycle::CamCycleSpec;
+use tribod::jobs::{registry, Limits};
+use tribod::physics::cam::cycle::run_cycle;
+use tribod::physics::Silent;
+
+fn load(path: &str) -> Value {
+    let text = std::fs::read_to_string(path).unwrap_or_else(|e| panic!("{path}: {e}"));
+    serde_json::from_str::<Value>(&text).unwrap()["spec"].clone()
+}
+
+fn with(spec: &Value, f: impl Fn(&mut Value)) -> Value {
+    let mut s = spec.clone();
+    f(&mut s);
+    s
+}
+
+/// Best-of-`reps` physics time (ms).
+fn physics_ms(spec: &Value, reps: usize) -> f64 {
+    let typed: CamCycleSpec = serde_json::from_value(spec.clone()).unwrap();
+    let cycle = typed.cycle_spec().unwrap();
+    let needs = typed.needs();
+    let model = typed.film.to_physics();
+    let mut best = f64::INFINITY;
+    for _ in 0..reps {
+        let t = Instant::now();
+        let out = run_cycle(&cycle, needs, &model, &Silent).unwrap();
+        best = best.min(t.elapsed().as_secs_f64() * 1e3);
+        std::hint::black_box(out);
+    }
+    best
+}
+
+/// Best-of-`reps` job time (ms) and the result.
+fn job(spec: &Value, reps: usize) -> (f64, Value) {
+    let k = registry::find("cam_cycle").unwrap();
+    let mut best = f64::INFINITY;
+    let mut out = Value::Null;
+    for _ in 0..reps {
+        let prepared = k.prepare(spec, &Limits::default()).unwrap();
+        let t = Instant::now();
+        out = prepared.run(&Silent).unwrap();
+        best = best.min(t.elapsed().as_secs_f64() * 1e3);
+    }
+    (best, out)
+}
+
+fn outputs(list: &[&str]) -> Value {
+    list.iter().map(|o| Value::from(*o)).collect()
+}
+
+fn main() {
+    let flat = load("examples/seed003_cycloidal_flat.json");
+    let roller = load("examples/seed000_roller_steady.json");
+    let startup = load("examples/seed000_roller_startup.json");
+    // Warm the one-time F5/2 table.
+    let _ = physics_ms(&with(&flat, |s| s["angles"] = 64.into()), 1);
+
+    if std::env::var("CAM_BENCH_PROFILE").is_ok() {
+        // For `perf record`: the steady roller cycle only.
+        let s = with(&roller, |s| s["angles"] = 3600.into());
+        println!("profile: {:.3} ms", physics_ms(&s, 30));
+        println!("convergence: {}", job(&s, 1).1["convergence"]);
+
+        return;
+    }
+    let all = ["kinematics", "loads", "contact", "film", "friction", "slip", "temperature"];
+    println!("## Cam cycle: run time at 3600 angles (release, best of 20)\n");
+    println!("| case | outputs | physics (ms) | job incl. JSON (ms) |");
+    println!("| --- | --- | ---: | ---: |");
+    for (name, spec, outs) in [
+        ("seed 003 flat, cycloidal", &flat, &["kinematics"][..]),
+        ("seed 003 flat, cycloidal", &flat, &all[..]),
+        ("seed 000 roller (table profile), steady", &roller, &["kinematics"][..]),
+        ("seed 000 roller, steady", &roller, &["kinematics", "loads", "contact", "film"][..]),
+        ("seed 000 roller, steady", &roller, &all[..]),
+        ("seed 000 roller, startup", &startup, &all[..]),
+    ] {
+        let s = with(spec, |s| {
+            s["angles"] = 3600.into();
+            s["outputs"] = outputs(outs);
+        });
+        let p = physics_ms(&s, 20);
+        let (j, _) = job(&s, 20);
+        let label = if outs.len() == all.len() { "all".to_string() } else { outs.join(", ") };
+        println!("| {name} | {label} | {p:.3} | {j:.3} |");
+    }
+
+    println!("\n## Cam cycle: angle resolution against error (reference: 28 800 angles)\n");
+    println!("Relative errors against the same case at 28 800 angles; `x@θ` is series x at cam angle θ.\n");
+    println!("| case | angles | physics (ms) | errors |");
+    println!("| --- | ---: | ---: | --- |");
+    type Metric = (&'static str, Option<f64>);
+    let cases: [(&str, &Value, &[Metric]); 3] = [
+        ("seed 003 flat", &flat, &[("mean_power_loss", None), ("mean_friction_torque", None), ("max_flash_temperature", None)]),
+        ("seed 000 roller steady", &roller, &[("min_film", None), ("max_abs_slide_roll_ratio", None), ("mean_power_loss", None), ("slide_roll_ratio", Some(100.0))]),
+        ("seed 000 roller startup", &startup, &[("slide_roll_ratio", Some(10.0)), ("slide_roll_ratio", Some(100.0)), ("slide_roll_ratio", Some(300.0)), ("mean_power_loss", None)]),
+    ];
+    let value = |out: &Value, m: &Metric| -> Option<f64> {
+        match m.1 {
+            None => out["summary"][m.0].as_f64(),
+            Some(deg) => {
+                let a = out["series"]["angle_deg"].as_array()?;
+                let i = a.iter().position(|x| (x.as_f64().unwrap() - deg).abs() < 1e-9)?;
+                out["series"][m.0][i].as_f64()
+            }
+        }
+    };
+    for (name, spec, metrics) in cases {
+        let (_, reference) = job(&with(spec, |s| s["angles"] = 28_800.into()), 1);
+        for n in [180usize, 360, 720, 1440, 3600, 7200] {
+            let s = with(spec, |s| s["angles"] = n.into());
+            let ms = physics_ms(&s, 10);
+            let (_, out) = job(&s, 1);
+            let errs: Vec<String> = metrics
+                .iter()
+                .map(|m| {
+                    let label = match m.1 {
+                        None => m.0.to_string(),
+                        Some(d) => format!("{}@{d}°", m.0),
+                    };
+                    match (value(&out, m), value(&reference, m)) {
+                        (Some(a), Some(b)) if b != 0.0 => format!("{label} {:.1e}", ((a - b) / b).abs()),
+                        _ => format!("{label} –"),
+                    }
+                })
+                .collect();
+            println!("| {name} | {n} | {ms:.3} | {} |", errs.join("; "));
+        }
+    }
+}
