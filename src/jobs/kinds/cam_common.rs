@@ -1,8 +1,9 @@
 //! Spec pieces shared by the cam kinds (`cam_cycle`, `cam_point`): lubricant, surfaces, traction,
 //! film options, and their conversion to `physics` types.
 
-use crate::jobs::kind::Validation;
-use crate::physics::film::{ClosedForm, FilmFormula};
+use crate::jobs::kind::{Limits, Validation};
+use crate::physics::ehl::EhlOptions;
+use crate::physics::film::{AccurateSettings, ClosedForm, FilmFormula};
 use crate::physics::friction::{AsperityFriction, AsperityModel, Rheology, Roughness, TractionLaw};
 use crate::physics::lubricant::{DensityModel, Lubricant, ViscosityModel};
 use serde::{Deserialize, Serialize};
@@ -233,4 +234,75 @@ impl FilmSpec {
 /// Composite RMS roughness of two surfaces, m.
 pub fn composite_sigma(a: f64, b: f64) -> f64 {
     (a * a + b * b).sqrt()
+}
+
+fn default_ehl_nodes() -> usize {
+    192
+}
+fn default_ehl_tolerance() -> f64 {
+    1e-6
+}
+fn default_ehl_iterations() -> u32 {
+    60
+}
+fn default_auto_tolerance() -> f64 {
+    0.05
+}
+
+/// Numerical EHL options (fidelities `accurate` and `auto`; see `physics::film::Numerical` and
+/// `physics::film::auto`). The solver is the isothermal line-contact EHL of `physics::ehl`
+/// (compressible Reynolds with squeeze, elastic half-space, load balance, cavitation); point
+/// contacts (spherical tappets) always keep the closed form.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, ToSchema)]
+#[serde(deny_unknown_fields)]
+pub struct EhlSpec {
+    /// Grid nodes per contact (graded towards the inlet and the exit constriction), 32 … the
+    /// server's grid limit. Default 192: central and minimum film within ≈ 3 % of the
+    /// grid-converged film near entrainment reversal, ≈ 1 % elsewhere (BENCHMARKS.md); 384 for
+    /// ≈ 0.5 %. The cost grows like nodes^2.5.
+    #[serde(default = "default_ehl_nodes")]
+    pub nodes: usize,
+    /// Residual tolerance of the Newton iteration (relative load balance and scaled Reynolds
+    /// residual). Default 1e-6.
+    #[serde(default = "default_ehl_tolerance")]
+    pub tolerance: f64,
+    /// Most Newton steps per solve (per continuation stage). Default 60.
+    #[serde(default = "default_ehl_iterations")]
+    pub max_iterations: u32,
+    /// `auto`: largest estimated relative error of the closed-form film accepted; the numerical
+    /// solver runs where the estimate exceeds it. Default 0.05.
+    #[serde(default = "default_auto_tolerance")]
+    pub auto_tolerance: f64,
+}
+
+impl Default for EhlSpec {
+    fn default() -> Self {
+        EhlSpec {
+            nodes: default_ehl_nodes(),
+            tolerance: default_ehl_tolerance(),
+            max_iterations: default_ehl_iterations(),
+            auto_tolerance: default_auto_tolerance(),
+        }
+    }
+}
+
+impl EhlSpec {
+    pub fn to_physics(&self) -> AccurateSettings {
+        AccurateSettings {
+            options: EhlOptions {
+                nodes: self.nodes,
+                tolerance: self.tolerance,
+                max_iterations: self.max_iterations,
+                ..EhlOptions::default()
+            },
+            auto_tolerance: self.auto_tolerance,
+        }
+    }
+    pub fn validate(&self, path: &str, limits: &Limits, v: &mut Validation) {
+        v.count_in_range(&format!("{path}/nodes"), self.nodes, 32, 1 << 16);
+        v.limit(&format!("{path}/nodes"), self.nodes, limits.max_grid_nodes, "the number of EHL grid nodes");
+        v.in_range(&format!("{path}/tolerance"), self.tolerance, 1e-13, 1e-2);
+        v.check(self.max_iterations >= 1 && self.max_iterations <= 1000, &format!("{path}/max_iterations"), "must be in [1, 1000]");
+        v.in_range(&format!("{path}/auto_tolerance"), self.auto_tolerance, 0.0, 10.0);
+    }
 }

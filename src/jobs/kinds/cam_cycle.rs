@@ -6,12 +6,13 @@
 //! Only what `outputs` asks for is computed (with its dependencies): a kinematics-only request
 //! runs no contact, film or slip.
 
-use super::cam_common::{composite_sigma, default_e, default_nu, AsperitySpec, FilmSpec, LubricantSpec, TractionSpec};
+use super::cam_common::{composite_sigma, default_e, default_nu, AsperitySpec, EhlSpec, FilmSpec, LubricantSpec, TractionSpec};
 use crate::jobs::kind::{Kind, Limits, OutputInfo, Validation};
 use crate::physics::cam::cycle::{run_cycle, CycleSpec, FollowerKind, Needs, SlipMode};
 use crate::physics::cam::{CamProfile, FollowerGeometry, FollowerShape, LiftLaw, LiftProgram, LoadModel, MultiArc, PeriodicSpline, PeriodicTable, SpeedSchedule};
 use crate::physics::contact::{contact_modulus, Elastic};
-use crate::physics::film::{fidelity_available, fidelity_unavailable, model_for, Fidelity, FilmModelId};
+use crate::physics::film::{model_for, Fidelity, FilmModelId};
+use std::collections::BTreeMap;
 use crate::physics::roller::{Crown, PinFriction, RollerParams};
 use crate::physics::thermal::ThermalSolid;
 use crate::physics::{Convergence, Observer, SolveError};
@@ -383,6 +384,9 @@ pub enum CamOutput {
     Slip,
     /// Flash temperature.
     Temperature,
+    /// Pressure and film profiles at `profile_angles_deg` (numerical film model only; not in the
+    /// default list).
+    Profiles,
 }
 
 fn default_angles() -> usize {
@@ -424,10 +428,21 @@ pub struct CamCycleSpec {
     pub slip: SlipSpec,
     #[serde(default)]
     pub thermal: ThermalPair,
-    /// `fast` (closed forms). `accurate` and `auto` need the numerical EHL solver (not in this
-    /// build: refused).
+    /// Film model: `fast` (closed forms, default), `accurate` (the numerical line-contact EHL
+    /// solver at every angle, with squeeze between consecutive angles; point contacts of a
+    /// spherical tappet keep the closed form), `auto` (the closed form where its estimated error
+    /// is within `ehl.auto_tolerance`, the numerical solver elsewhere: near zero entrainment,
+    /// outside the closed form's load range, strong squeeze). The series column `model` says which
+    /// ran at each angle.
     #[serde(default)]
     pub fidelity: Fidelity,
+    /// Numerical EHL options (`accurate`, `auto`).
+    #[serde(default)]
+    pub ehl: EhlSpec,
+    /// Cam angles (degrees) of the pressure and film profiles (output `profiles`); each is taken
+    /// at the nearest computed angle.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub profile_angles_deg: Vec<f64>,
     /// Cam angles per revolution (uniform). Default 720.
     #[serde(default = "default_angles")]
     pub angles: usize,
@@ -504,6 +519,26 @@ pub struct CamSeries {
     /// Minimum film thickness, m.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub film_min: Option<Vec<f64>>,
+    /// Film model that ran at each angle (`numerical` or the closed form's name).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub model: Option<Vec<FilmModelId>>,
+    /// Smallest film downstream of the contact centre (exit constriction), m; the closed forms'
+    /// minimum film at their angles.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub exit_film: Option<Vec<f64>>,
+    /// Height (peak pressure) of the exit pressure spike, Pa, resolved by the numerical model.
+    /// Present when any angle resolved one; 0 at angles without a spike (closed-form angles, and
+    /// numerical solutions without a secondary exit maximum, e.g. light loads).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub pressure_spike: Option<Vec<f64>>,
+    /// Position of the spike, m from the contact centre along the entrainment direction of
+    /// positive entrainment velocity; 0 where `pressure_spike` is 0.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub pressure_spike_position: Option<Vec<f64>>,
+    /// Newton steps of the numerical EHL solver at each angle (0 at closed-form angles). Present
+    /// when the numerical model ran.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub newton_steps: Option<Vec<f64>>,
     /// λ = h_min/σ (rough surfaces).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub lambda: Option<Vec<f64>>,
@@ -584,6 +619,21 @@ pub struct CamSummary {
     /// m.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub min_central_film: Option<f64>,
+    /// Per-angle counts of the film models that ran (`numerical`, `pan_hamrock`, …).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub fidelity_used: Option<BTreeMap<String, usize>>,
+    /// Smallest exit-constriction film, m.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub min_exit_film: Option<f64>,
+    /// Highest exit pressure spike, Pa, and its angle (numerical model).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub max_pressure_spike: Option<f64>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub max_pressure_spike_angle_deg: Option<f64>,
+    /// Newton steps of the numerical EHL solver over the cycle (all solves, including the
+    /// roller's re-solves and extra cycles).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub newton_steps: Option<f64>,
     #[serde(skip_serializing_if = "Option::is_none")]
     pub min_lambda: Option<f64>,
     #[serde(skip_serializing_if = "Option::is_none")]
@@ -628,6 +678,19 @@ pub struct CamEvents {
     pub separation_ranges_deg: Vec<[f64; 2]>,
 }
 
+/// Pressure and film along the rolling direction at one cam angle.
+#[derive(Debug, Clone, PartialEq, Serialize, ToSchema)]
+pub struct FilmProfileAtAngle {
+    /// Cam angle, degrees.
+    pub angle_deg: f64,
+    /// Position from the contact centre, m (positive in the direction of positive entrainment).
+    pub x: Vec<f64>,
+    /// Pressure, Pa.
+    pub pressure: Vec<f64>,
+    /// Film thickness, m.
+    pub film: Vec<f64>,
+}
+
 /// Result of a `cam_cycle` job.
 #[derive(Debug, Clone, PartialEq, Serialize, ToSchema)]
 pub struct CamCycleResult {
@@ -647,6 +710,9 @@ pub struct CamCycleResult {
     pub series: CamSeries,
     pub summary: CamSummary,
     pub events: CamEvents,
+    /// Profiles at the requested angles where the numerical model ran (output `profiles`).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub profiles: Option<Vec<FilmProfileAtAngle>>,
     /// Periodicity of the roller speed (steady torque balance) or closed form.
     pub convergence: Convergence,
 }
@@ -664,7 +730,7 @@ impl CamCycleSpec {
         Needs {
             loads: has(CamOutput::Loads),
             contact: has(CamOutput::Contact),
-            film: has(CamOutput::Film),
+            film: has(CamOutput::Film) || has(CamOutput::Profiles),
             friction: has(CamOutput::Friction),
             slip: has(CamOutput::Slip),
             temperature: has(CamOutput::Temperature),
@@ -803,6 +869,19 @@ impl CamCycleSpec {
                 SlipModeSpec::PureRolling => SlipMode::PureRolling,
                 SlipModeSpec::TorqueBalance => SlipMode::TorqueBalance { tolerance: self.slip.tolerance, max_cycles: self.slip.max_cycles },
             },
+            profile_angles: if self.outputs.contains(&CamOutput::Profiles) {
+                let n = self.angles;
+                let mut v: Vec<usize> = self
+                    .profile_angles_deg
+                    .iter()
+                    .map(|a| ((a.rem_euclid(360.0) / 360.0 * n as f64).round() as usize) % n)
+                    .collect();
+                v.sort_unstable();
+                v.dedup();
+                v
+            } else {
+                Vec::new()
+            },
         })
     }
 }
@@ -852,11 +931,7 @@ fn time_mean(v: &[f64], time: &[f64], duration: f64, periodic: bool) -> f64 {
 fn solve_spec(spec: &CamCycleSpec, observer: &dyn Observer) -> Result<CamCycleResult, SolveError> {
     let cycle = spec.cycle_spec()?;
     let needs = spec.needs();
-    let model = if needs.film {
-        Some(model_for(spec.fidelity, spec.film.to_physics())?)
-    } else {
-        None
-    };
+    let model = needs.film.then(|| model_for(spec.fidelity, spec.film.to_physics(), spec.ehl.to_physics()));
     let fast = crate::physics::film::ClosedForm { formula: spec.film.formula, squeeze: spec.film.squeeze };
     let out = run_cycle(&cycle, needs, model.as_deref().unwrap_or(&fast), observer)?;
     let s = out.series;
@@ -946,15 +1021,40 @@ fn solve_spec(spec: &CamCycleSpec, observer: &dyn Observer) -> Result<CamCycleRe
         summary.max_flash_temperature = Some(t);
         summary.max_flash_temperature_angle_deg = Some(at(i));
     }
-    let film_model = model.as_ref().and(
-        // All angles use the same closed form at `fast` fidelity.
-        Some(match (&spec.follower, spec.film.formula) {
-            (FollowerSpec::Spherical { .. }, _) => FilmModelId::HamrockDowson,
-            (_, crate::physics::film::FilmFormula::PanHamrock) => FilmModelId::PanHamrock,
-            (_, crate::physics::film::FilmFormula::DowsonHigginson) => FilmModelId::DowsonHigginson,
-            (_, crate::physics::film::FilmFormula::Seed003) => FilmModelId::Seed003,
-        }),
-    );
+    // The film model when one model ran at every angle (absent when `auto` mixed them).
+    let film_model = s.film_model.as_ref().and_then(|v| {
+        let first = *v.first()?;
+        v.iter().all(|m| *m == first).then_some(first)
+    });
+    if let Some(v) = &s.film_model {
+        let mut counts = BTreeMap::new();
+        for m in v {
+            *counts.entry(m.name().to_string()).or_insert(0) += 1;
+        }
+        summary.fidelity_used = Some(counts);
+    }
+    if let Some(v) = &s.exit_film {
+        summary.min_exit_film = Some(v.iter().copied().fold(f64::INFINITY, f64::min));
+    }
+    let (spike, spike_position) = match &s.pressure_spike {
+        Some(v) => {
+            let p: Vec<f64> = v.iter().map(|x| x.map_or(0.0, |x| x.0)).collect();
+            let (i, m) = extreme(&p, |a, b| a > b);
+            summary.max_pressure_spike = Some(m);
+            summary.max_pressure_spike_angle_deg = Some(at(i));
+            (Some(p), Some(v.iter().map(|x| x.map_or(0.0, |x| x.1)).collect()))
+        }
+        None => (None, None),
+    };
+    if let Some(v) = &s.newton_steps {
+        summary.newton_steps = Some(v.iter().map(|&k| k as f64).sum());
+    }
+    let profiles = spec.outputs.contains(&CamOutput::Profiles).then(|| {
+        out.profiles
+            .iter()
+            .map(|(i, p)| FilmProfileAtAngle { angle_deg: at(*i), x: p.x.clone(), pressure: p.pressure.clone(), film: p.film.clone() })
+            .collect()
+    });
     let es = cycle.contact_modulus;
     Ok(CamCycleResult {
         fidelity_used: spec.fidelity,
@@ -989,6 +1089,11 @@ fn solve_spec(spec: &CamCycleSpec, observer: &dyn Observer) -> Result<CamCycleRe
             max_shear_depth: s.max_shear_depth,
             film_central: s.film_central,
             film_min: s.film_min,
+            model: s.film_model,
+            exit_film: s.exit_film,
+            pressure_spike: spike,
+            pressure_spike_position: spike_position,
+            newton_steps: s.newton_steps.map(|v| v.into_iter().map(f64::from).collect()),
             lambda: s.lambda,
             asperity_load_fraction: s.asperity_load_fraction,
             friction_force: s.friction_force,
@@ -1006,16 +1111,18 @@ fn solve_spec(spec: &CamCycleSpec, observer: &dyn Observer) -> Result<CamCycleRe
             zero_entrainment_angles_deg: degs(&out.events.zero_entrainment),
             separation_ranges_deg: out.events.separation.iter().map(|(a, b)| [a.to_degrees(), b.to_degrees()]).collect(),
         },
+        profiles,
         convergence: out.convergence,
     })
 }
 
 impl Kind for CamCycle {
     const NAME: &'static str = "cam_cycle";
-    const SOLVER_VERSION: &'static str = "cam_cycle-1";
+    const SOLVER_VERSION: &'static str = "cam_cycle-2";
     const DESCRIPTION: &'static str = "Cam–follower pair over one revolution: kinematics, loads, Hertz contact, \
         lubricant film, friction and power loss, roller slip (steady or startup) and flash temperature \
-        (fidelity fast: closed forms).";
+        (fidelity fast: closed forms; accurate: numerical line-contact EHL with squeeze at every angle; auto: \
+        closed forms where their estimated error is within tolerance).";
     const TABLES: &'static [&'static str] = &["series"];
     type Spec = CamCycleSpec;
     type Output = CamCycleResult;
@@ -1044,16 +1151,20 @@ impl Kind for CamCycle {
             OutputInfo { name: "friction", description: "traction, friction coefficient, camshaft friction torque, power loss" },
             OutputInfo { name: "slip", description: "roller speed, slide-to-roll ratio, pin torque (roller followers)" },
             OutputInfo { name: "temperature", description: "flash temperature rise (Blok/Jaeger)" },
+            OutputInfo { name: "profiles", description: "pressure and film profiles at profile_angles_deg (accurate/auto; not in the default list)" },
         ]
     }
 
     fn validate(spec: &CamCycleSpec, limits: &Limits, v: &mut Validation) {
         v.count_in_range("/angles", spec.angles, 8, usize::MAX);
         v.limit("/angles", spec.angles, limits.max_angles, "the number of cam angles");
-        v.check(fidelity_available(spec.fidelity), "/fidelity", match fidelity_unavailable(spec.fidelity) {
-            SolveError::InvalidInput { message, .. } => message,
-            _ => String::new(),
-        });
+        spec.ehl.validate("/ehl", limits, v);
+        if spec.outputs.contains(&CamOutput::Profiles) {
+            v.check(spec.fidelity != Fidelity::Fast, "/outputs", "profiles need fidelity accurate or auto (the closed forms have none)");
+            v.check(!spec.profile_angles_deg.is_empty(), "/profile_angles_deg", "the profiles output needs at least one angle");
+            v.check(spec.profile_angles_deg.len() <= 64, "/profile_angles_deg", "at most 64 profile angles");
+            v.check(spec.profile_angles_deg.iter().all(|a| a.is_finite()), "/profile_angles_deg", "angles must be finite");
+        }
         // Cam.
         let base = match &spec.cam.profile {
             ProfileSpec::RiseReturn { base_radius, lift, rise_start_deg, rise_deg, top_dwell_deg, return_deg, .. } => {

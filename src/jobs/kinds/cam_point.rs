@@ -3,10 +3,10 @@
 //! gross-sliding threshold. A point analysis has no cycle, so it is its own kind rather than a
 //! `cam_cycle` option. Physics: `physics::roller::point`.
 
-use super::cam_common::{composite_sigma, default_e, default_nu, AsperitySpec, FilmSpec, LubricantSpec, TractionSpec};
+use super::cam_common::{composite_sigma, default_e, default_nu, AsperitySpec, EhlSpec, FilmSpec, LubricantSpec, TractionSpec};
 use crate::jobs::kind::{Kind, Limits, Validation};
 use crate::physics::contact::{contact_modulus, hertz_line, Elastic};
-use crate::physics::film::{fidelity_available, fidelity_unavailable, model_for, ContactInput, ContactShape, Fidelity, FilmModelId};
+use crate::physics::film::{model_for, ContactInput, ContactShape, Fidelity, FilmModelId};
 use crate::physics::roller::PointCase;
 use crate::physics::{ensure_finite, Convergence, Observer, SolveError};
 use serde::{Deserialize, Serialize};
@@ -81,9 +81,13 @@ pub struct CamPointSpec {
     pub traction: TractionSpec,
     #[serde(default)]
     pub film: FilmSpec,
-    /// `fast` only in this build.
+    /// Film model: `fast` (closed form, default), `accurate` (numerical line-contact EHL, steady),
+    /// `auto` (the closed form where its estimated error is within `ehl.auto_tolerance`).
     #[serde(default)]
     pub fidelity: Fidelity,
+    /// Numerical EHL options (`accurate`, `auto`).
+    #[serde(default)]
+    pub ehl: EhlSpec,
 }
 
 /// The balance at one roller–pin friction coefficient.
@@ -109,6 +113,8 @@ pub struct PointRow {
     pub film_min: f64,
     /// 1 when the asperities stick (pure rolling), else 0.
     pub sticking: f64,
+    /// Film model that ran for this row.
+    pub model: FilmModelId,
 }
 
 /// Flat summary numbers.
@@ -122,6 +128,16 @@ pub struct PointSummary {
     pub film_central: f64,
     /// Minimum film at pure rolling, m.
     pub film_min: f64,
+    /// Exit-constriction film at pure rolling, m (the closed forms' minimum film).
+    pub exit_film: f64,
+    /// Exit pressure spike at pure rolling, Pa, when the numerical model resolved one.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub pressure_spike: Option<f64>,
+    /// Its position, m from the contact centre (positive downstream).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub pressure_spike_position: Option<f64>,
+    /// Peak pressure at pure rolling, Pa (the Hertz p0 for closed forms).
+    pub max_pressure: f64,
     /// h_min/σ at pure rolling (rough surfaces).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub lambda: Option<f64>,
@@ -155,7 +171,7 @@ pub struct CamPointResult {
 
 impl Kind for CamPoint {
     const NAME: &'static str = "cam_point";
-    const SOLVER_VERSION: &'static str = "cam_point-1";
+    const SOLVER_VERSION: &'static str = "cam_point-2";
     const DESCRIPTION: &'static str = "Cam–roller contact at a fixed operating point: roller slip against \
         roller–pin friction, minimum cam–roller friction to drive the roller, gross-sliding threshold (seed 001).";
     const TABLES: &'static [&'static str] = &["rows"];
@@ -198,10 +214,7 @@ impl Kind for CamPoint {
         spec.traction.validate("/traction", v);
         spec.film.validate("/film", v);
         v.check(!spec.film.squeeze, "/film/squeeze", "a point analysis is steady: no squeeze");
-        v.check(fidelity_available(spec.fidelity), "/fidelity", match fidelity_unavailable(spec.fidelity) {
-            SolveError::InvalidInput { message, .. } => message,
-            _ => String::new(),
-        });
+        spec.ehl.validate("/ehl", limits, v);
     }
 
     fn solve(spec: &CamPointSpec, observer: &dyn Observer) -> Result<CamPointResult, SolveError> {
@@ -209,7 +222,7 @@ impl Kind for CamPoint {
             Elastic { youngs_modulus: spec.cam.youngs_modulus, poisson_ratio: spec.cam.poisson_ratio },
             Elastic { youngs_modulus: spec.follower.youngs_modulus, poisson_ratio: spec.follower.poisson_ratio },
         );
-        let model = model_for(spec.fidelity, spec.film.to_physics())?;
+        let model = model_for(spec.fidelity, spec.film.to_physics(), spec.ehl.to_physics());
         let lub = spec.lubricant.to_physics();
         let rough = spec.asperities.roughness(composite_sigma(spec.cam.roughness_rq, spec.follower.roughness_rq));
         let law = spec.traction.to_physics();
@@ -258,6 +271,7 @@ impl Kind for CamPoint {
                 film_central: b.film.central_film,
                 film_min: b.film.min_film,
                 sticking: if b.sticking { 1.0 } else { 0.0 },
+                model: b.film.model,
             });
         }
         let hz = hertz_line(spec.load / spec.contact_length, spec.reduced_radius, es);
@@ -266,6 +280,10 @@ impl Kind for CamPoint {
             hertz_half_width: hz.half_width,
             film_central: rolling.central_film,
             film_min: rolling.min_film,
+            exit_film: rolling.exit_film.unwrap_or(rolling.min_film),
+            pressure_spike: rolling.pressure_spike,
+            pressure_spike_position: rolling.pressure_spike_position,
+            max_pressure: rolling.max_pressure,
             lambda: rolling.lambda,
             asperity_load_fraction: rolling.asperity.load / spec.load,
             min_cam_roller_friction: case.min_cam_roller_friction()?,

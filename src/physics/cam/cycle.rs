@@ -11,7 +11,7 @@ use super::kinematics::{kinematics, FollowerGeometry, KinematicState, SpeedSched
 use super::loads::{FollowerLoad, LoadModel};
 use super::profile::CamProfile;
 use crate::physics::contact::{hertz_line, hertz_point, line_stress_maxima};
-use crate::physics::film::{ContactInput, ContactShape, FilmModel, FilmSolution, Traction};
+use crate::physics::film::{ContactInput, ContactShape, FilmModel, FilmModelId, FilmProfile, FilmSolution, Traction};
 use crate::physics::friction::{AsperityFriction, Roughness, TractionLaw};
 use crate::physics::lubricant::Lubricant;
 use crate::physics::roller::{pin_torque, Crown, RollerParams, SlipStep};
@@ -68,6 +68,8 @@ pub struct CycleSpec {
     pub cam_thermal: ThermalSolid,
     pub follower_thermal: ThermalSolid,
     pub slip: SlipMode,
+    /// Indices of the angles whose film profiles (numerical model only) are returned.
+    pub profile_angles: Vec<usize>,
 }
 
 /// What to compute. Dependencies are added by [`Needs::closed`].
@@ -134,6 +136,15 @@ pub struct CycleSeries {
     pub max_shear_depth: Option<Vec<f64>>,
     pub film_central: Option<Vec<f64>>,
     pub film_min: Option<Vec<f64>>,
+    /// Film model that ran at each angle.
+    pub film_model: Option<Vec<FilmModelId>>,
+    /// Exit-constriction film (the closed forms' minimum film), m.
+    pub exit_film: Option<Vec<f64>>,
+    /// Exit pressure spike height and position (present when any angle resolved one; `None` at
+    /// the angles without).
+    pub pressure_spike: Option<Vec<Option<(f64, f64)>>>,
+    /// Newton steps of the numerical model at each angle (present when it ran at any angle).
+    pub newton_steps: Option<Vec<u32>>,
     pub lambda: Option<Vec<f64>>,
     pub asperity_load_fraction: Option<Vec<f64>>,
     pub friction_force: Option<Vec<f64>>,
@@ -167,6 +178,8 @@ pub struct CycleOutput {
     pub convergence: Convergence,
     /// Time of one revolution (steady) or of the simulated revolution (startup), s.
     pub duration: f64,
+    /// Film profiles at [`CycleSpec::profile_angles`] where the model has one: `(index, profile)`.
+    pub profiles: Vec<(usize, FilmProfile)>,
 }
 
 /// Kinematics of every angle (no contact): cheap, always computed.
@@ -223,7 +236,7 @@ pub fn run_cycle(spec: &CycleSpec, needs: Needs, model: &dyn FilmModel, observer
     }
     if !needs.loads {
         events.zero_entrainment = sign_changes(&series.angle, &series.entrainment_velocity);
-        return Ok(CycleOutput { series, events, convergence, duration });
+        return Ok(CycleOutput { series, events, convergence, duration, profiles: Vec::new() });
     }
 
     // Loads and separation.
@@ -236,7 +249,7 @@ pub fn run_cycle(spec: &CycleSpec, needs: Needs, model: &dyn FilmModel, observer
     ensure_finite("follower loads", series.contact_load.as_ref().unwrap())?;
     if !needs.contact {
         events.zero_entrainment = sign_changes(&series.angle, &series.entrainment_velocity);
-        return Ok(CycleOutput { series, events, convergence, duration });
+        return Ok(CycleOutput { series, events, convergence, duration, profiles: Vec::new() });
     }
     if let Some(&(a, b)) = events.separation.first() {
         let worst = loads.iter().map(|l| l.contact).fold(f64::INFINITY, f64::min);
@@ -316,7 +329,7 @@ pub fn run_cycle(spec: &CycleSpec, needs: Needs, model: &dyn FilmModel, observer
     series.max_shear_depth = depths;
     if !needs.film {
         events.zero_entrainment = sign_changes(&series.angle, &series.entrainment_velocity);
-        return Ok(CycleOutput { series, events, convergence, duration });
+        return Ok(CycleOutput { series, events, convergence, duration, profiles: Vec::new() });
     }
 
     // Film, traction, slip.
@@ -343,6 +356,21 @@ pub fn run_cycle(spec: &CycleSpec, needs: Needs, model: &dyn FilmModel, observer
     }
     series.film_central = Some(film_c);
     series.film_min = Some(film_m);
+    series.film_model = Some(states.iter().map(|s| s.film.model).collect());
+    series.exit_film = Some(states.iter().map(|s| s.film.exit_film.unwrap_or(s.film.min_film)).collect());
+    if states.iter().any(|s| s.film.pressure_spike.is_some()) {
+        series.pressure_spike = Some(
+            states.iter().map(|s| s.film.pressure_spike.zip(s.film.pressure_spike_position)).collect(),
+        );
+    }
+    if states.iter().any(|s| s.film.iterations.is_some()) {
+        series.newton_steps = Some(states.iter().map(|s| s.film.iterations.unwrap_or(0)).collect());
+    }
+    let profiles: Vec<(usize, FilmProfile)> = spec
+        .profile_angles
+        .iter()
+        .filter_map(|&i| states.get(i).and_then(|s| s.film.profile.clone()).map(|p| (i, p)))
+        .collect();
     if spec.roughness.sigma > 0.0 {
         series.lambda = Some(lam);
         series.asperity_load_fraction = Some(asp);
@@ -419,7 +447,7 @@ pub fn run_cycle(spec: &CycleSpec, needs: Needs, model: &dyn FilmModel, observer
         ensure_finite("cam cycle series", v)?;
     }
     observer.progress(1.0, "done");
-    Ok(CycleOutput { series, events, convergence, duration })
+    Ok(CycleOutput { series, events, convergence, duration, profiles })
 }
 
 /// `SRR = 2(u_c − u_r)/(u_c + u_r)` (seed 000). When both surfaces are at rest (the first instant

@@ -153,6 +153,8 @@ impl FilmModel for ClosedForm {
             steady_central_film: h_steady,
             max_pressure: p0,
             pressure_spike: None,
+            pressure_spike_position: None,
+            exit_film: matches!(input.shape, ContactShape::Line { .. }).then_some(hm),
             half_width: b,
             contact_area: area,
             asperity,
@@ -160,6 +162,7 @@ impl FilmModel for ClosedForm {
             regime,
             nodes,
             profile: None,
+            iterations: None,
         })
     }
 }

@@ -27,10 +27,14 @@
 //!
 //! Units: SI. The moduli are passed as `E*` (Johnson); formulas needing `E' = 2E*` convert.
 
+pub mod auto;
 pub mod closed_form;
 pub mod formulas;
+pub mod numerical;
 
+pub use auto::{closed_form_error, Auto, ClosedFormError, ErrorRule};
 pub use closed_form::{ClosedForm, FilmFormula};
+pub use numerical::Numerical;
 
 use crate::physics::friction::{
     viscous_traction, AsperityContact, AsperityFriction, Roughness, TractionLaw, TractionNode,
@@ -83,6 +87,21 @@ pub enum FilmModelId {
     DowsonHigginson,
     Seed003,
     HamrockDowson,
+    /// The numerical line-contact EHL solver (`physics::ehl`).
+    Numerical,
+}
+
+impl FilmModelId {
+    /// The snake_case name used in results.
+    pub fn name(self) -> &'static str {
+        match self {
+            FilmModelId::PanHamrock => "pan_hamrock",
+            FilmModelId::DowsonHigginson => "dowson_higginson",
+            FilmModelId::Seed003 => "seed003",
+            FilmModelId::HamrockDowson => "hamrock_dowson",
+            FilmModelId::Numerical => "numerical",
+        }
+    }
 }
 
 /// Johnson's regime parameters of a line contact (see [`formulas`]).
@@ -101,6 +120,8 @@ pub struct FilmProfile {
     pub pressure: Vec<f64>,
     /// Film thickness, m.
     pub film: Vec<f64>,
+    /// Density ratio `ρ/ρ0` (the squeeze term of the next time step needs `ρh`).
+    pub density_ratio: Vec<f64>,
 }
 
 /// The lubricated contact at one point.
@@ -117,6 +138,12 @@ pub struct FilmSolution {
     pub max_pressure: f64,
     /// Height of the exit pressure spike, Pa, when the model resolves it.
     pub pressure_spike: Option<f64>,
+    /// Position of the spike, m from the contact centre along the rolling direction (positive in
+    /// the direction of positive entrainment).
+    pub pressure_spike_position: Option<f64>,
+    /// Smallest film downstream of the centre (exit constriction), m, when the model resolves it
+    /// (closed forms: their minimum film is that estimate).
+    pub exit_film: Option<f64>,
     /// Semi-width of the pressure zone along the rolling direction, m.
     pub half_width: f64,
     /// Nominal contact area, m².
@@ -131,6 +158,8 @@ pub struct FilmSolution {
     pub nodes: Vec<TractionNode>,
     /// Pressure and film profiles (numerical models only).
     pub profile: Option<FilmProfile>,
+    /// Newton steps of a numerical model (absent for closed forms).
+    pub iterations: Option<u32>,
 }
 
 /// Traction at one contact point for one sliding velocity.
@@ -182,28 +211,25 @@ pub enum Fidelity {
     Auto,
 }
 
-/// The film model for a fidelity. Only `fast` exists in this build; `accurate` and `auto` are
-/// refused with a clear error until the numerical EHL solver (issue 5) replaces this arm.
-pub fn model_for(fidelity: Fidelity, fast: ClosedForm) -> Result<Box<dyn FilmModel>, SolveError> {
+/// Settings of the numerical model and of the `auto` choice.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct AccurateSettings {
+    /// Resolution, tolerance and iteration cap of the numerical EHL solver.
+    pub options: crate::physics::ehl::EhlOptions,
+    /// `auto`: the largest estimated relative error of the closed-form film accepted (see
+    /// [`closed_form_error`]).
+    pub auto_tolerance: f64,
+}
+
+/// The film model for a fidelity: `fast` the closed form; `accurate` the numerical EHL solver on
+/// line contacts ([`Numerical`]; point contacts keep the closed form); `auto` the closed form
+/// where [`closed_form_error`] is within `settings.auto_tolerance`, the numerical solver elsewhere
+/// ([`Auto`]).
+pub fn model_for(fidelity: Fidelity, fast: ClosedForm, settings: AccurateSettings) -> Box<dyn FilmModel> {
+    let numerical = Numerical { options: settings.options, fallback: fast };
     match fidelity {
-        Fidelity::Fast => Ok(Box::new(fast)),
-        Fidelity::Accurate | Fidelity::Auto => Err(fidelity_unavailable(fidelity)),
+        Fidelity::Fast => Box::new(fast),
+        Fidelity::Accurate => Box::new(numerical),
+        Fidelity::Auto => Box::new(Auto { fast, numerical, tolerance: settings.auto_tolerance }),
     }
-}
-
-/// Whether a fidelity can run in this build.
-pub fn fidelity_available(fidelity: Fidelity) -> bool {
-    matches!(fidelity, Fidelity::Fast)
-}
-
-/// The error for a fidelity this build cannot run.
-pub fn fidelity_unavailable(fidelity: Fidelity) -> SolveError {
-    SolveError::invalid(
-        "/fidelity",
-        format!(
-            "fidelity {:?} needs the numerical EHL solver, which is not available in this build yet; use \"fast\"",
-            fidelity
-        )
-        .to_lowercase(),
-    )
 }

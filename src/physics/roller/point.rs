@@ -53,11 +53,14 @@ pub struct PointBalance {
 }
 
 impl PointCase<'_> {
-    fn film_at(&self, sliding: f64) -> Result<FilmSolution, SolveError> {
+    /// The film at sliding velocity `sliding`; `warm` (a solution at a nearby sliding velocity,
+    /// no time step: not a squeeze history) lets a numerical model start from it.
+    fn film_at(&self, sliding: f64, warm: Option<&FilmSolution>) -> Result<FilmSolution, SolveError> {
         let mut input = self.input;
         input.entrainment_velocity = self.cam_surface_velocity - 0.5 * sliding;
         input.sliding_velocity = sliding;
-        self.model.solve(&input, None)
+        input.time_step = 0.0;
+        self.model.solve(&input, warm)
     }
 
     fn input_at(&self, sliding: f64) -> ContactInput<'_> {
@@ -73,7 +76,7 @@ impl PointCase<'_> {
         let required = (mu_rp * self.pin_radius * load + self.inertia_torque) / self.roller_radius;
         let uc = self.cam_surface_velocity;
         let mut us = 0.0;
-        let mut film = self.film_at(0.0)?;
+        let mut film = self.film_at(0.0, None)?;
         for _ in 0..20 {
             let input = self.input_at(us);
             let stick = self.model.traction(&film, &input, 0.0).stick_limit;
@@ -87,7 +90,7 @@ impl PointCase<'_> {
             let next = monotone_root(f, &jumps, us, uc.abs().max(1e-6) * 1e-3)?;
             let converged = (next - us).abs() <= 1e-10 * uc.abs().max(1e-12);
             us = next;
-            film = self.film_at(us)?;
+            film = self.film_at(us, Some(&film))?;
             if converged {
                 break;
             }
@@ -113,7 +116,7 @@ impl PointCase<'_> {
     /// Roller–pin friction at which the asperity traction saturates: the stick limit for
     /// Coulomb asperities, gross sliding (SRR = ξ_c) for Carter. `None` without asperity load.
     pub fn gross_sliding_pin_friction(&self) -> Result<Option<f64>, SolveError> {
-        let film = self.film_at(0.0)?;
+        let film = self.film_at(0.0, None)?;
         let load = self.input.load;
         if film.asperity.load <= 0.0 {
             return Ok(None);
@@ -123,7 +126,7 @@ impl PointCase<'_> {
             AsperityModel::Carter => {
                 let xc = film.asperity.gross_sliding_creep;
                 let us = xc * self.cam_surface_velocity / (1.0 + 0.5 * xc);
-                let film = self.film_at(us)?;
+                let film = self.film_at(us, Some(&film))?;
                 self.model.traction(&film, &self.input_at(us), us).force
             }
         };
@@ -133,7 +136,7 @@ impl PointCase<'_> {
     /// Minimum cam–roller friction coefficient that still drives the roller (seed 001): the
     /// asperities' stick capacity `μ_b W_a/F` for Coulomb asperities, 0 otherwise.
     pub fn min_cam_roller_friction(&self) -> Result<f64, SolveError> {
-        let film = self.film_at(0.0)?;
+        let film = self.film_at(0.0, None)?;
         Ok(match self.input.asperity_friction.model {
             AsperityModel::Coulomb => self.input.asperity_friction.coefficient * film.asperity.load / self.input.load,
             AsperityModel::Carter => 0.0,

