@@ -611,9 +611,11 @@ impl<'a> Context<'a> {
             };
             let dt = hist.last().map_or(0.0, |&(_, t1)| t - t1);
             let entrainment = |omega: f64| k.entrainment(rf * omega + k.follower_surface_base);
-            // Film consistency: the cached film's entrainment within 1e-6 of the solution's (the
-            // film error, ~7e-7, stays below the discretisation error at any resolution).
-            let close = |a: f64, b: f64| (a - b).abs() <= 1e-6 * b.abs().max(1e-9);
+            // Film consistency: the cached film's entrainment within the model's tolerance of the
+            // solution's (closed forms 1e-6: the film error, ~7e-7, stays below the
+            // discretisation error at any resolution).
+            let consistency = self.model.entrainment_tolerance();
+            let close = |a: f64, b: f64| (a - b).abs() <= consistency * b.abs().max(1e-9);
             // Start from the cached film of this angle (previous cycle) when there is one; the
             // film is re-solved only when the converged entrainment moved away from it.
             if cache[i].is_none() {

@@ -182,6 +182,14 @@ pub trait FilmModel: Send + Sync {
     /// squeeze terms and warm starts), `None` at the first point or in a point analysis.
     fn solve(&self, input: &ContactInput, previous: Option<&FilmSolution>) -> Result<FilmSolution, SolveError>;
 
+    /// Relative change of the entrainment velocity within which a film solved at one entrainment
+    /// may stand for the film at another (the roller torque balance re-solves the film beyond
+    /// it). Default 1e-6: far below a closed form's error. Numerical models return a value whose
+    /// film change (`∝ u^0.7`) stays well below their discretisation error.
+    fn entrainment_tolerance(&self) -> f64 {
+        1e-6
+    }
+
     /// Traction for sliding velocity `sliding` with the film of `film` (which was solved at
     /// `input`, possibly with a different sliding velocity). Default: film shear over
     /// `film.nodes` plus the asperity friction of `film.asperity`.

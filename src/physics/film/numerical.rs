@@ -58,6 +58,11 @@ fn cells(x: &[f64]) -> Vec<f64> {
 }
 
 impl FilmModel for Numerical {
+    /// 1e-4: the film moves by < 1e-4 relative, against a discretisation error of ≈ 1e-2.
+    fn entrainment_tolerance(&self) -> f64 {
+        1e-4
+    }
+
     fn solve(&self, input: &ContactInput, previous: Option<&FilmSolution>) -> Result<FilmSolution, SolveError> {
         let (r, length) = match input.shape {
             ContactShape::Line { reduced_radius, length } => (reduced_radius, length),
