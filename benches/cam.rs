@@ -73,6 +73,12 @@ fn main() {
 
         return;
     }
+    // `cargo bench --bench cam -- fidelity` runs only the fidelity table.
+    let args: Vec<String> = std::env::args().skip(1).filter(|a| !a.starts_with('-')).collect();
+    if args.iter().any(|a| a == "fidelity") {
+        fidelity_table(&flat, &roller);
+        return;
+    }
     let all = ["kinematics", "loads", "contact", "film", "friction", "slip", "temperature"];
     println!("## Cam cycle: run time at 3600 angles (release, best of 20)\n");
     println!("| case | outputs | physics (ms) | job incl. JSON (ms) |");
@@ -136,5 +142,80 @@ fn main() {
                 .collect();
             println!("| {name} | {n} | {ms:.3} | {} |", errs.join("; "));
         }
+    }
+}
+
+/// Time and error of the fidelities on the seed 000 and seed 003 scenarios at 720 angles, against
+/// the numerical model on a fine grid (384 nodes, tolerance 1e-8) at every angle.
+fn fidelity_table(flat: &Value, roller: &Value) {
+    faer::set_global_parallelism(faer::Par::Seq);
+    let col = |out: &Value, name: &str| -> Vec<f64> {
+        out["series"][name].as_array().map(|a| a.iter().map(|v| v.as_f64().unwrap()).collect()).unwrap_or_default()
+    };
+    let max_rel = |a: &[f64], b: &[f64]| a.iter().zip(b).map(|(x, y)| ((x - y) / y).abs()).fold(0.0, f64::max);
+    let mean_rel = |a: &[f64], b: &[f64]| a.iter().zip(b).map(|(x, y)| ((x - y) / y).abs()).sum::<f64>() / a.len() as f64;
+    let summary = |out: &Value, key: &str| out["summary"][key].as_f64();
+    println!("\n## Film models: time and error at 720 angles (release, one thread)\n");
+    println!("Errors against `accurate` with 384 nodes, tolerance 1e-8. Film errors: largest (mean) relative deviation over the angles.\n");
+    println!("| case | fidelity | nodes | numerical angles | time (s) | h_c error | h_min error | other |");
+    println!("| --- | --- | ---: | ---: | ---: | --- | --- | --- |");
+    let flat_ph = with(flat, |s| s["film"] = serde_json::json!({"formula": "pan_hamrock"}));
+    let cases: [(&str, &Value, &[&str]); 3] = [
+        ("seed 000 roller, steady", roller, &["mean_slide_roll_ratio", "max_abs_slide_roll_ratio", "mean_friction_coefficient"]),
+        ("seed 003 flat, cycloidal", flat, &["min_film", "mean_friction_coefficient", "max_flash_temperature"]),
+        ("seed 003 flat, Pan–Hamrock as closed form", &flat_ph, &["min_film", "mean_friction_coefficient", "max_flash_temperature"]),
+    ];
+    for (name, spec, metrics) in cases {
+        let base = with(spec, |s| s["angles"] = 720.into());
+        let reference_spec = with(&base, |s| {
+            s["fidelity"] = "accurate".into();
+            s["ehl"] = serde_json::json!({"nodes": 384, "tolerance": 1e-8});
+        });
+        let (t_ref, reference) = job(&reference_spec, 1);
+        let closed_only = name.contains("Pan–Hamrock");
+        let runs: Vec<(&str, usize, f64, usize)> = if closed_only {
+            vec![("fast", 0, 0.0, 5), ("auto", 192, 0.05, 1), ("auto", 192, 0.25, 1), ("auto", 192, 1.0, 1)]
+        } else {
+            vec![
+            ("fast", 0, 0.0, 5),
+            ("auto", 192, 0.05, 1),
+            ("auto", 192, 0.25, 1),
+            ("accurate", 96, 0.0, 1),
+            ("accurate", 128, 0.0, 1),
+            ("accurate", 192, 0.0, 1),
+            ("accurate", 256, 0.0, 1),
+        ]
+        };
+        for (fidelity, nodes, tol, reps) in runs {
+            let s = with(&base, |s| {
+                s["fidelity"] = fidelity.into();
+                if nodes > 0 {
+                    s["ehl"] = serde_json::json!({"nodes": nodes, "tolerance": 1e-6, "auto_tolerance": tol});
+                }
+            });
+            let (ms, out) = job(&s, reps);
+            let numerical = out["summary"]["fidelity_used"]["numerical"].as_u64().unwrap_or(0);
+            let fc = (col(&out, "film_central"), col(&reference, "film_central"));
+            let fm = (col(&out, "film_min"), col(&reference, "film_min"));
+            let others: Vec<String> = metrics
+                .iter()
+                .map(|m| match (summary(&out, m), summary(&reference, m)) {
+                    (Some(a), Some(b)) => format!("{m} {a:.4e} ({:+.1} %)", 100.0 * (a / b - 1.0)),
+                    _ => format!("{m} –"),
+                })
+                .collect();
+            let label = if fidelity == "auto" { format!("auto (tol {tol})") } else { fidelity.to_string() };
+            println!(
+                "| {name} | {label} | {} | {numerical} | {:.2} | {:.1} % ({:.1} %) | {:.1} % ({:.1} %) | {} |",
+                if nodes > 0 { nodes.to_string() } else { "–".into() },
+                ms / 1e3,
+                100.0 * max_rel(&fc.0, &fc.1),
+                100.0 * mean_rel(&fc.0, &fc.1),
+                100.0 * max_rel(&fm.0, &fm.1),
+                100.0 * mean_rel(&fm.0, &fm.1),
+                others.join("; ")
+            );
+        }
+        println!("| {name} | reference (accurate) | 384 | 720 | {:.2} | 0 | 0 | |", t_ref / 1e3);
     }
 }

@@ -5,7 +5,8 @@
 use proptest::prelude::*;
 use serde_json::{json, Value};
 use tribod::jobs::{registry, Limits};
-use tribod::physics::film::{ClosedForm, ContactInput, ContactShape, FilmFormula, FilmModel};
+use tribod::physics::ehl::EhlOptions;
+use tribod::physics::film::{Auto, ClosedForm, ContactInput, ContactShape, FilmFormula, FilmModel, FilmSolution, Numerical};
 use tribod::physics::friction::{AsperityFriction, AsperityModel, Rheology, Roughness, TractionLaw};
 use tribod::physics::lubricant::{DensityModel, Lubricant, ViscosityModel};
 use tribod::physics::{Silent, SolveError};
@@ -189,6 +190,111 @@ proptest! {
                 // allowed here because it names the quantity; the job layer maps it to an error.
             }
             Err(e) => prop_assert!(false, "{e}"),
+        }
+    }
+}
+
+// ------------------------------------------------------------------ accurate and auto (issue 5)
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 48, .. ProptestConfig::default() })]
+
+    /// Cycles at fidelity `accurate` or `auto` (numerical EHL with squeeze between angles, coarse
+    /// grids to bound the run time): a finite result or a typed error (`not_converged` included).
+    #[test]
+    fn numerical_cycles_converge_or_fail_cleanly(
+        law in law(),
+        base in 0.005f64..0.04,
+        lift in 0.001f64..0.012,
+        rise in 40.0f64..150.0,
+        fall in 40.0f64..150.0,
+        follower in follower(),
+        rpm in 50.0f64..8000.0,
+        preload in 50.0f64..3000.0,
+        eta in 1e-3f64..0.5,
+        alpha in 0.0f64..3e-8,
+        rq in 0.0f64..5e-7,
+        startup in prop::bool::ANY,
+        auto in prop::bool::ANY,
+        nodes in 48usize..96,
+        angles in 32usize..72,
+    ) {
+        let spec = json!({
+            "cam": {"profile": {"type": "rise_return", "base_radius": base, "lift": lift, "rise_deg": rise,
+                                "return_deg": fall, "law": law},
+                    "width": 0.01, "roughness_rq": rq},
+            "follower": follower,
+            "operation": if startup { json!({"speed_rpm": rpm, "startup": {"rated_angle_deg": 180.0}}) } else { json!({"speed_rpm": rpm}) },
+            "load": {"type": "valve_train", "spring_preload": preload, "spring_stiffness": 3e4, "moving_mass": 0.1},
+            "lubricant": {"viscosity": eta, "pressure_viscosity": alpha},
+            "fidelity": if auto { "auto" } else { "accurate" },
+            "ehl": {"nodes": nodes, "tolerance": 1e-6, "auto_tolerance": 0.1},
+            "slip": {"max_cycles": 6},
+            "angles": angles,
+        });
+        if let Err(e) = outcome("cam_cycle", &spec) {
+            return Err(TestCaseError::fail(format!("{e}\n{spec}")));
+        }
+    }
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 48, .. ProptestConfig::default() })]
+
+    /// The numerical and auto film models over p0 ≈ 0.1–3 GPa, entrainment down to near zero and
+    /// reversing within a four-step transient, viscosities and radii over their ranges: each step
+    /// converges (positive film, non-negative pressure, finite traction nodes and traction) or
+    /// fails with a typed error; never NaN.
+    #[test]
+    fn numerical_film_steps_are_finite_or_typed(
+        p0 in 0.1e9f64..3e9,
+        r in 2e-3f64..0.05,
+        u0 in -10.0f64..10.0,
+        du in -12.0f64..12.0,
+        eta in 1e-3f64..1.0,
+        alpha in 0.0f64..3e-8,
+        sigma in 0.0f64..5e-7,
+        dt in 1e-6f64..1e-3,
+        auto in prop::bool::ANY,
+        barus in prop::bool::ANY,
+    ) {
+        let es = 1.15e11;
+        // Load per length for p0: w = π R p0² / E*.
+        let w = std::f64::consts::PI * r * p0 * p0 / es;
+        let lub = Lubricant { viscosity: eta, pressure_viscosity: alpha, temperature_viscosity: 0.0, reference_temperature: 313.0,
+                              density: 870.0, viscosity_model: if barus { ViscosityModel::Barus } else { ViscosityModel::Roelands },
+                              density_model: DensityModel::DowsonHigginson };
+        let rough = Roughness { sigma, eta_beta_sigma: 0.05, sigma_over_beta: 0.001 };
+        let law = TractionLaw { rheology: Rheology::Eyring { tau0: 5e6 }, limiting_shear_coefficient: None };
+        let asp = AsperityFriction { coefficient: 0.1, model: AsperityModel::Coulomb };
+        let fast = ClosedForm { formula: FilmFormula::PanHamrock, squeeze: false };
+        let numerical = Numerical { options: EhlOptions { nodes: 64, tolerance: 1e-6, ..EhlOptions::default() }, fallback: fast };
+        let model: Box<dyn FilmModel> = if auto { Box::new(Auto { fast, numerical, tolerance: 0.05 }) } else { Box::new(numerical) };
+        let mut prev: Option<FilmSolution> = None;
+        for k in 0..4 {
+            // Entrainment sweeps linearly from u0 to u0 + du: crosses zero for many cases.
+            let u = u0 + du * k as f64 / 3.0;
+            let input = ContactInput {
+                load: w * 0.01, shape: ContactShape::Line { reduced_radius: r, length: 0.01 }, entrainment_velocity: u,
+                sliding_velocity: 0.1 * u, time: k as f64 * dt, time_step: if k == 0 { 0.0 } else { dt }, contact_modulus: es,
+                temperature: 313.0, lubricant: &lub, roughness: &rough, traction_law: &law, asperity_friction: &asp,
+            };
+            match model.solve(&input, prev.as_ref()) {
+                Ok(f) => {
+                    prop_assert!(f.central_film.is_finite() && f.central_film >= 0.0, "{f:?}");
+                    prop_assert!(f.min_film.is_finite() && f.min_film >= 0.0);
+                    if let Some(p) = &f.profile {
+                        prop_assert!(p.film.iter().all(|h| h.is_finite() && *h > 0.0));
+                        prop_assert!(p.pressure.iter().all(|p| p.is_finite() && *p >= 0.0));
+                        prop_assert!(f.nodes.iter().all(|n| n.area >= 0.0 && n.film > 0.0 && n.viscosity.is_finite()));
+                    }
+                    let t = model.traction(&f, &input, 0.1 * u);
+                    prop_assert!(t.force.is_finite() && t.slope.is_finite() && t.slope >= 0.0);
+                    prev = Some(f);
+                }
+                Err(SolveError::Physical { .. } | SolveError::NotConverged { .. } | SolveError::NonFinite { .. } | SolveError::InvalidInput { .. }) => break,
+                Err(e) => prop_assert!(false, "{e}"),
+            }
         }
     }
 }

@@ -17,13 +17,20 @@
 //! * [`ClosedForm`] — fidelity `fast`: Hertz pressure + a regression film formula (Pan–Hamrock,
 //!   Dowson–Higginson, seed 003 eq. 17 with squeeze; Hamrock–Dowson for point contacts) +
 //!   Greenwood–Tripp load sharing. Microseconds per point.
-//! * A numerical EHL solver (issue 5) plugs in as another implementation: it reads
-//!   `input.time_step` and `previous` (the solution at the previous angle, including its
-//!   `profile`) for the squeeze term ∂(ρh)/∂t and a warm start, fills `pressure_spike` and
-//!   `profile`, and returns its grid nodes (or a condensed set) as traction nodes. Select it in
-//!   [`model_for`]; `fidelity: "auto"` can read [`FilmSolution::regime`] and the closed form's
-//!   validity to decide per angle. Every implementation must be deterministic, return finite
-//!   numbers or a typed [`SolveError`], and set `model`.
+//! * [`Numerical`] — fidelity `accurate`: the numerical line-contact EHL solver
+//!   ([`crate::physics::ehl`]) at every point. It reads `input.time_step` and `previous` (the
+//!   solution at the previous angle, whose [`FilmProfile`] holds the converged fields) for the
+//!   squeeze term ∂(ρh)/∂t and a warm start, fills `pressure_spike`, `exit_film` and `profile`,
+//!   and returns its grid nodes with positive pressure as traction nodes. Point contacts (the
+//!   spherical tappet) keep the closed form: the solver is one-dimensional.
+//! * [`Auto`] — fidelity `auto`: per point, the closed form where [`closed_form_error`] (the one
+//!   place the decision is made; measured rules in [`auto`]) is within the tolerance, else
+//!   [`Numerical`]. After closed-form points the numerical model has no history: its first point
+//!   is a steady solve (no squeeze), which the squeeze rule keeps to points where the squeeze is
+//!   still small.
+//!
+//! Every implementation is deterministic, returns finite numbers or a typed [`SolveError`], and
+//! sets `model`.
 //!
 //! Units: SI. The moduli are passed as `E*` (Johnson); formulas needing `E' = 2E*` convert.
 
