@@ -256,3 +256,21 @@ impl FilmModel for Auto {
         }
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn tables_return_their_nodes_and_refuse_outside_the_load_range() {
+        let (c, m) = pan_hamrock_table(10.0, 10.0).unwrap();
+        assert!((c + 0.060).abs() < 1e-12 && (m + 0.036).abs() < 1e-12);
+        // L clamped, M bracketed.
+        assert_eq!(pan_hamrock_table(10.0, 40.0), pan_hamrock_table(10.0, 20.0));
+        assert!(pan_hamrock_table(0.3, 10.0).is_none() && pan_hamrock_table(2000.0, 10.0).is_none());
+        // Cell maximum: between M = 1 and 2 at L = 10–20 the largest corner is 201 %.
+        let v = cell_max(&TRACTION_M, &TRACTION_L, 1.5, 15.0, |l, m| TRACTION_TABLE[l][m]);
+        assert_eq!(v, 201.0);
+        assert_eq!(cell_max(&TRACTION_M, &TRACTION_L, 1000.0, 30.0, |l, m| TRACTION_TABLE[l][m]), 45.0);
+    }
+}

@@ -158,3 +158,59 @@ impl FilmModel for Numerical {
         })
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::physics::film::FilmFormula;
+    use crate::physics::friction::{AsperityFriction, AsperityModel, Rheology as Shear, Roughness, TractionLaw};
+    use crate::physics::lubricant::Lubricant;
+
+    fn model() -> Numerical {
+        Numerical {
+            options: EhlOptions { nodes: 96, tolerance: 1e-8, ..EhlOptions::default() },
+            fallback: ClosedForm { formula: FilmFormula::PanHamrock, squeeze: false },
+        }
+    }
+
+    #[test]
+    fn nodes_carry_the_load_and_a_reversal_keeps_a_squeeze_film() {
+        let lub = Lubricant { viscosity: 0.013, pressure_viscosity: 1.84e-8, ..Lubricant::SEED000 };
+        let rough = Roughness { sigma: 0.0, eta_beta_sigma: 0.04, sigma_over_beta: 0.001 };
+        let law = TractionLaw { rheology: Shear::Eyring { tau0: 5e6 }, limiting_shear_coefficient: None };
+        let asp = AsperityFriction { coefficient: 0.1, model: AsperityModel::Coulomb };
+        // Seed 001 nose (12.5 kN over 21 mm, R = 10.5 mm, 3.98 m/s).
+        let input = ContactInput {
+            load: 12_500.0,
+            shape: ContactShape::Line { reduced_radius: 0.0105, length: 0.021 },
+            entrainment_velocity: 3.98,
+            sliding_velocity: 0.04,
+            time: 0.0,
+            time_step: 0.0,
+            contact_modulus: 100e9 / 0.91,
+            temperature: lub.reference_temperature,
+            lubricant: &lub,
+            roughness: &rough,
+            traction_law: &law,
+            asperity_friction: &asp,
+        };
+        let m = model();
+        let f = m.solve(&input, None).unwrap();
+        assert_eq!(f.model, FilmModelId::Numerical);
+        let load: f64 = f.nodes.iter().map(|n| n.area * n.pressure).sum();
+        assert!((load / 12_500.0 - 1.0).abs() < 0.02, "{load}");
+        assert!(f.pressure_spike.is_some() && f.exit_film.unwrap() >= f.min_film);
+        assert!(f.iterations.is_some() && f.profile.is_some());
+        // Entrainment stops 0.1 ms later: without history a steady film has no solution (the
+        // closed form answers: no film); with history the squeeze film remains.
+        let stop = ContactInput { entrainment_velocity: 0.0, time_step: 1e-4, ..input };
+        let dry = m.solve(&ContactInput { time_step: 0.0, ..stop }, None).unwrap();
+        assert_eq!(dry.model, FilmModelId::PanHamrock);
+        let squeeze = m.solve(&stop, Some(&f)).unwrap();
+        assert_eq!(squeeze.model, FilmModelId::Numerical);
+        assert!(squeeze.central_film > 0.3 * f.central_film && squeeze.central_film < f.central_film, "{} vs {}", squeeze.central_film, f.central_film);
+        // Point contacts keep the closed form.
+        let point = ContactInput { shape: ContactShape::Point { rx: 0.0142, ry: 0.042 }, load: 500.0, ..input };
+        assert_eq!(m.solve(&point, None).unwrap().model, FilmModelId::HamrockDowson);
+    }
+}
