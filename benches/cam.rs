@@ -79,6 +79,10 @@ fn main() {
         fidelity_table(&flat, &roller);
         return;
     }
+    if args.iter().any(|a| a == "auto-tables") {
+        auto_tables();
+        return;
+    }
     let all = ["kinematics", "loads", "contact", "film", "friction", "slip", "temperature"];
     println!("## Cam cycle: run time at 3600 angles (release, best of 20)\n");
     println!("| case | outputs | physics (ms) | job incl. JSON (ms) |");
@@ -217,5 +221,84 @@ fn fidelity_table(flat: &Value, roller: &Value) {
             );
         }
         println!("| {name} | reference (accurate) | 384 | 720 | {:.2} | 0 | 0 | |", t_ref / 1e3);
+    }
+}
+
+/// The measurements behind `physics::film::auto`'s tables: Pan–Hamrock's films and the closed
+/// form's traction against the numerical model over Moes M and L (`cargo bench --bench cam --
+/// auto-tables`). Steady, R = 15 mm, α = 2.2e-8 1/Pa, η0 = 0.05 Pa·s, Roelands + Dowson–Higginson.
+fn auto_tables() {
+    use tribod::physics::ehl::formulas::{pan_hamrock_central_film, pan_hamrock_minimum_film, Groups};
+    use tribod::physics::ehl::{solve, EhlInput, EhlOptions, Rheology as EhlRheology};
+    use tribod::physics::film::{ClosedForm, ContactInput, ContactShape, FilmFormula, FilmModel, Numerical};
+    use tribod::physics::friction::{AsperityFriction, AsperityModel, Rheology, Roughness, TractionLaw};
+    use tribod::physics::lubricant::Lubricant;
+    faer::set_global_parallelism(faer::Par::Seq);
+    let es = 210e9 / 0.91 / 2.0;
+    let (r, alpha, eta0, len) = (0.015, 2.2e-8, 0.05, 0.012);
+    let lub = Lubricant { viscosity: eta0, pressure_viscosity: alpha, ..Lubricant::SEED000 };
+    let case = |m: f64, l: f64| {
+        let g = alpha * 2.0 * es;
+        let u_sum = (l / g).powi(4);
+        (m * u_sum.sqrt() * 2.0 * es * r, 0.5 * u_sum * 2.0 * es * r / eta0)
+    };
+    println!("## Pan–Hamrock against the numerical film (384 nodes): h_PH/h_num − 1, central / minimum (%)\n");
+    let ms = [0.5, 1.0, 2.0, 5.0, 10.0, 20.0, 50.0, 100.0, 300.0, 1000.0];
+    println!("| L \\ M | {} |", ms.map(|m| m.to_string()).join(" | "));
+    println!("|---|{}", "---:|".repeat(ms.len()));
+    for l in [4.0, 7.0, 10.0, 14.0, 20.0] {
+        let mut row = format!("| {l} |");
+        for m in ms {
+            let (w, u) = case(m, l);
+            let inp = EhlInput {
+                load_per_length: w, reduced_radius: r, effective_modulus: 2.0 * es, entrainment_velocity: u,
+                sliding_velocity: 0.0, lubricant: lub, temperature: lub.reference_temperature,
+                rheology: EhlRheology::default(), transient: None, warm_start: None,
+            };
+            match solve(&inp, &EhlOptions { nodes: 384, ..Default::default() }, &Silent) {
+                Ok(s) => {
+                    let g = Groups::of(w, r, 2.0 * es, u, &lub, lub.reference_temperature);
+                    row += &format!(
+                        " {:+.1} / {:+.1} |",
+                        100.0 * (pan_hamrock_central_film(&g, r) / s.central_film - 1.0),
+                        100.0 * (pan_hamrock_minimum_film(&g, r) / s.min_film - 1.0)
+                    );
+                }
+                Err(e) => row += &format!(" {e} |"),
+            }
+        }
+        println!("{row}");
+    }
+    println!("\n## Closed-form traction against the numerical model's nodes (256 nodes): T_closed/T_num − 1 (%)\n");
+    let ms = [0.5, 1.0, 2.0, 5.0, 10.0, 30.0, 100.0, 300.0];
+    let rough = Roughness { sigma: 0.0, eta_beta_sigma: 0.04, sigma_over_beta: 0.001 };
+    let asp = AsperityFriction { coefficient: 0.1, model: AsperityModel::Coulomb };
+    let fast = ClosedForm { formula: FilmFormula::PanHamrock, squeeze: false };
+    let num = Numerical { options: EhlOptions { nodes: 256, tolerance: 1e-8, ..Default::default() }, fallback: fast };
+    for (label, law) in [
+        ("Newtonian", TractionLaw { rheology: Rheology::Newtonian, limiting_shear_coefficient: None }),
+        ("Eyring τ0 = 5 MPa, SRR 0.01", TractionLaw { rheology: Rheology::Eyring { tau0: 5e6 }, limiting_shear_coefficient: None }),
+    ] {
+        println!("{label}\n\n| L \\ M | {} |", ms.map(|m| m.to_string()).join(" | "));
+        println!("|---|{}", "---:|".repeat(ms.len()));
+        for l in [4.0, 10.0, 20.0] {
+            let mut row = format!("| {l} |");
+            for m in ms {
+                let (w, u) = case(m, l);
+                let input = ContactInput {
+                    load: w * len, shape: ContactShape::Line { reduced_radius: r, length: len }, entrainment_velocity: u,
+                    sliding_velocity: 0.0, time: 0.0, time_step: 0.0, contact_modulus: es, temperature: lub.reference_temperature,
+                    lubricant: &lub, roughness: &rough, traction_law: &law, asperity_friction: &asp,
+                };
+                let (Ok(a), Ok(b)) = (fast.solve(&input, None), num.solve(&input, None)) else {
+                    row += " – |";
+                    continue;
+                };
+                let us = 0.01 * u;
+                row += &format!(" {:+.0} |", 100.0 * (fast.traction(&a, &input, us).viscous / num.traction(&b, &input, us).viscous - 1.0));
+            }
+            println!("{row}");
+        }
+        println!();
     }
 }
