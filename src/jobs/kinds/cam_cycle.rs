@@ -432,8 +432,11 @@ pub struct CamCycleSpec {
     /// solver at every angle, with squeeze between consecutive angles; point contacts of a
     /// spherical tappet keep the closed form), `auto` (the closed form where its estimated error
     /// is within `ehl.auto_tolerance`, the numerical solver elsewhere: near zero entrainment,
-    /// outside the closed form's load range, strong squeeze). The series column `model` says which
-    /// ran at each angle.
+    /// outside the closed form's load range, strong squeeze, closed-form traction off at light
+    /// loads; rules in `physics::film::auto`). The series column `model` says which ran at each
+    /// angle. The instant of rest at the start of a startup (no entrainment, no film history) has
+    /// no lubricated solution and reports the closed form there. Thermal effects are not modelled
+    /// by either model.
     #[serde(default)]
     pub fidelity: Fidelity,
     /// Numerical EHL options (`accurate`, `auto`).
@@ -696,7 +699,8 @@ pub struct FilmProfileAtAngle {
 pub struct CamCycleResult {
     /// Fidelity that ran.
     pub fidelity_used: Fidelity,
-    /// Film model that ran (when a film was computed).
+    /// Film model that ran, when one model ran at every angle (absent when `auto` mixed models:
+    /// see the series column `model` and `summary.fidelity_used`).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub film_model: Option<FilmModelId>,
     /// E* = 1/Σ(1−ν²)/E, Pa (Hertz, Greenwood–Tripp).
