@@ -23,6 +23,10 @@ use utoipa::ToSchema;
 
 pub struct Wear;
 
+/// Most profile updates of one run, including the ones added for stability (each is one cam
+/// cycle).
+pub const MAX_UPDATES: usize = 5_000;
+
 // ---------------------------------------------------------------- spec
 
 /// Wear model.
@@ -177,6 +181,9 @@ pub struct WearSpec {
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub cycles: Option<f64>,
     /// Archard: running time between profile updates, h. Default: a tenth of the running time.
+    /// Updates that would wear more than 0.1·ρ·Δθ² somewhere (ρ the cam's radius of curvature,
+    /// Δθ the angle step) are shortened automatically: larger steps make the explicit update
+    /// unstable.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub update_interval_hours: Option<f64>,
     /// Wear coefficient of the cam (required by `archard`; with `irgashev` it adds an Archard
@@ -218,6 +225,8 @@ pub enum WearStopReason {
     ContactOffFace,
     /// Another typed failure of the cycle on the next worn profile (see `code`).
     ProfileFailure,
+    /// Stable updates would need more than the most updates a run may take (`update_limit`).
+    UpdateLimit,
 }
 
 /// How the run ended. A run that ends on a failed profile still returns everything up to the
@@ -398,7 +407,8 @@ pub struct WearSummary {
     /// Loss of peak valve lift with mechanical lash (drop of the peak follower lift), m.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub valve_lift_loss: Option<f64>,
-    /// Loss of peak valve lift with a lash adjuster (drop of peak minus lowest lift), m.
+    /// Loss of peak valve lift with a lash adjuster (drop of the peak lift over the base circle's
+    /// mean lift, the base circle being where the original lift is lowest), m.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub valve_lift_loss_lash_adjusted: Option<f64>,
     /// Smallest minimum film on the original and on the final profile, m.
@@ -576,6 +586,7 @@ fn solve_archard(spec: &WearSpec, observer: &dyn Observer) -> Result<WearResult,
         snapshots: spec.snapshots,
         face_radius,
         face_bins: spec.angles,
+        max_updates: MAX_UPDATES,
     };
     let ev = evolve(&run, model.as_ref(), observer)?;
     let degs = |v: &[f64]| v.iter().map(|x| x.to_degrees()).collect::<Vec<_>>();
@@ -588,6 +599,7 @@ fn solve_archard(spec: &WearSpec, observer: &dyn Observer) -> Result<WearResult,
                 "cam_undercut" => WearStopReason::CamUndercut,
                 "follower_separation" => WearStopReason::FollowerSeparation,
                 "contact_off_face" => WearStopReason::ContactOffFace,
+                "update_limit" => WearStopReason::UpdateLimit,
                 _ => WearStopReason::ProfileFailure,
             },
             code: Some(code.to_string()),
@@ -607,9 +619,14 @@ fn solve_archard(spec: &WearSpec, observer: &dyn Observer) -> Result<WearResult,
         worn_volume: Some(last.cam_volume),
         follower_worn_volume: Some(last.follower_volume),
         valve_lift_loss: Some(max_of(&ev.initial_lift) - max_of(&ev.final_lift)),
-        valve_lift_loss_lash_adjusted: Some(
-            (max_of(&ev.initial_lift) - min_of(&ev.initial_lift)) - (max_of(&ev.final_lift) - min_of(&ev.final_lift)),
-        ),
+        valve_lift_loss_lash_adjusted: Some({
+            // The adjuster takes up the lash on the base circle: the angles of the original's
+            // lowest lift.
+            let low = min_of(&ev.initial_lift);
+            let base: Vec<usize> = (0..ev.angle.len()).filter(|&i| ev.initial_lift[i] <= low + 1e-9).collect();
+            let mean = |v: &[f64]| base.iter().map(|&i| v[i]).sum::<f64>() / base.len() as f64;
+            (max_of(&ev.initial_lift) - mean(&ev.initial_lift)) - (max_of(&ev.final_lift) - mean(&ev.final_lift))
+        }),
         initial_min_film: first.min_film,
         final_min_film: last.min_film,
         initial_max_pressure: Some(first.max_pressure),

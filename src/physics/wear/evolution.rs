@@ -11,6 +11,8 @@
 //!   lift drop is interpolated by a periodic cubic spline and subtracted from the original,
 //!   exact profile ([`CamProfile::Worn`]); the kinematics, loads, contact and film are recomputed
 //!   from it. (The follower face's own wear is reported but not fed back into the kinematics.)
+//! * Stability: an explicit update is stable only while it wears less than about `0.2 ρ Δθ²`
+//!   (see [`STABLE_FRACTION`]); intervals are shortened automatically to half of that.
 //! * Termination: the requested time, or the wear limit (the interval that crosses it is cut at
 //!   the crossing, which is exact for the Euler step), or a worn profile the pair cannot run on:
 //!   the cycle's typed errors (`cam_undercut`, `follower_separation`, `contact_off_face`, …) end
@@ -46,7 +48,18 @@ pub struct WearRun {
     pub face_radius: Option<f64>,
     /// Bins over a flat follower's face.
     pub face_bins: usize,
+    /// Most profile updates (the update interval is shortened automatically where a step would
+    /// be unstable; see [`STABLE_FRACTION`]).
+    pub max_updates: usize,
 }
+
+/// Largest wear per update, as a fraction of `ρ Δθ²` (ρ the cam's radius of curvature at the
+/// point, Δθ the angle step). Why: the wear per pass grows where the cam is more sharply curved
+/// (the contact dwells longer there: `v_s/u_c = (r_b + s)/ρ` for a flat face), so wear smooths a
+/// bump — a diffusion in the cam angle — and an explicit update of a mode of wavenumber `m` is
+/// stable only while `Δw m²/ρ < 2`; with `m` up to `π/Δθ` that is `Δw < 0.2 ρ Δθ²`. Half of that
+/// bound is used: each update interval is cut to respect it.
+pub const STABLE_FRACTION: f64 = 0.1;
 
 /// Why the evolution stopped.
 #[derive(Debug, Clone, PartialEq)]
@@ -220,8 +233,33 @@ pub fn evolve(run: &WearRun, model: &dyn FilmModel, observer: &dyn Observer) -> 
         observer.check()?;
         observer.progress(t / run.hours, "wear");
         let mut dt_h = run.update_hours.min(run.hours - t);
-        let mut revs = dt_h * 3600.0 / period;
         let inc = &current.wear.cam_depth;
+        // Stability of the explicit step: at most `STABLE_FRACTION ρ Δθ²` of wear per update.
+        let curvature = &current.out.series.cam_curvature;
+        let dtheta = TAU / n as f64;
+        let max_revs = inc
+            .iter()
+            .zip(curvature)
+            .filter(|(r, k)| **r > 0.0 && **k > 0.0)
+            .map(|(r, k)| STABLE_FRACTION * dtheta * dtheta / (k * r))
+            .fold(f64::INFINITY, f64::min);
+        if max_revs * period / 3600.0 < dt_h {
+            dt_h = max_revs * period / 3600.0;
+            if updates >= run.max_updates {
+                stop = Stop::Failed {
+                    code: "update_limit",
+                    message: format!(
+                        "the wear per update must stay below {STABLE_FRACTION}·ρ·Δθ² for a stable profile update; \
+                         this run would need more than {} updates (fewer angles, a smaller wear coefficient or a \
+                         shorter running time help)",
+                        run.max_updates
+                    ),
+                    at_hours: t + dt_h,
+                };
+                break;
+            }
+        }
+        let mut revs = dt_h * 3600.0 / period;
         // Cut the interval where the wear limit is crossed.
         let mut limit_hit = false;
         if let Some(limit) = run.wear_limit {
@@ -244,7 +282,6 @@ pub fn evolve(run: &WearRun, model: &dyn FilmModel, observer: &dyn Observer) -> 
             drop.iter().zip(inc).zip(pressure_angle).map(|((d, r), phi)| d + r * revs / phi.cos()).collect();
         ensure_finite("worn profile", new_depth.iter().chain(&new_drop))?;
         let t_new = t + dt_h;
-        updates += 1;
         // Rebuild the profile and rerun the pair on it.
         let worn = PeriodicSpline::new(&angle, &new_drop)?;
         let mut cycle = run.cycle.clone();
@@ -258,6 +295,7 @@ pub fn evolve(run: &WearRun, model: &dyn FilmModel, observer: &dyn Observer) -> 
             Err(e) => return Err(e),
         };
         // Commit.
+        updates += 1;
         if let (Some(f), Some(fr)) = (face.as_mut(), current.wear.face_depth.as_ref()) {
             for (a, r) in f.iter_mut().zip(fr) {
                 *a += r * revs;
