@@ -333,3 +333,20 @@ fn roller_wears_only_where_it_slides() {
     assert!(depth.iter().copied().fold(0.0, f64::max) > 0.0);
     assert!(out["summary"]["roller_wear_depth"].as_f64().unwrap() > 0.0);
 }
+
+/// The kind's own example runs to completion, and every table of the kind renders as CSV.
+#[test]
+fn example_runs_and_tables_render_as_csv() {
+    let k = registry::find("wear").unwrap();
+    let out = run("wear", &k.example()).unwrap();
+    assert_eq!(out["termination"]["reason"], "completed", "{}", out["termination"]);
+    for table in ["series", "history", "follower_face"] {
+        let csv = tribod::jobs::table::to_csv(&out[table]).unwrap_or_else(|e| panic!("{table}: {e}"));
+        assert!(csv.lines().count() > 2, "{table}");
+    }
+    let ir = run("wear", &example("seed004_irgashev")).unwrap();
+    let csv = tribod::jobs::table::to_csv(&ir["rows"]).unwrap();
+    assert_eq!(csv.lines().count(), 23);
+    assert!(csv.starts_with("part,step,role,"));
+    assert_eq!(k.tables(), &["series", "rows", "history", "follower_face"]);
+}

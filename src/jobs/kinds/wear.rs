@@ -836,7 +836,7 @@ impl Kind for Wear {
             },
             "follower": {"type": "flat_faced", "roughness_rq": 1e-7},
             "operation": {"speed_rpm": 3000.0},
-            "load": {"type": "valve_train", "spring_preload": 300.0, "spring_stiffness": 38000.0, "moving_mass": 0.25},
+            "load": {"type": "valve_train", "spring_preload": 450.0, "spring_stiffness": 38000.0, "moving_mass": 0.25},
             "lubricant": {"viscosity": 0.01, "pressure_viscosity": 2.2e-8},
             "hours": 1000.0,
             "update_interval_hours": 100.0,
