@@ -11,6 +11,7 @@ pub static KINDS: &[&dyn DynKind] = &[
     &Registered::<kinds::cam_cycle::CamCycle>::new(),
     &Registered::<kinds::cam_point::CamPoint>::new(),
     &Registered::<kinds::ehl_point::EhlPoint>::new(),
+    &Registered::<kinds::wear::Wear>::new(),
     &Registered::<kinds::sweep::Sweep>::new(),
 ];
 

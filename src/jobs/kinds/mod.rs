@@ -8,5 +8,6 @@ pub mod cam_point;
 pub mod ehl_point;
 pub mod hertz;
 pub mod sweep;
+pub mod wear;
 #[cfg(feature = "test-kinds")]
 pub mod test_sleep;

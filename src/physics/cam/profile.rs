@@ -228,6 +228,11 @@ pub enum CamProfile {
     Tabulated { base_radius: f64, spline: PeriodicSpline },
     /// Circular arcs.
     MultiArc(MultiArc),
+    /// A profile worn by `wear`: the follower lift of `original` minus the lift drop `wear(θ)`
+    /// (m, a periodic spline over the cam angle), same base radius. The wear kind rebuilds the
+    /// profile this way after every update, so the original stays exact and only the (smooth)
+    /// wear correction is interpolated.
+    Worn { original: Box<CamProfile>, wear: PeriodicSpline },
 }
 
 impl CamProfile {
@@ -235,6 +240,7 @@ impl CamProfile {
         match self {
             CamProfile::Program { base_radius, .. } | CamProfile::Tabulated { base_radius, .. } => *base_radius,
             CamProfile::MultiArc(m) => m.base_radius(),
+            CamProfile::Worn { original, .. } => original.base_radius(),
         }
     }
 
@@ -247,6 +253,7 @@ impl CamProfile {
                 FollowerShape::Flat => m.flat_lift(theta),
                 FollowerShape::Curved { radius, offset } => m.curved_lift(theta, radius, offset),
             },
+            CamProfile::Worn { original, wear } => original.lift(theta, follower) - wear.eval(theta),
         }
     }
 
