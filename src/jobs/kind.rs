@@ -341,15 +341,28 @@ pub fn canonicalize(value: Value) -> Value {
     }
 }
 
-/// serde_json turns NaN and infinities into `null`, so a result may contain no `null` at all:
+/// serde_json turns NaN and infinities into `null`, so no field of a result may be `null`:
 /// outputs leave absent quantities out (`#[serde(skip_serializing_if = "Option::is_none")]`)
-/// instead of writing `null`. Solvers check their own numbers; this is the last chokepoint before
-/// a result is stored.
+/// instead of writing `null`. The one place `null` is allowed is an element of a per-angle (or
+/// per-case) column that was not computed at that index (an `Option<f64>` element, e.g. the
+/// pressure spike at angles where the closed-form film ran); such columns are built from
+/// `Option`s by the solver, whose own numbers pass `ensure_finite`. Solvers check their own
+/// numbers; this is the last chokepoint before a result is stored.
 pub fn check_finite_json(value: &Value) -> Result<(), SolveError> {
     fn walk(v: &Value, path: &mut String) -> Result<(), SolveError> {
         match v {
             Value::Null => {
                 return Err(SolveError::NonFinite { quantity: format!("result{path}") });
+            }
+            Value::Array(items) if items.iter().any(Value::is_number) => {
+                // A numeric column: `null` elements are "not computed here".
+                for item in items {
+                    if let Value::Number(n) = item {
+                        if n.as_f64().is_some_and(|x| !x.is_finite()) {
+                            return Err(SolveError::NonFinite { quantity: format!("result{path}") });
+                        }
+                    }
+                }
             }
             Value::Array(items) => {
                 for (i, item) in items.iter().enumerate() {

@@ -530,14 +530,15 @@ pub struct CamSeries {
     #[serde(skip_serializing_if = "Option::is_none")]
     pub exit_film: Option<Vec<f64>>,
     /// Height (peak pressure) of the exit pressure spike, Pa, resolved by the numerical model.
-    /// Present when any angle resolved one; 0 at angles without a spike (closed-form angles, and
-    /// numerical solutions without a secondary exit maximum, e.g. light loads).
+    /// Present when any angle resolved one; `null` at angles where none was computed or found
+    /// (closed-form angles, and numerical solutions without a secondary exit maximum, e.g. light
+    /// loads). Empty cells in CSV.
     #[serde(skip_serializing_if = "Option::is_none")]
-    pub pressure_spike: Option<Vec<f64>>,
+    pub pressure_spike: Option<Vec<Option<f64>>>,
     /// Position of the spike, m from the contact centre along the entrainment direction of
-    /// positive entrainment velocity; 0 where `pressure_spike` is 0.
+    /// positive entrainment velocity; `null` where `pressure_spike` is.
     #[serde(skip_serializing_if = "Option::is_none")]
-    pub pressure_spike_position: Option<Vec<f64>>,
+    pub pressure_spike_position: Option<Vec<Option<f64>>>,
     /// Newton steps of the numerical EHL solver at each angle (0 at closed-form angles). Present
     /// when the numerical model ran.
     #[serde(skip_serializing_if = "Option::is_none")]
@@ -1042,11 +1043,16 @@ fn solve_spec(spec: &CamCycleSpec, observer: &dyn Observer) -> Result<CamCycleRe
     }
     let (spike, spike_position) = match &s.pressure_spike {
         Some(v) => {
-            let p: Vec<f64> = v.iter().map(|x| x.map_or(0.0, |x| x.0)).collect();
-            let (i, m) = extreme(&p, |a, b| a > b);
-            summary.max_pressure_spike = Some(m);
-            summary.max_pressure_spike_angle_deg = Some(at(i));
-            (Some(p), Some(v.iter().map(|x| x.map_or(0.0, |x| x.1)).collect()))
+            if let Some((i, m)) = v
+                .iter()
+                .enumerate()
+                .filter_map(|(i, x)| x.map(|(p, _)| (i, p)))
+                .max_by(|a, b| a.1.total_cmp(&b.1))
+            {
+                summary.max_pressure_spike = Some(m);
+                summary.max_pressure_spike_angle_deg = Some(at(i));
+            }
+            (Some(v.iter().map(|x| x.map(|x| x.0)).collect()), Some(v.iter().map(|x| x.map(|x| x.1)).collect()))
         }
         None => (None, None),
     };
