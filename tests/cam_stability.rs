@@ -51,6 +51,11 @@ fn check_finite(v: &Value) -> Result<(), String> {
     match v {
         Value::Null => Err("null (non-finite) in result".into()),
         Value::Number(n) if !n.as_f64().is_some_and(f64::is_finite) => Err("non-finite number".into()),
+        // A numeric column may hold `null` where the quantity was not computed at that index
+        // (the pressure spike of a step solved in closed form); every number must be finite.
+        Value::Array(a) if a.iter().all(|x| x.is_null() || x.is_number()) => {
+            a.iter().filter(|x| !x.is_null()).try_for_each(check_finite)
+        }
         Value::Array(a) => a.iter().try_for_each(check_finite),
         Value::Object(m) => m.values().try_for_each(check_finite),
         _ => Ok(()),
