@@ -1,22 +1,19 @@
 //! Run time against error of the numerical line-contact EHL solver (`physics::ehl`).
 //!
-//! `cargo bench --bench ehl` prints three markdown tables (or one: `-- point`, `-- cycle`,
-//! `-- error-check`):
+//! `cargo bench --bench ehl` prints two markdown tables (or one: `-- point`, `-- cycle`):
 //! 1. one contact point (seed 001 nose) at 64…4096 nodes, errors of the central and minimum film
 //!    against the Richardson extrapolation of the two finest grids;
 //! 2. a 720-step transient cam-like cycle (load and radius varying, entrainment reversing twice,
 //!    squeeze) by `solve()` per angle and by `TransientSolver` with and without Richardson
-//!    extrapolation, errors against the same cycle extrapolated from 512 and 1023 nodes;
-//! 3. the closed-form error model's estimate against the actual error on that cycle.
+//!    extrapolation, errors against the same cycle extrapolated from 512 and 1023 nodes.
 //!
-//! Also: `-- error-map` measures and prints the tables of `physics::ehl::error_model` as Rust
-//! source; `-- cell=M,L` prints that measurement for one cell at four grids; `-- run=rich:193`
+//! Also: `-- run=rich:193`
 //! (modes `solve`, `ts`, `rich`; optional `@TOL`) times one cycle.
 //! Times are the best of several repetitions; the solver's own linear algebra is single-threaded
 //! (`faer::Par::Seq`), Richardson runs its two grids on two rayon threads.
 
 use std::time::Instant;
-use tribod::physics::ehl::{error_model, solve, EhlInput, EhlOptions, EhlState, Extrapolation, Rheology, Transient, TransientSolver};
+use tribod::physics::ehl::{solve, EhlInput, EhlOptions, EhlState, Extrapolation, Rheology, Transient, TransientSolver};
 use tribod::physics::lubricant::Lubricant;
 use tribod::physics::Silent;
 
@@ -53,11 +50,16 @@ fn best_of<T>(reps: usize, mut f: impl FnMut() -> T) -> (f64, T) {
     (best, out.unwrap())
 }
 
-/// The benchmark cycle (`error_model::cycle_input`): 720 steps over one revolution at 950 rpm;
+/// The benchmark cam-like cycle at angle index `k` of `steps` (one revolution at 950 rpm):
 /// load 2.25–12.5 kN over 21 mm, radius 15.2–10.5 mm, entrainment `u_m = 4 cos θ + 1.5` m/s
-/// (reverses twice per cycle).
+/// (reverses twice per cycle), slide 1 %, oil η0 = 0.013 Pa·s, α = 1.84e-8 1/Pa (Roelands,
+/// Dowson–Higginson), steel.
 fn cycle_input(k: usize, steps: usize) -> EhlInput<'static> {
-    error_model::cycle_input(k, steps)
+    let th = 2.0 * std::f64::consts::PI * k as f64 / steps as f64;
+    let f = 2250.0 + (12500.0 - 2250.0) * (0.5 - 0.5 * th.cos()).powi(2);
+    let r = 0.0152 - 0.0047 * (0.5 - 0.5 * th.cos());
+    let u = 4.0 * th.cos() + 1.5;
+    point(f / 0.021, r, u)
 }
 
 const STEPS: usize = 720;
@@ -145,21 +147,6 @@ fn main() {
     }
     if want("cycle") {
         cycle_table();
-    }
-    for a in args.iter().filter_map(|a| a.strip_prefix("cell=")) {
-        // cell=M,L[,η0[,α]]: the steady closed-form errors of one cell at four grid pairs.
-        let v: Vec<f64> = a.split(',').map(|x| x.parse().unwrap()).collect();
-        let inp = error_model::reference_contact_with(v[0], v[1], v.get(2).copied().unwrap_or(0.04), v.get(3).copied().unwrap_or(2e-8));
-        for n in [129, 257, 511, 1023] {
-            let r = error_model::measure_steady_for(&inp, n, &Silent);
-            println!("M {} L {} η0 {} Z {:.3} n {n}: {r:?}", v[0], v[1], inp.lubricant.viscosity, inp.lubricant.roelands_z());
-        }
-    }
-    if args.iter().any(|a| a == "error-map") {
-        error_map();
-    }
-    if want("error-check") {
-        error_check();
     }
     for a in args.iter().filter_map(|a| a.strip_prefix("run=")) {
         let (spec, tol) = a.split_once('@').unwrap_or((a, "1e-6"));
@@ -257,131 +244,4 @@ fn cycle_table() {
             100.0 * emin
         );
     }
-}
-
-/// Measure the closed-form error maps of `physics::ehl::error_model` and print them as Rust
-/// source (`cargo bench --bench ehl -- error-map`).
-fn error_map() {
-    use error_model::{measure_squeeze, measure_steady, reference_pressure, squeeze_table, MAX_PH, NA, NL, NM, STEADY_ALPHA, STEADY_L, STEADY_M};
-    let t = Instant::now();
-    let mut table_c = [[[None::<f64>; NL]; NM]; NA];
-    let mut table_m = table_c;
-    let (mut central, mut minimum) = (String::new(), String::new());
-    for (k, &alpha) in STEADY_ALPHA.iter().enumerate() {
-        central += &format!("    [ // α = {alpha:e}\n");
-        minimum += &format!("    [ // α = {alpha:e}\n");
-        for (i, &m) in STEADY_M.iter().enumerate() {
-            let (mut c, mut n) = (Vec::new(), Vec::new());
-            for (j, &l) in STEADY_L.iter().enumerate() {
-                let r = if reference_pressure(m, l, alpha) > MAX_PH { None } else { measure_steady(m, l, alpha, 511, &Silent).map_err(|e| eprintln!("M {m} L {l} α {alpha}: {e}")).ok() };
-                match r {
-                    Some((ec, em)) => {
-                        c.push(format!("Some({ec:.4})"));
-                        n.push(format!("Some({em:.4})"));
-                        table_c[k][i][j] = Some(ec);
-                        table_m[k][i][j] = Some(em);
-                    }
-                    None => {
-                        c.push("None".to_string());
-                        n.push("None".to_string());
-                    }
-                }
-            }
-            central += &format!("        [{}], // M = {m}\n", c.join(", "));
-            minimum += &format!("        [{}], // M = {m}\n", n.join(", "));
-        }
-        central += "    ],\n";
-        minimum += "    ],\n";
-    }
-    println!("pub const STEADY_CENTRAL: [[[Option<f64>; NL]; NM]; NA] = [\n{central}];");
-    println!("pub const STEADY_MINIMUM: [[[Option<f64>; NL]; NM]; NA] = [\n{minimum}];");
-    println!("// steady map: {:.1} s", t.elapsed().as_secs_f64());
-    // The spread over the ambient viscosity at the same M, L, α = 2e-8 (between the layers
-    // 1.6e-8 and 2.4e-8: compared with the interpolated map), at every other cell.
-    let t = Instant::now();
-    let (mut sc, mut sm) = (0.0f64, 0.0f64);
-    for &m in STEADY_M.iter().step_by(2) {
-        for &l in STEADY_L.iter().step_by(2) {
-            let base = error_model::measure_steady(m, l, 2e-8, 511, &Silent);
-            let Ok((bc, bm)) = base else { continue };
-            if reference_pressure(m, l, 2e-8) > MAX_PH {
-                continue;
-            }
-            for eta0 in [0.38, 0.0118] {
-                let inp = error_model::reference_contact_with(m, l, eta0, 2e-8);
-                match error_model::measure_steady_for(&inp, 511, &Silent) {
-                    Ok((c, n)) => {
-                        sc = sc.max((c - bc).abs());
-                        sm = sm.max((n - bm).abs());
-                    }
-                    Err(e) => eprintln!("M {m} L {l} η0 {eta0}: {e}"),
-                }
-            }
-        }
-    }
-    println!("pub const RHEOLOGY_SPREAD_CENTRAL: f64 = {:.4};", sc);
-    println!("pub const RHEOLOGY_SPREAD_MINIMUM: f64 = {:.4};", sm);
-    println!("// rheology spread: {:.1} s", t.elapsed().as_secs_f64());
-    let t = Instant::now();
-    let mut samples = Vec::new();
-    for factor in [4.0, 2.0, 1.0, 0.5, 0.25] {
-        let period = factor * 60.0 / 950.0;
-        let s = measure_squeeze(period, 720, 193, 1e-7, &Silent).unwrap();
-        let worst = s.iter().fold(0.0f64, |a, x| a.max(x.central.abs()));
-        println!("// period {period:.4} s: {} samples, xi {:.2e}..{:.2e}, worst |e_t| central {worst:.3}", s.len(),
-            s.iter().map(|x| x.xi).fold(f64::INFINITY, f64::min), s.iter().map(|x| x.xi).fold(0.0, f64::max));
-        samples.extend(s);
-    }
-    let (c, m) = squeeze_table(&samples);
-    let fmt = |v: &[Option<f64>; 8]| v.iter().map(|x| match x { Some(x) => format!("Some({x:.4})"), None => "None".into() }).collect::<Vec<_>>().join(", ");
-    println!("pub const SQUEEZE_CENTRAL: [Option<f64>; 8] = [{}];", fmt(&c));
-    println!("pub const SQUEEZE_MINIMUM: [Option<f64>; 8] = [{}];", fmt(&m));
-    println!("// squeeze map: {:.1} s", t.elapsed().as_secs_f64());
-}
-
-/// The error model against the truth on the benchmark cycle (a lubricant other than the one the
-/// steady map was measured with): at every angle the estimated and the actual relative error of
-/// Moes' central and Pan–Hamrock's minimum film (actual: against the transient solution,
-/// Richardson 97 + 193 nodes).
-fn error_check() {
-    use error_model::{closed_form_errors, squeeze_number, ContactState};
-    use tribod::physics::ehl::formulas::{moes_central_film, pan_hamrock_minimum_film, Groups};
-    let mut ts = TransientSolver::new(EhlOptions { nodes: 193, tolerance: 1e-7, ..EhlOptions::default() }, Extrapolation::Richardson);
-    let dt = time_step();
-    let groups = |k: usize| {
-        let i = cycle_input(k % STEPS, STEPS);
-        Groups::of(i.load_per_length, i.reduced_radius, i.effective_modulus, i.entrainment_velocity, &i.lubricant, i.temperature)
-    };
-    let moes = |k: usize| moes_central_film(&groups(k), cycle_input(k % STEPS, STEPS).reduced_radius);
-    let mut rows = Vec::new();
-    for k in 0..2 * STEPS {
-        let input = cycle_input(k % STEPS, STEPS);
-        let s = ts.step(&input, Some(dt), &Silent).unwrap();
-        if k < STEPS {
-            continue;
-        }
-        let g = groups(k);
-        let r = input.reduced_radius;
-        let (a, b) = (moes(k + STEPS - 1), moes(k + 1));
-        let xi = squeeze_number(s.hertz_half_width, input.entrainment_velocity, (b.ln() - a.ln()) / (2.0 * dt));
-        let est = closed_form_errors(&ContactState::new(&g, input.lubricant.pressure_viscosity, 0.01, xi));
-        let act_c = (moes_central_film(&g, r) / s.central_film - 1.0).abs();
-        let act_m = (pan_hamrock_minimum_film(&g, r) / s.min_film - 1.0).abs();
-        rows.push((est.central.max(est.minimum), act_c.max(act_m), est, act_c, act_m, g.moes_m, xi));
-    }
-    let n = rows.len();
-    let finite = rows.iter().filter(|r| r.0.is_finite()).count();
-    let bounded = rows.iter().filter(|r| r.0.is_finite() && r.0 >= r.1).count();
-    println!("\n### Closed-form error model on the benchmark cycle (950 rpm, 720 angles)\n");
-    println!("estimate finite at {finite} of {n} angles; estimate ≥ actual error at {bounded} of those\n");
-    println!("| tolerance | angles with estimate ≤ tolerance (closed form usable) | worst actual error there | angles where actual > tolerance |");
-    println!("| ---: | ---: | ---: | ---: |");
-    for tol in [0.02, 0.05, 0.1, 0.2, 0.3] {
-        let used: Vec<_> = rows.iter().filter(|r| r.0 <= tol).collect();
-        let worst = used.iter().fold(0.0f64, |a, r| a.max(r.1));
-        let over = used.iter().filter(|r| r.1 > tol).count();
-        println!("| {:.0} % | {} | {:.1} % | {over} |", 100.0 * tol, used.len(), 100.0 * worst);
-    }
-    let worst_under = rows.iter().filter(|r| r.0.is_finite() && r.1 > r.0).fold((0.0f64, 0.0, 0.0, 0.0), |a, r| if r.1 - r.0 > a.0 { (r.1 - r.0, r.1, r.5, r.6) } else { a });
-    println!("\nlargest under-estimate: actual exceeds estimate by {:.1} points (actual {:.1} %, M {:.1}, ξ {:.3})", 100.0 * worst_under.0, 100.0 * worst_under.1, worst_under.2, worst_under.3);
 }

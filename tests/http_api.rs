@@ -267,7 +267,13 @@ async fn bad_inputs_are_4xx_problems_with_paths() {
     let res = s.client.put(s.url("/v1/jobs")).send().await.unwrap();
     expect_problem(res, 405, "method_not_allowed").await;
     let res = s.client.get(s.url("/v1/jobs/not-a-uuid")).send().await.unwrap();
-    assert_eq!(res.status().as_u16(), 400);
+    expect_problem(res, 404, "job_not_found").await;
+    let p = expect_problem(s.post_job(&json!({"kind": "hertz"})).await, 422, "invalid_request").await;
+    assert_eq!(p["errors"][0]["path"], "/spec", "{p}");
+    let mut job = hertz_job(1.0);
+    job["spec"].as_object_mut().unwrap().remove("body_2");
+    let p = expect_problem(s.post_job(&job).await, 422, "invalid_spec").await;
+    assert_eq!(p["errors"][0]["path"], "/spec/body_2", "{p}");
     let res = s.client.get(s.url(&format!("/v1/jobs/{}", uuid::Uuid::nil()))).send().await.unwrap();
     expect_problem(res, 404, "job_not_found").await;
     s.stop().await;
@@ -417,5 +423,29 @@ async fn graceful_shutdown_requeues_unfinished_jobs() {
     let done = s.wait_finished(&id, LONG).await;
     assert_eq!(done["status"], "succeeded", "{done}");
     assert_eq!(done["attempts"], 1);
+    s.stop().await;
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn cors_is_off_by_default_and_configurable() {
+    let s = start().await;
+    let res = s.client.get(s.url("/v1/kinds")).header("origin", "https://dash.example").send().await.unwrap();
+    assert!(res.headers().get("access-control-allow-origin").is_none());
+    s.stop().await;
+
+    let s = start_with(|c| c.api.cors_origins = vec!["https://dash.example".into()]).await;
+    let res = s
+        .client
+        .request(reqwest::Method::OPTIONS, s.url("/v1/jobs"))
+        .header("origin", "https://dash.example")
+        .header("access-control-request-method", "POST")
+        .header("access-control-request-headers", "content-type,prefer")
+        .send()
+        .await
+        .unwrap();
+    assert!(res.status().is_success(), "{}", res.status());
+    assert_eq!(res.headers()["access-control-allow-origin"], "https://dash.example");
+    let res = s.client.get(s.url("/v1/kinds")).header("origin", "https://evil.example").send().await.unwrap();
+    assert!(res.headers().get("access-control-allow-origin").is_none());
     s.stop().await;
 }

@@ -292,6 +292,12 @@ fn not_found(id: Uuid) -> ApiError {
     ApiError::new(ErrorCode::JobNotFound, format!("no job with id {id}"))
 }
 
+/// A job id from the path; anything that is not a UUID names no job (404 problem, not axum's
+/// plain-text 400).
+fn job_id(raw: &str) -> ApiResult<Uuid> {
+    Uuid::parse_str(raw).map_err(|_| ApiError::new(ErrorCode::JobNotFound, format!("'{raw}' is not a job id (a UUID)")))
+}
+
 /// Get a job.
 ///
 /// Status, progress, timing, the canonical spec and, for a failed job, its problem.
@@ -301,7 +307,8 @@ fn not_found(id: Uuid) -> ApiError {
         (status = 200, description = "The job", body = JobView),
         (status = 404, description = "No such job", body = Problem, content_type = "application/problem+json"),
     ))]
-pub async fn get_job(State(state): State<AppState>, Path(id): Path<Uuid>) -> ApiResult<Json<JobView>> {
+pub async fn get_job(State(state): State<AppState>, Path(id): Path<String>) -> ApiResult<Json<JobView>> {
+    let id = job_id(&id)?;
     let row = state.queue.store().get(id).await.map_err(store_error)?.ok_or_else(|| not_found(id))?;
     Ok(Json(JobView::from_row(row, false)))
 }
@@ -335,10 +342,11 @@ pub struct ResultQuery {
     ))]
 pub async fn get_result(
     State(state): State<AppState>,
-    Path(id): Path<Uuid>,
+    Path(id): Path<String>,
     headers: HeaderMap,
     ApiQuery(q): ApiQuery<ResultQuery>,
 ) -> ApiResult<Response> {
+    let id = job_id(&id)?;
     let store = state.queue.store();
     let row = store.get(id).await.map_err(store_error)?.ok_or_else(|| not_found(id))?;
     match row.status {
@@ -410,7 +418,8 @@ pub async fn get_result(
         (status = 202, description = "Cancel requested (running)", body = JobView),
         (status = 204, description = "Deleted, or never existed"),
     ))]
-pub async fn delete_job(State(state): State<AppState>, Path(id): Path<Uuid>) -> ApiResult<Response> {
+pub async fn delete_job(State(state): State<AppState>, Path(id): Path<String>) -> ApiResult<Response> {
+    let id = job_id(&id)?;
     Ok(match state.queue.cancel(id).await? {
         Cancellation::Canceled(row) => (StatusCode::OK, Json(JobView::from_row(row, false))).into_response(),
         Cancellation::Requested(row) => (StatusCode::ACCEPTED, Json(JobView::from_row(row, false))).into_response(),

@@ -27,6 +27,16 @@ pub struct Limits {
     pub max_evaluations: usize,
 }
 
+impl Limits {
+    /// No limits (offline use, and cases already checked against the server's limits).
+    pub const UNLIMITED: Limits = Limits {
+        max_grid_nodes: usize::MAX,
+        max_angles: usize::MAX,
+        max_sweep_cases: usize::MAX,
+        max_evaluations: usize::MAX,
+    };
+}
+
 impl Default for Limits {
     fn default() -> Self {
         Limits { max_grid_nodes: 1_000_000, max_angles: 36_000, max_sweep_cases: 1_000, max_evaluations: 2_000 }
@@ -95,6 +105,23 @@ impl Validation {
         self
     }
 
+    /// Take over the field errors of a nested problem (e.g. a sweep case's own validation),
+    /// each path rewritten by `map`. Limit problems stay limit errors.
+    pub fn absorb(&mut self, problem: &Problem, map: impl Fn(&str) -> String) -> &mut Self {
+        let target = if problem.code == ErrorCode::LimitExceeded.as_str() {
+            &mut self.limit_errors
+        } else {
+            &mut self.errors
+        };
+        if problem.errors.is_empty() {
+            target.push(FieldError::new(map(""), problem.detail.clone()));
+        }
+        for e in &problem.errors {
+            target.push(FieldError::new(map(&e.path), e.message.clone()));
+        }
+        self
+    }
+
     pub fn is_ok(&self) -> bool {
         self.errors.is_empty() && self.limit_errors.is_empty()
     }
@@ -149,6 +176,11 @@ pub trait Kind: Send + Sync + 'static {
     /// Optional outputs selectable in the spec's `outputs` list (empty when the kind has none).
     fn outputs() -> &'static [OutputInfo] {
         &[]
+    }
+    /// The version that decides reuse: `SOLVER_VERSION`, except for composite kinds (`sweep`),
+    /// which fold in the versions of the kinds they run.
+    fn solver_version() -> &'static str {
+        Self::SOLVER_VERSION
     }
     /// Range and consistency checks the types cannot express.
     fn validate(spec: &Self::Spec, limits: &Limits, v: &mut Validation);
@@ -214,7 +246,7 @@ impl<K: Kind> DynKind for Registered<K> {
         K::NAME
     }
     fn solver_version(&self) -> &'static str {
-        K::SOLVER_VERSION
+        K::solver_version()
     }
     fn description(&self) -> &'static str {
         K::DESCRIPTION
@@ -270,8 +302,13 @@ pub fn parse_spec<T: DeserializeOwned>(spec: &Value) -> Result<T, Problem> {
 /// message.
 pub fn parse_value<T: DeserializeOwned>(value: &Value) -> Result<T, FieldError> {
     serde_path_to_error::deserialize(value).map_err(|err| {
-        let pointer = path_to_pointer(err.path());
-        FieldError::new(pointer, err.inner().to_string())
+        let mut pointer = path_to_pointer(err.path());
+        let message = err.inner().to_string();
+        // serde names a missing field in its message only; point at the field itself.
+        if let Some(name) = message.strip_prefix("missing field `").and_then(|m| m.split('`').next()) {
+            pointer = format!("{pointer}/{name}");
+        }
+        FieldError::new(pointer, message)
     })
 }
 
@@ -304,15 +341,28 @@ pub fn canonicalize(value: Value) -> Value {
     }
 }
 
-/// serde_json turns NaN and infinities into `null`, so a result may contain no `null` at all:
+/// serde_json turns NaN and infinities into `null`, so no field of a result may be `null`:
 /// outputs leave absent quantities out (`#[serde(skip_serializing_if = "Option::is_none")]`)
-/// instead of writing `null`. Solvers check their own numbers; this is the last chokepoint before
-/// a result is stored.
+/// instead of writing `null`. The one place `null` is allowed is an element of a per-angle (or
+/// per-case) column that was not computed at that index (an `Option<f64>` element, e.g. the
+/// pressure spike at angles where the closed-form film ran); such columns are built from
+/// `Option`s by the solver, whose own numbers pass `ensure_finite`. Solvers check their own
+/// numbers; this is the last chokepoint before a result is stored.
 pub fn check_finite_json(value: &Value) -> Result<(), SolveError> {
     fn walk(v: &Value, path: &mut String) -> Result<(), SolveError> {
         match v {
             Value::Null => {
                 return Err(SolveError::NonFinite { quantity: format!("result{path}") });
+            }
+            Value::Array(items) if items.iter().any(Value::is_number) => {
+                // A numeric column: `null` elements are "not computed here".
+                for item in items {
+                    if let Value::Number(n) = item {
+                        if n.as_f64().is_some_and(|x| !x.is_finite()) {
+                            return Err(SolveError::NonFinite { quantity: format!("result{path}") });
+                        }
+                    }
+                }
             }
             Value::Array(items) => {
                 for (i, item) in items.iter().enumerate() {

@@ -197,7 +197,8 @@ impl Queue {
             .with_errors(vec![crate::problem::FieldError::new("/kind", "unknown kind")]));
         };
         let prepared = k.prepare(spec, &self.inner.config.limits).map_err(|p| p.under("/spec"))?;
-        let hash = spec_hash(k.name(), &prepared.canonical);
+        let spec_text = serde_json::to_string(&prepared.canonical).unwrap_or_default();
+        let hash = spec_hash(k.name(), &spec_text);
         if !fresh {
             if let Some(row) = self.inner.store.find_reusable(&hash, k.solver_version()).await.map_err(storage_problem)? {
                 self.inner.metrics.reused.get_or_create(&KindLabel { kind: k.name().into() }).inc();
@@ -217,7 +218,7 @@ impl Queue {
             id: Uuid::now_v7(),
             kind: k.name().to_string(),
             label,
-            spec: serde_json::to_string(&prepared.canonical).unwrap_or_default(),
+            spec: spec_text,
             spec_hash: hash,
             solver_version: k.solver_version().to_string(),
             created_at: now_ms(),
@@ -392,9 +393,11 @@ impl Queue {
                 interval,
                 last: Mutex::new(None),
             };
-            let (outcome, wall) = match prepare(&job.kind, &job.spec, &limits) {
-                Ok(prepared) => runner::run(prepared, &observer),
-                Err(problem) => (Outcome::Failed(problem), 0.0),
+            // Canceled (or shut down) while it waited in the pool's queue: do not start it.
+            let (outcome, wall) = match (observer.check(), prepare(&job.kind, &job.spec, &limits)) {
+                (Err(interrupt), _) => (Outcome::Interrupted(interrupt), 0.0),
+                (Ok(()), Ok(prepared)) => runner::run(prepared, &observer),
+                (Ok(()), Err(problem)) => (Outcome::Failed(problem), 0.0),
             };
             let (finish, status) = match outcome {
                 Outcome::Succeeded(mut value) => {

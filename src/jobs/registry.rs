@@ -6,7 +6,13 @@ use super::kinds;
 /// Every kind the service runs, in the order `GET /v1/kinds` and the OpenAPI document list them.
 pub static KINDS: &[&dyn DynKind] = &[
     &Registered::<kinds::hertz::Hertz>::new(),
+    &Registered::<kinds::bearing::BearingKind>::new(),
+    &Registered::<kinds::bearing_optimisation::BearingOptimisation>::new(),
+    &Registered::<kinds::cam_cycle::CamCycle>::new(),
+    &Registered::<kinds::cam_point::CamPoint>::new(),
     &Registered::<kinds::ehl_point::EhlPoint>::new(),
+    &Registered::<kinds::wear::Wear>::new(),
+    &Registered::<kinds::sweep::Sweep>::new(),
 ];
 
 /// Kinds compiled only into test builds (feature `test-kinds`): runnable, but neither listed nor

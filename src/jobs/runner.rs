@@ -2,7 +2,7 @@
 //! Catches panics (a panicking solver fails its job with `internal_error`; the thread lives on)
 //! and adds the `meta` block every result carries.
 
-use super::kind::{canonicalize, Prepared};
+use super::kind::Prepared;
 use crate::physics::{Interrupt, Observer, SolveError};
 use crate::problem::{ErrorCode, Problem};
 use serde_json::{json, Value};
@@ -21,13 +21,13 @@ pub enum Outcome {
     Interrupted(Interrupt),
 }
 
-/// Hash of a kind and its canonical spec (hex sha256): the dedup key.
-pub fn spec_hash(kind: &str, canonical: &Value) -> String {
-    let text = serde_json::to_string(&canonicalize(canonical.clone())).unwrap_or_default();
+/// Hash of a kind and its canonical spec text (hex sha256): the dedup key. `canonical_text` is
+/// the serialised [`Prepared::canonical`](super::kind::Prepared) (keys already sorted).
+pub fn spec_hash(kind: &str, canonical_text: &str) -> String {
     let mut h = Sha256::new();
     h.update(kind.as_bytes());
     h.update(b"\n");
-    h.update(text.as_bytes());
+    h.update(canonical_text.as_bytes());
     h.finalize().iter().map(|b| format!("{b:02x}")).collect()
 }
 

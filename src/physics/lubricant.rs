@@ -57,13 +57,13 @@ pub struct Lubricant {
 }
 
 impl Lubricant {
-    /// Seed 000 Table 1 oil: η0 = 0.152 Pa·s, α = 2.2e-8 1/Pa, β = 0.042 1/K, T0 = 303 K,
+    /// Seed 000 Table 1 oil: η0 = 0.152 Pa·s, α = 2.2e-8 1/Pa, β = 0.042 1/K, T0 = 313 K,
     /// ρ0 = 870 kg/m³, Roelands + Dowson–Higginson.
     pub const SEED000: Lubricant = Lubricant {
         viscosity: 0.152,
         pressure_viscosity: 2.2e-8,
         temperature_viscosity: 0.042,
-        reference_temperature: 303.0,
+        reference_temperature: 313.0,
         density: 870.0,
         viscosity_model: ViscosityModel::Roelands,
         density_model: DensityModel::DowsonHigginson,

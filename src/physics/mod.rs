@@ -4,10 +4,17 @@
 //! progress and cancellation, and fails with a typed [`SolveError`]. Nothing non-finite leaves a
 //! solver: results pass through [`ensure_finite`] (or an equivalent check) before they are returned.
 
+pub mod cam;
 pub mod contact;
 pub mod ehl;
+pub mod film;
+pub mod friction;
+pub mod journal;
 pub mod lubricant;
+pub mod roller;
 pub mod solver;
+pub mod thermal;
+pub mod wear;
 
 pub use solver::{
     ensure_finite, Convergence, Interrupt, Observer, Silent, SolveError, Termination,

@@ -70,14 +70,20 @@ pub fn moes_central_film(g: &Groups, radius: f64) -> f64 {
     moes_central(g.moes_m, g.moes_l) * radius * (2.0 * g.speed).sqrt()
 }
 
-/// Pan–Hamrock central film `h_c/R = 2.922 W^−0.166 U^0.692 G^0.470`, as a film in m.
+/// Pan–Hamrock central film `h_c/R = 2.922 W^−0.166 U^0.692 G^0.470`, as a film in m (one
+/// implementation: [`crate::physics::film::formulas::pan_hamrock`]).
 pub fn pan_hamrock_central_film(g: &Groups, radius: f64) -> f64 {
-    2.922 * g.load.powf(-0.166) * g.speed.powf(0.692) * g.material.powf(0.470) * radius
+    pan_hamrock_films(g).0 * radius
 }
 
 /// Pan–Hamrock minimum film `h_min/R = 1.714 W^−0.128 U^0.694 G^0.568`, m.
 pub fn pan_hamrock_minimum_film(g: &Groups, radius: f64) -> f64 {
-    1.714 * g.load.powf(-0.128) * g.speed.powf(0.694) * g.material.powf(0.568) * radius
+    pan_hamrock_films(g).1 * radius
+}
+
+fn pan_hamrock_films(g: &Groups) -> (f64, f64) {
+    let lg = crate::physics::film::formulas::LineGroups { load: g.load, speed: g.speed, material: g.material };
+    crate::physics::film::formulas::pan_hamrock(&lg)
 }
 
 /// Martin's rigid-isoviscous minimum film `h_min = 4.9 η0 u_m R / w'`, m.

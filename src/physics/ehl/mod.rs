@@ -35,18 +35,12 @@
 //! extrapolates the films; a 720-angle cycle then takes about half a second with the films within
 //! 0.5 % of the grid-converged cycle. Use it rather than calling [`solve`] per angle.
 //!
-//! # The closed forms' error
-//! [`error_model`] estimates the error of Moes' central and Pan–Hamrock's minimum film for a
-//! contact state from maps measured with this solver — what the `auto` fidelity needs to decide
-//! where the closed form is good enough.
-//!
 //! # Not modelled
 //! Thermal effects (seed 000 eq. 7–8) are not modelled: the film is isothermal at
 //! [`EhlInput::temperature`]. The Reynolds equation is Newtonian (seed 001 makes the same
 //! choice); non-Newtonian behaviour enters only the traction ([`traction`]). Surfaces are smooth.
 
 pub mod elastic;
-pub mod error_model;
 pub mod formulas;
 pub mod grid;
 pub mod newton;
@@ -54,7 +48,6 @@ pub mod traction;
 pub mod transient;
 
 pub use newton::{solve, SolverStats};
-pub use error_model::{closed_form_errors, estimate_closed_form_error, squeeze_number, ClosedFormError, ContactState};
 pub use traction::{Rheology, TractionResult};
 pub use transient::{Extrapolation, TransientSolver};
 

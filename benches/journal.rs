@@ -1,0 +1,164 @@
+//! Journal bearing solver (seed 002): run time against error, the load-balanced misaligned
+//! profiled case at the paper's 361×181 grid, and the Taguchi L9 on two cores.
+//!
+//! `cargo bench --bench journal` (add `-- --quick` for fewer repetitions). Times are the best of
+//! N runs; "CPU" is the thread's CPU time (POSIX CLOCK_THREAD_CPUTIME_ID), which on a machine
+//! shared with other jobs measures the work better than wall time; wall time is given too.
+use std::time::Instant;
+use tribod::jobs::kinds::bearing_optimisation::{BearingOptimisation, OptimisationSpec};
+use tribod::jobs::Kind;
+use tribod::physics::journal::*;
+use tribod::physics::Silent;
+
+#[repr(C)]
+struct Timespec {
+    tv_sec: i64,
+    tv_nsec: i64,
+}
+unsafe extern "C" {
+    fn clock_gettime(clock: i32, ts: *mut Timespec) -> i32;
+}
+/// CPU time of the calling thread, s (POSIX `CLOCK_THREAD_CPUTIME_ID` = 3 on Linux).
+fn thread_cpu() -> f64 {
+    let mut ts = Timespec { tv_sec: 0, tv_nsec: 0 };
+    // SAFETY: plain libc call writing into a local struct of the C layout.
+    unsafe { clock_gettime(3, &mut ts) };
+    ts.tv_sec as f64 + ts.tv_nsec as f64 * 1e-9
+}
+
+/// CPU time of the whole process (all threads), s (`CLOCK_PROCESS_CPUTIME_ID` = 2).
+fn process_cpu() -> f64 {
+    let mut ts = Timespec { tv_sec: 0, tv_nsec: 0 };
+    // SAFETY: as above.
+    unsafe { clock_gettime(2, &mut ts) };
+    ts.tv_sec as f64 + ts.tv_nsec as f64 * 1e-9
+}
+
+/// Best of `n` runs: (thread CPU s, wall s, last result).
+fn best_of<T>(n: usize, mut f: impl FnMut() -> T) -> (f64, f64, T) {
+    let (mut cpu, mut wall) = (f64::INFINITY, f64::INFINITY);
+    let mut out = None;
+    for _ in 0..n {
+        let (c, t) = (thread_cpu(), Instant::now());
+        let r = f();
+        cpu = cpu.min(thread_cpu() - c);
+        wall = wall.min(t.elapsed().as_secs_f64());
+        out = Some(r);
+    }
+    (cpu, wall, out.unwrap())
+}
+
+fn settings(nt: usize, nz: usize) -> Settings {
+    Settings { circumferential: nt, axial: nz, ..Settings::default() }
+}
+
+/// Seed 002's optimised design under its misalignment, at the aligned load of ε = 0.6.
+fn seed_case() -> Bearing {
+    Bearing {
+        misalignment: Misalignment { vertical: 0.56, horizontal: 0.56 },
+        profile: Some(Profile { order: 2, height: 0.4, length_fraction: 0.2 }),
+        ..Bearing::plain(1.25)
+    }
+}
+
+fn richardson(f2: f64, f3: f64, p: f64) -> f64 {
+    f3 + (f3 - f2) / (2f64.powf(p) - 1.0)
+}
+
+fn main() {
+    let quick = std::env::args().any(|a| a == "--quick");
+    let reps = if quick { 2 } else { 5 };
+    let plain = Bearing::plain(1.25);
+    // the load every case carries: aligned ε = 0.6 on the finest grid of the study
+    let grids: &[(usize, usize)] = &[(31, 16), (61, 31), (91, 46), (121, 61), (181, 91), (241, 121), (361, 181), (721, 361), (1441, 721)];
+    let (fnt, fnz) = grids[grids.len() - 1];
+    let reference = analyse(&plain, &Operating::Eccentricity(0.6), &settings(fnt, fnz), None, None, false, &Silent).unwrap();
+    let w = reference.load;
+    // the target case: one thread, 361×181
+    println!("\n## Load-balanced misaligned profiled case at 361×181 (one thread)\n");
+    let s = settings(361, 181);
+    let (c, wl, m) = best_of(if quick { 3 } else { 10 }, || analyse(&seed_case(), &Operating::Load(w), &s, None, None, false, &Silent).unwrap());
+    let mut ws = Workspace::new(&seed_case(), &s);
+    analyse(&seed_case(), &Operating::Load(w), &s, Some(&mut ws), None, false, &Silent).unwrap();
+    println!("best of {}: {:.1} ms CPU ({:.1} ms wall); load residual {:.1e} after {} steps on 361×181; grids (nt, nz, steps) {:?}; V-cycles per level (finest first) {:?}",
+        if quick { 3 } else { 10 }, c * 1e3, wl * 1e3, m.convergence.residual, m.convergence.iterations, m.steps_per_grid, ws.cycles());
+    // with a warm workspace and start (a nearby design, as in the optimisation)
+    let mut near = seed_case();
+    near.profile = Some(Profile { order: 2, height: 0.42, length_fraction: 0.21 });
+    let g = Guess { eccentricity: m.eccentricity, attitude: m.attitude };
+    let (c2, w2, _) = best_of(if quick { 3 } else { 10 }, || analyse(&near, &Operating::Load(w), &s, Some(&mut ws), Some(g), false, &Silent).unwrap());
+    println!("nearby design, warm workspace and start: {:.1} ms CPU ({:.1} ms wall)", c2 * 1e3, w2 * 1e3);
+
+    // the full L9 on two cores through the job kind (array only, and with the continuous search)
+    println!("\n## Taguchi L9 at 361×181 on 2 cores (job kind `bearing_optimisation`)\n");
+    let spec_json = serde_json::json!({
+        "base": {
+            "geometry": {"length_to_diameter": 1.25},
+            "load": {"aligned_eccentricity_ratio": 0.6},
+            "misalignment": {"vertical": 0.56, "horizontal": 0.56},
+            "grid": {"circumferential": 361, "axial": 181}
+        },
+        "method": "taguchi_l9",
+        "factors": {"order": [1, 2, 3], "height": [0.1, 0.4, 1.0], "length_fraction": [0.01, 0.2, 0.4]},
+        "continuous": {"enabled": false}
+    });
+    let spec: OptimisationSpec = serde_json::from_value(spec_json.clone()).unwrap();
+    let pool = rayon::ThreadPoolBuilder::new().num_threads(2).build().unwrap();
+    let n = if quick { 2 } else { 5 };
+    let (mut wall, mut cpu) = (f64::INFINITY, f64::INFINITY);
+    let mut r = None;
+    for _ in 0..n {
+        let (c, t) = (process_cpu(), Instant::now());
+        r = Some(pool.install(|| BearingOptimisation::solve(&spec, &Silent).unwrap()));
+        wall = wall.min(t.elapsed().as_secs_f64());
+        cpu = cpu.min(process_cpu() - c);
+    }
+    let r = r.unwrap();
+    println!("L9 array (reference load + baseline + 9 runs, {} analyses): {:.0} ms wall, {:.0} ms CPU over both threads (best of {n}); best run {}, best levels n/ξ/ψ = {}/{}/{}",
+        r.evaluations, wall * 1e3, cpu * 1e3, r.best_run, r.best_levels.order_level, r.best_levels.height_level, r.best_levels.length_fraction_level);
+    let mut full = spec_json;
+    full["continuous"] = serde_json::json!({"enabled": true});
+    let spec: OptimisationSpec = serde_json::from_value(full).unwrap();
+    let (_, wall, r) = best_of(1, || pool.install(|| BearingOptimisation::solve(&spec, &Silent).unwrap()));
+    let c = r.continuous.as_ref().unwrap();
+    println!("L9 + continuous search ({} analyses): {:.2} s wall; continuous optimum n = {}, ξ = {:.4}, ψ = {:.4}, score {:.4} (best Taguchi run {:.4})",
+        r.evaluations, wall, c.design.order, c.design.height, c.design.length_fraction, c.design.score, r.runs[r.best_run - 1].score);
+    println!("## Run time against error (L/D = 1.25)\n");
+    println!("Aligned bearing at ε = 0.6 (fixed eccentricity, attitude from the force balance) and seed 002's");
+    println!("optimised design (n = 2, ξ = 0.4, ψ = 0.2) under Δv0 = Δh0 = 0.56, load-balanced to the aligned load");
+    println!("W̄ = {w:.6} (ε = 0.6 on {fnt}×{fnz}). Errors against Richardson extrapolation (order 2) of the two finest grids.\n");
+    let mut rows = Vec::new();
+    for &(nt, nz) in grids {
+        let s = settings(nt, nz);
+        let r = if nt * nz > 300_000 { 1 } else { reps };
+        let (ca, wa, a) = best_of(r, || analyse(&plain, &Operating::Eccentricity(0.6), &s, None, None, false, &Silent).unwrap());
+        let (cm, wm, m) = best_of(r, || analyse(&seed_case(), &Operating::Load(w), &s, None, None, false, &Silent).unwrap());
+        rows.push((nt, nz, ca, wa, a, cm, wm, m));
+    }
+    let n = rows.len();
+    let ext = |f: &dyn Fn(usize) -> f64| richardson(f(n - 2), f(n - 1), 2.0);
+    let w_ref = ext(&|i| rows[i].4.load);
+    let p_ref = ext(&|i| rows[i].4.max_pressure);
+    let pm_ref = ext(&|i| rows[i].7.max_pressure);
+    let hm_ref = ext(&|i| rows[i].7.min_film);
+    let fm_ref = ext(&|i| rows[i].7.friction_variable.unwrap());
+    println!("| grid | nodes | aligned: CPU ms (wall) | load err | P0 err | balanced misaligned profiled: CPU ms (wall) | P0 err | H0 err | (R/c)f err |");
+    println!("| --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: |");
+    for (nt, nz, ca, wa, a, cm, wm, m) in &rows {
+        println!(
+            "| {nt}×{nz} | {} | {:.2} ({:.2}) | {:.1e} | {:.1e} | {:.2} ({:.2}) | {:.1e} | {:.1e} | {:.1e} |",
+            nt * nz,
+            ca * 1e3,
+            wa * 1e3,
+            (a.load / w_ref - 1.0).abs(),
+            (a.max_pressure / p_ref - 1.0).abs(),
+            cm * 1e3,
+            wm * 1e3,
+            (m.max_pressure / pm_ref - 1.0).abs(),
+            (m.min_film / hm_ref - 1.0).abs(),
+            (m.friction_variable.unwrap() / fm_ref - 1.0).abs(),
+        );
+    }
+    println!("\nExtrapolated: aligned W̄ = {w_ref:.6}, P0 = {p_ref:.6}; misaligned profiled P0 = {pm_ref:.6}, H0 = {hm_ref:.6}, (R/c)f = {fm_ref:.6}.");
+
+}

@@ -1,0 +1,703 @@
+//! `bearing`: one finite-length hydrodynamic journal bearing (seed 002): Reynolds equation with
+//! Reynolds (Swift–Stieber) cavitation, optional shaft misalignment and axial edge profile, fixed
+//! position or load balance; dimensionless figures and, with dimensions, SI values.
+//!
+//! Conventions (also in the OpenAPI field docs):
+//! - Angles: measured around the bearing from the *unloaded side* (the point opposite the
+//!   direction of the applied load), positive in the direction of journal rotation. The attitude
+//!   angle is the angle from the load line to the line of centres of the mid-plane, positive in
+//!   the direction of rotation; the mid-plane's largest film is at `attitude`, its smallest film
+//!   at `attitude + 180°`.
+//! - `P = p (c/R)²/(6ηω)` (seed 002), `H = h/c`, `Z = z/L`, `W̄ = w (c/R)²/(6ηωRL)`,
+//!   Sommerfeld number `S = (R/c)² μN/P_avg = 1/(6πW̄)` with `P_avg = w/(LD)`.
+//! - Friction: `friction_variable` is Raimondi & Boyd's `(R/c) f` of the journal: Couette shear
+//!   over the whole circumference (the clearance taken as full of oil) plus the pressure-gradient
+//!   term — it reproduces their tables. `friction_variable_seed002` reads seed 002 eq. (9)
+//!   (Lund & Thomsen's power loss) with the cavitated zone filled by streamers: there only the
+//!   fraction `h_c/h` of the gap is sheared, `h_c` being the film at the rupture line; it
+//!   reproduces the paper's aligned f = 2.2178 (Table 2) within 0.4 %.
+
+use crate::jobs::kind::{Kind, Limits, OutputInfo, Validation};
+use crate::physics::journal::{self, Analysis, Bearing, Guess, Misalignment, Operating, Profile, Settings, Supply, Workspace};
+use crate::physics::{Convergence, Observer, SolveError};
+use serde::{Deserialize, Serialize};
+use serde_json::{json, Value};
+use std::f64::consts::PI;
+use utoipa::ToSchema;
+
+pub struct BearingKind;
+
+/// Bearing geometry. Give `length_to_diameter`, or `radius` and `length` (then L/D follows);
+/// `radius`, `length` and `radial_clearance` together (with `operating`) switch on SI outputs.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, ToSchema)]
+#[serde(deny_unknown_fields)]
+pub struct GeometrySpec {
+    /// Length-to-diameter ratio L/D (0.05 to 10).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    #[schema(example = 1.25)]
+    pub length_to_diameter: Option<f64>,
+    /// Journal radius R, m.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub radius: Option<f64>,
+    /// Bearing length L, m.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub length: Option<f64>,
+    /// Radial clearance c, m.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub radial_clearance: Option<f64>,
+}
+
+/// Operating conditions (isoviscous lubricant).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, ToSchema)]
+#[serde(deny_unknown_fields)]
+pub struct OperatingSpec {
+    /// Journal speed, rev/min.
+    #[schema(example = 3000.0)]
+    pub speed_rpm: f64,
+    /// Dynamic viscosity, Pa·s.
+    #[schema(example = 0.0293)]
+    pub viscosity: f64,
+}
+
+/// The operating point: exactly one of `eccentricity_ratio`, `aligned_eccentricity_ratio`,
+/// `force`, `sommerfeld_number`.
+#[derive(Debug, Clone, Copy, PartialEq, Default, Serialize, Deserialize, ToSchema)]
+#[serde(deny_unknown_fields)]
+pub struct LoadSpec {
+    /// Fixed mid-plane eccentricity ratio ε in [0, 0.999]; the attitude angle puts the film
+    /// force on the load line, unless `attitude_angle_deg` fixes it too.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub eccentricity_ratio: Option<f64>,
+    /// With `eccentricity_ratio`: a fully fixed position; the film force is reported in both
+    /// directions. Degrees.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub attitude_angle_deg: Option<f64>,
+    /// Carry the load that an aligned, unprofiled bearing of the same L/D, supply and grid
+    /// carries at this eccentricity ratio (seed 002 uses 0.6).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    #[schema(example = 0.6)]
+    pub aligned_eccentricity_ratio: Option<f64>,
+    /// Carry this load, N (needs `geometry.radius`, `length`, `radial_clearance` and `operating`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub force: Option<f64>,
+    /// Carry the load of this Sommerfeld number `S = (R/c)² μN/P_avg`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub sommerfeld_number: Option<f64>,
+}
+
+/// Shaft misalignment (seed 002 eq. 10–11): deviations of the journal axis at the bearing edges
+/// per unit radial clearance. The journal centre at the edge `Z = 0` is displaced from the
+/// mid-plane centre by `−vertical` along the load direction and `+horizontal` perpendicular to
+/// it (90° ahead in the direction of rotation); at `Z = 1` by the opposite amounts. This is
+/// eq. (11) read literally with its side signs (a straight, tilted journal).
+#[derive(Debug, Clone, Copy, PartialEq, Default, Serialize, Deserialize, ToSchema)]
+#[serde(deny_unknown_fields)]
+pub struct MisalignmentSpec {
+    /// `Δv0 = δv/c` at the edges (−2 to 2).
+    #[schema(example = 0.56)]
+    pub vertical: f64,
+    /// `Δh0 = δh/c` at the edges (−2 to 2).
+    #[schema(example = 0.56)]
+    pub horizontal: f64,
+}
+
+/// Axial edge profile of the bore (seed 002 eq. 13–15), the same at both edges.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, ToSchema)]
+#[serde(deny_unknown_fields)]
+pub struct ProfileSpec {
+    /// Order n: 1 linear, 2 parabolic, 3 cubic.
+    #[schema(example = 2)]
+    pub order: u32,
+    /// ξ = m_r/c: edge opening per unit radial clearance (0 to 5).
+    #[schema(example = 0.4)]
+    pub height: f64,
+    /// ψ = m_l/L: modified fraction of the length at each edge, (0, 0.5].
+    #[schema(example = 0.2)]
+    pub length_fraction: f64,
+}
+
+/// Finite-difference grid.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, ToSchema)]
+#[serde(deny_unknown_fields)]
+pub struct GridSpec {
+    /// Nodes around the circumference, counting the 360° node that repeats 0° (seed 002: 361).
+    /// 17 to 4001. Default 181.
+    #[schema(example = 361)]
+    pub circumferential: usize,
+    /// Nodes along the axis, both edges included (seed 002: 181). 5 to 2001. Default 91.
+    #[schema(example = 181)]
+    pub axial: usize,
+}
+
+impl Default for GridSpec {
+    fn default() -> Self {
+        GridSpec { circumferential: 181, axial: 91 }
+    }
+}
+
+/// Oil supply: where the film is at ambient pressure.
+#[derive(Debug, Clone, Copy, PartialEq, Default, Serialize, Deserialize, ToSchema)]
+#[serde(tag = "type", rename_all = "snake_case", deny_unknown_fields)]
+pub enum SupplySpec {
+    /// An axial line at the mid-plane's largest film (a groove that follows the journal): the
+    /// assumption of the Raimondi & Boyd tables. Default.
+    #[default]
+    MaxFilm,
+    /// An axial groove at a fixed angle, degrees from the unloaded side in the direction of rotation.
+    Angle {
+        angle_deg: f64,
+    },
+    /// No supply line: periodic film, pressure builds where the cavitation condition allows.
+    Periodic,
+}
+
+/// Solver tolerances and caps (defaults are fine for design work).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, ToSchema)]
+#[serde(deny_unknown_fields, default)]
+pub struct SolverSpec {
+    /// Relative residual of the pressure solves (1e-12 to 1e-4). Default 1e-7.
+    pub pressure_tolerance: f64,
+    /// Relative load residual `‖F + W‖/W` of the load balance (1e-10 to 1e-2). Default 1e-6.
+    pub load_tolerance: f64,
+    /// Load-balance steps on the finest grid (1 to 200). Default 40.
+    pub max_load_iterations: u32,
+    /// Multigrid cycles per pressure solve (10 to 10000). Default 400.
+    pub max_cycles: u32,
+    /// Smallest admissible film h/c: a position below it is a closed film (1e-6 to 0.5). Default 1e-3.
+    pub min_film: f64,
+}
+
+impl Default for SolverSpec {
+    fn default() -> Self {
+        let s = Settings::default();
+        SolverSpec {
+            pressure_tolerance: s.pressure_tolerance,
+            load_tolerance: s.load_tolerance,
+            max_load_iterations: s.max_load_iterations,
+            max_cycles: s.max_cycles,
+            min_film: s.min_film,
+        }
+    }
+}
+
+/// Optional outputs of a `bearing` job.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, ToSchema)]
+#[serde(rename_all = "snake_case")]
+pub enum BearingOutput {
+    /// Dimensionless pressure at every (downsampled) grid node, in the `field` table.
+    PressureField,
+    /// Dimensionless film at every (downsampled) grid node, in the `field` table.
+    FilmField,
+}
+
+/// Keep every n-th node of the fields (the last node of each direction is always kept).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, ToSchema)]
+#[serde(deny_unknown_fields)]
+pub struct StrideSpec {
+    /// 1 to 1000.
+    pub circumferential: usize,
+    /// 1 to 1000.
+    pub axial: usize,
+}
+
+impl Default for StrideSpec {
+    fn default() -> Self {
+        StrideSpec { circumferential: 1, axial: 1 }
+    }
+}
+
+/// Spec of a `bearing` job.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, ToSchema)]
+#[serde(deny_unknown_fields)]
+pub struct BearingSpec {
+    pub geometry: GeometrySpec,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub operating: Option<OperatingSpec>,
+    pub load: LoadSpec,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub misalignment: Option<MisalignmentSpec>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub profile: Option<ProfileSpec>,
+    #[serde(default)]
+    pub grid: GridSpec,
+    #[serde(default)]
+    pub supply: SupplySpec,
+    #[serde(default)]
+    pub solver: SolverSpec,
+    /// Optional outputs: `pressure_field`, `film_field`.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub outputs: Vec<BearingOutput>,
+    /// Downsampling of the fields.
+    #[serde(default)]
+    pub field_stride: StrideSpec,
+}
+
+/// A location on the bearing surface.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, ToSchema)]
+pub struct Location {
+    /// Degrees from the unloaded side in the direction of rotation, [0, 360).
+    pub angle_deg: f64,
+    /// Z = z/L, 0 to 1.
+    pub z: f64,
+}
+
+/// Load carried by the film.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, ToSchema)]
+pub struct LoadResult {
+    /// |W̄| = |w| (c/R)²/(6ηωRL).
+    pub dimensionless: f64,
+    /// Film force on the journal along the load direction (negative: it holds the load), W̄ units.
+    pub along_load_dimensionless: f64,
+    /// Film force perpendicular to the load (positive 90° ahead in the rotation direction), W̄ units.
+    pub across_load_dimensionless: f64,
+    /// |w|, N (with dimensions).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub force: Option<f64>,
+    /// Target W̄ of the load balance (absent for a fixed position).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub target_dimensionless: Option<f64>,
+}
+
+/// How the pressure was solved on the finest grid.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, ToSchema)]
+pub struct PressureConvergence {
+    /// Active-set (semismooth Newton) steps of the last pressure solve.
+    pub active_set_steps: u32,
+    /// Multigrid-preconditioned CG iterations of the last pressure solve.
+    pub cycles: u32,
+    /// Complementarity residual `‖min(P, λ/d)‖/‖f/d‖` of the reported pressure.
+    pub residual: f64,
+}
+
+/// Load-balance steps on one grid of the nested sequence.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, ToSchema)]
+pub struct GridSteps {
+    pub circumferential: usize,
+    pub axial: usize,
+    pub steps: u32,
+}
+
+/// Pressure and film at the grid nodes (one row per node, circumferential index fastest).
+#[derive(Debug, Clone, PartialEq, Serialize, ToSchema)]
+pub struct FieldTable {
+    /// Degrees from the unloaded side in the direction of rotation.
+    pub angle_deg: Vec<f64>,
+    /// Z = z/L.
+    pub z: Vec<f64>,
+    /// P = p (c/R)²/(6ηω).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub pressure_dimensionless: Option<Vec<f64>>,
+    /// H = h/c.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub film_dimensionless: Option<Vec<f64>>,
+}
+
+/// Result of a `bearing` job.
+#[derive(Debug, Clone, PartialEq, Serialize, ToSchema)]
+pub struct BearingResult {
+    /// Mid-plane eccentricity ratio ε.
+    pub eccentricity_ratio: f64,
+    /// Mid-plane attitude angle, degrees (see the kind's conventions).
+    pub attitude_angle_deg: f64,
+    /// S = (R/c)² μN/P_avg = 1/(6πW̄); absent when the film carries no load (ε = 0).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub sommerfeld_number: Option<f64>,
+    pub load: LoadResult,
+    /// P_max = p_max (c/R)²/(6ηω) (seed 002's P0), refined between nodes by a parabola.
+    pub max_pressure_dimensionless: f64,
+    pub max_pressure_location: Location,
+    /// p_max, Pa (with dimensions).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub max_pressure: Option<f64>,
+    /// H_min = h_min/c (seed 002's H0), exact for the film geometry.
+    pub min_film_dimensionless: f64,
+    pub min_film_location: Location,
+    /// h_min, m (with dimensions).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub min_film: Option<f64>,
+    /// (R/c) f of the journal (Raimondi & Boyd; = seed 002 eq. 9 with the journal's sign).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub friction_variable: Option<f64>,
+    /// (R/c) f as seed 002 eq. (9) is read here: streamers in the cavitated zone shear only the
+    /// fraction h_c/h of the gap (h_c: film at the rupture line), plus the pressure term.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub friction_variable_seed002: Option<f64>,
+    /// Friction coefficient f of the journal (with dimensions).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub friction_coefficient: Option<f64>,
+    /// Q/(R c N L): oil flow into the film across the supply line (periodic film: across the
+    /// mid-plane's largest-film line). N in rev/s.
+    pub flow_variable: f64,
+    /// Q_s/(R c N L): axial outflow through both edges.
+    pub side_flow_variable: f64,
+    /// Q_s/Q.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub side_flow_ratio: Option<f64>,
+    /// Q, m³/s (with dimensions).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub flow: Option<f64>,
+    /// Q_s, m³/s (with dimensions).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub side_flow: Option<f64>,
+    /// Power loss / (η ω² R³ L / c): the journal's friction force F c/(ηωR²L).
+    pub power_loss_dimensionless: f64,
+    /// Power loss, W (with dimensions).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub power_loss: Option<f64>,
+    /// Load balance (or attitude search) on the finest grid: iterations, relative load residual.
+    pub convergence: Convergence,
+    pub pressure_convergence: PressureConvergence,
+    /// The nested grid sequence, coarsest first.
+    pub grids: Vec<GridSteps>,
+    /// Requested fields (`outputs`).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub field: Option<FieldTable>,
+}
+
+/// Dimensions for SI outputs.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Dimensions {
+    pub radius: f64,
+    pub length: f64,
+    pub clearance: f64,
+    /// rad/s
+    pub omega: f64,
+    pub viscosity: f64,
+}
+
+impl Dimensions {
+    /// Pressure scale `6ηω(R/c)²`, Pa.
+    pub fn pressure_scale(&self) -> f64 {
+        6.0 * self.viscosity * self.omega * (self.radius / self.clearance).powi(2)
+    }
+    /// Load scale `6ηωRL(R/c)²`, N.
+    pub fn load_scale(&self) -> f64 {
+        self.pressure_scale() * self.radius * self.length
+    }
+}
+
+impl BearingSpec {
+    /// L/D from the geometry.
+    pub fn length_to_diameter(&self) -> f64 {
+        match (self.geometry.length_to_diameter, self.geometry.radius, self.geometry.length) {
+            (Some(ld), _, _) => ld,
+            (None, Some(r), Some(l)) => l / (2.0 * r),
+            _ => f64::NAN,
+        }
+    }
+
+    pub fn dimensions(&self) -> Option<Dimensions> {
+        let g = &self.geometry;
+        let o = self.operating?;
+        Some(Dimensions {
+            radius: g.radius?,
+            length: g.length?,
+            clearance: g.radial_clearance?,
+            omega: o.speed_rpm * 2.0 * PI / 60.0,
+            viscosity: o.viscosity,
+        })
+    }
+
+    pub fn bearing(&self) -> Bearing {
+        Bearing {
+            length_to_diameter: self.length_to_diameter(),
+            misalignment: self
+                .misalignment
+                .map_or(Misalignment::default(), |m| Misalignment { vertical: m.vertical, horizontal: m.horizontal }),
+            profile: self.profile.map(|p| Profile { order: p.order, height: p.height, length_fraction: p.length_fraction }),
+            supply: match self.supply {
+                SupplySpec::MaxFilm => Supply::MaxFilm,
+                SupplySpec::Angle { angle_deg } => Supply::Angle(angle_deg.to_radians()),
+                SupplySpec::Periodic => Supply::Periodic,
+            },
+        }
+    }
+
+    pub fn settings(&self) -> Settings {
+        Settings {
+            circumferential: self.grid.circumferential,
+            axial: self.grid.axial,
+            pressure_tolerance: self.solver.pressure_tolerance,
+            load_tolerance: self.solver.load_tolerance,
+            max_load_iterations: self.solver.max_load_iterations,
+            max_cycles: self.solver.max_cycles,
+            min_film: self.solver.min_film,
+        }
+    }
+}
+
+/// Validate the shared parts of a bearing spec (also used by `bearing_optimisation`'s base).
+/// `prefix` is prepended to every path (`/base` for the optimisation's base spec).
+pub fn validate_bearing(spec: &BearingSpec, limits: &Limits, v: &mut Validation, needs_load: bool, prefix: &str) {
+    let px = |s: &str| format!("{prefix}{s}");
+    let g = &spec.geometry;
+    match (g.length_to_diameter, g.radius, g.length) {
+        (Some(ld), r, l) => {
+            v.in_range(&px("/geometry/length_to_diameter"), ld, 0.05, 10.0);
+            if let (Some(r), Some(l)) = (r, l) {
+                if r > 0.0 && l > 0.0 {
+                    v.check(
+                        ((l / (2.0 * r)) - ld).abs() <= 1e-9 * ld.abs().max(1.0),
+                        &px("/geometry/length_to_diameter"),
+                        "disagrees with length/(2·radius); give one or the other",
+                    );
+                }
+            }
+        }
+        (None, Some(_), Some(_)) => {}
+        _ => {
+            v.error(&px("/geometry/length_to_diameter"), "is required unless radius and length are given");
+        }
+    }
+    for (path, val) in [(px("/geometry/radius"), g.radius), (px("/geometry/length"), g.length), (px("/geometry/radial_clearance"), g.radial_clearance)] {
+        if let Some(x) = val {
+            v.positive(&path, x);
+        }
+    }
+    if let (Some(r), Some(l)) = (g.radius, g.length) {
+        if r > 0.0 && l > 0.0 {
+            v.in_range(&px("/geometry/length"), l / (2.0 * r), 0.05, 10.0);
+        }
+    }
+    if let (Some(r), Some(c)) = (g.radius, g.radial_clearance) {
+        v.check(c < r, &px("/geometry/radial_clearance"), "must be smaller than the radius");
+    }
+    if let Some(o) = &spec.operating {
+        v.positive(&px("/operating/speed_rpm"), o.speed_rpm);
+        v.positive(&px("/operating/viscosity"), o.viscosity);
+    }
+    let l = &spec.load;
+    let given = [l.eccentricity_ratio.is_some(), l.aligned_eccentricity_ratio.is_some(), l.force.is_some(), l.sommerfeld_number.is_some()]
+        .iter()
+        .filter(|b| **b)
+        .count();
+    if needs_load {
+        v.check(
+            given == 1,
+            &px("/load"),
+            "give exactly one of eccentricity_ratio, aligned_eccentricity_ratio, force, sommerfeld_number",
+        );
+    }
+    if let Some(e) = l.eccentricity_ratio {
+        v.in_range(&px("/load/eccentricity_ratio"), e, 0.0, 0.999);
+    }
+    if let Some(a) = l.attitude_angle_deg {
+        v.check(a.is_finite(), &px("/load/attitude_angle_deg"), "must be a finite number");
+        v.check(l.eccentricity_ratio.is_some(), &px("/load/attitude_angle_deg"), "only with eccentricity_ratio");
+    }
+    if let Some(e) = l.aligned_eccentricity_ratio {
+        v.in_range(&px("/load/aligned_eccentricity_ratio"), e, 1e-4, 0.999);
+    }
+    if let Some(f) = l.force {
+        v.positive(&px("/load/force"), f);
+        v.check(spec.dimensions().is_some(), &px("/load/force"), "needs geometry.radius, geometry.length, geometry.radial_clearance and operating");
+    }
+    if let Some(s) = l.sommerfeld_number {
+        v.positive(&px("/load/sommerfeld_number"), s);
+    }
+    if let Some(m) = &spec.misalignment {
+        v.in_range(&px("/misalignment/vertical"), m.vertical, -2.0, 2.0);
+        v.in_range(&px("/misalignment/horizontal"), m.horizontal, -2.0, 2.0);
+    }
+    if let Some(p) = &spec.profile {
+        v.check((1..=3).contains(&p.order), &px("/profile/order"), "must be 1, 2 or 3");
+        v.in_range(&px("/profile/height"), p.height, 0.0, 5.0);
+        v.check(
+            p.length_fraction.is_finite() && p.length_fraction > 0.0 && p.length_fraction <= 0.5,
+            &px("/profile/length_fraction"),
+            "must be in (0, 0.5]",
+        );
+    }
+    v.count_in_range(&px("/grid/circumferential"), spec.grid.circumferential, 17, 4001);
+    v.count_in_range(&px("/grid/axial"), spec.grid.axial, 5, 2001);
+    v.limit(&px("/grid"), spec.grid.circumferential * spec.grid.axial, limits.max_grid_nodes, "circumferential × axial nodes");
+    if let SupplySpec::Angle { angle_deg } = spec.supply {
+        v.check(angle_deg.is_finite(), &px("/supply/angle_deg"), "must be a finite number");
+    }
+    let s = &spec.solver;
+    v.in_range(&px("/solver/pressure_tolerance"), s.pressure_tolerance, 1e-12, 1e-4);
+    v.in_range(&px("/solver/load_tolerance"), s.load_tolerance, 1e-10, 1e-2);
+    v.count_in_range(&px("/solver/max_load_iterations"), s.max_load_iterations as usize, 1, 200);
+    v.count_in_range(&px("/solver/max_cycles"), s.max_cycles as usize, 10, 10_000);
+    v.in_range(&px("/solver/min_film"), s.min_film, 1e-6, 0.5);
+    v.count_in_range(&px("/field_stride/circumferential"), spec.field_stride.circumferential, 1, 1000);
+    v.count_in_range(&px("/field_stride/axial"), spec.field_stride.axial, 1, 1000);
+}
+
+/// What the spec's `load` asks for, resolved to the solver's operating point (the aligned
+/// reference is solved here when needed). Returns the operating point and a starting guess.
+pub fn resolve_load(
+    spec: &BearingSpec,
+    observer: &dyn Observer,
+) -> Result<(Operating, Option<Guess>, Option<f64>), SolveError> {
+    let l = &spec.load;
+    if let Some(e) = l.eccentricity_ratio {
+        return Ok(match l.attitude_angle_deg {
+            Some(a) => (Operating::Position { eccentricity: e, attitude: a.to_radians() }, None, None),
+            None => (Operating::Eccentricity(e), None, None),
+        });
+    }
+    if let Some(e) = l.aligned_eccentricity_ratio {
+        let (w, guess) = aligned_reference(spec, e, observer)?;
+        return Ok((Operating::Load(w), Some(guess), Some(w)));
+    }
+    if let Some(f) = l.force {
+        let d = spec.dimensions().ok_or_else(|| SolveError::invalid("/load/force", "needs dimensions"))?;
+        let w = f / d.load_scale();
+        return Ok((Operating::Load(w), None, Some(w)));
+    }
+    if let Some(s) = l.sommerfeld_number {
+        let w = 1.0 / (6.0 * PI * s);
+        return Ok((Operating::Load(w), None, Some(w)));
+    }
+    Err(SolveError::invalid("/load", "no operating point given"))
+}
+
+/// The load (W̄) an aligned, unprofiled bearing with the spec's L/D, supply and grid carries at
+/// eccentricity ratio `e`, and its position.
+pub fn aligned_reference(spec: &BearingSpec, e: f64, observer: &dyn Observer) -> Result<(f64, Guess), SolveError> {
+    let mut b = spec.bearing();
+    b.misalignment = Misalignment::default();
+    b.profile = None;
+    let a = journal::analyse(&b, &Operating::Eccentricity(e), &spec.settings(), None, None, false, observer)?;
+    Ok((a.load, Guess { eccentricity: a.eccentricity, attitude: a.attitude }))
+}
+
+/// Turn an analysis into the result document.
+pub fn to_result(spec: &BearingSpec, a: &Analysis, target: Option<f64>) -> BearingResult {
+    let d = spec.dimensions();
+    let stride = spec.field_stride;
+    let want_p = spec.outputs.contains(&BearingOutput::PressureField);
+    let want_h = spec.outputs.contains(&BearingOutput::FilmField);
+    let field = a.fields.as_ref().filter(|_| want_p || want_h).map(|f| {
+        let nt = f.theta.len();
+        let nz = f.z.len();
+        // columns 0..nt (the 360° column repeats 0°), rows 0..nz, every stride-th plus the last
+        let pick = |n: usize, s: usize| {
+            let mut v: Vec<usize> = (0..n).step_by(s).collect();
+            if *v.last().unwrap() != n - 1 {
+                v.push(n - 1);
+            }
+            v
+        };
+        let cols = pick(nt + 1, stride.circumferential);
+        let rows = pick(nz, stride.axial);
+        let mut t = FieldTable {
+            angle_deg: Vec::new(),
+            z: Vec::new(),
+            pressure_dimensionless: want_p.then(Vec::new),
+            film_dimensionless: want_h.then(Vec::new),
+        };
+        for &j in &rows {
+            for &c in &cols {
+                let i = c % nt;
+                let ang = if c == nt { f.theta[0].to_degrees() + 360.0 } else { f.theta[i].to_degrees() };
+                t.angle_deg.push(ang);
+                t.z.push(f.z[j]);
+                if let Some(p) = &mut t.pressure_dimensionless {
+                    p.push(f.pressure[j * nt + i]);
+                }
+                if let Some(h) = &mut t.film_dimensionless {
+                    h.push(f.film[j * nt + i]);
+                }
+            }
+        }
+        t
+    });
+    let fscale = d.map(|d| d.viscosity * d.omega * d.radius * d.radius * d.length / d.clearance);
+    BearingResult {
+        eccentricity_ratio: a.eccentricity,
+        attitude_angle_deg: a.attitude.to_degrees(),
+        sommerfeld_number: a.sommerfeld,
+        load: LoadResult {
+            dimensionless: a.load,
+            along_load_dimensionless: a.force_along_load,
+            across_load_dimensionless: a.force_across_load,
+            force: d.map(|d| a.load * d.load_scale()),
+            target_dimensionless: target,
+        },
+        max_pressure_dimensionless: a.max_pressure,
+        max_pressure_location: Location { angle_deg: a.max_pressure_theta.to_degrees(), z: a.max_pressure_z },
+        max_pressure: d.map(|d| a.max_pressure * d.pressure_scale()),
+        min_film_dimensionless: a.min_film,
+        min_film_location: Location { angle_deg: a.min_film_theta.to_degrees(), z: a.min_film_z },
+        min_film: d.map(|d| a.min_film * d.clearance),
+        friction_variable: a.friction_variable,
+        friction_variable_seed002: a.friction_variable_seed002,
+        friction_coefficient: d.and_then(|d| a.friction_variable.map(|f| f * d.clearance / d.radius)),
+        flow_variable: a.flow_variable,
+        side_flow_variable: a.side_flow_variable,
+        side_flow_ratio: a.side_flow_ratio,
+        flow: d.map(|d| a.flow_variable * d.radius * d.clearance * d.omega / (2.0 * PI) * d.length),
+        side_flow: d.map(|d| a.side_flow_variable * d.radius * d.clearance * d.omega / (2.0 * PI) * d.length),
+        power_loss_dimensionless: a.friction_force,
+        power_loss: fscale.zip(d).map(|(s, d)| a.friction_force * s * d.radius * d.omega),
+        convergence: a.convergence.clone(),
+        pressure_convergence: PressureConvergence {
+            active_set_steps: a.pressure_solve.steps,
+            cycles: a.pressure_solve.cycles,
+            residual: a.pressure_solve.residual,
+        },
+        grids: a
+            .steps_per_grid
+            .iter()
+            .map(|&(c, z, s)| GridSteps { circumferential: c, axial: z, steps: s })
+            .collect(),
+        field,
+    }
+}
+
+/// Solve one bearing spec (shared with the optimisation, which passes a workspace and a guess).
+pub fn solve_spec(
+    spec: &BearingSpec,
+    load: (Operating, Option<Guess>, Option<f64>),
+    workspace: Option<&mut Workspace>,
+    observer: &dyn Observer,
+) -> Result<(Analysis, BearingResult), SolveError> {
+    let want_fields = !spec.outputs.is_empty();
+    let a = journal::analyse(&spec.bearing(), &load.0, &spec.settings(), workspace, load.1, want_fields, observer)?;
+    let r = to_result(spec, &a, load.2);
+    Ok((a, r))
+}
+
+impl Kind for BearingKind {
+    const NAME: &'static str = "bearing";
+    const SOLVER_VERSION: &'static str = "bearing-1";
+    const DESCRIPTION: &'static str = "Finite-length hydrodynamic journal bearing (seed 002): Reynolds \
+        equation with Reynolds cavitation solved as a complementarity problem (active set + multigrid), \
+        misalignment, axial edge profiles, load balance; Raimondi–Boyd figures and SI values.";
+    const TABLES: &'static [&'static str] = &["field"];
+    type Spec = BearingSpec;
+    type Output = BearingResult;
+
+    fn example() -> Value {
+        json!({
+            "geometry": {"length_to_diameter": 1.25},
+            "operating": {"speed_rpm": 3000, "viscosity": 0.0293},
+            "load": {"aligned_eccentricity_ratio": 0.6},
+            "misalignment": {"vertical": 0.56, "horizontal": 0.56},
+            "profile": {"order": 2, "height": 0.4, "length_fraction": 0.2},
+            "grid": {"circumferential": 361, "axial": 181}
+        })
+    }
+
+    fn outputs() -> &'static [OutputInfo] {
+        &[
+            OutputInfo { name: "pressure_field", description: "dimensionless pressure at the grid nodes (table `field`, downsampled by `field_stride`)" },
+            OutputInfo { name: "film_field", description: "dimensionless film at the grid nodes (table `field`, downsampled by `field_stride`)" },
+        ]
+    }
+
+    fn validate(spec: &BearingSpec, limits: &Limits, v: &mut Validation) {
+        validate_bearing(spec, limits, v, true, "");
+    }
+
+    fn solve(spec: &BearingSpec, observer: &dyn Observer) -> Result<BearingResult, SolveError> {
+        observer.progress(0.0, "load");
+        let load = resolve_load(spec, observer)?;
+        observer.progress(0.3, "analysis");
+        let (_, r) = solve_spec(spec, load, None, observer)?;
+        observer.progress(1.0, "done");
+        Ok(r)
+    }
+}

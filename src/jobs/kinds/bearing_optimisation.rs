@@ -1,0 +1,515 @@
+//! `bearing_optimisation`: axial edge profile design by Taguchi orthogonal arrays (seed 002 §3–4,
+//! eq. 19, Tables 3–4), then a continuous Nelder–Mead search over the profile height ξ and length
+//! fraction ψ for each profile order, on the same score and load.
+//!
+//! Score (seed 002 eq. 19 with the normalisation of Table 3): every criterion is divided by the
+//! best value among the array's runs and oriented so that 1 is best — `H0/H0_best`,
+//! `P0_best/P0`, `f_best/f` — and weighted (default 0.5 film, 0.25 pressure, 0.25 friction).
+//! The continuous search keeps the array's normalisation, so its scores compare directly (a score
+//! above 1 beats the best run in every weighted criterion). Friction is seed 002's eq. (9) as
+//! read by the `bearing` kind (`friction: seed002`, default) or Raimondi & Boyd's journal friction. S/N ratios are larger-the-better, `20 log10(score)`, dB; the best
+//! level of each factor is the one with the largest mean S/N.
+
+use super::bearing::{resolve_load, solve_spec, validate_bearing, BearingSpec, ProfileSpec};
+use crate::jobs::kind::{Kind, Limits, Validation};
+use crate::physics::journal::taguchi::{level_means, nelder_mead, sn_larger_better, Array, Criteria, Reference, Weights};
+use crate::physics::journal::{Guess, Operating, Workspace};
+use crate::physics::{Convergence, Observer, SolveError, Termination};
+use rayon::prelude::*;
+use serde::{Deserialize, Serialize};
+use serde_json::{json, Value};
+use utoipa::ToSchema;
+
+pub struct BearingOptimisation;
+
+/// Orthogonal array.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize, ToSchema)]
+#[serde(rename_all = "snake_case")]
+pub enum Method {
+    /// L4(2³): two levels per factor.
+    TaguchiL4,
+    /// L9(3⁴), seed 002 Table 4 order: three levels per factor.
+    #[default]
+    TaguchiL9,
+    /// L27(3¹³) columns 1, 2, 5: three levels per factor (all 27 combinations).
+    TaguchiL27,
+}
+
+impl Method {
+    fn array(self) -> Array {
+        match self {
+            Method::TaguchiL4 => Array::L4,
+            Method::TaguchiL9 => Array::L9,
+            Method::TaguchiL27 => Array::L27,
+        }
+    }
+}
+
+/// Factor levels (two for L4, three for L9 and L27).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, ToSchema)]
+#[serde(deny_unknown_fields)]
+pub struct Factors {
+    /// Profile orders n (1, 2 or 3).
+    #[schema(example = json!([1, 2, 3]))]
+    pub order: Vec<u32>,
+    /// Heights ξ = m_r/c (0 to 5).
+    #[schema(example = json!([0.1, 0.4, 1.0]))]
+    pub height: Vec<f64>,
+    /// Length fractions ψ = m_l/L, (0, 0.5].
+    #[schema(example = json!([0.01, 0.2, 0.4]))]
+    pub length_fraction: Vec<f64>,
+}
+
+/// Weights of seed 002 eq. (19).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, ToSchema)]
+#[serde(deny_unknown_fields)]
+pub struct WeightsSpec {
+    /// Default 0.5.
+    pub film: f64,
+    /// Default 0.25.
+    pub pressure: f64,
+    /// Default 0.25.
+    pub friction: f64,
+}
+
+impl Default for WeightsSpec {
+    fn default() -> Self {
+        WeightsSpec { film: 0.5, pressure: 0.25, friction: 0.25 }
+    }
+}
+
+/// Which friction figure the score uses.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize, ToSchema)]
+#[serde(rename_all = "snake_case")]
+pub enum FrictionDefinition {
+    /// Seed 002 eq. (9) as read by the `bearing` kind (`friction_variable_seed002`: streamers in
+    /// the cavitated zone). Default, as in the paper's Table 3.
+    #[default]
+    Seed002,
+    /// Raimondi & Boyd's journal friction (`friction_variable`).
+    RaimondiBoyd,
+}
+
+/// The continuous search after the array.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, ToSchema)]
+#[serde(deny_unknown_fields, default)]
+pub struct ContinuousSpec {
+    /// Run it. Default true.
+    pub enabled: bool,
+    /// Bounds of ξ; default the range of the height levels.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub height: Option<[f64; 2]>,
+    /// Bounds of ψ; default the range of the length-fraction levels.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub length_fraction: Option<[f64; 2]>,
+    /// Simplex evaluations per order on the search grid (5 to 500). Default 40.
+    pub evaluations_per_order: usize,
+    /// Search on a grid with about half the nodes in each direction, then polish on the job's
+    /// grid (default true); false searches on the job's grid directly.
+    pub coarse_search: bool,
+}
+
+impl Default for ContinuousSpec {
+    fn default() -> Self {
+        ContinuousSpec { enabled: true, height: None, length_fraction: None, evaluations_per_order: 40, coarse_search: true }
+    }
+}
+
+/// Spec of a `bearing_optimisation` job.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, ToSchema)]
+#[serde(deny_unknown_fields)]
+pub struct OptimisationSpec {
+    /// The bearing and operating point every design is analysed at (no `profile`, no `outputs`).
+    pub base: BearingSpec,
+    #[serde(default)]
+    pub method: Method,
+    pub factors: Factors,
+    #[serde(default)]
+    pub weights: WeightsSpec,
+    /// Friction figure of the score. Default `seed002`.
+    #[serde(default)]
+    pub friction: FrictionDefinition,
+    #[serde(default)]
+    pub continuous: ContinuousSpec,
+}
+
+/// One analysed design.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, ToSchema)]
+pub struct Design {
+    pub order: u32,
+    /// ξ
+    pub height: f64,
+    /// ψ
+    pub length_fraction: f64,
+    /// P0
+    pub max_pressure_dimensionless: f64,
+    /// H0
+    pub min_film_dimensionless: f64,
+    /// (R/c) f of the spec's `friction` definition.
+    pub friction_variable: f64,
+    /// Weighted score, eq. (19), on the array's normalisation.
+    pub score: f64,
+    /// Mid-plane eccentricity ratio at the balanced position.
+    pub eccentricity_ratio: f64,
+    /// p_max, Pa (with dimensions).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub max_pressure: Option<f64>,
+    /// h_min, m (with dimensions).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub min_film: Option<f64>,
+}
+
+/// One run of the array (flat: the `runs` CSV table).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, ToSchema)]
+pub struct Run {
+    /// 1-based run number in the array's standard order.
+    pub run: usize,
+    pub order: u32,
+    pub height: f64,
+    pub length_fraction: f64,
+    pub max_pressure_dimensionless: f64,
+    pub min_film_dimensionless: f64,
+    pub friction_variable: f64,
+    /// Normalised criteria of Table 3: P0_best/P0, H0/H0_best, f_best/f.
+    pub pressure_normalised: f64,
+    pub film_normalised: f64,
+    pub friction_normalised: f64,
+    /// Eq. (19).
+    pub score: f64,
+    /// 20 log10(score), dB.
+    pub sn_ratio_db: f64,
+    pub eccentricity_ratio: f64,
+}
+
+/// Main effect of one level of one factor.
+#[derive(Debug, Clone, PartialEq, Serialize, ToSchema)]
+pub struct Effect {
+    /// `order`, `height` or `length_fraction`.
+    pub factor: String,
+    /// 1-based level.
+    pub level: usize,
+    pub value: f64,
+    pub mean_score: f64,
+    pub mean_sn_ratio_db: f64,
+}
+
+/// The best level of each factor (largest mean S/N).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, ToSchema)]
+pub struct BestLevels {
+    /// 1-based levels.
+    pub order_level: usize,
+    pub height_level: usize,
+    pub length_fraction_level: usize,
+    /// The combination, analysed (a confirmation run when it is not one of the runs).
+    pub design: Design,
+}
+
+/// Result of the continuous search.
+#[derive(Debug, Clone, PartialEq, Serialize, ToSchema)]
+pub struct Continuous {
+    /// The best design over all orders, analysed on the job's grid.
+    pub design: Design,
+    /// Best design per order.
+    pub per_order: Vec<Design>,
+    /// Whether `design` scores above the best of the runs and the best-level combination.
+    pub improves_on_taguchi: bool,
+    /// Bearing analyses spent by the search.
+    pub evaluations: usize,
+}
+
+/// Result of a `bearing_optimisation` job.
+#[derive(Debug, Clone, PartialEq, Serialize, ToSchema)]
+pub struct OptimisationResult {
+    pub runs: Vec<Run>,
+    /// 1-based number of the best run.
+    pub best_run: usize,
+    pub best_levels: BestLevels,
+    pub main_effects: Vec<Effect>,
+    /// The base bearing without a profile (e.g. misaligned), on the same load.
+    pub baseline: Design,
+    /// Dimensionless load W̄ every design carries.
+    pub load_dimensionless: f64,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub continuous: Option<Continuous>,
+    /// Bearing analyses in total.
+    pub evaluations: usize,
+    pub convergence: Convergence,
+}
+
+fn planned_evaluations(spec: &OptimisationSpec) -> usize {
+    let runs = spec.method.array().rows().len();
+    // reference + baseline + runs + confirmation
+    let mut n = 3 + runs;
+    if spec.continuous.enabled {
+        let orders = spec.factors.order.len();
+        n += orders * (spec.continuous.evaluations_per_order + if spec.continuous.coarse_search { 15 } else { 0 });
+    }
+    n
+}
+
+/// Analyse one profile on the base (the load is already resolved).
+struct Evaluator {
+    friction: FrictionDefinition,
+    op: Operating,
+    guess: Option<Guess>,
+}
+
+impl Evaluator {
+    fn design(&self, spec: &BearingSpec, p: Option<ProfileSpec>, ws: Option<&mut Workspace>, observer: &dyn Observer) -> Result<(Design, Guess), SolveError> {
+        let mut s = spec.clone();
+        s.profile = p;
+        let (a, r) = solve_spec(&s, (self.op, self.guess, None), ws, observer)?;
+        let f = match self.friction {
+            FrictionDefinition::Seed002 => r.friction_variable_seed002,
+            FrictionDefinition::RaimondiBoyd => r.friction_variable,
+        }
+        .ok_or_else(|| SolveError::physical("no_load", "the design carries no load"))?;
+        Ok((
+            Design {
+                order: p.map_or(0, |p| p.order),
+                height: p.map_or(0.0, |p| p.height),
+                length_fraction: p.map_or(0.0, |p| p.length_fraction),
+                max_pressure_dimensionless: a.max_pressure,
+                min_film_dimensionless: a.min_film,
+                friction_variable: f,
+                score: 0.0,
+                eccentricity_ratio: a.eccentricity,
+                max_pressure: r.max_pressure,
+                min_film: r.min_film,
+            },
+            Guess { eccentricity: a.eccentricity, attitude: a.attitude },
+        ))
+    }
+}
+
+fn criteria(d: &Design) -> Criteria {
+    Criteria { pressure: d.max_pressure_dimensionless, film: d.min_film_dimensionless, friction: d.friction_variable }
+}
+
+impl Kind for BearingOptimisation {
+    const NAME: &'static str = "bearing_optimisation";
+    const SOLVER_VERSION: &'static str = "bearing_optimisation-1";
+    const DESCRIPTION: &'static str = "Axial edge profile design of a journal bearing (seed 002): Taguchi \
+        L4/L9/L27 array with the weighted-sum score of eq. (19), main effects and S/N ratios, then a \
+        continuous Nelder–Mead search over height and length fraction for each profile order.";
+    const TABLES: &'static [&'static str] = &["runs", "main_effects"];
+    type Spec = OptimisationSpec;
+    type Output = OptimisationResult;
+
+    fn example() -> Value {
+        json!({
+            "base": {
+                "geometry": {"length_to_diameter": 1.25},
+                "operating": {"speed_rpm": 3000, "viscosity": 0.0293},
+                "load": {"aligned_eccentricity_ratio": 0.6},
+                "misalignment": {"vertical": 0.56, "horizontal": 0.56},
+                "grid": {"circumferential": 181, "axial": 91}
+            },
+            "method": "taguchi_l9",
+            "factors": {"order": [1, 2, 3], "height": [0.1, 0.4, 1.0], "length_fraction": [0.01, 0.2, 0.4]},
+            "weights": {"film": 0.5, "pressure": 0.25, "friction": 0.25}
+        })
+    }
+
+    fn validate(spec: &OptimisationSpec, limits: &Limits, v: &mut Validation) {
+        validate_bearing(&spec.base, limits, v, true, "/base");
+        v.check(spec.base.profile.is_none(), "/base/profile", "the profile is what is optimised: leave it out of the base");
+        v.check(spec.base.outputs.is_empty(), "/base/outputs", "fields are not produced by an optimisation");
+        let n = spec.method.array().levels();
+        let f = &spec.factors;
+        v.check(f.order.len() == n, "/factors/order", format!("needs {n} levels for this array"));
+        v.check(f.height.len() == n, "/factors/height", format!("needs {n} levels for this array"));
+        v.check(f.length_fraction.len() == n, "/factors/length_fraction", format!("needs {n} levels for this array"));
+        for (i, o) in f.order.iter().enumerate() {
+            v.check((1..=3).contains(o), &format!("/factors/order/{i}"), "must be 1, 2 or 3");
+        }
+        for (i, h) in f.height.iter().enumerate() {
+            v.in_range(&format!("/factors/height/{i}"), *h, 0.0, 5.0);
+        }
+        for (i, p) in f.length_fraction.iter().enumerate() {
+            v.check(p.is_finite() && *p > 0.0 && *p <= 0.5, &format!("/factors/length_fraction/{i}"), "must be in (0, 0.5]");
+        }
+        let w = &spec.weights;
+        for (path, x) in [("/weights/film", w.film), ("/weights/pressure", w.pressure), ("/weights/friction", w.friction)] {
+            v.non_negative(path, x);
+        }
+        v.check(w.film + w.pressure + w.friction > 0.0, "/weights", "at least one weight must be > 0");
+        let c = &spec.continuous;
+        v.count_in_range("/continuous/evaluations_per_order", c.evaluations_per_order, 5, 500);
+        if let Some([lo, hi]) = c.height {
+            v.check(lo.is_finite() && hi.is_finite() && 0.0 <= lo && lo < hi && hi <= 5.0, "/continuous/height", "needs 0 <= lo < hi <= 5");
+        }
+        if let Some([lo, hi]) = c.length_fraction {
+            v.check(lo.is_finite() && hi.is_finite() && 0.0 < lo && lo < hi && hi <= 0.5, "/continuous/length_fraction", "needs 0 < lo < hi <= 0.5");
+        }
+        v.limit("/continuous/evaluations_per_order", planned_evaluations(spec), limits.max_evaluations, "planned bearing analyses");
+    }
+
+    fn solve(spec: &OptimisationSpec, observer: &dyn Observer) -> Result<OptimisationResult, SolveError> {
+        let base = &spec.base;
+        observer.progress(0.0, "reference load");
+        let (op, guess, target) = resolve_load(base, observer)?;
+        let mut evaluations = if base.load.aligned_eccentricity_ratio.is_some() { 1 } else { 0 };
+        let load = target.unwrap_or(0.0);
+        let ev = Evaluator { friction: spec.friction, op, guess };
+        observer.progress(0.1, "orthogonal array");
+        let array = spec.method.array();
+        let rows = array.rows();
+        let f = &spec.factors;
+        let profile = |r: &[usize; 3]| ProfileSpec { order: f.order[r[0]], height: f.height[r[1]], length_fraction: f.length_fraction[r[2]] };
+        // the unprofiled base and the runs in parallel; each worker keeps a workspace (grids)
+        // between its cases, and every case starts from the reference position
+        let cases: Vec<Option<ProfileSpec>> = std::iter::once(None).chain(rows.iter().map(|r| Some(profile(r)))).collect();
+        let mut all: Vec<Design> = cases
+            .par_iter()
+            .map_init(|| None::<Workspace>, |ws, p| {
+                observer.check()?;
+                let w = ws.get_or_insert_with(|| Workspace::new(&base.bearing(), &base.settings()));
+                ev.design(base, *p, Some(w), observer).map(|d| d.0)
+            })
+            .collect::<Result<_, _>>()?;
+        evaluations += all.len();
+        let mut baseline = all.remove(0);
+        let designs = all;
+        let crit: Vec<Criteria> = designs.iter().map(criteria).collect();
+        let reference = Reference::of(&crit);
+        let weights = Weights { film: spec.weights.film, pressure: spec.weights.pressure, friction: spec.weights.friction };
+        let score = |d: &Design| reference.score(&criteria(d), &weights);
+        let runs: Vec<Run> = designs
+            .iter()
+            .enumerate()
+            .map(|(i, d)| {
+                let (h, p, fr) = reference.normalise(&criteria(d));
+                let s = score(d);
+                Run {
+                    run: i + 1,
+                    order: d.order,
+                    height: d.height,
+                    length_fraction: d.length_fraction,
+                    max_pressure_dimensionless: d.max_pressure_dimensionless,
+                    min_film_dimensionless: d.min_film_dimensionless,
+                    friction_variable: d.friction_variable,
+                    pressure_normalised: p,
+                    film_normalised: h,
+                    friction_normalised: fr,
+                    score: s,
+                    sn_ratio_db: sn_larger_better(s),
+                    eccentricity_ratio: d.eccentricity_ratio,
+                }
+            })
+            .collect();
+        let best_run = runs.iter().max_by(|a, b| a.score.total_cmp(&b.score)).map_or(1, |r| r.run);
+        let scores: Vec<f64> = runs.iter().map(|r| r.score).collect();
+        let sn: Vec<f64> = runs.iter().map(|r| r.sn_ratio_db).collect();
+        let levels = array.levels();
+        let mut main_effects = Vec::new();
+        let mut best = [0usize; 3];
+        for (fi, name) in ["order", "height", "length_fraction"].iter().enumerate() {
+            let ms = level_means(&rows, fi, levels, &scores);
+            let mn = level_means(&rows, fi, levels, &sn);
+            for l in 0..levels {
+                let value = match fi {
+                    0 => f.order[l] as f64,
+                    1 => f.height[l],
+                    _ => f.length_fraction[l],
+                };
+                main_effects.push(Effect { factor: name.to_string(), level: l + 1, value, mean_score: ms[l], mean_sn_ratio_db: mn[l] });
+            }
+            best[fi] = (0..levels).max_by(|a, b| mn[*a].total_cmp(&mn[*b])).unwrap_or(0);
+        }
+        let best_combo = match rows.iter().position(|r| *r == best) {
+            Some(i) => designs[i],
+            None => {
+                evaluations += 1;
+                ev.design(base, Some(profile(&best)), None, observer)?.0
+            }
+        };
+        let mut best_design = best_combo;
+        best_design.score = score(&best_combo);
+        let taguchi_best = best_design.score.max(runs[best_run - 1].score);
+        baseline.score = score(&baseline);
+
+        let continuous = if spec.continuous.enabled {
+            observer.progress(0.5, "continuous search");
+            let c = &spec.continuous;
+            let hb = c.height.unwrap_or([f.height.iter().cloned().fold(f64::INFINITY, f64::min), f.height.iter().cloned().fold(0.0, f64::max)]);
+            let pb = c.length_fraction.unwrap_or([
+                f.length_fraction.iter().cloned().fold(f64::INFINITY, f64::min),
+                f.length_fraction.iter().cloned().fold(0.0, f64::max),
+            ]);
+            let lo = [hb[0], pb[0].max(1e-3)];
+            let hi = [hb[1].max(hb[0] + 1e-6), pb[1].max(pb[0].max(1e-3) + 1e-6)];
+            let mut orders = f.order.clone();
+            orders.sort();
+            orders.dedup();
+            let coarse = if c.coarse_search {
+                let mut s = base.clone();
+                s.grid.circumferential = (base.grid.circumferential / 2).max(17) | 1;
+                s.grid.axial = (base.grid.axial / 2).max(9) | 1;
+                s
+            } else {
+                base.clone()
+            };
+            let per: Vec<(Design, usize)> = orders
+                .par_iter()
+                .map(|&n| -> Result<(Design, usize), SolveError> {
+                    // start from the best run of this order
+                    let start = designs
+                        .iter()
+                        .filter(|d| d.order == n)
+                        .max_by(|a, b| score(a).total_cmp(&score(b)))
+                        .map_or([0.5 * (lo[0] + hi[0]), 0.5 * (lo[1] + hi[1])], |d| [d.height, d.length_fraction]);
+                    let mut used = 0;
+                    let objective = |spec_: &BearingSpec, ws: &mut Workspace, x: &[f64], used: &mut usize| -> Result<f64, SolveError> {
+                        observer.check()?;
+                        *used += 1;
+                        let p = ProfileSpec { order: n, height: x[0], length_fraction: x[1] };
+                        match ev.design(spec_, Some(p), Some(ws), observer) {
+                            Ok((d, _)) => Ok(-score(&d)),
+                            Err(SolveError::Interrupted(i)) => Err(SolveError::Interrupted(i)),
+                            Err(_) => Ok(f64::INFINITY),
+                        }
+                    };
+                    let step = [0.15 * (hi[0] - lo[0]), 0.15 * (hi[1] - lo[1])];
+                    let mut ws = Workspace::new(&coarse.bearing(), &coarse.settings());
+                    let m = nelder_mead(|x| objective(&coarse, &mut ws, x, &mut used), &start, &step, &lo, &hi, c.evaluations_per_order, 1e-7)?;
+                    let mut x = m.x.clone();
+                    if c.coarse_search {
+                        let mut ws = Workspace::new(&base.bearing(), &base.settings());
+                        let small = [0.03 * (hi[0] - lo[0]), 0.03 * (hi[1] - lo[1])];
+                        let m2 = nelder_mead(|x| objective(base, &mut ws, x, &mut used), &x, &small, &lo, &hi, 15, 1e-8)?;
+                        x = m2.x;
+                    }
+                    let (mut d, _) = ev.design(base, Some(ProfileSpec { order: n, height: x[0], length_fraction: x[1] }), None, observer)?;
+                    used += 1;
+                    d.score = score(&d);
+                    Ok((d, used))
+                })
+                .collect::<Result<_, _>>()?;
+            let used: usize = per.iter().map(|p| p.1).sum();
+            evaluations += used;
+            let per_order: Vec<Design> = per.into_iter().map(|p| p.0).collect();
+            let design = *per_order.iter().max_by(|a, b| a.score.total_cmp(&b.score)).unwrap();
+            Some(Continuous { design, per_order, improves_on_taguchi: design.score > taguchi_best, evaluations: used })
+        } else {
+            None
+        };
+        observer.progress(1.0, "done");
+        Ok(OptimisationResult {
+            runs,
+            best_run,
+            best_levels: BestLevels {
+                order_level: best[0] + 1,
+                height_level: best[1] + 1,
+                length_fraction_level: best[2] + 1,
+                design: best_design,
+            },
+            main_effects,
+            baseline,
+            load_dimensionless: load,
+            continuous,
+            evaluations,
+            convergence: Convergence { iterations: evaluations as u32, residual: 0.0, tolerance: 0.0, termination: Termination::Converged },
+        })
+    }
+}

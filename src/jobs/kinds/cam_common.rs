@@ -1,0 +1,308 @@
+//! Spec pieces shared by the cam kinds (`cam_cycle`, `cam_point`): lubricant, surfaces, traction,
+//! film options, and their conversion to `physics` types.
+
+use crate::jobs::kind::{Limits, Validation};
+use crate::physics::ehl::EhlOptions;
+use crate::physics::film::{AccurateSettings, ClosedForm, FilmFormula};
+use crate::physics::friction::{AsperityFriction, AsperityModel, Rheology, Roughness, TractionLaw};
+use crate::physics::lubricant::{DensityModel, Lubricant, ViscosityModel};
+use serde::{Deserialize, Serialize};
+use utoipa::ToSchema;
+
+pub fn default_e() -> f64 {
+    210e9
+}
+pub fn default_nu() -> f64 {
+    0.3
+}
+fn default_ref_temperature() -> f64 {
+    313.0
+}
+fn default_density() -> f64 {
+    870.0
+}
+
+/// Lubricant rheology (SI). Viscosity–pressure: Roelands (seed 000 eq. 4) or Barus;
+/// density: Dowson–Higginson (seed 000 eq. 5) or incompressible.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, ToSchema)]
+#[serde(deny_unknown_fields)]
+pub struct LubricantSpec {
+    /// Dynamic viscosity at ambient pressure and `reference_temperature`, Pa·s.
+    #[schema(example = 0.152)]
+    pub viscosity: f64,
+    /// Pressure–viscosity coefficient α (low-pressure slope), 1/Pa.
+    #[schema(example = 2.2e-8)]
+    pub pressure_viscosity: f64,
+    /// Temperature–viscosity coefficient β, 1/K. Default 0.
+    #[serde(default)]
+    pub temperature_viscosity: f64,
+    /// Temperature at which `viscosity` is given, K. Default 313.
+    #[serde(default = "default_ref_temperature")]
+    pub reference_temperature: f64,
+    /// Oil inlet temperature, K. Default: `reference_temperature`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub temperature: Option<f64>,
+    /// Density at ambient pressure, kg/m³. Default 870.
+    #[serde(default = "default_density")]
+    pub density: f64,
+    /// `roelands` (default) or `barus`.
+    #[serde(default)]
+    pub viscosity_model: ViscosityModel,
+    /// `dowson_higginson` (default) or `incompressible`.
+    #[serde(default)]
+    pub density_model: DensityModel,
+}
+
+impl LubricantSpec {
+    pub fn to_physics(&self) -> Lubricant {
+        Lubricant {
+            viscosity: self.viscosity,
+            pressure_viscosity: self.pressure_viscosity,
+            temperature_viscosity: self.temperature_viscosity,
+            reference_temperature: self.reference_temperature,
+            density: self.density,
+            viscosity_model: self.viscosity_model,
+            density_model: self.density_model,
+        }
+    }
+    pub fn inlet_temperature(&self) -> f64 {
+        self.temperature.unwrap_or(self.reference_temperature)
+    }
+    pub fn validate(&self, path: &str, v: &mut Validation) {
+        v.in_range(&format!("{path}/viscosity"), self.viscosity, 1e-5, 1e4);
+        v.in_range(&format!("{path}/pressure_viscosity"), self.pressure_viscosity, 0.0, 1e-7);
+        v.in_range(&format!("{path}/temperature_viscosity"), self.temperature_viscosity, 0.0, 1.0);
+        v.in_range(&format!("{path}/reference_temperature"), self.reference_temperature, 200.0, 700.0);
+        if let Some(t) = self.temperature {
+            v.in_range(&format!("{path}/temperature"), t, 200.0, 700.0);
+        }
+        v.in_range(&format!("{path}/density"), self.density, 100.0, 5000.0);
+    }
+}
+
+/// Asperity friction law of the rough surfaces.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize, ToSchema)]
+#[serde(rename_all = "snake_case")]
+pub enum AsperityModelSpec {
+    /// Gross sliding: constant boundary friction coefficient (asperities stick at zero sliding).
+    #[default]
+    Coulomb,
+    /// Partial slip of the asperity share by Carter's creep law (gross sliding at creep μ_b b/R).
+    Carter,
+}
+
+fn default_ebs() -> f64 {
+    0.04
+}
+fn default_sob() -> f64 {
+    0.001
+}
+fn default_mub() -> f64 {
+    0.1
+}
+
+/// Greenwood–Tripp surface statistics and boundary friction. The composite roughness is
+/// `σ = sqrt(σ_cam² + σ_follower²)` from the bodies' `roughness_rq`.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, ToSchema)]
+#[serde(deny_unknown_fields)]
+pub struct AsperitySpec {
+    /// Roughness parameter ηβσ (summit density × summit radius × σ). Default 0.04.
+    #[serde(default = "default_ebs")]
+    pub eta_beta_sigma: f64,
+    /// Summit slope parameter σ/β. Default 0.001.
+    #[serde(default = "default_sob")]
+    pub sigma_over_beta: f64,
+    /// Boundary (asperity) friction coefficient μ_b. Default 0.1.
+    #[serde(default = "default_mub")]
+    pub boundary_friction: f64,
+    /// `coulomb` (default) or `carter`.
+    #[serde(default)]
+    pub model: AsperityModelSpec,
+}
+
+impl Default for AsperitySpec {
+    fn default() -> Self {
+        AsperitySpec {
+            eta_beta_sigma: default_ebs(),
+            sigma_over_beta: default_sob(),
+            boundary_friction: default_mub(),
+            model: AsperityModelSpec::Coulomb,
+        }
+    }
+}
+
+impl AsperitySpec {
+    pub fn roughness(&self, sigma: f64) -> Roughness {
+        Roughness { sigma, eta_beta_sigma: self.eta_beta_sigma, sigma_over_beta: self.sigma_over_beta }
+    }
+    pub fn friction(&self) -> AsperityFriction {
+        AsperityFriction {
+            coefficient: self.boundary_friction,
+            model: match self.model {
+                AsperityModelSpec::Coulomb => AsperityModel::Coulomb,
+                AsperityModelSpec::Carter => AsperityModel::Carter,
+            },
+        }
+    }
+    pub fn validate(&self, path: &str, v: &mut Validation) {
+        v.in_range(&format!("{path}/eta_beta_sigma"), self.eta_beta_sigma, 0.0, 1.0);
+        v.in_range(&format!("{path}/sigma_over_beta"), self.sigma_over_beta, 0.0, 1.0);
+        v.in_range(&format!("{path}/boundary_friction"), self.boundary_friction, 0.0, 2.0);
+    }
+}
+
+/// Shear law of the film.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize, ToSchema)]
+#[serde(rename_all = "snake_case")]
+pub enum RheologySpec {
+    /// Eyring: τ = τ0 asinh(ηu_s/(hτ0)) (seed 001 eq. 25).
+    #[default]
+    Eyring,
+    /// Newtonian: τ = ηu_s/h.
+    Newtonian,
+}
+
+fn default_tau0() -> f64 {
+    5e6
+}
+
+/// Film traction law.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, ToSchema)]
+#[serde(deny_unknown_fields)]
+pub struct TractionSpec {
+    /// `eyring` (default) or `newtonian`.
+    #[serde(default)]
+    pub model: RheologySpec,
+    /// Eyring stress τ0, Pa. Default 5e6 (seed 001 Table 1).
+    #[serde(default = "default_tau0")]
+    pub eyring_stress: f64,
+    /// Limiting shear stress coefficient Λ (|τ| ≤ Λp); absent: no limit.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub limiting_shear_coefficient: Option<f64>,
+}
+
+impl Default for TractionSpec {
+    fn default() -> Self {
+        TractionSpec { model: RheologySpec::Eyring, eyring_stress: default_tau0(), limiting_shear_coefficient: None }
+    }
+}
+
+impl TractionSpec {
+    pub fn to_physics(&self) -> TractionLaw {
+        TractionLaw {
+            rheology: match self.model {
+                RheologySpec::Eyring => Rheology::Eyring { tau0: self.eyring_stress },
+                RheologySpec::Newtonian => Rheology::Newtonian,
+            },
+            limiting_shear_coefficient: self.limiting_shear_coefficient,
+        }
+    }
+    pub fn validate(&self, path: &str, v: &mut Validation) {
+        v.in_range(&format!("{path}/eyring_stress"), self.eyring_stress, 1e3, 1e9);
+        if let Some(l) = self.limiting_shear_coefficient {
+            v.in_range(&format!("{path}/limiting_shear_coefficient"), l, 1e-4, 1.0);
+        }
+    }
+}
+
+/// Closed-form film options (`fast` fidelity).
+#[derive(Debug, Clone, Copy, PartialEq, Default, Serialize, Deserialize, ToSchema)]
+#[serde(deny_unknown_fields)]
+pub struct FilmSpec {
+    /// Line-contact formula: `pan_hamrock` (default), `dowson_higginson` or `seed003`
+    /// (seed 003 eq. 17–18). Point contacts (spherical tappet) always use Hamrock–Dowson.
+    #[serde(default)]
+    pub formula: FilmFormula,
+    /// Seed 003's squeeze term (only with `formula: seed003`). Default false.
+    #[serde(default)]
+    pub squeeze: bool,
+}
+
+impl FilmSpec {
+    pub fn to_physics(&self) -> ClosedForm {
+        ClosedForm { formula: self.formula, squeeze: self.squeeze }
+    }
+    pub fn validate(&self, path: &str, v: &mut Validation) {
+        v.check(
+            !self.squeeze || self.formula == FilmFormula::Seed003,
+            &format!("{path}/squeeze"),
+            "the squeeze term belongs to the seed003 formula",
+        );
+    }
+}
+
+/// Composite RMS roughness of two surfaces, m.
+pub fn composite_sigma(a: f64, b: f64) -> f64 {
+    (a * a + b * b).sqrt()
+}
+
+fn default_ehl_nodes() -> usize {
+    192
+}
+fn default_ehl_tolerance() -> f64 {
+    1e-6
+}
+fn default_ehl_iterations() -> u32 {
+    60
+}
+fn default_auto_tolerance() -> f64 {
+    0.05
+}
+
+/// Numerical EHL options (fidelities `accurate` and `auto`; see `physics::film::Numerical` and
+/// `physics::film::auto`). The solver is the isothermal line-contact EHL of `physics::ehl`
+/// (compressible Reynolds with squeeze, elastic half-space, load balance, cavitation); point
+/// contacts (spherical tappets) always keep the closed form.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, ToSchema)]
+#[serde(deny_unknown_fields)]
+pub struct EhlSpec {
+    /// Grid nodes per contact (graded towards the inlet and the exit constriction), 32 … the
+    /// server's grid limit. Default 192: central and minimum film within ≈ 3 % of the
+    /// grid-converged film near entrainment reversal, ≈ 1 % elsewhere (BENCHMARKS.md); 384 for
+    /// ≈ 0.5 %. The cost grows like nodes^2.5.
+    #[serde(default = "default_ehl_nodes")]
+    pub nodes: usize,
+    /// Residual tolerance of the Newton iteration (relative load balance and scaled Reynolds
+    /// residual). Default 1e-6.
+    #[serde(default = "default_ehl_tolerance")]
+    pub tolerance: f64,
+    /// Most Newton steps per solve (per continuation stage). Default 60.
+    #[serde(default = "default_ehl_iterations")]
+    pub max_iterations: u32,
+    /// `auto`: largest estimated relative error of the closed-form film accepted; the numerical
+    /// solver runs where the estimate exceeds it. Default 0.05.
+    #[serde(default = "default_auto_tolerance")]
+    pub auto_tolerance: f64,
+}
+
+impl Default for EhlSpec {
+    fn default() -> Self {
+        EhlSpec {
+            nodes: default_ehl_nodes(),
+            tolerance: default_ehl_tolerance(),
+            max_iterations: default_ehl_iterations(),
+            auto_tolerance: default_auto_tolerance(),
+        }
+    }
+}
+
+impl EhlSpec {
+    pub fn to_physics(&self) -> AccurateSettings {
+        AccurateSettings {
+            options: EhlOptions {
+                nodes: self.nodes,
+                tolerance: self.tolerance,
+                max_iterations: self.max_iterations,
+                ..EhlOptions::default()
+            },
+            auto_tolerance: self.auto_tolerance,
+        }
+    }
+    pub fn validate(&self, path: &str, limits: &Limits, v: &mut Validation) {
+        v.count_in_range(&format!("{path}/nodes"), self.nodes, 32, 1 << 16);
+        v.limit(&format!("{path}/nodes"), self.nodes, limits.max_grid_nodes, "the number of EHL grid nodes");
+        v.in_range(&format!("{path}/tolerance"), self.tolerance, 1e-13, 1e-2);
+        v.check(self.max_iterations >= 1 && self.max_iterations <= 1000, &format!("{path}/max_iterations"), "must be in [1, 1000]");
+        v.in_range(&format!("{path}/auto_tolerance"), self.auto_tolerance, 0.0, 10.0);
+    }
+}

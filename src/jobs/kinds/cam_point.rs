@@ -1,0 +1,304 @@
+//! `cam_point`: the cam–roller contact at a fixed operating point (seed 001 Table 2) — roller slip
+//! against roller–pin friction, the cam–roller friction needed to drive the roller and the
+//! gross-sliding threshold. A point analysis has no cycle, so it is its own kind rather than a
+//! `cam_cycle` option. Physics: `physics::roller::point`.
+
+use super::cam_common::{composite_sigma, default_e, default_nu, AsperitySpec, EhlSpec, FilmSpec, LubricantSpec, TractionSpec};
+use crate::jobs::kind::{Kind, Limits, Validation};
+use crate::physics::contact::{contact_modulus, hertz_line, Elastic};
+use crate::physics::film::{model_for, ContactInput, ContactShape, Fidelity, FilmModelId};
+use crate::physics::roller::PointCase;
+use crate::physics::{ensure_finite, Convergence, Observer, SolveError};
+use serde::{Deserialize, Serialize};
+use serde_json::{json, Value};
+use utoipa::ToSchema;
+
+pub struct CamPoint;
+
+/// One body of the contact.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, ToSchema)]
+#[serde(deny_unknown_fields)]
+pub struct PointBody {
+    /// Young's modulus, Pa. Default 210e9.
+    #[serde(default = "default_e")]
+    pub youngs_modulus: f64,
+    /// Poisson's ratio. Default 0.3.
+    #[serde(default = "default_nu")]
+    pub poisson_ratio: f64,
+    /// RMS roughness Rq, m. Default 0.
+    #[serde(default)]
+    pub roughness_rq: f64,
+}
+
+impl Default for PointBody {
+    fn default() -> Self {
+        PointBody { youngs_modulus: default_e(), poisson_ratio: default_nu(), roughness_rq: 0.0 }
+    }
+}
+
+/// The roller.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, ToSchema)]
+#[serde(deny_unknown_fields)]
+pub struct PointRoller {
+    /// Outer radius R_f, m.
+    pub radius: f64,
+    /// Pin radius, m.
+    pub pin_radius: f64,
+    /// Moment of inertia, kg·m². Default 0.
+    #[serde(default)]
+    pub inertia: f64,
+    /// Roller angular acceleration ω̇_r, rad/s². Default 0 (the inertia torque is I ω̇_r).
+    #[serde(default)]
+    pub angular_acceleration: f64,
+}
+
+/// Spec of a `cam_point` job (SI units).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, ToSchema)]
+#[serde(deny_unknown_fields)]
+pub struct CamPointSpec {
+    /// Normal contact load F, N.
+    #[schema(example = 12500.0)]
+    pub load: f64,
+    /// Reduced radius of curvature of the cam–roller contact, m.
+    #[schema(example = 0.0105)]
+    pub reduced_radius: f64,
+    /// Cam surface velocity u_c, m/s.
+    #[schema(example = 3.98)]
+    pub cam_surface_velocity: f64,
+    /// Axial contact length, m.
+    pub contact_length: f64,
+    pub roller: PointRoller,
+    /// Roller–pin friction coefficients μ_rp to evaluate.
+    pub pin_friction: Vec<f64>,
+    #[serde(default)]
+    pub cam: PointBody,
+    #[serde(default)]
+    pub follower: PointBody,
+    pub lubricant: LubricantSpec,
+    #[serde(default)]
+    pub asperities: AsperitySpec,
+    #[serde(default)]
+    pub traction: TractionSpec,
+    #[serde(default)]
+    pub film: FilmSpec,
+    /// Film model: `fast` (closed form, default), `accurate` (numerical line-contact EHL, steady),
+    /// `auto` (the closed form where its estimated error is within `ehl.auto_tolerance`).
+    #[serde(default)]
+    pub fidelity: Fidelity,
+    /// Numerical EHL options (`accurate`, `auto`).
+    #[serde(default)]
+    pub ehl: EhlSpec,
+}
+
+/// The balance at one roller–pin friction coefficient.
+#[derive(Debug, Clone, PartialEq, Serialize, ToSchema)]
+pub struct PointRow {
+    /// Roller–pin friction coefficient μ_rp.
+    pub pin_friction: f64,
+    /// Slide-to-roll ratio 2(u_c − u_r)/(u_c + u_r).
+    pub slide_roll_ratio: f64,
+    /// u_c − u_r, m/s.
+    pub sliding_velocity: f64,
+    /// Roller surface velocity u_r, m/s.
+    pub roller_surface_velocity: f64,
+    /// Cam–roller friction coefficient μ_cr = F_t/F.
+    pub cam_roller_friction: f64,
+    /// Film (viscous) part of the traction, N.
+    pub viscous_traction: f64,
+    /// Asperity part of the traction, N.
+    pub asperity_traction: f64,
+    /// Central film, m.
+    pub film_central: f64,
+    /// Minimum film, m.
+    pub film_min: f64,
+    /// 1 when the asperities stick (pure rolling), else 0.
+    pub sticking: f64,
+    /// Film model that ran for this row.
+    pub model: FilmModelId,
+}
+
+/// Flat summary numbers.
+#[derive(Debug, Clone, PartialEq, Serialize, ToSchema)]
+pub struct PointSummary {
+    /// Pa.
+    pub hertz_max_pressure: f64,
+    /// m.
+    pub hertz_half_width: f64,
+    /// Central film at pure rolling, m.
+    pub film_central: f64,
+    /// Minimum film at pure rolling, m.
+    pub film_min: f64,
+    /// Exit-constriction film at pure rolling, m (the closed forms' minimum film).
+    pub exit_film: f64,
+    /// Exit pressure spike at pure rolling, Pa, when the numerical model resolved one.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub pressure_spike: Option<f64>,
+    /// Its position, m from the contact centre (positive downstream).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub pressure_spike_position: Option<f64>,
+    /// Peak pressure at pure rolling, Pa (the Hertz p0 for closed forms).
+    pub max_pressure: f64,
+    /// h_min/σ at pure rolling (rough surfaces).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub lambda: Option<f64>,
+    /// Share of the load on asperities at pure rolling.
+    pub asperity_load_fraction: f64,
+    /// Minimum cam–roller friction coefficient that still drives the roller (Coulomb asperities:
+    /// μ_b W_a/F; Carter: 0).
+    pub min_cam_roller_friction: f64,
+    /// Roller–pin friction where the asperity traction saturates (absent without asperity load).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub gross_sliding_pin_friction: Option<f64>,
+    /// Seed 001's procedure on the requested list: the first μ_rp with SRR > 0 …
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub first_sliding_pin_friction: Option<f64>,
+    /// … and μ_cr there.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub first_sliding_cam_roller_friction: Option<f64>,
+}
+
+/// Result of a `cam_point` job.
+#[derive(Debug, Clone, PartialEq, Serialize, ToSchema)]
+pub struct CamPointResult {
+    pub fidelity_used: Fidelity,
+    pub film_model: FilmModelId,
+    /// E*, Pa.
+    pub contact_modulus: f64,
+    pub rows: Vec<PointRow>,
+    pub summary: PointSummary,
+    pub convergence: Convergence,
+}
+
+impl Kind for CamPoint {
+    const NAME: &'static str = "cam_point";
+    const SOLVER_VERSION: &'static str = "cam_point-2";
+    const DESCRIPTION: &'static str = "Cam–roller contact at a fixed operating point: roller slip against \
+        roller–pin friction, minimum cam–roller friction to drive the roller, gross-sliding threshold (seed 001).";
+    const TABLES: &'static [&'static str] = &["rows"];
+    type Spec = CamPointSpec;
+    type Output = CamPointResult;
+
+    fn example() -> Value {
+        json!({
+            "load": 12500.0, "reduced_radius": 0.0105, "cam_surface_velocity": 3.98, "contact_length": 0.021,
+            "roller": {"radius": 0.018, "pin_radius": 0.0091},
+            "pin_friction": [0.002, 0.005, 0.01, 0.02],
+            "cam": {"youngs_modulus": 200e9, "roughness_rq": 0.169e-6},
+            "follower": {"youngs_modulus": 200e9, "roughness_rq": 0.119e-6},
+            "lubricant": {"viscosity": 0.013, "pressure_viscosity": 1.84e-8},
+            "asperities": {"boundary_friction": 0.12}
+        })
+    }
+
+    fn validate(spec: &CamPointSpec, limits: &Limits, v: &mut Validation) {
+        v.positive("/load", spec.load);
+        v.positive("/reduced_radius", spec.reduced_radius);
+        v.in_range("/cam_surface_velocity", spec.cam_surface_velocity, 1e-6, 1e3);
+        v.positive("/contact_length", spec.contact_length);
+        v.positive("/roller/radius", spec.roller.radius);
+        v.check(spec.roller.pin_radius > 0.0 && spec.roller.pin_radius < spec.roller.radius, "/roller/pin_radius", "must be > 0 and smaller than the roller radius");
+        v.non_negative("/roller/inertia", spec.roller.inertia);
+        v.check(spec.roller.angular_acceleration.is_finite(), "/roller/angular_acceleration", "must be finite");
+        v.check(!spec.pin_friction.is_empty(), "/pin_friction", "needs at least one coefficient");
+        v.limit("/pin_friction", spec.pin_friction.len(), limits.max_angles, "the number of pin friction values");
+        for (i, m) in spec.pin_friction.iter().enumerate() {
+            v.in_range(&format!("/pin_friction/{i}"), *m, 0.0, 1.0);
+        }
+        for (name, b) in [("cam", spec.cam), ("follower", spec.follower)] {
+            v.positive(&format!("/{name}/youngs_modulus"), b.youngs_modulus);
+            v.in_range(&format!("/{name}/poisson_ratio"), b.poisson_ratio, 0.0, 0.499);
+            v.in_range(&format!("/{name}/roughness_rq"), b.roughness_rq, 0.0, 1e-4);
+        }
+        spec.lubricant.validate("/lubricant", v);
+        spec.asperities.validate("/asperities", v);
+        spec.traction.validate("/traction", v);
+        spec.film.validate("/film", v);
+        v.check(!spec.film.squeeze, "/film/squeeze", "a point analysis is steady: no squeeze");
+        spec.ehl.validate("/ehl", limits, v);
+    }
+
+    fn solve(spec: &CamPointSpec, observer: &dyn Observer) -> Result<CamPointResult, SolveError> {
+        let es = contact_modulus(
+            Elastic { youngs_modulus: spec.cam.youngs_modulus, poisson_ratio: spec.cam.poisson_ratio },
+            Elastic { youngs_modulus: spec.follower.youngs_modulus, poisson_ratio: spec.follower.poisson_ratio },
+        );
+        let model = model_for(spec.fidelity, spec.film.to_physics(), spec.ehl.to_physics());
+        let lub = spec.lubricant.to_physics();
+        let rough = spec.asperities.roughness(composite_sigma(spec.cam.roughness_rq, spec.follower.roughness_rq));
+        let law = spec.traction.to_physics();
+        let asp = spec.asperities.friction();
+        let input = ContactInput {
+            load: spec.load,
+            shape: ContactShape::Line { reduced_radius: spec.reduced_radius, length: spec.contact_length },
+            entrainment_velocity: spec.cam_surface_velocity,
+            sliding_velocity: 0.0,
+            time: 0.0,
+            time_step: 0.0,
+            contact_modulus: es,
+            temperature: spec.lubricant.inlet_temperature(),
+            lubricant: &lub,
+            roughness: &rough,
+            traction_law: &law,
+            asperity_friction: &asp,
+        };
+        let case = PointCase {
+            model: model.as_ref(),
+            input,
+            cam_surface_velocity: spec.cam_surface_velocity,
+            roller_radius: spec.roller.radius,
+            pin_radius: spec.roller.pin_radius,
+            inertia_torque: spec.roller.inertia * spec.roller.angular_acceleration,
+        };
+        let rolling = model.solve(&input, None)?;
+        let mut rows = Vec::with_capacity(spec.pin_friction.len());
+        let mut first = None;
+        for (i, &mu) in spec.pin_friction.iter().enumerate() {
+            observer.check()?;
+            observer.progress(i as f64 / spec.pin_friction.len() as f64, "torque balance");
+            let b = case.balance(mu)?;
+            let asperity = b.traction.force - b.traction.viscous;
+            if first.is_none() && b.slide_roll_ratio > 0.0 {
+                first = Some((mu, b.cam_roller_friction));
+            }
+            rows.push(PointRow {
+                pin_friction: mu,
+                slide_roll_ratio: b.slide_roll_ratio,
+                sliding_velocity: b.sliding_velocity,
+                roller_surface_velocity: spec.cam_surface_velocity - b.sliding_velocity,
+                cam_roller_friction: b.cam_roller_friction,
+                viscous_traction: b.traction.viscous,
+                asperity_traction: asperity,
+                film_central: b.film.central_film,
+                film_min: b.film.min_film,
+                sticking: if b.sticking { 1.0 } else { 0.0 },
+                model: b.film.model,
+            });
+        }
+        let hz = hertz_line(spec.load / spec.contact_length, spec.reduced_radius, es);
+        let summary = PointSummary {
+            hertz_max_pressure: hz.max_pressure,
+            hertz_half_width: hz.half_width,
+            film_central: rolling.central_film,
+            film_min: rolling.min_film,
+            exit_film: rolling.exit_film.unwrap_or(rolling.min_film),
+            pressure_spike: rolling.pressure_spike,
+            pressure_spike_position: rolling.pressure_spike_position,
+            max_pressure: rolling.max_pressure,
+            lambda: rolling.lambda,
+            asperity_load_fraction: rolling.asperity.load / spec.load,
+            min_cam_roller_friction: case.min_cam_roller_friction()?,
+            gross_sliding_pin_friction: case.gross_sliding_pin_friction()?,
+            first_sliding_pin_friction: first.map(|f| f.0),
+            first_sliding_cam_roller_friction: first.map(|f| f.1),
+        };
+        ensure_finite("cam point rows", rows.iter().flat_map(|r| [&r.slide_roll_ratio, &r.cam_roller_friction, &r.film_central]))?;
+        Ok(CamPointResult {
+            fidelity_used: spec.fidelity,
+            film_model: rolling.model,
+            contact_modulus: es,
+            rows,
+            summary,
+            convergence: Convergence::closed_form(),
+        })
+    }
+}

@@ -1,0 +1,395 @@
+//! `sweep`: one base spec of any kind, one or more parameters varied (JSON pointer + values or a
+//! linspace), every case solved in parallel on the worker pool, and a table of chosen result
+//! quantities per case. A failing case is data (its error code is in its row), not a failed sweep.
+
+use crate::jobs::kind::{Kind, Limits, Validation};
+use crate::jobs::registry;
+use crate::physics::{Interrupt, Observer, SolveError};
+use crate::problem::Problem;
+use rayon::prelude::*;
+use serde::{Deserialize, Serialize};
+use serde_json::{json, Map, Value};
+use std::sync::atomic::{AtomicUsize, Ordering};
+use std::sync::LazyLock;
+use utoipa::ToSchema;
+
+pub struct Sweep;
+
+/// Evenly spaced values from `start` to `stop` inclusive.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, ToSchema)]
+#[serde(deny_unknown_fields)]
+pub struct Linspace {
+    pub start: f64,
+    pub stop: f64,
+    /// Number of values (≥ 2).
+    pub num: usize,
+}
+
+/// One varied parameter: where in the base spec, and which values.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, ToSchema)]
+#[serde(deny_unknown_fields)]
+pub struct Parameter {
+    /// JSON pointer (RFC 6901) into the base spec, e.g. `/lubricant/viscosity`. Missing
+    /// intermediate objects are created.
+    #[schema(example = "/lubricant/viscosity")]
+    pub path: String,
+    /// The values (any JSON: numbers, strings, objects). Exactly one of `values`, `linspace`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    #[schema(value_type = Option<Vec<Object>>)]
+    pub values: Option<Vec<Value>>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub linspace: Option<Linspace>,
+}
+
+/// How the parameters' values combine into cases.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize, ToSchema)]
+#[serde(rename_all = "snake_case")]
+pub enum Combine {
+    /// Every combination (cartesian product; the first parameter varies slowest).
+    #[default]
+    Grid,
+    /// The i-th values of all parameters together (equal lengths).
+    Zip,
+}
+
+/// Spec of a `sweep` job.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, ToSchema)]
+#[serde(deny_unknown_fields)]
+pub struct SweepSpec {
+    /// Kind of every case (any kind but `sweep`).
+    #[schema(example = "hertz")]
+    pub kind: String,
+    /// The spec every case starts from.
+    #[schema(value_type = Object)]
+    pub base: Value,
+    /// The varied parameters (1–8).
+    pub parameters: Vec<Parameter>,
+    #[serde(default)]
+    pub combine: Combine,
+    /// JSON pointers into each case's result to tabulate, e.g. `/summary/min_film`. Default:
+    /// every number in the result's `summary` object, or every top-level number if it has none.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub quantities: Vec<String>,
+}
+
+/// Result of a `sweep` job.
+#[derive(Debug, Clone, PartialEq, Serialize, ToSchema)]
+pub struct SweepResult {
+    pub kind: String,
+    /// Column names of `cases`: `case`, the parameters (pointer with `/` → `.`), `status`,
+    /// `error_code`, then the quantities.
+    pub columns: Vec<String>,
+    /// One row per case: the parameter values, `status` (`succeeded` / `failed`), the
+    /// quantities (absent when the case failed or the result lacks them) and `error_code`.
+    #[schema(value_type = Vec<Object>)]
+    pub cases: Vec<Map<String, Value>>,
+    pub succeeded: usize,
+    pub failed: usize,
+}
+
+fn column(pointer: &str) -> String {
+    pointer.trim_start_matches('/').replace('/', ".")
+}
+
+impl Parameter {
+    fn values(&self) -> Vec<Value> {
+        match (&self.values, &self.linspace) {
+            (Some(v), _) => v.clone(),
+            (None, Some(l)) => (0..l.num)
+                .map(|i| {
+                    let t = if l.num > 1 { i as f64 / (l.num - 1) as f64 } else { 0.0 };
+                    // Exact at both ends.
+                    json!(l.start * (1.0 - t) + l.stop * t)
+                })
+                .collect(),
+            (None, None) => Vec::new(),
+        }
+    }
+}
+
+/// Set `value` at JSON pointer `ptr` in `target`, creating missing objects on the way.
+fn set_pointer(target: &mut Value, ptr: &str, value: Value) -> Result<(), String> {
+    if ptr.is_empty() || !ptr.starts_with('/') {
+        return Err("must be a JSON pointer starting with '/'".into());
+    }
+    let tokens: Vec<String> = ptr[1..].split('/').map(|t| t.replace("~1", "/").replace("~0", "~")).collect();
+    let mut cur = target;
+    for (i, tok) in tokens.iter().enumerate() {
+        let last = i + 1 == tokens.len();
+        cur = match cur {
+            Value::Object(map) => {
+                if last {
+                    map.insert(tok.clone(), value);
+                    return Ok(());
+                }
+                map.entry(tok.clone()).or_insert_with(|| Value::Object(Map::new()))
+            }
+            Value::Array(items) => {
+                let idx: usize = tok.parse().map_err(|_| format!("'{tok}' is not an array index"))?;
+                let len = items.len();
+                let slot = items.get_mut(idx).ok_or_else(|| format!("index {idx} is past the array's end ({len})"))?;
+                if last {
+                    *slot = value;
+                    return Ok(());
+                }
+                slot
+            }
+            _ => return Err(format!("'{tok}' goes through a value that is not an object or array")),
+        };
+    }
+    Ok(())
+}
+
+/// The cases: for each, the (parameter index, value) list.
+fn cases(spec: &SweepSpec) -> Vec<Vec<Value>> {
+    let lists: Vec<Vec<Value>> = spec.parameters.iter().map(Parameter::values).collect();
+    if lists.is_empty() || lists.iter().any(Vec::is_empty) {
+        return Vec::new();
+    }
+    match spec.combine {
+        Combine::Zip => (0..lists[0].len()).map(|i| lists.iter().map(|l| l[i].clone()).collect()).collect(),
+        Combine::Grid => {
+            let mut out: Vec<Vec<Value>> = vec![Vec::new()];
+            for list in &lists {
+                out = out.into_iter().flat_map(|prefix| list.iter().map(move |v| {
+                    let mut p = prefix.clone();
+                    p.push(v.clone());
+                    p
+                })).collect();
+            }
+            out
+        }
+    }
+}
+
+fn case_count(spec: &SweepSpec) -> usize {
+    let lens: Vec<usize> = spec.parameters.iter().map(|p| p.values().len()).collect();
+    match spec.combine {
+        Combine::Zip => lens.first().copied().unwrap_or(0),
+        Combine::Grid => lens.iter().fold(1usize, |a, &n| a.saturating_mul(n)),
+    }
+}
+
+fn case_spec(spec: &SweepSpec, values: &[Value]) -> Result<Value, (usize, String)> {
+    let mut s = spec.base.clone();
+    for (i, (p, v)) in spec.parameters.iter().zip(values).enumerate() {
+        set_pointer(&mut s, &p.path, v.clone()).map_err(|e| (i, e))?;
+    }
+    Ok(s)
+}
+
+static VERSION: LazyLock<String> = LazyLock::new(|| {
+    let inner: Vec<String> =
+        registry::KINDS.iter().filter(|k| k.name() != Sweep::NAME).map(|k| k.solver_version().to_string()).collect();
+    format!("{}({})", Sweep::SOLVER_VERSION, inner.join(","))
+});
+
+/// Forwards cancellation; progress is the fraction of cases done.
+struct CaseObserver<'a> {
+    outer: &'a dyn Observer,
+}
+
+impl Observer for CaseObserver<'_> {
+    fn check(&self) -> Result<(), Interrupt> {
+        self.outer.check()
+    }
+}
+
+impl Kind for Sweep {
+    const NAME: &'static str = "sweep";
+    const SOLVER_VERSION: &'static str = "sweep-1";
+    const DESCRIPTION: &'static str = "Run one base spec of any kind over varied parameters \
+        (JSON pointer + values or linspace, grid or zip), cases in parallel; a table of chosen \
+        result quantities per case.";
+    const TABLES: &'static [&'static str] = &["cases"];
+    type Spec = SweepSpec;
+    type Output = SweepResult;
+
+    fn solver_version() -> &'static str {
+        VERSION.as_str()
+    }
+
+    fn example() -> Value {
+        json!({
+            "kind": "hertz",
+            "base": {"contact": "line", "load": 5000.0, "length": 0.014,
+                     "body_1": {"shape": "cylinder", "radius": 0.0255},
+                     "body_2": {"shape": "cylinder", "radius": 0.02}},
+            "parameters": [{"path": "/load", "linspace": {"start": 1000.0, "stop": 10000.0, "num": 10}}],
+            "quantities": ["/max_pressure", "/half_width", "/max_shear/value"]
+        })
+    }
+
+    fn validate(spec: &SweepSpec, limits: &Limits, v: &mut Validation) {
+        let inner = registry::find(&spec.kind);
+        match inner {
+            None => {
+                v.error("/kind", format!("unknown kind; known kinds: {}", registry::names().join(", ")));
+            }
+            Some(k) if k.name() == Self::NAME => {
+                v.error("/kind", "a sweep cannot run sweeps");
+            }
+            Some(_) => {}
+        }
+        v.count_in_range("/parameters", spec.parameters.len(), 1, 8);
+        for (i, p) in spec.parameters.iter().enumerate() {
+            let at = format!("/parameters/{i}");
+            v.check(p.path.starts_with('/'), &format!("{at}/path"), "must be a JSON pointer starting with '/'");
+            match (&p.values, &p.linspace) {
+                (Some(vals), None) => {
+                    v.check(!vals.is_empty(), &format!("{at}/values"), "must not be empty");
+                }
+                (None, Some(l)) => {
+                    v.check(l.start.is_finite() && l.stop.is_finite(), &format!("{at}/linspace"), "start and stop must be finite");
+                    v.count_in_range(&format!("{at}/linspace/num"), l.num, 2, limits.max_sweep_cases);
+                }
+                _ => {
+                    v.error(&at, "needs exactly one of `values` and `linspace`");
+                }
+            }
+        }
+        if spec.combine == Combine::Zip {
+            let lens: Vec<usize> = spec.parameters.iter().map(|p| p.values().len()).collect();
+            v.check(lens.windows(2).all(|w| w[0] == w[1]), "/parameters", "`zip` needs the same number of values for every parameter");
+        }
+        for (i, q) in spec.quantities.iter().enumerate() {
+            v.check(q.starts_with('/'), &format!("/quantities/{i}"), "must be a JSON pointer starting with '/'");
+        }
+        let n = case_count(spec);
+        v.limit("/parameters", n, limits.max_sweep_cases, "the number of cases");
+        let (Some(k), true) = (inner, v.is_ok()) else { return };
+        if k.name() == Self::NAME {
+            return;
+        }
+        // Every case must be a valid spec of its kind; report each distinct problem once.
+        let mut seen = std::collections::HashSet::new();
+        for values in cases(spec) {
+            let s = match case_spec(spec, &values) {
+                Ok(s) => s,
+                Err((i, e)) => {
+                    v.error(&format!("/parameters/{i}/path"), e);
+                    return;
+                }
+            };
+            if let Err(problem) = k.prepare(&s, limits) {
+                let key = serde_json::to_string(&problem.errors).unwrap_or_default();
+                if seen.insert(key) {
+                    let label: Vec<String> =
+                        spec.parameters.iter().zip(&values).map(|(p, v)| format!("{} = {v}", p.path)).collect();
+                    let mut p = problem.clone();
+                    for e in &mut p.errors {
+                        e.message = format!("{} (case {})", e.message, label.join(", "));
+                    }
+                    v.absorb(&p, |path| {
+                        match spec.parameters.iter().position(|q| q.path == path) {
+                            Some(i) => format!("/parameters/{i}"),
+                            None => format!("/base{path}"),
+                        }
+                    });
+                }
+            }
+        }
+    }
+
+    fn solve(spec: &SweepSpec, observer: &dyn Observer) -> Result<SweepResult, SolveError> {
+        let k = registry::find(&spec.kind).ok_or_else(|| SolveError::invalid("/kind", "unknown kind"))?;
+        let all = cases(spec);
+        let total = all.len();
+        let done = AtomicUsize::new(0);
+        let outcomes: Vec<Result<Value, Problem>> = all
+            .par_iter()
+            .map(|values| {
+                observer.check().map_err(|i| Problem::from_solve_error(&SolveError::Interrupted(i)))?;
+                let s = case_spec(spec, values).map_err(|(_, e)| Problem::from_solve_error(&SolveError::invalid("/parameters", e)))?;
+                // The server's limits were enforced on every case at submission.
+                let prepared = k.prepare(&s, &Limits::UNLIMITED)?;
+                let out = prepared.run(&CaseObserver { outer: observer }).map_err(|e| Problem::from_solve_error(&e));
+                let n = done.fetch_add(1, Ordering::Relaxed) + 1;
+                observer.progress(n as f64 / total.max(1) as f64, "cases");
+                out
+            })
+            .collect();
+        // A cancel or shutdown stops the sweep as a whole.
+        observer.check()?;
+        // Quantities: explicit, or every number of the first successful result's summary.
+        let quantities: Vec<String> = if !spec.quantities.is_empty() {
+            spec.quantities.clone()
+        } else {
+            outcomes
+                .iter()
+                .find_map(|o| o.as_ref().ok())
+                .map(|r| match r.get("summary").and_then(Value::as_object) {
+                    Some(summary) => summary.iter().filter(|(_, v)| v.is_number()).map(|(k, _)| format!("/summary/{k}")).collect(),
+                    None => r.as_object().map(|o| o.iter().filter(|(_, v)| v.is_number()).map(|(k, _)| format!("/{k}")).collect()).unwrap_or_default(),
+                })
+                .unwrap_or_default()
+        };
+        let mut columns = vec!["case".to_string()];
+        columns.extend(spec.parameters.iter().map(|p| column(&p.path)));
+        columns.push("status".into());
+        columns.push("error_code".into());
+        columns.extend(quantities.iter().map(|q| column(q)));
+        let mut rows = Vec::with_capacity(total);
+        let (mut succeeded, mut failed) = (0, 0);
+        for (i, (values, outcome)) in all.iter().zip(&outcomes).enumerate() {
+            let mut row = Map::new();
+            row.insert("case".into(), json!(i + 1));
+            for (p, v) in spec.parameters.iter().zip(values) {
+                row.insert(column(&p.path), v.clone());
+            }
+            match outcome {
+                Ok(result) => {
+                    succeeded += 1;
+                    row.insert("status".into(), json!("succeeded"));
+                    for q in &quantities {
+                        if let Some(x) = result.pointer(q).filter(|x| !x.is_null()) {
+                            row.insert(column(q), x.clone());
+                        }
+                    }
+                }
+                Err(problem) => {
+                    failed += 1;
+                    row.insert("status".into(), json!("failed"));
+                    row.insert("error_code".into(), json!(problem.code));
+                    row.insert("error".into(), json!(problem.detail));
+                }
+            }
+            rows.push(row);
+        }
+        if failed > 0 && !columns.contains(&"error".to_string()) {
+            columns.push("error".into());
+        }
+        Ok(SweepResult { kind: spec.kind.clone(), columns, cases: rows, succeeded, failed })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::jobs::kind::parse_value;
+
+    #[test]
+    fn pointers_create_objects_and_index_arrays() {
+        let mut v = json!({"a": {"b": 1}, "list": [1, 2]});
+        set_pointer(&mut v, "/a/c/d", json!(5)).unwrap();
+        set_pointer(&mut v, "/list/1", json!(9)).unwrap();
+        set_pointer(&mut v, "/we~1ird", json!(true)).unwrap();
+        assert_eq!(v, json!({"a": {"b": 1, "c": {"d": 5}}, "list": [1, 9], "we/ird": true}));
+        assert!(set_pointer(&mut v, "/list/7", json!(0)).is_err());
+        assert!(set_pointer(&mut v, "/a/b/c", json!(0)).is_err());
+    }
+
+    #[test]
+    fn grid_and_zip_cases() {
+        let mut s: SweepSpec = parse_value(&json!({"kind": "hertz", "base": {}, "parameters": [
+            {"path": "/a", "values": [1, 2]}, {"path": "/b", "linspace": {"start": 0.0, "stop": 1.0, "num": 3}}]}))
+        .unwrap();
+        let c = cases(&s);
+        assert_eq!(c.len(), 6);
+        assert_eq!(c[1], vec![json!(1), json!(0.5)]);
+        assert_eq!(case_count(&s), 6);
+        s.combine = Combine::Zip;
+        s.parameters[1].linspace = Some(Linspace { start: 0.0, stop: 1.0, num: 2 });
+        assert_eq!(cases(&s), vec![vec![json!(1), json!(0.0)], vec![json!(2), json!(1.0)]]);
+    }
+}

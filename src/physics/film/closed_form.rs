@@ -1,0 +1,267 @@
+//! The `fast` film model: Hertz contact, a regression film formula and Greenwood–Tripp load
+//! sharing.
+//!
+//! Load sharing (the usual fast approach, e.g. Teodorescu, Taraza & Rahnejat 2003): the film
+//! comes from the formula at the full load (film formulas are nearly insensitive to load), the
+//! asperities carry `W_a = min(K E* F_{5/2}(h_c/σ) A, W)` over the nominal Hertz area `A`, and the
+//! fluid carries the rest at the Hertz pressure profile scaled by `1 − W_a/W`.
+//!
+//! Traction nodes: 8 Gauss–Legendre points in `t` on `[0, π/2]` after the substitution
+//! `x = b sin t`, which removes the square-root edge of the Hertz profile `p0 cos t` (line:
+//! `dA = 2bL cos t dt`; point: `dA = 2πab sin t cos t dt`). The film is taken uniform at the
+//! central value, floored at 1 nm so that the shear rate stays finite where the closed form gives
+//! no film (zero entrainment); viscosities are capped at 1e20 Pa·s (glassy limit).
+
+use super::formulas::{self, LineGroups};
+use super::{ContactInput, ContactShape, FilmModel, FilmModelId, FilmSolution, Regime};
+use crate::physics::contact::{hertz_line, hertz_point};
+use crate::physics::friction::{AsperityContact, TractionNode};
+use crate::physics::{ensure_finite, SolveError};
+use serde::{Deserialize, Serialize};
+use utoipa::ToSchema;
+
+/// Film formula of a line contact (point contacts always use Hamrock–Dowson).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize, ToSchema)]
+#[serde(rename_all = "snake_case")]
+pub enum FilmFormula {
+    /// Pan & Hamrock (1989): central and minimum film.
+    #[default]
+    PanHamrock,
+    /// Dowson & Higginson (1977): minimum film; central = 4/3 minimum.
+    DowsonHigginson,
+    /// Seed 003 eq. 17 (central) and eq. 18 (side constriction = minimum), with the squeeze term
+    /// when `squeeze` is on.
+    Seed003,
+}
+
+/// The closed-form (`fast`) film model.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ClosedForm {
+    pub formula: FilmFormula,
+    /// Apply seed 003's squeeze term (only with [`FilmFormula::Seed003`]).
+    pub squeeze: bool,
+}
+
+/// Smallest film used in the shear rate, m.
+pub const FILM_FLOOR: f64 = 1e-9;
+/// Largest viscosity used in the traction, Pa·s.
+pub const VISCOSITY_CAP: f64 = 1e20;
+
+/// Gauss–Legendre 8-point nodes and weights on [−1, 1] (A&S table 25.4).
+const GL8: [(f64, f64); 8] = [
+    (-0.960_289_856_497_536_3, 0.101_228_536_290_376_3),
+    (-0.796_666_477_413_626_7, 0.222_381_034_453_374_5),
+    (-0.525_532_409_916_329_0, 0.313_706_645_877_887_3),
+    (-0.183_434_642_495_649_8, 0.362_683_783_378_362_0),
+    (0.183_434_642_495_649_8, 0.362_683_783_378_362_0),
+    (0.525_532_409_916_329_0, 0.313_706_645_877_887_3),
+    (0.796_666_477_413_626_7, 0.222_381_034_453_374_5),
+    (0.960_289_856_497_536_3, 0.101_228_536_290_376_3),
+];
+
+impl FilmModel for ClosedForm {
+    fn solve(&self, input: &ContactInput, previous: Option<&FilmSolution>) -> Result<FilmSolution, SolveError> {
+        let load = input.load;
+        if !(load > 0.0 && load.is_finite()) {
+            return Err(SolveError::physical("no_contact_load", format!("contact load {load} N is not positive")));
+        }
+        let es = input.contact_modulus;
+        let e_prime = 2.0 * es;
+        let lub = input.lubricant;
+        let t = input.temperature;
+        let eta0 = lub.viscosity_at(0.0, t);
+        let alpha = lub.pressure_viscosity;
+        let u = input.entrainment_velocity;
+        // (central, minimum, steady central, p0, half width, area, rolling radius, regime, model)
+        let (hc, hm, h_steady, p0, b, area, r_roll, regime, model, point_ab) = match input.shape {
+            ContactShape::Line { reduced_radius: r, length } => {
+                let w = load / length;
+                let hz = hertz_line(w, r, es);
+                let g = LineGroups::new(w, r, u, eta0, alpha, e_prime);
+                let regime = (g.speed > 0.0).then(|| Regime { viscous: g.viscous_parameter(), elastic: g.elastic_parameter() });
+                let (hc, hm, steady, model) = match self.formula {
+                    FilmFormula::PanHamrock => {
+                        let (c, m) = formulas::pan_hamrock(&g);
+                        (c * r, m * r, c * r, FilmModelId::PanHamrock)
+                    }
+                    FilmFormula::DowsonHigginson => {
+                        let (c, m) = formulas::dowson_higginson(&g);
+                        (c * r, m * r, c * r, FilmModelId::DowsonHigginson)
+                    }
+                    FilmFormula::Seed003 => {
+                        let w_star = load / (e_prime * r * length);
+                        let (c0, _) = formulas::seed003(w_star, g.speed, g.material, 0.0);
+                        let steady = c0 * r;
+                        let ws = match previous {
+                            Some(prev) if self.squeeze && input.time_step > 0.0 && u != 0.0 => {
+                                (steady - prev.steady_central_film) / input.time_step / u.abs()
+                            }
+                            _ => 0.0,
+                        };
+                        let (c, m) = formulas::seed003(w_star, g.speed, g.material, ws);
+                        (c * r, m * r, steady, FilmModelId::Seed003)
+                    }
+                };
+                (hc, hm, steady, hz.max_pressure, hz.half_width, 2.0 * hz.half_width * length, r, regime, model, None)
+            }
+            ContactShape::Point { rx, ry } => {
+                let hz = hertz_point(load, rx, ry, es)?;
+                // Semi-axis along the rolling direction x lies along the smaller reduced radius
+                // when rx < ry.
+                let (ax, ay) = if rx <= ry { (hz.semi_minor, hz.semi_major) } else { (hz.semi_major, hz.semi_minor) };
+                let w = load / (e_prime * rx * rx);
+                let us = eta0 * u.abs() / (e_prime * rx);
+                let k = formulas::ellipticity(rx, ry);
+                let (c, m) = formulas::hamrock_dowson_point(w, us, alpha * e_prime, k);
+                let area = std::f64::consts::PI * ax * ay;
+                (c * rx, m * rx, c * rx, hz.max_pressure, ax, area, rx, None, FilmModelId::HamrockDowson, Some((ax, ay)))
+            }
+        };
+        let sigma = input.roughness.sigma;
+        let lambda = (sigma > 0.0).then(|| hm / sigma);
+        let w_a = (input.roughness.asperity_pressure(hc, es) * area).min(load);
+        let fluid_share = 1.0 - w_a / load;
+        let film = hc.max(FILM_FLOOR);
+        let mut nodes = Vec::with_capacity(GL8.len());
+        for (xi, wi) in GL8 {
+            let tt = std::f64::consts::FRAC_PI_4 * (1.0 + xi);
+            let wt = std::f64::consts::FRAC_PI_4 * wi;
+            let (s, c) = tt.sin_cos();
+            let node_area = match (input.shape, point_ab) {
+                (ContactShape::Line { length, .. }, _) => 2.0 * b * length * c * wt,
+                (ContactShape::Point { .. }, Some((ax, ay))) => 2.0 * std::f64::consts::PI * ax * ay * s * c * wt,
+                _ => 0.0,
+            };
+            let pressure = fluid_share * p0 * c;
+            nodes.push(TractionNode {
+                area: node_area,
+                pressure,
+                viscosity: lub.viscosity_at(pressure, t).min(VISCOSITY_CAP),
+                film,
+            });
+        }
+        let asperity = AsperityContact {
+            load: w_a,
+            gross_sliding_creep: input.asperity_friction.coefficient * b / r_roll,
+        };
+        ensure_finite("closed-form film", [&hc, &hm, &p0, &b, &area, &w_a])?;
+        ensure_finite("traction nodes", nodes.iter().flat_map(|n| [&n.area, &n.pressure, &n.viscosity]))?;
+        Ok(FilmSolution {
+            model,
+            central_film: hc,
+            min_film: hm,
+            steady_central_film: h_steady,
+            max_pressure: p0,
+            pressure_spike: None,
+            pressure_spike_position: None,
+            exit_film: matches!(input.shape, ContactShape::Line { .. }).then_some(hm),
+            half_width: b,
+            contact_area: area,
+            asperity,
+            lambda,
+            regime,
+            nodes,
+            profile: None,
+            iterations: None,
+        })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::physics::friction::{AsperityFriction, AsperityModel, Rheology, Roughness, TractionLaw};
+    use crate::physics::lubricant::{DensityModel, Lubricant, ViscosityModel};
+
+    fn seed001_nose<'a>(
+        lub: &'a Lubricant,
+        rough: &'a Roughness,
+        law: &'a TractionLaw,
+        asp: &'a AsperityFriction,
+    ) -> ContactInput<'a> {
+        ContactInput {
+            load: 12_500.0,
+            shape: ContactShape::Line { reduced_radius: 0.0105, length: 0.021 },
+            entrainment_velocity: 3.98,
+            sliding_velocity: 0.0,
+            time: 0.0,
+            time_step: 0.0,
+            contact_modulus: 100e9 / 0.91,
+            temperature: 313.0,
+            lubricant: lub,
+            roughness: rough,
+            traction_law: law,
+            asperity_friction: asp,
+        }
+    }
+
+    fn oil() -> Lubricant {
+        Lubricant {
+            viscosity: 0.013,
+            pressure_viscosity: 1.84e-8,
+            temperature_viscosity: 0.0,
+            reference_temperature: 313.0,
+            density: 870.0,
+            viscosity_model: ViscosityModel::Roelands,
+            density_model: DensityModel::DowsonHigginson,
+        }
+    }
+
+    #[test]
+    fn nodes_integrate_the_hertz_load_and_area() {
+        let lub = oil();
+        let rough = Roughness { sigma: 0.0, eta_beta_sigma: 0.04, sigma_over_beta: 0.001 };
+        let law = TractionLaw { rheology: Rheology::Newtonian, limiting_shear_coefficient: None };
+        let asp = AsperityFriction { coefficient: 0.12, model: AsperityModel::Coulomb };
+        let input = seed001_nose(&lub, &rough, &law, &asp);
+        let f = ClosedForm { formula: FilmFormula::PanHamrock, squeeze: false }.solve(&input, None).unwrap();
+        let area: f64 = f.nodes.iter().map(|n| n.area).sum();
+        let load: f64 = f.nodes.iter().map(|n| n.area * n.pressure).sum();
+        assert!((area / f.contact_area - 1.0).abs() < 1e-3, "{area} vs {}", f.contact_area);
+        assert!((load / 12_500.0 - 1.0).abs() < 1e-3, "{load}");
+        assert!((f.central_film / 0.2561e-6 - 1.0).abs() < 1e-3);
+        assert_eq!(f.asperity.load, 0.0);
+        assert!(f.lambda.is_none());
+        // Point contact: same node rule integrates the ellipsoidal load.
+        let point = ContactInput { shape: ContactShape::Point { rx: 0.0142, ry: 0.042 }, load: 500.0, ..input };
+        let f = ClosedForm { formula: FilmFormula::PanHamrock, squeeze: false }.solve(&point, None).unwrap();
+        let load: f64 = f.nodes.iter().map(|n| n.area * n.pressure).sum();
+        assert!((load / 500.0 - 1.0).abs() < 1e-3, "{load}");
+        assert_eq!(f.model, FilmModelId::HamrockDowson);
+    }
+
+    #[test]
+    fn rough_surfaces_share_the_load_and_add_asperity_friction() {
+        let lub = oil();
+        let rough = Roughness { sigma: 0.3e-6, eta_beta_sigma: 0.05, sigma_over_beta: 0.001 };
+        let law = TractionLaw { rheology: Rheology::Eyring { tau0: 5e6 }, limiting_shear_coefficient: None };
+        let asp = AsperityFriction { coefficient: 0.12, model: AsperityModel::Coulomb };
+        let input = seed001_nose(&lub, &rough, &law, &asp);
+        let model = ClosedForm { formula: FilmFormula::PanHamrock, squeeze: false };
+        let f = model.solve(&input, None).unwrap();
+        let expect = rough.asperity_pressure(f.central_film, input.contact_modulus) * f.contact_area;
+        assert!((f.asperity.load - expect).abs() < 1e-9 * expect && expect > 0.0);
+        let tr = model.traction(&f, &input, 0.01);
+        assert!((tr.force - tr.viscous - 0.12 * f.asperity.load).abs() < 1e-9);
+        assert_eq!(tr.stick_limit, 0.12 * f.asperity.load);
+        assert!((f.lambda.unwrap() - f.min_film / 0.3e-6).abs() < 1e-12);
+    }
+
+    #[test]
+    fn seed003_squeeze_thickens_an_approaching_film() {
+        let lub = oil();
+        let rough = Roughness { sigma: 0.0, eta_beta_sigma: 0.04, sigma_over_beta: 0.001 };
+        let law = TractionLaw { rheology: Rheology::Newtonian, limiting_shear_coefficient: None };
+        let asp = AsperityFriction { coefficient: 0.1, model: AsperityModel::Coulomb };
+        let mut input = seed001_nose(&lub, &rough, &law, &asp);
+        input.load = 2000.0;
+        let model = ClosedForm { formula: FilmFormula::Seed003, squeeze: true };
+        let first = model.solve(&input, None).unwrap();
+        // Next instant: slower entrainment → thinner steady film, i.e. approach (ḣ < 0).
+        let next = ContactInput { entrainment_velocity: 3.5, time_step: 1e-4, ..input };
+        let with = model.solve(&next, Some(&first)).unwrap();
+        let without = ClosedForm { squeeze: false, ..model }.solve(&next, Some(&first)).unwrap();
+        assert!(with.central_film > without.central_film);
+        assert_eq!(with.steady_central_film, without.central_film);
+    }
+}

@@ -1,0 +1,250 @@
+//! Lubricant film and traction at one contact point — the seam between the cam-cycle job and
+//! the models that can resolve a lubricated contact.
+//!
+//! # The seam: [`FilmModel`]
+//!
+//! A cam cycle visits one contact point per cam angle. At each it builds a [`ContactInput`]
+//! (load, geometry, entrainment and sliding velocities, time and time step, lubricant, moduli,
+//! roughness, traction laws) and asks a [`FilmModel`] for a [`FilmSolution`]: central and minimum
+//! film, peak pressure and contact size, the pressure spike when the model resolves it, the
+//! asperity load share, validity indicators, and which model ran. The roller torque balance then
+//! calls [`FilmModel::traction`] many times per angle (inside its root finder) with trial sliding
+//! velocities, so traction is evaluated from the stored solution without re-solving the film:
+//! the solution carries [`TractionNode`]s (area, pressure, viscosity, film) over which the default
+//! implementation integrates the shear law.
+//!
+//! Implementations:
+//! * [`ClosedForm`] — fidelity `fast`: Hertz pressure + a regression film formula (Pan–Hamrock,
+//!   Dowson–Higginson, seed 003 eq. 17 with squeeze; Hamrock–Dowson for point contacts) +
+//!   Greenwood–Tripp load sharing. Microseconds per point.
+//! * [`Numerical`] — fidelity `accurate`: the numerical line-contact EHL solver
+//!   ([`crate::physics::ehl`]) at every point. It reads `input.time_step` and `previous` (the
+//!   solution at the previous angle, whose [`FilmProfile`] holds the converged fields) for the
+//!   squeeze term ∂(ρh)/∂t and a warm start, fills `pressure_spike`, `exit_film` and `profile`,
+//!   and returns its grid nodes with positive pressure as traction nodes. Point contacts (the
+//!   spherical tappet) keep the closed form: the solver is one-dimensional.
+//! * [`Auto`] — fidelity `auto`: per point, the closed form where [`closed_form_error`] (the one
+//!   place the decision is made; measured rules in [`auto`]) is within the tolerance, else
+//!   [`Numerical`]. After closed-form points the numerical model has no history: its first point
+//!   is a steady solve (no squeeze), which the squeeze rule keeps to points where the squeeze is
+//!   still small.
+//!
+//! Every implementation is deterministic, returns finite numbers or a typed [`SolveError`], and
+//! sets `model`.
+//!
+//! Units: SI. The moduli are passed as `E*` (Johnson); formulas needing `E' = 2E*` convert.
+
+pub mod auto;
+pub mod closed_form;
+pub mod formulas;
+pub mod numerical;
+
+pub use auto::{closed_form_error, Auto, ClosedFormError, ErrorRule};
+pub use closed_form::{ClosedForm, FilmFormula};
+pub use numerical::Numerical;
+
+use crate::physics::friction::{
+    viscous_traction, AsperityContact, AsperityFriction, Roughness, TractionLaw, TractionNode,
+};
+use crate::physics::lubricant::Lubricant;
+use crate::physics::SolveError;
+use serde::{Deserialize, Serialize};
+use utoipa::ToSchema;
+
+/// Geometry of the contact at one point.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum ContactShape {
+    /// Line contact: reduced radius in the rolling direction (m) and the length carrying the load
+    /// at the given load per length (m). A crowned roller passes its equivalent length
+    /// `F / w'_max` so that `load/length` is the peak load per length of its central slice.
+    Line { reduced_radius: f64, length: f64 },
+    /// Point contact with reduced radii along the rolling direction `rx` and across it `ry` (m).
+    Point { rx: f64, ry: f64 },
+}
+
+/// Everything a film/traction model may use at one contact point.
+#[derive(Debug, Clone, Copy)]
+pub struct ContactInput<'a> {
+    /// Normal load, N (> 0).
+    pub load: f64,
+    pub shape: ContactShape,
+    /// Mean entrainment velocity `(u1 + u2)/2`, m/s (signed; reversal flips the inlet).
+    pub entrainment_velocity: f64,
+    /// Sliding velocity `u1 − u2`, m/s (the cam's surface minus the follower's).
+    pub sliding_velocity: f64,
+    /// Time since the start of the run, s.
+    pub time: f64,
+    /// Time since the previous contact point of the same run, s (0 when there is none).
+    pub time_step: f64,
+    /// Contact modulus `E* = 1/Σ(1 − ν²)/E`, Pa.
+    pub contact_modulus: f64,
+    /// Inlet (bulk oil) temperature, K.
+    pub temperature: f64,
+    pub lubricant: &'a Lubricant,
+    pub roughness: &'a Roughness,
+    pub traction_law: &'a TractionLaw,
+    pub asperity_friction: &'a AsperityFriction,
+}
+
+/// Which model produced a film solution.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, ToSchema)]
+#[serde(rename_all = "snake_case")]
+pub enum FilmModelId {
+    PanHamrock,
+    DowsonHigginson,
+    Seed003,
+    HamrockDowson,
+    /// The numerical line-contact EHL solver (`physics::ehl`).
+    Numerical,
+}
+
+impl FilmModelId {
+    /// The snake_case name used in results.
+    pub fn name(self) -> &'static str {
+        match self {
+            FilmModelId::PanHamrock => "pan_hamrock",
+            FilmModelId::DowsonHigginson => "dowson_higginson",
+            FilmModelId::Seed003 => "seed003",
+            FilmModelId::HamrockDowson => "hamrock_dowson",
+            FilmModelId::Numerical => "numerical",
+        }
+    }
+}
+
+/// Johnson's regime parameters of a line contact (see [`formulas`]).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Regime {
+    pub viscous: f64,
+    pub elastic: f64,
+}
+
+/// Pressure and film along the rolling direction through the contact centre (numerical models).
+#[derive(Debug, Clone, PartialEq)]
+pub struct FilmProfile {
+    /// Position along the rolling direction, m (0 at the contact centre).
+    pub x: Vec<f64>,
+    /// Pressure, Pa.
+    pub pressure: Vec<f64>,
+    /// Film thickness, m.
+    pub film: Vec<f64>,
+    /// Density ratio `ρ/ρ0` (the squeeze term of the next time step needs `ρh`).
+    pub density_ratio: Vec<f64>,
+}
+
+/// The lubricated contact at one point.
+#[derive(Debug, Clone, PartialEq)]
+pub struct FilmSolution {
+    pub model: FilmModelId,
+    /// Central film thickness, m.
+    pub central_film: f64,
+    /// Minimum film thickness, m.
+    pub min_film: f64,
+    /// Central film without transient (squeeze) effects, m: lets the next point estimate `ḣ`.
+    pub steady_central_film: f64,
+    /// Peak pressure, Pa (the Hertz `p0` for the closed forms).
+    pub max_pressure: f64,
+    /// Height of the exit pressure spike, Pa, when the model resolves it.
+    pub pressure_spike: Option<f64>,
+    /// Position of the spike, m from the contact centre along the rolling direction (positive in
+    /// the direction of positive entrainment).
+    pub pressure_spike_position: Option<f64>,
+    /// Smallest film downstream of the centre (exit constriction), m, when the model resolves it
+    /// (closed forms: their minimum film is that estimate).
+    pub exit_film: Option<f64>,
+    /// Semi-width of the pressure zone along the rolling direction, m.
+    pub half_width: f64,
+    /// Nominal contact area, m².
+    pub contact_area: f64,
+    /// The asperity-borne part of the load.
+    pub asperity: AsperityContact,
+    /// Film parameter λ = h_min/σ (absent for smooth surfaces).
+    pub lambda: Option<f64>,
+    /// Validity indicators of closed forms (line contacts).
+    pub regime: Option<Regime>,
+    /// Quadrature nodes for the traction integral.
+    pub nodes: Vec<TractionNode>,
+    /// Pressure and film profiles (numerical models only).
+    pub profile: Option<FilmProfile>,
+    /// Newton steps of a numerical model (absent for closed forms).
+    pub iterations: Option<u32>,
+}
+
+/// Traction at one contact point for one sliding velocity.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Traction {
+    /// Total tangential force on the follower surface, N, same sign as the sliding velocity
+    /// (it drags the slower surface along).
+    pub force: f64,
+    /// d(force)/d(sliding velocity), N·s/m.
+    pub slope: f64,
+    /// Half-height of a traction jump at zero sliding (stuck asperities), N.
+    pub stick_limit: f64,
+    /// Viscous (film) part of `force`, N.
+    pub viscous: f64,
+}
+
+/// A film and traction model at one contact point. See the module docs.
+pub trait FilmModel: Send + Sync {
+    /// Solve the film at `input`. `previous` is this run's solution at the previous point (for
+    /// squeeze terms and warm starts), `None` at the first point or in a point analysis.
+    fn solve(&self, input: &ContactInput, previous: Option<&FilmSolution>) -> Result<FilmSolution, SolveError>;
+
+    /// Relative change of the entrainment velocity within which a film solved at one entrainment
+    /// may stand for the film at another (the roller torque balance re-solves the film beyond
+    /// it). Default 1e-6: far below a closed form's error. Numerical models return a value whose
+    /// film change (`∝ u^0.7`) stays well below their discretisation error.
+    fn entrainment_tolerance(&self) -> f64 {
+        1e-6
+    }
+
+    /// Traction for sliding velocity `sliding` with the film of `film` (which was solved at
+    /// `input`, possibly with a different sliding velocity). Default: film shear over
+    /// `film.nodes` plus the asperity friction of `film.asperity`.
+    fn traction(&self, film: &FilmSolution, input: &ContactInput, sliding: f64) -> Traction {
+        let (viscous, vslope) = viscous_traction(&film.nodes, input.traction_law, sliding);
+        let (asp, aslope) = input.asperity_friction.traction(&film.asperity, sliding, input.entrainment_velocity);
+        Traction {
+            force: viscous + asp,
+            slope: vslope + aslope,
+            stick_limit: input.asperity_friction.stick_limit(&film.asperity),
+            viscous,
+        }
+    }
+}
+
+/// Model fidelity requested by a spec.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize, ToSchema)]
+#[serde(rename_all = "snake_case")]
+pub enum Fidelity {
+    /// Closed forms at every point.
+    #[default]
+    Fast,
+    /// The numerical EHL solver at every point (issue 5).
+    Accurate,
+    /// The closed form where its estimated error is within tolerance, the numerical solver
+    /// elsewhere (issue 5).
+    Auto,
+}
+
+/// Settings of the numerical model and of the `auto` choice.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct AccurateSettings {
+    /// Resolution, tolerance and iteration cap of the numerical EHL solver.
+    pub options: crate::physics::ehl::EhlOptions,
+    /// `auto`: the largest estimated relative error of the closed-form film accepted (see
+    /// [`closed_form_error`]).
+    pub auto_tolerance: f64,
+}
+
+/// The film model for a fidelity: `fast` the closed form; `accurate` the numerical EHL solver on
+/// line contacts ([`Numerical`]; point contacts keep the closed form); `auto` the closed form
+/// where [`closed_form_error`] is within `settings.auto_tolerance`, the numerical solver elsewhere
+/// ([`Auto`]).
+pub fn model_for(fidelity: Fidelity, fast: ClosedForm, settings: AccurateSettings) -> Box<dyn FilmModel> {
+    let numerical = Numerical { options: settings.options, fallback: fast };
+    match fidelity {
+        Fidelity::Fast => Box::new(fast),
+        Fidelity::Accurate => Box::new(numerical),
+        Fidelity::Auto => Box::new(Auto { fast, numerical, tolerance: settings.auto_tolerance }),
+    }
+}

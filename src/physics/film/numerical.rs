@@ -1,0 +1,216 @@
+//! The `accurate` film model: the numerical line-contact EHL solver ([`crate::physics::ehl`]) at
+//! every contact point.
+//!
+//! * **Line contacts** (flat-faced and roller followers): the isothermal, compressible,
+//!   Roelands/Barus EHL problem with elastic deflection, load balance and cavitation is solved on
+//!   [`EhlOptions::nodes`] graded nodes. Consecutive points of a run are time steps: when the
+//!   previous solution carries its converged fields ([`FilmSolution::profile`]) and
+//!   `input.time_step > 0`, the squeeze term `∂(ρh)/∂t` is formed from it (backward Euler) and the
+//!   Newton iteration starts from it; without a time step it is only a warm start.
+//! * **Point contacts** (the spherical tappet) keep the closed form (Hamrock–Dowson): the solver is
+//!   one-dimensional. The solution then reports the closed form's model id.
+//! * **No entrainment and no history** (the instant of rest at the start of a startup): a steady
+//!   film needs entrainment, so the closed form answers (no film: dry contact).
+//!
+//! From the converged solution: central, minimum and exit film, peak pressure, the exit pressure
+//! spike (height and position), traction nodes (every grid node with positive pressure: its cell
+//! times the contact length, the node's pressure, viscosity and film) and the profiles. Rough
+//! surfaces share the load as in the closed form (Greenwood–Tripp), but node by node with the
+//! local film: `W_a = L Σ p_a(h_i) Δx_i` (capped at the load), the fluid traction nodes scaled by
+//! `1 − W_a/W`. The EHL solution itself is that of smooth surfaces at the full load.
+//!
+//! Thermal effects are not modelled (isothermal at the inlet temperature), like the closed forms.
+
+use super::closed_form::{ClosedForm, FILM_FLOOR, VISCOSITY_CAP};
+use super::formulas::LineGroups;
+use super::{ContactInput, ContactShape, FilmModel, FilmModelId, FilmProfile, FilmSolution, Regime};
+use crate::physics::contact::hertz_line;
+use crate::physics::ehl::{self, EhlInput, EhlOptions, EhlState, Rheology, Transient};
+use crate::physics::friction::{AsperityContact, TractionNode};
+use crate::physics::{ensure_finite, Silent, SolveError};
+
+/// The numerical (`accurate`) film model. See the module docs.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Numerical {
+    /// Resolution, tolerance and iteration cap of the EHL solver.
+    pub options: EhlOptions,
+    /// The closed form used for point contacts and for a contact at rest without history.
+    pub fallback: ClosedForm,
+}
+
+impl FilmProfile {
+    /// The EHL solver's state (warm start, squeeze history) held by this profile.
+    pub fn to_ehl_state(&self) -> EhlState {
+        EhlState { x: self.x.clone(), pressure: self.pressure.clone(), film: self.film.clone(), density_ratio: self.density_ratio.clone() }
+    }
+}
+
+/// Cell widths of increasing nodes (midpoint to midpoint, half cells at the ends).
+fn cells(x: &[f64]) -> Vec<f64> {
+    let n = x.len();
+    (0..n)
+        .map(|j| {
+            let a = if j == 0 { x[0] } else { 0.5 * (x[j - 1] + x[j]) };
+            let b = if j + 1 == n { x[n - 1] } else { 0.5 * (x[j] + x[j + 1]) };
+            b - a
+        })
+        .collect()
+}
+
+impl FilmModel for Numerical {
+    /// 1e-4: the film moves by < 1e-4 relative, against a discretisation error of ≈ 1e-2.
+    fn entrainment_tolerance(&self) -> f64 {
+        1e-4
+    }
+
+    fn solve(&self, input: &ContactInput, previous: Option<&FilmSolution>) -> Result<FilmSolution, SolveError> {
+        let (r, length) = match input.shape {
+            ContactShape::Line { reduced_radius, length } => (reduced_radius, length),
+            ContactShape::Point { .. } => return self.fallback.solve(input, previous),
+        };
+        let load = input.load;
+        if !(load > 0.0 && load.is_finite()) {
+            return Err(SolveError::physical("no_contact_load", format!("contact load {load} N is not positive")));
+        }
+        let state: Option<EhlState> = previous.and_then(|p| p.profile.as_ref()).map(FilmProfile::to_ehl_state);
+        let transient = match &state {
+            Some(s) if input.time_step > 0.0 => Some(Transient { previous: s, time_step: input.time_step }),
+            _ => None,
+        };
+        if input.entrainment_velocity == 0.0 && transient.is_none() {
+            return self.fallback.solve(input, previous);
+        }
+        let w = load / length;
+        let es = input.contact_modulus;
+        let ehl_input = EhlInput {
+            load_per_length: w,
+            reduced_radius: r,
+            effective_modulus: 2.0 * es,
+            entrainment_velocity: input.entrainment_velocity,
+            sliding_velocity: input.sliding_velocity,
+            lubricant: *input.lubricant,
+            temperature: input.temperature,
+            // The solver's own traction is not used: traction comes from the nodes below.
+            rheology: Rheology::default(),
+            transient,
+            warm_start: state.as_ref(),
+        };
+        let options = EhlOptions { profiles: false, ..self.options };
+        let s = ehl::solve(&ehl_input, &options, &Silent)?;
+        // The closed form's steady film: what `steady_central_film` means (the next point's
+        // squeeze estimate of a closed form or of `auto` reads it).
+        let steady = self.fallback.solve(input, None)?.steady_central_film;
+        let st = &s.state;
+        let cell = cells(&st.x);
+        // Greenwood–Tripp load sharing with the local film.
+        let sigma = input.roughness.sigma;
+        let w_a = if sigma > 0.0 {
+            let per_length: f64 = st.film.iter().zip(&cell).map(|(h, dx)| input.roughness.asperity_pressure(*h, es) * dx).sum();
+            (per_length * length).min(load)
+        } else {
+            0.0
+        };
+        let fluid_share = 1.0 - w_a / load;
+        let t = input.temperature;
+        let nodes: Vec<TractionNode> = st
+            .x
+            .iter()
+            .enumerate()
+            .filter(|&(i, _)| st.pressure[i] > 0.0)
+            .map(|(i, _)| {
+                let p = fluid_share * st.pressure[i];
+                TractionNode {
+                    area: cell[i] * length,
+                    pressure: p,
+                    viscosity: input.lubricant.viscosity_at(st.pressure[i], t).min(VISCOSITY_CAP),
+                    film: st.film[i].max(FILM_FLOOR),
+                }
+            })
+            .collect();
+        let hz = hertz_line(w, r, es);
+        let eta0 = input.lubricant.viscosity_at(0.0, t);
+        let g = LineGroups::new(w, r, input.entrainment_velocity, eta0, input.lubricant.pressure_viscosity, 2.0 * es);
+        let regime = (g.speed > 0.0).then(|| Regime { viscous: g.viscous_parameter(), elastic: g.elastic_parameter() });
+        ensure_finite("numerical film", [&s.central_film, &s.min_film, &s.exit_film, &s.max_pressure, &w_a])?;
+        ensure_finite("traction nodes", nodes.iter().flat_map(|n| [&n.area, &n.pressure, &n.viscosity, &n.film]))?;
+        Ok(FilmSolution {
+            model: FilmModelId::Numerical,
+            central_film: s.central_film,
+            min_film: s.min_film,
+            steady_central_film: steady,
+            max_pressure: s.max_pressure,
+            pressure_spike: s.pressure_spike.map(|p| p.pressure),
+            pressure_spike_position: s.pressure_spike.map(|p| p.position),
+            exit_film: Some(s.exit_film),
+            half_width: hz.half_width,
+            contact_area: 2.0 * hz.half_width * length,
+            asperity: AsperityContact { load: w_a, gross_sliding_creep: input.asperity_friction.coefficient * hz.half_width / r },
+            lambda: (sigma > 0.0).then(|| s.min_film / sigma),
+            regime,
+            nodes,
+            profile: Some(FilmProfile {
+                x: s.state.x,
+                pressure: s.state.pressure,
+                film: s.state.film,
+                density_ratio: s.state.density_ratio,
+            }),
+            iterations: Some(s.convergence.iterations),
+        })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::physics::film::FilmFormula;
+    use crate::physics::friction::{AsperityFriction, AsperityModel, Rheology as Shear, Roughness, TractionLaw};
+    use crate::physics::lubricant::Lubricant;
+
+    fn model() -> Numerical {
+        Numerical {
+            options: EhlOptions { nodes: 96, tolerance: 1e-8, ..EhlOptions::default() },
+            fallback: ClosedForm { formula: FilmFormula::PanHamrock, squeeze: false },
+        }
+    }
+
+    #[test]
+    fn nodes_carry_the_load_and_a_reversal_keeps_a_squeeze_film() {
+        let lub = Lubricant { viscosity: 0.013, pressure_viscosity: 1.84e-8, ..Lubricant::SEED000 };
+        let rough = Roughness { sigma: 0.0, eta_beta_sigma: 0.04, sigma_over_beta: 0.001 };
+        let law = TractionLaw { rheology: Shear::Eyring { tau0: 5e6 }, limiting_shear_coefficient: None };
+        let asp = AsperityFriction { coefficient: 0.1, model: AsperityModel::Coulomb };
+        // Seed 001 nose (12.5 kN over 21 mm, R = 10.5 mm, 3.98 m/s).
+        let input = ContactInput {
+            load: 12_500.0,
+            shape: ContactShape::Line { reduced_radius: 0.0105, length: 0.021 },
+            entrainment_velocity: 3.98,
+            sliding_velocity: 0.04,
+            time: 0.0,
+            time_step: 0.0,
+            contact_modulus: 100e9 / 0.91,
+            temperature: lub.reference_temperature,
+            lubricant: &lub,
+            roughness: &rough,
+            traction_law: &law,
+            asperity_friction: &asp,
+        };
+        let m = model();
+        let f = m.solve(&input, None).unwrap();
+        assert_eq!(f.model, FilmModelId::Numerical);
+        let load: f64 = f.nodes.iter().map(|n| n.area * n.pressure).sum();
+        assert!((load / 12_500.0 - 1.0).abs() < 0.02, "{load}");
+        assert!(f.pressure_spike.is_some() && f.exit_film.unwrap() >= f.min_film);
+        assert!(f.iterations.is_some() && f.profile.is_some());
+        // Entrainment stops 0.1 ms later: without history a steady film has no solution (the
+        // closed form answers: no film); with history the squeeze film remains.
+        let stop = ContactInput { entrainment_velocity: 0.0, time_step: 1e-4, ..input };
+        let dry = m.solve(&ContactInput { time_step: 0.0, ..stop }, None).unwrap();
+        assert_eq!(dry.model, FilmModelId::PanHamrock);
+        let squeeze = m.solve(&stop, Some(&f)).unwrap();
+        assert_eq!(squeeze.model, FilmModelId::Numerical);
+        assert!(squeeze.central_film > 0.3 * f.central_film && squeeze.central_film < f.central_film, "{} vs {}", squeeze.central_film, f.central_film);
+        // Point contacts keep the closed form.
+        let point = ContactInput { shape: ContactShape::Point { rx: 0.0142, ry: 0.042 }, load: 500.0, ..input };
+        assert_eq!(m.solve(&point, None).unwrap().model, FilmModelId::HamrockDowson);
+    }
+}

@@ -1,0 +1,20 @@
+//! Finite-length hydrodynamic journal bearing (seed 002): Reynolds equation with Reynolds
+//! (Swift–Stieber) cavitation, misalignment, axial edge profiles, load balance.
+//!
+//! - [`film`]: the film geometry (seed 002 eq. 3, 10–11, 13–15) and the angle conventions.
+//! - [`multigrid`]: the discrete Reynolds complementarity problem and its solver (primal–dual
+//!   active set, multigrid-preconditioned conjugate gradients, nested iteration).
+//! - [`analysis`]: one analysis — fixed position, fixed eccentricity ratio or load balance over
+//!   nested grids — and the performance figures (load, Sommerfeld number, peak pressure, minimum
+//!   film, friction by two definitions, flows, power loss).
+//! - [`taguchi`]: orthogonal arrays, the weighted-sum score of eq. (19), S/N ratios, Nelder–Mead.
+//!
+//! Everything is dimensionless here; the job kinds add SI values.
+
+pub mod film;
+pub mod multigrid;
+pub mod analysis;
+pub mod taguchi;
+
+pub use analysis::{analyse, Analysis, Bearing, Fields, Guess, Operating, Settings, Supply, Workspace};
+pub use film::{Film, Misalignment, Profile};

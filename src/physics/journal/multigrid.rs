@@ -1,0 +1,859 @@
+//! Solver of the discrete Reynolds equation with the Swift–Stieber (Reynolds) cavitation
+//! condition, posed as a linear complementarity problem (LCP).
+//!
+//! Seed 002 eq. (4) multiplied by the cell area `ΔθΔZ` and discretised by finite volumes:
+//! `A P = f` with `(A P)_ij = Σ_faces c_face (P_ij − P_nb)`, `c_east = H³(θ_{i+½}, Z_j) ΔZ/Δθ`,
+//! `c_north = α H³(θ_i, Z_{j+½}) Δθ/ΔZ`, `f_ij = −(H(θ_{i+½}) − H(θ_{i−½})) ΔZ`.
+//! `A` is a symmetric M-matrix (ambient pressure at both edges and, with a groove, along the
+//! supply line). The Reynolds condition is the LCP `P ≥ 0`, `λ = A P − f ≥ 0`, `P·λ = 0` — the
+//! minimiser of `½PᵀAP − fᵀP` over `P ≥ 0`; the film ruptures where `P = 0` and the
+//! zero-gradient condition at the rupture line follows from the complementarity.
+//!
+//! Method (chosen by measurement, see BENCHMARKS.md): the primal–dual active-set method
+//! (Hintermüller, Ito & Kunisch, SIAM J. Optim. 13, 2003) — a semismooth Newton method that
+//! moves every wrongly classified node at once, with re-activation and de-activation in the same
+//! step, and converges in finitely many steps for M-matrices. Each step solves `A_II P_I = f_I`
+//! on the inactive (pressurised) set by conjugate gradients preconditioned with one symmetric
+//! multigrid V-cycle (red–black Gauss–Seidel, bilinear interpolation, full weighting, coarse
+//! operators rediscretised from the analytic film, the cavitated set injected as fixed nodes on
+//! every level). Coarsening is chosen per level from the anisotropy `α Δθ²/ΔZ²`
+//! (semi-coarsening in the strongly coupled direction), which keeps the point smoother effective
+//! from L/D = 0.1 to 4; grids need not be powers of two (non-nested levels interpolate linearly).
+//! Nested iteration (the converged pressure and cavitation set of a coarse grid start the next
+//! finer grid) and warm starts make the active-set loop take one to three steps.
+//!
+//! A projected FAS multigrid (Brandt & Cryer 1983) was tried first: with the Reynolds free
+//! boundary its coarse corrections oscillated or diverged at 361×181 (residual stuck near 1e-2),
+//! so it was dropped.
+
+use super::film::Film;
+
+/// Linear interpolation between a fine and a coarse 1-D grid (periodic or with two end nodes).
+#[derive(Debug, Clone)]
+struct Transfer1D {
+    /// fine node → two coarse nodes and the weight of the second.
+    p_lo: Vec<usize>,
+    p_hi: Vec<usize>,
+    p_w: Vec<f64>,
+    /// coarse node → two fine nodes (where it lies on the fine grid) and the weight of the second.
+    s_lo: Vec<usize>,
+    s_hi: Vec<usize>,
+    s_w: Vec<f64>,
+}
+
+impl Transfer1D {
+    fn identity(n: usize) -> Self {
+        let idx: Vec<usize> = (0..n).collect();
+        Transfer1D {
+            p_lo: idx.clone(),
+            p_hi: idx.clone(),
+            p_w: vec![0.0; n],
+            s_lo: idx.clone(),
+            s_hi: idx,
+            s_w: vec![0.0; n],
+        }
+    }
+
+    /// `nf` fine and `nc` coarse nodes on a periodic interval (node 0 shared).
+    fn periodic(nf: usize, nc: usize) -> Self {
+        let map = |n_from: usize, n_to: usize| {
+            let (mut lo, mut hi, mut w) = (Vec::new(), Vec::new(), Vec::new());
+            for k in 0..n_from {
+                // position in units of the target grid, exact rational arithmetic first
+                let num = k * n_to;
+                let m = num / n_from;
+                let t = (num % n_from) as f64 / n_from as f64;
+                lo.push(m % n_to);
+                hi.push((m + 1) % n_to);
+                w.push(t);
+            }
+            (lo, hi, w)
+        };
+        let (p_lo, p_hi, p_w) = map(nf, nc);
+        let (s_lo, s_hi, s_w) = map(nc, nf);
+        Transfer1D { p_lo, p_hi, p_w, s_lo, s_hi, s_w }
+    }
+
+    /// `nf` fine and `nc` coarse nodes on a closed interval (both ends are nodes).
+    fn open(nf: usize, nc: usize) -> Self {
+        let map = |n_from: usize, n_to: usize| {
+            let (mut lo, mut hi, mut w) = (Vec::new(), Vec::new(), Vec::new());
+            for k in 0..n_from {
+                let num = k * (n_to - 1);
+                let den = n_from - 1;
+                let m = (num / den).min(n_to - 2);
+                let t = (num - m * den) as f64 / den as f64;
+                lo.push(m);
+                hi.push(m + 1);
+                w.push(t);
+            }
+            (lo, hi, w)
+        };
+        let (p_lo, p_hi, p_w) = map(nf, nc);
+        let (s_lo, s_hi, s_w) = map(nc, nf);
+        Transfer1D { p_lo, p_hi, p_w, s_lo, s_hi, s_w }
+    }
+}
+
+
+/// One grid of the hierarchy with its coefficients and work arrays. Node `(i, j)` is stored at
+/// `j·nt + i`; `i` runs around the bearing (periodic), `j` along the axis (`j = 0` and
+/// `j = nz − 1` are the edges, at ambient pressure).
+#[derive(Debug, Clone)]
+pub struct Level {
+    /// Nodes around the circumference (periodic: node `nt` is node 0).
+    pub nt: usize,
+    /// Nodes along the axis, both edges included.
+    pub nz: usize,
+    pub dt: f64,
+    pub dz: f64,
+    /// Column 0 is held at ambient pressure (a supply groove).
+    pub groove: bool,
+    /// Absolute angle of node 0.
+    pub theta0: f64,
+    pub cos_n: Vec<f64>,
+    pub sin_n: Vec<f64>,
+    ce: Vec<f64>,
+    cn: Vec<f64>,
+    diag: Vec<f64>,
+    /// The discretised source `f` (0 at boundary nodes).
+    pub src: Vec<f64>,
+    /// Film at the nodes.
+    pub h: Vec<f64>,
+    /// Pressure (the LCP unknown) on this level.
+    pub u: Vec<f64>,
+    /// 1 where the node is fixed at zero pressure in the current linear solve (boundary or
+    /// cavitated), 2 for boundary nodes (always fixed), 0 free.
+    fixed: Vec<u8>,
+    /// 1 at free nodes, 0 at fixed ones (branch-free loops).
+    mask: Vec<f64>,
+    /// `1/diag` at free nodes, 0 at fixed ones.
+    inv_d: Vec<f64>,
+    /// 1 at every node that is not on the boundary (edges, supply line).
+    interior: Vec<f64>,
+    // linear multigrid work arrays (correction scheme)
+    x: Vec<f64>,
+    b: Vec<f64>,
+    r: Vec<f64>,
+    /// Scratch for transfers to the next coarser level: (coarse rows) × nt.
+    tmp: Vec<f64>,
+    tt: Option<Transfer1D>,
+    tz: Option<Transfer1D>,
+}
+
+const BOUNDARY: u8 = 2;
+const CAVITATED: u8 = 1;
+const FREE: u8 = 0;
+
+impl Level {
+    fn new(nt: usize, nz: usize, groove: bool) -> Self {
+        let n = nt * nz;
+        let mut l = Level {
+            nt,
+            nz,
+            dt: std::f64::consts::TAU / nt as f64,
+            dz: 1.0 / (nz - 1) as f64,
+            groove,
+            theta0: 0.0,
+            cos_n: vec![0.0; nt],
+            sin_n: vec![0.0; nt],
+            ce: vec![0.0; n],
+            cn: vec![0.0; n],
+            diag: vec![0.0; n],
+            src: vec![0.0; n],
+            h: vec![0.0; n],
+            u: vec![0.0; n],
+            fixed: vec![FREE; n],
+            mask: vec![0.0; n],
+            inv_d: vec![0.0; n],
+            interior: vec![0.0; n],
+            x: vec![0.0; n],
+            b: vec![0.0; n],
+            r: vec![0.0; n],
+            tmp: Vec::new(),
+            tt: None,
+            tz: None,
+        };
+        for j in 0..nz {
+            for i in 0..nt {
+                if j == 0 || j + 1 == nz || (groove && i == 0) {
+                    l.fixed[j * nt + i] = BOUNDARY;
+                } else {
+                    l.interior[j * nt + i] = 1.0;
+                }
+            }
+        }
+        l
+    }
+
+    /// Absolute angle of node `i`.
+    pub fn theta(&self, i: usize) -> f64 {
+        self.theta0 + i as f64 * self.dt
+    }
+
+    /// Rebuild coefficients for `film` with node 0 at absolute angle `theta0`.
+    fn set_film(&mut self, film: &Film, alpha: f64, theta0: f64) {
+        let (nt, nz, dt, dz) = (self.nt, self.nz, self.dt, self.dz);
+        self.theta0 = theta0;
+        let mut cos_f = vec![0.0; nt];
+        let mut sin_f = vec![0.0; nt];
+        for i in 0..nt {
+            let t = theta0 + i as f64 * dt;
+            let (s, c) = t.sin_cos();
+            self.cos_n[i] = c;
+            self.sin_n[i] = s;
+            let (s, c) = (t + 0.5 * dt).sin_cos();
+            cos_f[i] = c;
+            sin_f[i] = s;
+        }
+        let ke = dz / dt;
+        let kn = alpha * dt / dz;
+        for j in 0..nz {
+            let z = j as f64 * dz;
+            let r = film.row(z);
+            let rn = film.row((z + 0.5 * dz).min(1.0));
+            let base = 1.0 + r.gamma;
+            let base_n = 1.0 + rn.gamma;
+            let row = j * nt;
+            for i in 0..nt {
+                let k = row + i;
+                let he = base + r.x * cos_f[i] + r.y * sin_f[i];
+                self.ce[k] = he * he * he * ke;
+                self.h[k] = base + r.x * self.cos_n[i] + r.y * self.sin_n[i];
+                if j + 1 < nz {
+                    let hn = base_n + rn.x * self.cos_n[i] + rn.y * self.sin_n[i];
+                    self.cn[k] = hn * hn * hn * kn;
+                } else {
+                    self.cn[k] = 0.0;
+                }
+                let iw = if i == 0 { nt - 1 } else { i - 1 };
+                // f = −∂H/∂θ ΔθΔZ in flux form (faces): the profile Γ(Z) drops out.
+                self.src[k] = -dz * (r.x * (cos_f[i] - cos_f[iw]) + r.y * (sin_f[i] - sin_f[iw]));
+            }
+        }
+        for j in 0..nz {
+            let row = j * nt;
+            for i in 0..nt {
+                let k = row + i;
+                if self.fixed[k] == BOUNDARY {
+                    self.diag[k] = 1.0;
+                    self.src[k] = 0.0;
+                    continue;
+                }
+                let kw = if i == 0 { row + nt - 1 } else { k - 1 };
+                self.diag[k] = self.ce[k] + self.ce[kw] + self.cn[k] + self.cn[k - nt];
+            }
+        }
+        self.refresh_masks();
+    }
+
+    /// Recompute `mask` and `inv_d` from `fixed` and `diag`.
+    fn refresh_masks(&mut self) {
+        for k in 0..self.fixed.len() {
+            let free = self.fixed[k] == FREE;
+            self.mask[k] = if free { 1.0 } else { 0.0 };
+            self.inv_d[k] = if free { 1.0 / self.diag[k] } else { 0.0 };
+        }
+    }
+
+    /// `Σ c_nb v_nb` at node `k` (neighbour sum of the operator).
+    #[cfg(test)]
+    #[inline(always)]
+    fn nb_sum(&self, v: &[f64], k: usize, kw: usize, ke: usize) -> f64 {
+        let nt = self.nt;
+        self.ce[k] * v[ke] + self.ce[kw] * v[kw] + self.cn[k] * v[k + nt] + self.cn[k - nt] * v[k - nt]
+    }
+
+    /// `out = A v − f` at every non-boundary node (the LCP multiplier `λ` when `v` solves the
+    /// inactive equations), 0 at boundary nodes.
+    fn lambda(&self, v: &[f64], out: &mut [f64]) {
+        self.kernel::<{ Self::MINUS_SUB }>(v, out, &self.interior, &self.src);
+    }
+
+    /// `out = A v` restricted to the free nodes (0 at fixed nodes).
+    fn apply_free(&self, v: &[f64], out: &mut [f64]) {
+        self.kernel::<{ Self::PLAIN }>(v, out, &self.mask, &self.src);
+    }
+
+    /// `out = f − A v` at the free nodes, 0 at fixed nodes.
+    fn residual_free(&self, v: &[f64], out: &mut [f64]) {
+        self.kernel::<{ Self::SUB_MINUS }>(v, out, &self.mask, &self.src);
+    }
+
+    /// Red–black Gauss–Seidel on the free nodes for `A x = b`; `reverse` swaps the colour order
+    /// (the post-smoother of a symmetric cycle). The two colours are fused in one pass over
+    /// memory: row `j` of the first colour, then row `j − 1` of the second.
+    fn smooth(&mut self, sweeps: usize, reverse: bool) {
+        let nt = self.nt;
+        let nz = self.nz;
+        let first = if reverse { 1 } else { 0 };
+        for _ in 0..sweeps {
+            for j in 1..nz {
+                if j < nz - 1 {
+                    self.smooth_row(j, first);
+                }
+                if j >= 2 {
+                    self.smooth_row(j - 1, 1 - first);
+                }
+            }
+        }
+        let _ = nt;
+    }
+
+    /// Gauss–Seidel update of the nodes of colour `color` (`(i + j) % 2`) in row `j`.
+    #[inline(always)]
+    fn smooth_row(&mut self, j: usize, color: usize) {
+        let nt = self.nt;
+        let row = j * nt;
+        let ce = &self.ce[row..row + nt];
+        let cn_s = &self.cn[row - nt..row];
+        let cn_n = &self.cn[row..row + nt];
+        let inv = &self.inv_d[row..row + nt];
+        let b = &self.b[row..row + nt];
+        let (below, rest) = self.x.split_at_mut(row);
+        let below = &below[row - nt..];
+        let (cur, above) = rest.split_at_mut(nt);
+        let above = &above[..nt];
+        #[inline(always)]
+        #[allow(clippy::too_many_arguments)]
+        fn upd(cur: &mut [f64], b: &[f64], ce: &[f64], cn_n: &[f64], cn_s: &[f64], above: &[f64], below: &[f64], inv: &[f64], i: usize, iw: usize, ie: usize) {
+            let s = b[i] + ce[i] * cur[ie] + ce[iw] * cur[iw] + cn_n[i] * above[i] + cn_s[i] * below[i];
+            cur[i] = s * inv[i];
+        }
+        let mut i = (color + j) % 2;
+        if i == 0 {
+            upd(cur, b, ce, cn_n, cn_s, above, below, inv, 0, nt - 1, 1);
+            i = 2;
+        }
+        let end = if (nt - 1) % 2 == i % 2 { nt - 1 } else { nt };
+        // interior nodes of this colour: 1 ≤ i ≤ nt − 2, step 2
+        let mut k = i;
+        while k + 1 < nt {
+            // SAFETY: 1 ≤ k − 1 < k + 1 < nt and every slice has length nt.
+            unsafe {
+                let s = *b.get_unchecked(k)
+                    + *ce.get_unchecked(k) * *cur.get_unchecked(k + 1)
+                    + *ce.get_unchecked(k - 1) * *cur.get_unchecked(k - 1)
+                    + *cn_n.get_unchecked(k) * *above.get_unchecked(k)
+                    + *cn_s.get_unchecked(k) * *below.get_unchecked(k);
+                *cur.get_unchecked_mut(k) = s * *inv.get_unchecked(k);
+            }
+            k += 2;
+        }
+        let _ = end;
+        if k + 1 == nt {
+            upd(cur, b, ce, cn_n, cn_s, above, below, inv, k, k - 1, 0);
+        }
+    }
+
+    /// `r = b − A x` at free nodes, 0 at fixed nodes.
+    fn residual_into_r(&mut self) {
+        let mut r = std::mem::take(&mut self.r);
+        self.kernel::<{ Self::SUB_MINUS }>(&self.x, &mut r, &self.mask, &self.b);
+        self.r = r;
+    }
+
+    const PLAIN: u8 = 0;
+    const MINUS_SUB: u8 = 1;
+    const SUB_MINUS: u8 = 2;
+
+    /// One pass of the five-point operator: `out = m·(A v)` (`PLAIN`), `m·(A v − s)`
+    /// (`MINUS_SUB`) or `m·(s − A v)` (`SUB_MINUS`); 0 on the edge rows. The interior of each
+    /// row is written on equal-length slices so that the loop vectorises.
+    fn kernel<const MODE: u8>(&self, v: &[f64], out: &mut [f64], mask: &[f64], sub: &[f64]) {
+        let nt = self.nt;
+        out[..nt].fill(0.0);
+        out[(self.nz - 1) * nt..].fill(0.0);
+        #[inline(always)]
+        fn finish<const MODE: u8>(m: f64, a: f64, s: f64) -> f64 {
+            match MODE {
+                0 => m * a,
+                1 => m * (a - s),
+                _ => m * (s - a),
+            }
+        }
+        for j in 1..self.nz - 1 {
+            let row = j * nt;
+            let ce = &self.ce[row..row + nt];
+            let cs = &self.cn[row - nt..row];
+            let cnn = &self.cn[row..row + nt];
+            let d = &self.diag[row..row + nt];
+            let m = &mask[row..row + nt];
+            let sb = &sub[row..row + nt];
+            let vb = &v[row - nt..row];
+            let vc = &v[row..row + nt];
+            let va = &v[row + nt..row + 2 * nt];
+            let o = &mut out[row..row + nt];
+            let a0 = d[0] * vc[0] - ce[0] * vc[1] - ce[nt - 1] * vc[nt - 1] - cnn[0] * va[0] - cs[0] * vb[0];
+            let an = d[nt - 1] * vc[nt - 1] - ce[nt - 1] * vc[0] - ce[nt - 2] * vc[nt - 2] - cnn[nt - 1] * va[nt - 1] - cs[nt - 1] * vb[nt - 1];
+            o[0] = finish::<MODE>(m[0], a0, sb[0]);
+            o[nt - 1] = finish::<MODE>(m[nt - 1], an, sb[nt - 1]);
+            let n = nt - 2;
+            let (d1, ce0, ce1, cn1, cs1) = (&d[1..n + 1], &ce[0..n], &ce[1..n + 1], &cnn[1..n + 1], &cs[1..n + 1]);
+            let (vw, vcc, ve, va1, vb1) = (&vc[0..n], &vc[1..n + 1], &vc[2..n + 2], &va[1..n + 1], &vb[1..n + 1]);
+            let (m1, s1) = (&m[1..n + 1], &sb[1..n + 1]);
+            let o1 = &mut o[1..n + 1];
+            for i in 0..n {
+                let a = d1[i] * vcc[i] - ce1[i] * ve[i] - ce0[i] * vw[i] - cn1[i] * va1[i] - cs1[i] * vb1[i];
+                o1[i] = finish::<MODE>(m1[i], a, s1[i]);
+            }
+        }
+    }
+}
+
+/// The grid hierarchy for one bearing: level 0 is the finest.
+#[derive(Debug, Clone)]
+pub struct Hierarchy {
+    pub levels: Vec<Level>,
+    pub alpha: f64,
+    /// Red–black sweeps before and after the coarse-grid correction.
+    pub sweeps: usize,
+    /// V-cycles spent on each level since the hierarchy was built (work accounting).
+    pub cycle_count: Vec<u32>,
+    /// Active-set steps on each level since the hierarchy was built.
+    pub step_count: Vec<u32>,
+    scratch: [Vec<f64>; 5],
+}
+
+/// Outcome of one LCP solve on one level.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct LcpReport {
+    /// Active-set (semismooth Newton) steps.
+    pub steps: u32,
+    /// Preconditioned CG iterations (= V-cycles) over all steps.
+    pub cycles: u32,
+    /// Relative complementarity residual `‖min(P, λ)‖` scaled as described in [`Hierarchy::lcp_residual`].
+    pub residual: f64,
+    /// Whether the active set settled and the linear residual met the tolerance.
+    pub converged: bool,
+}
+
+impl Hierarchy {
+    /// Build the hierarchy for `nt` circumferential nodes (periodic) and `nz` axial nodes.
+    /// `alpha = (R/L)²` sets the anisotropy that decides the coarsening direction.
+    pub fn new(nt: usize, nz: usize, alpha: f64, groove: bool) -> Self {
+        let mut levels = vec![Level::new(nt, nz, groove)];
+        loop {
+            let l = levels.last().unwrap();
+            let (nt, nz) = (l.nt, l.nz);
+            let can_t = nt >= 8;
+            let can_z = nz > 4;
+            if (!can_t && !can_z) || nt * nz <= 80 {
+                break;
+            }
+            // ratio of axial to circumferential coupling per node
+            let a = alpha * (l.dt / l.dz).powi(2);
+            let (mut ct, mut cz) = (true, true);
+            if a > 2.0 {
+                ct = false;
+            } else if a < 0.5 {
+                cz = false;
+            }
+            if !can_t {
+                ct = false;
+                cz = true;
+            }
+            if !can_z {
+                cz = false;
+                ct = true;
+            }
+            let nt_c = if ct { nt.div_ceil(2) } else { nt };
+            let nz_c = if cz { (nz - 1).div_ceil(2) + 1 } else { nz };
+            let tt = if ct { Transfer1D::periodic(nt, nt_c) } else { Transfer1D::identity(nt) };
+            let tz = if cz { Transfer1D::open(nz, nz_c) } else { Transfer1D::identity(nz) };
+            let fine = levels.last_mut().unwrap();
+            fine.tt = Some(tt);
+            fine.tz = Some(tz);
+            fine.tmp = vec![0.0; nz_c * nt];
+            levels.push(Level::new(nt_c, nz_c, groove));
+        }
+        let n = levels.len();
+        Hierarchy { levels, alpha, sweeps: 2, cycle_count: vec![0; n], step_count: vec![0; n], scratch: Default::default() }
+    }
+
+    /// Rebuild the coefficients of every level for `film`, node 0 at angle `theta0`.
+    pub fn set_film(&mut self, film: &Film, theta0: f64) {
+        self.set_film_from(0, film, theta0);
+    }
+
+    /// Rebuild the coefficients of levels `k` and coarser.
+    pub fn set_film_from(&mut self, k: usize, film: &Film, theta0: f64) {
+        let alpha = self.alpha;
+        for l in &mut self.levels[k..] {
+            l.set_film(film, alpha, theta0);
+        }
+    }
+
+    /// Complementarity residual of `levels[k].u`: `‖min(P, λ/d)‖₂ / ‖f/d‖₂` with `d` the
+    /// diagonal of `A` — the size of the pressure change one projected Jacobi step would make,
+    /// relative to the size of the source term in the same units.
+    pub fn lcp_residual(&mut self, k: usize) -> f64 {
+        let l = &mut self.levels[k];
+        let mut lam = std::mem::take(&mut l.r);
+        l.lambda(&l.u, &mut lam);
+        let (mut num, mut den) = (0.0, 0.0);
+        for idx in 0..lam.len() {
+            if l.fixed[idx] == BOUNDARY {
+                continue;
+            }
+            let d = l.diag[idx];
+            let m = l.u[idx].min(lam[idx] / d);
+            num += m * m;
+            let s = l.src[idx] / d;
+            den += s * s;
+        }
+        l.r = lam;
+        if den > 0.0 { (num / den).sqrt() } else { num.sqrt() }
+    }
+
+    /// Solve the LCP on level `k` starting from `levels[k].u` (any non-negative guess) by the
+    /// primal–dual active-set method; each linear solve by multigrid-preconditioned CG to the
+    /// relative tolerance `tol`. Stops when the active set is unchanged and the linear solve
+    /// met `tol`, or after `max_steps` steps / `max_cycles` V-cycles.
+    pub fn solve_lcp(&mut self, k: usize, tol: f64, max_steps: u32, max_cycles: u32) -> LcpReport {
+        let mut steps = 0;
+        let mut cycles = 0;
+        let mut converged = false;
+        let mut lam = std::mem::take(&mut self.scratch[4]);
+        lam.resize(self.levels[k].u.len(), 0.0);
+        // Inexact steps while the active set still moves: a linear solve to `loose` is enough
+        // to decide the next active set; the last solve (set unchanged) is taken to `tol`.
+        let loose = tol.max(1e-4);
+        let mut tight = loose <= tol;
+        while steps < max_steps && cycles < max_cycles {
+            let l = &mut self.levels[k];
+            l.lambda(&l.u, &mut lam);
+            let mut changed = false;
+            for idx in 0..lam.len() {
+                if l.fixed[idx] == BOUNDARY {
+                    continue;
+                }
+                // new active set: λ − d·P > 0  (d: the diagonal, a per-node scale)
+                let active = lam[idx] - l.diag[idx] * l.u[idx] > 0.0;
+                let flag = if active { CAVITATED } else { FREE };
+                if flag != l.fixed[idx] {
+                    changed = true;
+                    l.fixed[idx] = flag;
+                }
+                if active {
+                    l.u[idx] = 0.0;
+                }
+            }
+            if !changed && steps > 0 {
+                if tight {
+                    converged = true;
+                    break;
+                }
+                tight = true;
+            }
+            if changed || steps == 0 {
+                self.levels[k].refresh_masks();
+                self.inject_active_set(k);
+            }
+            steps += 1;
+            let t = if tight { tol } else { loose };
+            let (c, ok) = self.pcg(k, t, max_cycles - cycles);
+            cycles += c;
+            if !ok {
+                break;
+            }
+        }
+        self.scratch[4] = lam;
+        // the pressure is non-negative by construction up to the linear tolerance
+        let l = &mut self.levels[k];
+        for v in &mut l.u {
+            if *v < 0.0 {
+                *v = 0.0;
+            }
+        }
+        let residual = self.lcp_residual(k);
+        self.cycle_count[k] += cycles;
+        self.step_count[k] += steps;
+        LcpReport { steps, cycles, residual, converged }
+    }
+
+    /// Conjugate gradients on the free nodes of level `k` for `A_II P_I = f_I`, starting from
+    /// `levels[k].u`, preconditioned by one symmetric V-cycle. Returns (iterations, converged).
+    fn pcg(&mut self, k: usize, tol: f64, max_iter: u32) -> (u32, bool) {
+        let n = self.levels[k].u.len();
+        let [mut r, mut p, mut q, mut z, lam] = std::mem::take(&mut self.scratch);
+        for v in [&mut r, &mut p, &mut q, &mut z] {
+            if v.len() < n {
+                v.resize(n, 0.0);
+            }
+        }
+        let out = self.pcg_inner(k, tol, max_iter, &mut r[..n], &mut p[..n], &mut q[..n], &mut z[..n]);
+        self.scratch = [r, p, q, z, lam];
+        out
+    }
+
+    #[allow(clippy::too_many_arguments)]
+    fn pcg_inner(&mut self, k: usize, tol: f64, max_iter: u32, r: &mut [f64], p: &mut [f64], q: &mut [f64], z: &mut [f64]) -> (u32, bool) {
+        let l = &self.levels[k];
+        // r = f − A u on free nodes
+        l.residual_free(&l.u, r);
+        let fnorm = l.src.iter().zip(&l.mask).map(|(f, m)| m * f * f).sum::<f64>().sqrt().max(1e-300);
+        let mut rnorm = dot(r, r).sqrt();
+        if rnorm <= tol * fnorm {
+            return (0, true);
+        }
+        self.precondition(k, r, z);
+        p.copy_from_slice(z);
+        let mut rz = dot(r, z);
+        let mut it = 0;
+        while it < max_iter {
+            it += 1;
+            let l = &self.levels[k];
+            l.apply_free(p, q);
+            let pq = dot(p, q);
+            if pq <= 0.0 {
+                break;
+            }
+            let a = rz / pq;
+            let l = &mut self.levels[k];
+            let mut rr = 0.0;
+            for (((u, r), p), q) in l.u.iter_mut().zip(r.iter_mut()).zip(p.iter()).zip(q.iter()) {
+                *u += a * p;
+                *r -= a * q;
+                rr += *r * *r;
+            }
+            rnorm = rr.sqrt();
+            if rnorm <= tol * fnorm {
+                return (it, true);
+            }
+            self.precondition(k, r, z);
+            let rz_new = dot(r, z);
+            let beta = rz_new / rz;
+            rz = rz_new;
+            for (p, z) in p.iter_mut().zip(z.iter()) {
+                *p = z + beta * *p;
+            }
+        }
+        (it, rnorm <= tol * fnorm)
+    }
+
+    /// `z ≈ A_II⁻¹ r` by one symmetric V-cycle from zero.
+    fn precondition(&mut self, k: usize, r: &[f64], z: &mut [f64]) {
+        {
+            let l = &mut self.levels[k];
+            l.b.copy_from_slice(r);
+            l.x.fill(0.0);
+        }
+        self.vcycle(k);
+        z.copy_from_slice(&self.levels[k].x);
+    }
+
+    /// One symmetric correction-scheme V-cycle on level `k` for `A x = b` (free nodes).
+    fn vcycle(&mut self, k: usize) {
+        let last = self.levels.len() - 1;
+        if k == last {
+            let l = &mut self.levels[last];
+            // coarsest: symmetric Gauss–Seidel to (near) round-off; few unknowns
+            for _ in 0..200 {
+                l.smooth(1, false);
+                l.smooth(1, true);
+            }
+            return;
+        }
+        let nu = self.sweeps;
+        {
+            let (head, tail) = self.levels.split_at_mut(k + 1);
+            let fine = &mut head[k];
+            let coarse = &mut tail[0];
+            fine.smooth(nu, false);
+            fine.residual_into_r();
+            restrict(fine, coarse);
+            coarse.x.fill(0.0);
+        }
+        self.vcycle(k + 1);
+        {
+            let (head, tail) = self.levels.split_at_mut(k + 1);
+            prolong_add(&tail[0], &mut head[k]);
+            head[k].smooth(nu, true);
+        }
+    }
+
+    /// Copy the cavitated set of level `k` down to every coarser level (injection: a coarse node
+    /// is fixed when the fine node nearest to it is).
+    pub fn inject_active_set(&mut self, k: usize) {
+        for l in k..self.levels.len() - 1 {
+            let (head, tail) = self.levels.split_at_mut(l + 1);
+            let fine = &head[l];
+            let coarse = &mut tail[0];
+            let tt = fine.tt.as_ref().unwrap();
+            let tz = fine.tz.as_ref().unwrap();
+            for a in 0..coarse.nz {
+                let jf = if tz.s_w[a] < 0.5 { tz.s_lo[a] } else { tz.s_hi[a] };
+                for m in 0..coarse.nt {
+                    let kc = a * coarse.nt + m;
+                    if coarse.fixed[kc] == BOUNDARY {
+                        continue;
+                    }
+                    let iff = if tt.s_w[m] < 0.5 { tt.s_lo[m] } else { tt.s_hi[m] };
+                    coarse.fixed[kc] = if fine.fixed[jf * fine.nt + iff] == FREE { FREE } else { CAVITATED };
+                }
+            }
+            coarse.refresh_masks();
+        }
+    }
+
+    /// Solve the LCP on the coarsest level from scratch, then on every finer level down to `k`,
+    /// each started from the interpolated coarser solution (nested iteration).
+    pub fn nested_solve(&mut self, k: usize, tol: f64, max_steps: u32, max_cycles: u32) -> LcpReport {
+        let last = self.levels.len() - 1;
+        self.levels[last].u.fill(0.0);
+        let mut rep = self.solve_lcp(last, tol, max_steps, max_cycles);
+        for lv in (k..last).rev() {
+            self.interpolate_up(lv);
+            rep = self.solve_lcp(lv, tol, max_steps, max_cycles);
+        }
+        rep
+    }
+
+    /// `levels[k].u = max(0, P levels[k+1].u)`: the nested-iteration start on level `k`.
+    pub fn interpolate_up(&mut self, k: usize) {
+        let (head, tail) = self.levels.split_at_mut(k + 1);
+        let fine = &mut head[k];
+        let coarse = &tail[0];
+        let tt = fine.tt.as_ref().unwrap();
+        let tz = fine.tz.as_ref().unwrap();
+        let ntf = fine.nt;
+        let ntc = coarse.nt;
+        let tmp = &mut fine.tmp;
+        for a in 0..coarse.nz {
+            let c = &coarse.u[a * ntc..(a + 1) * ntc];
+            let out = &mut tmp[a * ntf..(a + 1) * ntf];
+            for i in 0..ntf {
+                let w = tt.p_w[i];
+                out[i] = (1.0 - w) * c[tt.p_lo[i]] + w * c[tt.p_hi[i]];
+            }
+        }
+        for j in 0..fine.nz {
+            let (a, b, w) = (tz.p_lo[j], tz.p_hi[j], tz.p_w[j]);
+            for i in 0..ntf {
+                let k = j * ntf + i;
+                fine.u[k] = if fine.fixed[k] == BOUNDARY {
+                    0.0
+                } else {
+                    ((1.0 - w) * tmp[a * ntf + i] + w * tmp[b * ntf + i]).max(0.0)
+                };
+            }
+        }
+    }
+}
+
+fn dot(a: &[f64], b: &[f64]) -> f64 {
+    a.iter().zip(b).map(|(x, y)| x * y).sum()
+}
+
+/// `coarse.b = Pᵀ fine.r` (full weighting for nested grids), zero at coarse fixed nodes.
+fn restrict(fine: &mut Level, coarse: &mut Level) {
+    let tt = fine.tt.as_ref().unwrap();
+    let tz = fine.tz.as_ref().unwrap();
+    let (ntf, nzf) = (fine.nt, fine.nz);
+    let ntc = coarse.nt;
+    let tmp = &mut fine.tmp;
+    tmp.fill(0.0);
+    for j in 0..nzf {
+        let (a, b, w) = (tz.p_lo[j], tz.p_hi[j], tz.p_w[j]);
+        let src = &fine.r[j * ntf..(j + 1) * ntf];
+        let wa = 1.0 - w;
+        for i in 0..ntf {
+            tmp[a * ntf + i] += wa * src[i];
+        }
+        if w != 0.0 {
+            for i in 0..ntf {
+                tmp[b * ntf + i] += w * src[i];
+            }
+        }
+    }
+    coarse.b.fill(0.0);
+    for a in 0..coarse.nz {
+        let t = &tmp[a * ntf..(a + 1) * ntf];
+        let out = &mut coarse.b[a * ntc..(a + 1) * ntc];
+        for i in 0..ntf {
+            let w = tt.p_w[i];
+            out[tt.p_lo[i]] += (1.0 - w) * t[i];
+            if w != 0.0 {
+                out[tt.p_hi[i]] += w * t[i];
+            }
+        }
+    }
+    for (v, f) in coarse.b.iter_mut().zip(&coarse.fixed) {
+        if *f != FREE {
+            *v = 0.0;
+        }
+    }
+}
+
+/// `fine.x += P coarse.x` at the free fine nodes.
+fn prolong_add(coarse: &Level, fine: &mut Level) {
+    let tt = fine.tt.as_ref().unwrap();
+    let tz = fine.tz.as_ref().unwrap();
+    let (ntf, nzf) = (fine.nt, fine.nz);
+    let ntc = coarse.nt;
+    let tmp = &mut fine.tmp;
+    for a in 0..coarse.nz {
+        let c = &coarse.x[a * ntc..(a + 1) * ntc];
+        let out = &mut tmp[a * ntf..(a + 1) * ntf];
+        for i in 0..ntf {
+            let w = tt.p_w[i];
+            out[i] = (1.0 - w) * c[tt.p_lo[i]] + w * c[tt.p_hi[i]];
+        }
+    }
+    for j in 1..nzf - 1 {
+        let (a, b, w) = (tz.p_lo[j], tz.p_hi[j], tz.p_w[j]);
+        let row = j * ntf;
+        let (ta, tb) = (&tmp[a * ntf..(a + 1) * ntf], &tmp[b * ntf..(b + 1) * ntf]);
+        let m = &fine.mask[row..row + ntf];
+        let x = &mut fine.x[row..row + ntf];
+        for i in 0..ntf {
+            x[i] += m[i] * ((1.0 - w) * ta[i] + w * tb[i]);
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn aligned_hierarchy(nt: usize, nz: usize, ld: f64, eps: f64) -> Hierarchy {
+        let alpha = 1.0 / (4.0 * ld * ld);
+        let mut h = Hierarchy::new(nt, nz, alpha, true);
+        h.set_film(&Film::aligned(eps, 0.0), 0.0);
+        h
+    }
+
+    #[test]
+    fn nested_active_set_converges_for_the_seed_case() {
+        let mut h = aligned_hierarchy(144, 49, 1.25, 0.6);
+        let rep = h.nested_solve(0, 1e-10, 30, 400);
+        assert!(rep.converged, "{rep:?}");
+        assert!(rep.residual < 1e-8, "{rep:?}");
+        assert!(h.levels[0].u.iter().all(|p| *p >= 0.0));
+    }
+
+    #[test]
+    fn active_set_matches_projected_gauss_seidel() {
+        // The same discrete LCP solved by plain projected Gauss–Seidel to round-off.
+        let mut h = aligned_hierarchy(48, 17, 1.0, 0.7);
+        let rep = h.nested_solve(0, 1e-13, 30, 400);
+        assert!(rep.converged);
+        let l = &h.levels[0];
+        let mut u = vec![0.0; l.u.len()];
+        for _ in 0..20000 {
+            for j in 1..l.nz - 1 {
+                for i in 1..l.nt {
+                    let k = j * l.nt + i;
+                    let ke = if i + 1 == l.nt { j * l.nt } else { k + 1 };
+                    let s = l.src[k] + l.nb_sum(&u, k, k - 1, ke);
+                    u[k] = (s / l.diag[k]).max(0.0);
+                }
+            }
+        }
+        let m = u.iter().fold(0.0f64, |a, b| a.max(*b));
+        for (a, b) in u.iter().zip(&l.u) {
+            assert!((a - b).abs() < 1e-9 * m, "{a} {b}");
+        }
+    }
+}

@@ -1,0 +1,276 @@
+//! Roller follower dynamics: the roller's own speed from the torque balance of seed 000 eq. 1 /
+//! seed 001 eq. 26,
+//!
+//! `I dΩ/dt = R_f F_t(u_s) − T_pin(Ω)`,   `u_s = u_c − u_f`,   `u_f = R_f Ω + u_fb`,
+//!
+//! where `F_t` is the cam–roller traction (film shear + asperity friction, from a
+//! [`FilmModel`]), `T_pin` the roller–pin friction torque ([`pin`]), `u_c` the cam surface velocity
+//! and `u_fb` the follower-surface velocity of the moving contact point (see
+//! [`crate::physics::cam::kinematics`]). Traction against slip is stiff (a thick viscous film
+//! locks the roller within microseconds), so time integration is implicit (variable-step BDF2,
+//! L-stable) and each step solves `g(Ω) = 0` for the new speed. `g` is monotone increasing in Ω,
+//! with possible jumps where a friction law is set-valued (Coulomb asperities at `u_s = 0`, a
+//! Coulomb pin at `Ω = 0`); [`monotone_root`] finds the unique root, returning the jump point
+//! itself when zero lies inside the jump (sticking).
+//!
+//! Slide-to-roll ratio (seed 000): `SRR = 2(u_c − u_r)/(u_c + u_r) = u_s/u_e`.
+
+pub mod crown;
+pub mod pin;
+pub mod point;
+
+pub use crown::{Crown, CrownedContact};
+pub use pin::{pin_torque, pin_torque_warm, PinFriction};
+pub use point::{PointBalance, PointCase};
+
+use crate::physics::film::{ContactInput, FilmModel, FilmSolution, Traction};
+use crate::physics::SolveError;
+
+/// The roller, as far as its own rotation is concerned.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct RollerParams {
+    /// Outer radius R_f, m.
+    pub radius: f64,
+    /// Moment of inertia about its axis, kg·m².
+    pub inertia: f64,
+    pub pin: PinFriction,
+}
+
+/// Root of a monotone non-decreasing function `f(x, side)` that may jump at the points `jumps`
+/// (`side` −1/+1 asks for the left/right limit there, 0 elsewhere). Returns a jump point when
+/// zero lies within its jump. `f` returns `(value, slope)`; `scale` is a typical |x|.
+pub fn monotone_root(
+    f: impl Fn(f64, i8) -> (f64, f64),
+    jumps: &[f64],
+    guess: f64,
+    scale: f64,
+) -> Result<f64, SolveError> {
+    let mut js: Vec<f64> = jumps.iter().copied().filter(|j| j.is_finite()).collect();
+    js.sort_by(|a, b| a.total_cmp(b));
+    js.dedup();
+    let mut lo: Option<f64> = None; // f(lo+) < 0
+    let mut hi: Option<f64> = None; // f(hi−) > 0
+    for &j in &js {
+        let (l, _) = f(j, -1);
+        if l > 0.0 {
+            // Root strictly left of j (f is non-decreasing): later jumps cannot hold it.
+            hi = Some(j);
+            break;
+        }
+        let (r, _) = f(j, 1);
+        if r >= 0.0 {
+            return Ok(j);
+        }
+        lo = Some(j);
+    }
+    let scale = scale.abs().max(1e-12);
+    let val = |x: f64, at_lo: bool| -> (f64, f64) {
+        if js.contains(&x) { f(x, if at_lo { 1 } else { -1 }) } else { f(x, 0) }
+    };
+    // Bracket.
+    let (mut a, mut b) = match (lo, hi) {
+        (Some(a), Some(b)) => (a, b),
+        (Some(a), None) => {
+            let mut step = scale;
+            let mut b = a.max(guess) + step;
+            let mut k = 0;
+            while val(b, false).0 <= 0.0 {
+                step *= 2.0;
+                b += step;
+                k += 1;
+                if k > 200 {
+                    return Err(SolveError::physical("roller_speed_unbounded", "no root of the roller torque balance above the bracket"));
+                }
+            }
+            (a, b)
+        }
+        (None, Some(b)) => {
+            let mut step = scale;
+            let mut a = b.min(guess) - step;
+            let mut k = 0;
+            while val(a, true).0 >= 0.0 {
+                step *= 2.0;
+                a -= step;
+                k += 1;
+                if k > 200 {
+                    return Err(SolveError::physical("roller_speed_unbounded", "no root of the roller torque balance below the bracket"));
+                }
+            }
+            (a, b)
+        }
+        (None, None) => {
+            // No jump to lean on: Newton-informed steps from the guess until the sign flips
+            // (usually the first Newton iterate brackets the root).
+            let (g0, d0) = val(guess, false);
+            if g0 == 0.0 {
+                return Ok(guess);
+            }
+            let mut step = if d0 > 0.0 { (g0 / d0).abs() * 1.5 } else { scale }.max(1e-9 * scale);
+            let dir = if g0 < 0.0 { 1.0 } else { -1.0 };
+            let mut inner = guess;
+            let mut outer = guess + dir * step;
+            let mut k = 0;
+            while (val(outer, false).0 < 0.0) == (g0 < 0.0) {
+                inner = outer;
+                step *= 2.0;
+                outer += dir * step;
+                k += 1;
+                if k > 200 {
+                    return Err(SolveError::physical("roller_speed_unbounded", "torque balance has no root"));
+                }
+            }
+            if dir > 0.0 { (inner, outer) } else { (outer, inner) }
+        }
+    };
+    // Safeguarded Newton inside (a, b): stop when the Newton step (or the bracket) is below
+    // 1e-12 of the scale — the residual is a difference of large torques, so asking for more
+    // only chases round-off.
+    let tol = 1e-12 * scale.max(a.abs()).max(b.abs());
+    let mut x = guess.clamp(a, b);
+    if x == a || x == b {
+        x = 0.5 * (a + b);
+    }
+    let mut history = Vec::new();
+    for _ in 0..100 {
+        let (g, dg) = val(x, false);
+        history.push(g.abs());
+        if g == 0.0 {
+            return Ok(x);
+        }
+        if g < 0.0 { a = x } else { b = x }
+        if b - a <= tol {
+            return Ok(0.5 * (a + b));
+        }
+        let newton = if dg > 0.0 { x - g / dg } else { f64::NAN };
+        if newton > a && newton < b {
+            if (newton - x).abs() <= tol {
+                return Ok(newton);
+            }
+            x = newton;
+        } else {
+            x = 0.5 * (a + b);
+        }
+    }
+    Err(SolveError::NotConverged {
+        solver: "roller torque balance",
+        iterations: 100,
+        residual: history.last().copied().unwrap_or(f64::NAN),
+        tolerance: tol,
+        history: history.iter().rev().take(10).rev().copied().collect(),
+    })
+}
+
+/// One implicit step of the roller speed: everything but Ω is fixed.
+pub struct SlipStep<'a> {
+    pub model: &'a dyn FilmModel,
+    pub film: &'a FilmSolution,
+    pub input: &'a ContactInput<'a>,
+    /// Cam surface velocity u_c, m/s.
+    pub cam_surface_velocity: f64,
+    /// Follower surface velocity of the contact point's own motion u_fb, m/s.
+    pub follower_surface_base: f64,
+    pub roller: &'a RollerParams,
+    /// Load on the pin, N.
+    pub pin_load: f64,
+    /// The inertia torque is approximated as `inertia_coefficient · Ω + inertia_offset` (N·m)
+    /// by the time discretisation (0 and 0 for a quasi-static balance).
+    pub inertia_coefficient: f64,
+    pub inertia_offset: f64,
+    /// Warm start of the pin's eccentricity solve (NaN: none); see [`pin_torque_warm`].
+    pub pin_warm: std::cell::Cell<f64>,
+}
+
+/// Result of a roller-speed solve.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SlipSolution {
+    /// Roller angular speed Ω, rad/s.
+    pub omega: f64,
+    /// Sliding velocity u_s = u_c − u_f, m/s.
+    pub sliding: f64,
+    /// Traction on the roller, N.
+    pub traction: Traction,
+    /// Roller–pin friction torque, N·m.
+    pub pin_torque: f64,
+}
+
+impl SlipStep<'_> {
+    fn sliding(&self, omega: f64) -> f64 {
+        self.cam_surface_velocity - self.follower_surface_base - self.roller.radius * omega
+    }
+    /// Speed at which the roller rolls without sliding.
+    pub fn rolling_speed(&self) -> f64 {
+        (self.cam_surface_velocity - self.follower_surface_base) / self.roller.radius
+    }
+    fn residual(&self, omega: f64, side: i8) -> (f64, f64) {
+        let rf = self.roller.radius;
+        let us = self.sliding(omega);
+        let t = self.model.traction(self.film, self.input, us);
+        let roll = self.rolling_speed();
+        // Traction jump at u_s = 0 (Ω = Ω_roll): left of it u_s > 0.
+        let ft = if omega == roll && side != 0 { -(side as f64) * t.stick_limit + t.force } else { t.force };
+        let pin_side = if omega == 0.0 { side } else { 0 };
+        let (tp, dtp) = pin_torque_warm(&self.roller.pin, omega, self.pin_load, pin_side, &self.pin_warm);
+        (
+            self.inertia_coefficient * omega + self.inertia_offset - rf * ft + tp,
+            self.inertia_coefficient + rf * rf * t.slope + dtp,
+        )
+    }
+
+    /// Solve for Ω, starting the search at `guess`.
+    pub fn solve(&self, guess: f64) -> Result<SlipSolution, SolveError> {
+        let roll = self.rolling_speed();
+        let scale = roll.abs().max(guess.abs()).max(1e-6);
+        // Jumps: the Coulomb pin at Ω = 0; the rolling speed when asperities can stick.
+        let stick = self.model.traction(self.film, self.input, 0.0).stick_limit > 0.0;
+        let mut jumps = [f64::NAN, f64::NAN];
+        if stick {
+            jumps[0] = roll;
+        }
+        if matches!(self.roller.pin, PinFriction::Coefficient { .. }) {
+            jumps[1] = 0.0;
+        }
+        let omega = monotone_root(|x, s| self.residual(x, s), &jumps, guess, scale)?;
+        let us = self.sliding(omega);
+        let mut traction = self.model.traction(self.film, self.input, us);
+        if omega == roll {
+            // Stuck: the asperities carry whatever the balance requires.
+            let (tp, _) = pin_torque_warm(&self.roller.pin, omega, self.pin_load, 0, &self.pin_warm);
+            traction.force = (self.inertia_coefficient * omega + self.inertia_offset + tp) / self.roller.radius;
+        }
+        let (tp, _) = pin_torque_warm(&self.roller.pin, omega, self.pin_load, 0, &self.pin_warm);
+        let pin = if omega == 0.0 {
+            // Stuck on the pin: the pin carries the rest of the balance.
+            self.roller.radius * traction.force - self.inertia_offset
+        } else {
+            tp
+        };
+        Ok(SlipSolution { omega, sliding: us, traction, pin_torque: pin })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn monotone_root_finds_smooth_roots_and_sticks_inside_jumps() {
+        let f = |x: f64, _s: i8| (x * x * x + x - 2.0, 3.0 * x * x + 1.0);
+        let r = monotone_root(f, &[], 0.0, 1.0).unwrap();
+        assert!((r - 1.0).abs() < 1e-12);
+        // Coulomb-like jump at 0.5: f = x − 0.4 + 0.3 sign(x − 0.5): −0.2 → +0.4 at x = 0.5.
+        let g = |x: f64, s: i8| {
+            let sg = if x > 0.5 { 1.0 } else if x < 0.5 { -1.0 } else { s as f64 };
+            (x - 0.4 + 0.3 * sg, 1.0)
+        };
+        assert_eq!(monotone_root(g, &[0.5], 0.0, 1.0).unwrap(), 0.5);
+        // Shifted so that the root lies on the right branch: x − 1.0 + 0.3 sign → root 0.7.
+        let h = |x: f64, s: i8| {
+            let sg = if x > 0.5 { 1.0 } else if x < 0.5 { -1.0 } else { s as f64 };
+            (x - 1.0 + 0.3 * sg, 1.0)
+        };
+        assert!((monotone_root(h, &[0.5], 0.0, 1.0).unwrap() - 0.7).abs() < 1e-12);
+        // Stiff: slope 1e12 around the root.
+        let k = |x: f64, _s: i8| (1e12 * (x - 3.0) + (x - 3.0).powi(3), 1e12 + 3.0 * (x - 3.0).powi(2));
+        assert!((monotone_root(k, &[], 0.0, 1.0).unwrap() - 3.0).abs() < 1e-11);
+    }
+}

@@ -1,0 +1,158 @@
+//! Friction torque of the roller–pin contact (the roller turning on a stationary pin).
+//!
+//! * [`PinFriction::Coefficient`]: a constant friction coefficient, `T = μ_rp R_pin W sign(Ω)`
+//!   (seed 001 eq. 26); set-valued at Ω = 0 (the roller sticks to the pin until the driving torque
+//!   exceeds `μ_rp R_pin W`).
+//! * [`PinFriction::ShortBearing`]: a hydrodynamic journal bearing in Ocvirk's short-bearing
+//!   approximation (Hamrock, *Fundamentals of Fluid Film Lubrication*, ch. 10), standing in for
+//!   seed 000's finite-length solution (eq. 10–13): eccentricity ε from the load
+//!   `W = (η U L³/(4c²)) ε √(π²(1 − ε²) + 16ε²)/(1 − ε²)²`, `U = R Ω`, and the torque on the
+//!   rotating member `T = 2πηR³LΩ/(c√(1 − ε²)) + (c ε W/2) sin φ`,
+//!   `tan φ = π√(1 − ε²)/(4ε)`. Valid for `L/D ≲ 1` (seed 000: 14/32 = 0.44) and moderate ε;
+//!   near Ω → 0 the film collapses (ε → 1) and the torque tends to 0 — a real pin then runs in
+//!   mixed friction, which this model does not include. Rotating bush and rotating journal have
+//!   the same pressure field (the film shape is fixed by the load direction); the driven member
+//!   carries the `+` sign of the load-moment term in both cases.
+
+/// Roller–pin friction model.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum PinFriction {
+    /// Constant coefficient μ_rp on the pin radius.
+    Coefficient { coefficient: f64, pin_radius: f64 },
+    /// Short hydrodynamic bearing.
+    ShortBearing {
+        /// Pin radius R, m.
+        pin_radius: f64,
+        /// Radial clearance c, m.
+        clearance: f64,
+        /// Bearing length L, m.
+        length: f64,
+        /// Oil viscosity in the bearing, Pa·s.
+        viscosity: f64,
+    },
+}
+
+/// Torque (N·m, opposing the roller's rotation: same sign as Ω) and dT/dΩ (N·m·s) at roller
+/// speed `omega` (rad/s) and pin load `load` (N). `side` selects the one-sided limit at Ω = 0
+/// (−1 left, +1 right, 0 the value 0).
+pub fn pin_torque(pin: &PinFriction, omega: f64, load: f64, side: i8) -> (f64, f64) {
+    pin_torque_warm(pin, omega, load, side, &std::cell::Cell::new(f64::NAN))
+}
+
+/// [`pin_torque`] with a warm start for the short bearing's eccentricity solve: `warm` holds the
+/// last `q = −ln(1 − ε)` (NaN: none) and is updated. Inside one torque-balance solve the load is
+/// fixed and Ω barely changes, so Newton then needs one or two steps.
+pub fn pin_torque_warm(pin: &PinFriction, omega: f64, load: f64, side: i8, warm: &std::cell::Cell<f64>) -> (f64, f64) {
+    match *pin {
+        PinFriction::Coefficient { coefficient, pin_radius } => {
+            let t = coefficient * pin_radius * load.abs();
+            let sign = if omega > 0.0 { 1.0 } else if omega < 0.0 { -1.0 } else { side as f64 };
+            (t * sign, 0.0)
+        }
+        PinFriction::ShortBearing { .. } => {
+            if omega == 0.0 {
+                return (0.0, 0.0);
+            }
+            let t = short_bearing_torque(pin, omega.abs(), load.abs(), warm);
+            // The torque grows like Ω^p with 3/4 ≤ p ≤ 1 (Petroff at light load): T/Ω is a
+            // secant slope, enough for the safeguarded Newton of the torque balance.
+            (t * omega.signum(), t / omega.abs())
+        }
+    }
+}
+
+/// Eccentricity ratio of the short bearing for Sommerfeld-like target `s = 4c²W/(ηUL³)`.
+pub fn short_bearing_eccentricity(s: f64) -> f64 {
+    eccentricity_q(s, f64::NAN).0
+}
+
+/// `(ε, q = −ln(1 − ε))` for target `s`, Newton from `q_start` when finite.
+fn eccentricity_q(s: f64, q_start: f64) -> (f64, f64) {
+    if !(s > 0.0) {
+        return (0.0, 0.0);
+    }
+    let pi2 = std::f64::consts::PI * std::f64::consts::PI;
+    // Newton on q = −ln(1 − ε) (resolves ε → 1) for f(ε(q)) = s, safeguarded by bisection on
+    // [0, 40]; d ln f/dq = (1 − ε)(1/ε + (16 − π²)ε/A + 4ε/(1 − ε²)).
+    let (mut lo, mut hi) = (0.0_f64, 40.0_f64);
+    // Start from the asymptotes: f ≈ πε (light load), f ≈ 4/(1 − ε²)² (heavy load).
+    let mut q = if q_start.is_finite() && q_start > 0.0 {
+        q_start
+    } else if s < 1.0 { -(-(s / std::f64::consts::PI).min(0.5)).ln_1p() } else { -(1.0 - (1.0 - 2.0 / s.sqrt()).max(0.0).sqrt()).max(1e-17).ln() };
+    q = q.clamp(1e-12, 39.0);
+    for _ in 0..100 {
+        let e = -(-q).exp_m1();
+        let e2 = e * e;
+        let a = pi2 + (16.0 - pi2) * e2;
+        let one_m = 1.0 - e2;
+        // Newton on f − s (no logarithm per step): d(f − s)/dq = f · d ln f/dq.
+        let f = e * a.sqrt() / (one_m * one_m);
+        let g = f - s;
+        if g.abs() < 1e-13 * s {
+            break;
+        }
+        if g < 0.0 { lo = q } else { hi = q }
+        let dg = f * (1.0 - e) * (1.0 / e + (16.0 - pi2) * e / a + 4.0 * e / one_m);
+        // Far from the root the logarithmic step is the robust one.
+        let next = if (g / s).abs() > 0.5 { q - (f / s).ln() / (dg / f) } else { q - g / dg };
+        let next = if next > lo && next < hi && dg > 0.0 { next } else { 0.5 * (lo + hi) };
+        let done = (next - q).abs() < 1e-11 * q.max(1e-9) || hi - lo < 1e-14;
+        q = next;
+        if done {
+            break;
+        }
+    }
+    (-(-q).exp_m1(), q)
+}
+
+fn short_bearing_torque(pin: &PinFriction, omega: f64, load: f64, warm: &std::cell::Cell<f64>) -> f64 {
+    let PinFriction::ShortBearing { pin_radius: r, clearance: c, length: l, viscosity: eta } = *pin else {
+        return 0.0;
+    };
+    if omega <= 0.0 {
+        return 0.0;
+    }
+    let u = r * omega;
+    let (e, q) = eccentricity_q(4.0 * c * c * load / (eta * u * l * l * l), warm.get());
+    warm.set(q);
+    let root = (1.0 - e * e).sqrt();
+    let pi = std::f64::consts::PI;
+    let a = (pi * pi * (1.0 - e * e) + 16.0 * e * e).sqrt();
+    let sin_phi = pi * root / a;
+    2.0 * pi * eta * r * r * r * l * omega / (c * root) + 0.5 * c * e * load * sin_phi
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn unloaded_short_bearing_is_petroff() {
+        let pin = PinFriction::ShortBearing { pin_radius: 0.016, clearance: 10e-6, length: 0.014, viscosity: 0.152 };
+        let (t, s) = pin_torque(&pin, 100.0, 0.0, 0);
+        let petroff = 2.0 * std::f64::consts::PI * 0.152 * 0.016f64.powi(3) * 0.014 * 100.0 / 10e-6;
+        assert!((t / petroff - 1.0).abs() < 1e-9, "{t} vs {petroff}");
+        assert!((s / (petroff / 100.0) - 1.0).abs() < 1e-9);
+    }
+
+    #[test]
+    fn eccentricity_inverts_the_load_relation() {
+        let pi2 = std::f64::consts::PI.powi(2);
+        for e in [0.05, 0.3, 0.6, 0.9, 0.99] {
+            let s = e * (pi2 * (1.0 - e * e) + 16.0 * e * e).sqrt() / (1.0 - e * e).powi(2);
+            assert!((short_bearing_eccentricity(s) - e).abs() < 1e-10, "ε = {e}");
+        }
+        // Load raises eccentricity and torque.
+        let pin = PinFriction::ShortBearing { pin_radius: 0.016, clearance: 10e-6, length: 0.014, viscosity: 0.152 };
+        assert!(pin_torque(&pin, 100.0, 5000.0, 0).0 > pin_torque(&pin, 100.0, 100.0, 0).0);
+        assert_eq!(pin_torque(&pin, 0.0, 5000.0, 1).0, 0.0);
+    }
+
+    #[test]
+    fn coefficient_pin_is_coulomb() {
+        let pin = PinFriction::Coefficient { coefficient: 0.01, pin_radius: 0.0091 };
+        assert_eq!(pin_torque(&pin, 3.0, 1000.0, 0).0, 0.091);
+        assert_eq!(pin_torque(&pin, 0.0, 1000.0, -1).0, -0.091);
+        assert_eq!(pin_torque(&pin, 0.0, 1000.0, 0).0, 0.0);
+    }
+}

@@ -1,0 +1,145 @@
+//! Point analysis of a roller follower (seed 001): the quasi-static torque balance of eq. 26 at a
+//! fixed operating point (load, reduced radius, cam surface speed),
+//!
+//! `R_f F_t(u_s) = μ_rp R_pin F + I ω̇_r`,
+//!
+//! solved for the sliding velocity `u_s` (the film is re-solved at the entrainment
+//! `u_e = u_c − u_s/2` until it is consistent). The contact point is taken as fixed (no
+//! curvature-driven motion around the roller), as in seed 001.
+//!
+//! Thresholds:
+//! * Coulomb asperities stick up to `μ_b W_a`: below the pin friction
+//!   `μ_rp* = (R_f μ_b W_a − I ω̇)/(R_pin F)` the roller rolls without sliding (SRR = 0); the
+//!   minimum cam–roller friction that still drives the roller is then `μ_b W_a/F` (seed 001's
+//!   "gross sliding" case).
+//! * Carter asperities creep: any resisting torque gives SRR > 0; the asperity share slides
+//!   grossly from SRR = ξ_c = μ_b b/R, reached at the pin friction reported as the gross-sliding
+//!   threshold.
+
+use super::monotone_root;
+use crate::physics::film::{ContactInput, FilmModel, FilmSolution, Traction};
+use crate::physics::friction::AsperityModel;
+use crate::physics::SolveError;
+
+/// A fixed operating point of a roller follower.
+#[derive(Clone, Copy)]
+pub struct PointCase<'a> {
+    pub model: &'a dyn FilmModel,
+    /// Contact description; `entrainment_velocity` and `sliding_velocity` are overwritten.
+    pub input: ContactInput<'a>,
+    /// Cam surface velocity u_c, m/s (> 0).
+    pub cam_surface_velocity: f64,
+    /// Roller outer radius R_f, m.
+    pub roller_radius: f64,
+    /// Pin radius, m.
+    pub pin_radius: f64,
+    /// Inertia torque I ω̇_r, N·m.
+    pub inertia_torque: f64,
+}
+
+/// The balance at one roller–pin friction coefficient.
+#[derive(Debug, Clone, PartialEq)]
+pub struct PointBalance {
+    pub pin_friction: f64,
+    /// u_s = u_c − u_r, m/s.
+    pub sliding_velocity: f64,
+    pub slide_roll_ratio: f64,
+    /// Required cam–roller friction coefficient F_t/F.
+    pub cam_roller_friction: f64,
+    pub traction: Traction,
+    pub film: FilmSolution,
+    /// The asperities stick: the roller rolls without sliding.
+    pub sticking: bool,
+}
+
+impl PointCase<'_> {
+    /// The film at sliding velocity `sliding`; `warm` (a solution at a nearby sliding velocity,
+    /// no time step: not a squeeze history) lets a numerical model start from it.
+    fn film_at(&self, sliding: f64, warm: Option<&FilmSolution>) -> Result<FilmSolution, SolveError> {
+        let mut input = self.input;
+        input.entrainment_velocity = self.cam_surface_velocity - 0.5 * sliding;
+        input.sliding_velocity = sliding;
+        input.time_step = 0.0;
+        self.model.solve(&input, warm)
+    }
+
+    fn input_at(&self, sliding: f64) -> ContactInput<'_> {
+        let mut input = self.input;
+        input.entrainment_velocity = self.cam_surface_velocity - 0.5 * sliding;
+        input.sliding_velocity = sliding;
+        input
+    }
+
+    /// Solve the balance for roller–pin friction `mu_rp`.
+    pub fn balance(&self, mu_rp: f64) -> Result<PointBalance, SolveError> {
+        let load = self.input.load;
+        let required = (mu_rp * self.pin_radius * load + self.inertia_torque) / self.roller_radius;
+        let uc = self.cam_surface_velocity;
+        let mut us = 0.0;
+        let mut film = self.film_at(0.0, None)?;
+        for _ in 0..20 {
+            let input = self.input_at(us);
+            let stick = self.model.traction(&film, &input, 0.0).stick_limit;
+            let jumps = [if stick > 0.0 { 0.0 } else { f64::NAN }];
+            let f = |x: f64, side: i8| {
+                let inp = self.input_at(x);
+                let t = self.model.traction(&film, &inp, x);
+                let v = if x == 0.0 && side != 0 { t.force + side as f64 * t.stick_limit } else { t.force };
+                (v - required, t.slope)
+            };
+            let next = monotone_root(f, &jumps, us, uc.abs().max(1e-6) * 1e-3)?;
+            let converged = (next - us).abs() <= 1e-10 * uc.abs().max(1e-12);
+            us = next;
+            film = self.film_at(us, Some(&film))?;
+            if converged {
+                break;
+            }
+        }
+        let input = self.input_at(us);
+        let mut traction = self.model.traction(&film, &input, us);
+        let sticking = us == 0.0 && required != 0.0;
+        if us == 0.0 {
+            traction.force = required;
+        }
+        let ur = uc - us;
+        Ok(PointBalance {
+            pin_friction: mu_rp,
+            sliding_velocity: us,
+            slide_roll_ratio: crate::physics::cam::cycle::slide_roll_ratio(uc, ur),
+            cam_roller_friction: traction.force / load,
+            traction,
+            film,
+            sticking,
+        })
+    }
+
+    /// Roller–pin friction at which the asperity traction saturates: the stick limit for
+    /// Coulomb asperities, gross sliding (SRR = ξ_c) for Carter. `None` without asperity load.
+    pub fn gross_sliding_pin_friction(&self) -> Result<Option<f64>, SolveError> {
+        let film = self.film_at(0.0, None)?;
+        let load = self.input.load;
+        if film.asperity.load <= 0.0 {
+            return Ok(None);
+        }
+        let traction = match self.input.asperity_friction.model {
+            AsperityModel::Coulomb => self.input.asperity_friction.coefficient * film.asperity.load,
+            AsperityModel::Carter => {
+                let xc = film.asperity.gross_sliding_creep;
+                let us = xc * self.cam_surface_velocity / (1.0 + 0.5 * xc);
+                let film = self.film_at(us, Some(&film))?;
+                self.model.traction(&film, &self.input_at(us), us).force
+            }
+        };
+        Ok(Some((self.roller_radius * traction - self.inertia_torque) / (self.pin_radius * load)))
+    }
+
+    /// Minimum cam–roller friction coefficient that still drives the roller (seed 001): the
+    /// asperities' stick capacity `μ_b W_a/F` for Coulomb asperities, 0 otherwise.
+    pub fn min_cam_roller_friction(&self) -> Result<f64, SolveError> {
+        let film = self.film_at(0.0, None)?;
+        Ok(match self.input.asperity_friction.model {
+            AsperityModel::Coulomb => self.input.asperity_friction.coefficient * film.asperity.load / self.input.load,
+            AsperityModel::Carter => 0.0,
+        })
+    }
+}
