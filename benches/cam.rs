@@ -159,8 +159,8 @@ fn fidelity_table(flat: &Value, roller: &Value) {
     let max_rel = |a: &[f64], b: &[f64]| a.iter().zip(b).map(|(x, y)| ((x - y) / y).abs()).fold(0.0, f64::max);
     let mean_rel = |a: &[f64], b: &[f64]| a.iter().zip(b).map(|(x, y)| ((x - y) / y).abs()).sum::<f64>() / a.len() as f64;
     let summary = |out: &Value, key: &str| out["summary"][key].as_f64();
-    println!("\n## Film models: time and error at 720 angles (release, one thread)\n");
-    println!("Errors against `accurate` with 384 nodes, tolerance 1e-8. Film errors: largest (mean) relative deviation over the angles.\n");
+    println!("\n## Film models: time and error at 720 angles (release; Richardson runs its two grids on two threads)\n");
+    println!("Errors against `accurate` with Richardson extrapolation of 384 + 767 nodes, tolerance 1e-8. Film errors: largest (mean) relative deviation over the angles.\n");
     println!("| case | fidelity | nodes | numerical angles | time (s) | h_c error | h_min error | other |");
     println!("| --- | --- | ---: | ---: | ---: | --- | --- | --- |");
     let flat_ph = with(flat, |s| s["film"] = serde_json::json!({"formula": "pan_hamrock"}));
@@ -173,28 +173,32 @@ fn fidelity_table(flat: &Value, roller: &Value) {
         let base = with(spec, |s| s["angles"] = 720.into());
         let reference_spec = with(&base, |s| {
             s["fidelity"] = "accurate".into();
-            s["ehl"] = serde_json::json!({"nodes": 384, "tolerance": 1e-8});
+            s["ehl"] = serde_json::json!({"nodes": 767, "tolerance": 1e-8, "extrapolation": "richardson"});
         });
         let (t_ref, reference) = job(&reference_spec, 1);
         let closed_only = name.contains("Pan–Hamrock");
-        let runs: Vec<(&str, usize, f64, usize)> = if closed_only {
-            vec![("fast", 0, 0.0, 5), ("auto", 192, 0.05, 1), ("auto", 192, 0.25, 1), ("auto", 192, 1.0, 1)]
+        // (fidelity, nodes, auto tolerance, Richardson extrapolation, repetitions)
+        let runs: Vec<(&str, usize, f64, bool, usize)> = if closed_only {
+            vec![("fast", 0, 0.0, true, 5), ("auto", 192, 0.05, true, 2), ("auto", 192, 0.25, true, 2), ("auto", 192, 1.0, true, 2)]
         } else {
             vec![
-            ("fast", 0, 0.0, 5),
-            ("auto", 192, 0.05, 1),
-            ("auto", 192, 0.25, 1),
-            ("accurate", 96, 0.0, 1),
-            ("accurate", 128, 0.0, 1),
-            ("accurate", 192, 0.0, 1),
-            ("accurate", 256, 0.0, 1),
-        ]
+                ("fast", 0, 0.0, true, 5),
+                ("auto", 192, 0.05, true, 2),
+                ("auto", 192, 0.25, true, 2),
+                ("accurate", 96, 0.0, true, 2),
+                ("accurate", 128, 0.0, true, 2),
+                ("accurate", 192, 0.0, true, 2),
+                ("accurate", 192, 0.0, false, 2),
+                ("accurate", 256, 0.0, true, 2),
+                ("accurate", 384, 0.0, true, 1),
+            ]
         };
-        for (fidelity, nodes, tol, reps) in runs {
+        for (fidelity, nodes, tol, richardson, reps) in runs {
             let s = with(&base, |s| {
                 s["fidelity"] = fidelity.into();
                 if nodes > 0 {
-                    s["ehl"] = serde_json::json!({"nodes": nodes, "tolerance": 1e-6, "auto_tolerance": tol});
+                    let extrapolation = if richardson { "richardson" } else { "none" };
+                    s["ehl"] = serde_json::json!({"nodes": nodes, "tolerance": 1e-6, "auto_tolerance": tol, "extrapolation": extrapolation});
                 }
             });
             let (ms, out) = job(&s, reps);
@@ -208,7 +212,11 @@ fn fidelity_table(flat: &Value, roller: &Value) {
                     _ => format!("{m} –"),
                 })
                 .collect();
-            let label = if fidelity == "auto" { format!("auto (tol {tol})") } else { fidelity.to_string() };
+            let label = match (fidelity, richardson) {
+                ("auto", _) => format!("auto (tol {tol})"),
+                (_, false) if nodes > 0 => format!("{fidelity}, one grid"),
+                _ => fidelity.to_string(),
+            };
             println!(
                 "| {name} | {label} | {} | {numerical} | {:.2} | {:.1} % ({:.1} %) | {:.1} % ({:.1} %) | {} |",
                 if nodes > 0 { nodes.to_string() } else { "–".into() },
@@ -220,7 +228,7 @@ fn fidelity_table(flat: &Value, roller: &Value) {
                 others.join("; ")
             );
         }
-        println!("| {name} | reference (accurate) | 384 | 720 | {:.2} | 0 | 0 | |", t_ref / 1e3);
+        println!("| {name} | reference (accurate) | 767 | 720 | {:.2} | 0 | 0 | |", t_ref / 1e3);
     }
 }
 
@@ -274,7 +282,7 @@ fn auto_tables() {
     let rough = Roughness { sigma: 0.0, eta_beta_sigma: 0.04, sigma_over_beta: 0.001 };
     let asp = AsperityFriction { coefficient: 0.1, model: AsperityModel::Coulomb };
     let fast = ClosedForm { formula: FilmFormula::PanHamrock, squeeze: false };
-    let num = Numerical { options: EhlOptions { nodes: 256, tolerance: 1e-8, ..Default::default() }, fallback: fast };
+    let num = Numerical::new(EhlOptions { nodes: 256, tolerance: 1e-8, ..Default::default() }, fast);
     for (label, law) in [
         ("Newtonian", TractionLaw { rheology: Rheology::Newtonian, limiting_shear_coefficient: None }),
         ("Eyring τ0 = 5 MPa, SRR 0.01", TractionLaw { rheology: Rheology::Eyring { tau0: 5e6 }, limiting_shear_coefficient: None }),

@@ -273,7 +273,7 @@ proptest! {
         let law = TractionLaw { rheology: Rheology::Eyring { tau0: 5e6 }, limiting_shear_coefficient: None };
         let asp = AsperityFriction { coefficient: 0.1, model: AsperityModel::Coulomb };
         let fast = ClosedForm { formula: FilmFormula::PanHamrock, squeeze: false };
-        let numerical = Numerical { options: EhlOptions { nodes: 64, tolerance: 1e-6, ..EhlOptions::default() }, fallback: fast };
+        let numerical = Numerical::new(EhlOptions { nodes: 64, tolerance: 1e-6, ..EhlOptions::default() }, fast);
         let model: Box<dyn FilmModel> = if auto { Box::new(Auto { fast, numerical, tolerance: 0.05 }) } else { Box::new(numerical) };
         let mut prev: Option<FilmSolution> = None;
         for k in 0..4 {

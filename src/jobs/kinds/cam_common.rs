@@ -2,7 +2,7 @@
 //! film options, and their conversion to `physics` types.
 
 use crate::jobs::kind::{Limits, Validation};
-use crate::physics::ehl::EhlOptions;
+use crate::physics::ehl::{EhlOptions, Extrapolation};
 use crate::physics::film::{AccurateSettings, ClosedForm, FilmFormula};
 use crate::physics::friction::{AsperityFriction, AsperityModel, Rheology, Roughness, TractionLaw};
 use crate::physics::lubricant::{DensityModel, Lubricant, ViscosityModel};
@@ -257,9 +257,11 @@ fn default_auto_tolerance() -> f64 {
 #[serde(deny_unknown_fields)]
 pub struct EhlSpec {
     /// Grid nodes per contact (graded towards the inlet and the exit constriction), 32 … the
-    /// server's grid limit. Default 192: central and minimum film within ≈ 3 % of the
-    /// grid-converged film near entrainment reversal, ≈ 1 % elsewhere (BENCHMARKS.md); 384 for
-    /// ≈ 0.5 %. The cost grows like nodes^2.5.
+    /// server's grid limit; with Richardson extrapolation the fine grid. Default 192: measured on
+    /// the seed 000 roller cycle against the grid-converged cycle, central and minimum films within
+    /// 0.5–0.6 % on average and 1.9 % at worst with Richardson extrapolation (3 % / 4.4 % on one
+    /// grid); 385 for ≈ 0.1–0.2 % on average (BENCHMARKS.md, "Film models"). The cost grows like
+    /// nodes^1.5–2.
     #[serde(default = "default_ehl_nodes")]
     pub nodes: usize,
     /// Residual tolerance of the Newton iteration (relative load balance and scaled Reynolds
@@ -273,6 +275,22 @@ pub struct EhlSpec {
     /// solver runs where the estimate exceeds it. Default 0.05.
     #[serde(default = "default_auto_tolerance")]
     pub auto_tolerance: f64,
+    /// `richardson` (default): solve every contact on `nodes` and `(nodes − 1)/2 + 1` nodes of
+    /// one grid layout (two threads) and extrapolate the second-order discretisation error out of
+    /// the central, minimum and exit films and the traction; `none`: one grid of `nodes`.
+    #[serde(default)]
+    pub extrapolation: ExtrapolationSpec,
+}
+
+/// Grid extrapolation of the numerical EHL solver.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize, ToSchema)]
+#[serde(rename_all = "snake_case")]
+pub enum ExtrapolationSpec {
+    /// Richardson extrapolation of two grids (default).
+    #[default]
+    Richardson,
+    /// One grid.
+    None,
 }
 
 impl Default for EhlSpec {
@@ -282,6 +300,7 @@ impl Default for EhlSpec {
             tolerance: default_ehl_tolerance(),
             max_iterations: default_ehl_iterations(),
             auto_tolerance: default_auto_tolerance(),
+            extrapolation: ExtrapolationSpec::default(),
         }
     }
 }
@@ -296,6 +315,10 @@ impl EhlSpec {
                 ..EhlOptions::default()
             },
             auto_tolerance: self.auto_tolerance,
+            extrapolation: match self.extrapolation {
+                ExtrapolationSpec::Richardson => Extrapolation::Richardson,
+                ExtrapolationSpec::None => Extrapolation::None,
+            },
         }
     }
     pub fn validate(&self, path: &str, limits: &Limits, v: &mut Validation) {

@@ -49,7 +49,7 @@ pub mod transient;
 
 pub use newton::{solve, SolverStats};
 pub use traction::{Rheology, TractionResult};
-pub use transient::{Extrapolation, TransientSolver};
+pub use transient::{Extrapolation, ReusableSolver, RichardsonSolution, TransientSolver};
 
 use crate::physics::lubricant::Lubricant;
 use crate::physics::Convergence;

@@ -222,24 +222,7 @@ impl TransientSolver {
         );
         let mut f = f?;
         match c {
-            Ok(c) => {
-                let r = (f.nodes - 1) as f64 / (c.nodes - 1) as f64;
-                let k = 1.0 / (r * r - 1.0);
-                let ex = |a: f64, b: f64| a + (a - b) * k;
-                let (hc, hm, he) = (ex(f.central_film, c.central_film), ex(f.min_film, c.min_film), ex(f.exit_film, c.exit_film));
-                // Extrapolate when the films stay positive; keep the minimum the smallest film
-                // (the two grids may place a flat minimum at different nodes).
-                if hm > 0.0 && hc > 0.0 && he > 0.0 && hc.is_finite() && hm.is_finite() && he.is_finite() {
-                    f.central_film = hc;
-                    f.exit_film = he;
-                    f.min_film = hm.min(hc).min(he);
-                    let (tf, tc) = (&mut f.traction, &c.traction);
-                    tf.force_body_1 = ex(tf.force_body_1, tc.force_body_1);
-                    tf.force_body_2 = ex(tf.force_body_2, tc.force_body_2);
-                    tf.friction_coefficient = ex(tf.friction_coefficient, tc.friction_coefficient);
-                    tf.rolling_force = ex(tf.rolling_force, tc.rolling_force);
-                }
-            }
+            Ok(c) => extrapolate(&mut f, &c),
             Err(SolveError::Interrupted(i)) => return Err(SolveError::Interrupted(i)),
             Err(_) => {
                 // The coarse grid failed where the fine one converged: continue its march from
@@ -251,8 +234,7 @@ impl TransientSolver {
         Ok(f)
     }
 
-    /// The grid layout of the next step: kept while the entrainment direction is unchanged and
-    /// the film estimate stays within [`LAYOUT_BAND`] of the design film.
+    /// The grid layout of the next step (see [`next_layout`]).
     fn layout_for(&mut self, input: &EhlInput, time_step: Option<f64>) -> Layout {
         let mut inp = *input;
         inp.transient = None;
@@ -262,18 +244,151 @@ impl TransientSolver {
         } else if let Some(prev) = &self.fine.state {
             inp.warm_start = Some(prev);
         }
-        let (h_est, dir) = film_estimate(&inp);
-        let o = &self.fine.options;
-        if let Some(l) = self.layout {
-            let ratio = h_est / l.h_design;
-            if l.dir == dir && ratio <= LAYOUT_BAND && ratio >= 1.0 / LAYOUT_BAND && l.grading == o.grading {
-                return l;
+        next_layout(&mut self.layout, &mut self.layout_changes, &inp, &self.fine.options)
+    }
+}
+
+/// Richardson extrapolation of the fine solution `f` with the coarse solution `c` on the same
+/// layout (second-order discretisation error): `f_n + (f_n − f_c)/(r² − 1)`, `r` the grid ratio,
+/// for the central, minimum and exit films and the traction forces. Kept unextrapolated when an
+/// extrapolated film would not be positive and finite.
+fn extrapolate(f: &mut EhlSolution, c: &EhlSolution) {
+    let r = (f.nodes - 1) as f64 / (c.nodes - 1) as f64;
+    let k = 1.0 / (r * r - 1.0);
+    let ex = |a: f64, b: f64| a + (a - b) * k;
+    let (hc, hm, he) = (ex(f.central_film, c.central_film), ex(f.min_film, c.min_film), ex(f.exit_film, c.exit_film));
+    // Extrapolate when the films stay positive; keep the minimum the smallest film (the two
+    // grids may place a flat minimum at different nodes).
+    if hm > 0.0 && hc > 0.0 && he > 0.0 && hc.is_finite() && hm.is_finite() && he.is_finite() {
+        f.central_film = hc;
+        f.exit_film = he;
+        f.min_film = hm.min(hc).min(he);
+        let (tf, tc) = (&mut f.traction, &c.traction);
+        tf.force_body_1 = ex(tf.force_body_1, tc.force_body_1);
+        tf.force_body_2 = ex(tf.force_body_2, tc.force_body_2);
+        tf.friction_coefficient = ex(tf.friction_coefficient, tc.friction_coefficient);
+        tf.rolling_force = ex(tf.rolling_force, tc.rolling_force);
+    }
+}
+
+/// The grid layout for `input`: the `current` one while the entrainment direction is unchanged
+/// and the film estimate stays within [`LAYOUT_BAND`] of its design film; otherwise a new one
+/// (stored in `current`, counted in `changes`).
+fn next_layout(current: &mut Option<Layout>, changes: &mut u64, input: &EhlInput, options: &EhlOptions) -> Layout {
+    let (h_est, dir) = film_estimate(input);
+    if let Some(l) = *current {
+        let ratio = h_est / l.h_design;
+        if l.dir == dir && ratio <= LAYOUT_BAND && ratio >= 1.0 / LAYOUT_BAND && l.grading == options.grading {
+            return l;
+        }
+    }
+    let l = Layout::for_film(h_est, dir, options.inlet, options.outlet, options.grading);
+    *current = Some(l);
+    *changes += 1;
+    l
+}
+
+/// One solver reused for independent problems whose state travels with the input (the
+/// `accurate` film model of a cam cycle, which receives the previous angle's solution with each
+/// call): grids and their influence matrices, the Newton workspaces and the kept LU factors
+/// survive between calls, and the grid layout is kept while the film estimate stays within
+/// [`LAYOUT_BAND`] of the one it was graded for — what [`TransientSolver`] does, without holding
+/// the state itself (so a caller may re-solve a step or skip angles). Results agree with
+/// [`super::solve`] to the discretisation error of the grid (the grading differs by at most the
+/// layout band). [`solve_richardson`](Self::solve_richardson) marches a second, coarse grid
+/// whose state the caller carries too.
+#[derive(Default)]
+pub struct ReusableSolver {
+    fine: Option<Engine>,
+    coarse: Option<Engine>,
+    layout: Option<Layout>,
+    layout_changes: u64,
+}
+
+/// A Richardson-extrapolated solve of [`ReusableSolver::solve_richardson`].
+#[derive(Debug, Clone)]
+pub struct RichardsonSolution {
+    /// The fine grid's solution with extrapolated films and traction forces (fields, pressures,
+    /// spike and state are the fine grid's).
+    pub solution: EhlSolution,
+    /// The coarse grid's state, to pass back with the next step (`None` when the coarse grid
+    /// failed; the step is then not extrapolated).
+    pub coarse_state: Option<EhlState>,
+}
+
+impl ReusableSolver {
+    /// An empty solver (caches are built by the first solve).
+    pub fn new() -> Self {
+        Self::default()
+    }
+
+    /// Solve `input` (steady, or a squeeze step when `input.transient` is set) like
+    /// [`super::solve`], with the caches of earlier calls.
+    pub fn solve(&mut self, input: &EhlInput, options: &EhlOptions, observer: &dyn Observer) -> Result<EhlSolution, SolveError> {
+        let layout = next_layout(&mut self.layout, &mut self.layout_changes, input, options);
+        self.fine.get_or_insert_with(Engine::new).solve(input, options, Some(layout), None, observer)
+    }
+
+    /// Solve `input` on `options.nodes` and `(options.nodes − 1)/2 + 1` nodes of one layout (two
+    /// threads) and extrapolate (as [`Extrapolation::Richardson`] of [`TransientSolver`]).
+    /// `coarse_previous` is the coarse grid's state of the previous step (the
+    /// `coarse_state` it returned); without it the coarse grid starts from the fine state of
+    /// `input` (interpolated).
+    pub fn solve_richardson(
+        &mut self,
+        input: &EhlInput,
+        coarse_previous: Option<&EhlState>,
+        options: &EhlOptions,
+        observer: &dyn Observer,
+    ) -> Result<RichardsonSolution, SolveError> {
+        if options.nodes < 31 {
+            return Err(SolveError::invalid("/nodes", "Richardson extrapolation needs at least 31 nodes (16 on the coarse grid)"));
+        }
+        let layout = next_layout(&mut self.layout, &mut self.layout_changes, input, options);
+        let coarse_options = EhlOptions { nodes: (options.nodes - 1) / 2 + 1, profiles: false, ..*options };
+        let mut coarse_input = *input;
+        if let Some(prev) = coarse_previous {
+            match &mut coarse_input.transient {
+                Some(t) => t.previous = prev,
+                None => coarse_input.warm_start = Some(prev),
             }
         }
-        let l = Layout::for_film(h_est, dir, o.inlet, o.outlet, o.grading);
-        self.layout = Some(l);
-        self.layout_changes += 1;
-        l
+        let fine = self.fine.get_or_insert_with(Engine::new);
+        let coarse = self.coarse.get_or_insert_with(Engine::new);
+        let (f, c) = rayon::join(
+            || fine.solve(input, options, Some(layout), None, observer),
+            || coarse.solve(&coarse_input, &coarse_options, Some(layout), None, observer),
+        );
+        let mut f = f?;
+        let coarse_state = match c {
+            Ok(c) => {
+                extrapolate(&mut f, &c);
+                Some(c.state)
+            }
+            Err(SolveError::Interrupted(i)) => return Err(SolveError::Interrupted(i)),
+            Err(_) => None,
+        };
+        Ok(RichardsonSolution { solution: f, coarse_state })
+    }
+
+    /// Work counters so far (Newton steps, factorisations, GMRES iterations of both grids;
+    /// layouts).
+    pub fn stats(&self) -> SolverStats {
+        let mut s = SolverStats::default();
+        for e in self.fine.iter().chain(&self.coarse) {
+            let t = e.stats();
+            s.newton_steps += t.newton_steps;
+            s.factorisations += t.factorisations;
+            s.gmres_iterations += t.gmres_iterations;
+        }
+        s.layouts = self.layout_changes;
+        s
+    }
+}
+
+impl std::fmt::Debug for ReusableSolver {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("ReusableSolver").field("layout", &self.layout).field("layout_changes", &self.layout_changes).finish()
     }
 }
 
@@ -285,5 +400,6 @@ mod tests {
     fn a_transient_solver_can_move_between_threads() {
         fn send<T: Send>() {}
         send::<TransientSolver>();
+        send::<ReusableSolver>();
     }
 }

@@ -235,7 +235,7 @@ pub fn closed_form_error(
 }
 
 /// The `auto` film model.
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug)]
 pub struct Auto {
     pub fast: ClosedForm,
     pub numerical: Numerical,

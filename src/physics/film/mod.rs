@@ -129,6 +129,8 @@ pub struct FilmProfile {
     pub film: Vec<f64>,
     /// Density ratio `ρ/ρ0` (the squeeze term of the next time step needs `ρh`).
     pub density_ratio: Vec<f64>,
+    /// The coarse grid's state of a Richardson-extrapolated solve (its squeeze history).
+    pub coarse: Option<crate::physics::ehl::EhlState>,
 }
 
 /// The lubricated contact at one point.
@@ -234,6 +236,8 @@ pub struct AccurateSettings {
     /// `auto`: the largest estimated relative error of the closed-form film accepted (see
     /// [`closed_form_error`]).
     pub auto_tolerance: f64,
+    /// Grid extrapolation of the numerical solver.
+    pub extrapolation: crate::physics::ehl::Extrapolation,
 }
 
 /// The film model for a fidelity: `fast` the closed form; `accurate` the numerical EHL solver on
@@ -241,7 +245,7 @@ pub struct AccurateSettings {
 /// where [`closed_form_error`] is within `settings.auto_tolerance`, the numerical solver elsewhere
 /// ([`Auto`]).
 pub fn model_for(fidelity: Fidelity, fast: ClosedForm, settings: AccurateSettings) -> Box<dyn FilmModel> {
-    let numerical = Numerical { options: settings.options, fallback: fast };
+    let numerical = Numerical::new(settings.options, fast).with_extrapolation(settings.extrapolation);
     match fidelity {
         Fidelity::Fast => Box::new(fast),
         Fidelity::Accurate => Box::new(numerical),

@@ -25,17 +25,41 @@ use super::closed_form::{ClosedForm, FILM_FLOOR, VISCOSITY_CAP};
 use super::formulas::LineGroups;
 use super::{ContactInput, ContactShape, FilmModel, FilmModelId, FilmProfile, FilmSolution, Regime};
 use crate::physics::contact::hertz_line;
-use crate::physics::ehl::{self, EhlInput, EhlOptions, EhlState, Rheology, Transient};
+use crate::physics::ehl::grid::cells;
+use crate::physics::ehl::{EhlInput, EhlOptions, EhlState, Extrapolation, ReusableSolver, Rheology, Transient};
 use crate::physics::friction::{AsperityContact, TractionNode};
 use crate::physics::{ensure_finite, Silent, SolveError};
+use std::sync::Mutex;
 
 /// The numerical (`accurate`) film model. See the module docs.
-#[derive(Debug, Clone, Copy, PartialEq)]
+///
+/// One model serves one run (a cycle's angles in order): it keeps the EHL solver's grids,
+/// influence matrices and LU factors between calls ([`ReusableSolver`]), while the state (squeeze
+/// history, warm start) comes with each call's `previous` solution. Measured on the seed 000
+/// roller cycle at 192 nodes: `BENCHMARKS.md`, "Film models".
+#[derive(Debug)]
 pub struct Numerical {
     /// Resolution, tolerance and iteration cap of the EHL solver.
     pub options: EhlOptions,
     /// The closed form used for point contacts and for a contact at rest without history.
     pub fallback: ClosedForm,
+    /// Grid extrapolation: [`Extrapolation::Richardson`] solves `options.nodes` and
+    /// `(options.nodes − 1)/2 + 1` nodes and extrapolates the films and traction forces.
+    pub extrapolation: Extrapolation,
+    /// The solver's caches (used by one call at a time; a concurrent call solves without them).
+    solver: Mutex<ReusableSolver>,
+}
+
+impl Numerical {
+    /// The model with EHL `options` on one grid and the closed form `fallback`.
+    pub fn new(options: EhlOptions, fallback: ClosedForm) -> Self {
+        Numerical { options, fallback, extrapolation: Extrapolation::None, solver: Mutex::new(ReusableSolver::new()) }
+    }
+
+    /// The same model with grid `extrapolation`.
+    pub fn with_extrapolation(self, extrapolation: Extrapolation) -> Self {
+        Numerical { extrapolation, ..self }
+    }
 }
 
 impl FilmProfile {
@@ -43,18 +67,6 @@ impl FilmProfile {
     pub fn to_ehl_state(&self) -> EhlState {
         EhlState { x: self.x.clone(), pressure: self.pressure.clone(), film: self.film.clone(), density_ratio: self.density_ratio.clone() }
     }
-}
-
-/// Cell widths of increasing nodes (midpoint to midpoint, half cells at the ends).
-fn cells(x: &[f64]) -> Vec<f64> {
-    let n = x.len();
-    (0..n)
-        .map(|j| {
-            let a = if j == 0 { x[0] } else { 0.5 * (x[j - 1] + x[j]) };
-            let b = if j + 1 == n { x[n - 1] } else { 0.5 * (x[j] + x[j + 1]) };
-            b - a
-        })
-        .collect()
 }
 
 impl FilmModel for Numerical {
@@ -96,7 +108,21 @@ impl FilmModel for Numerical {
             warm_start: state.as_ref(),
         };
         let options = EhlOptions { profiles: false, ..self.options };
-        let s = ehl::solve(&ehl_input, &options, &Silent)?;
+        let mut fresh = ReusableSolver::new();
+        let mut cached = self.solver.try_lock();
+        let solver = match &mut cached {
+            Ok(guard) => &mut **guard,
+            Err(_) => &mut fresh,
+        };
+        let (s, coarse) = match self.extrapolation {
+            Extrapolation::None => (solver.solve(&ehl_input, &options, &Silent)?, None),
+            Extrapolation::Richardson => {
+                let coarse_previous = previous.and_then(|p| p.profile.as_ref()).and_then(|p| p.coarse.as_ref());
+                let r = solver.solve_richardson(&ehl_input, coarse_previous, &options, &Silent)?;
+                (r.solution, r.coarse_state)
+            }
+        };
+        drop(cached);
         // The closed form's steady film: what `steady_central_film` means (the next point's
         // squeeze estimate of a closed form or of `auto` reads it).
         let steady = self.fallback.solve(input, None)?.steady_central_film;
@@ -153,6 +179,7 @@ impl FilmModel for Numerical {
                 pressure: s.state.pressure,
                 film: s.state.film,
                 density_ratio: s.state.density_ratio,
+                coarse,
             }),
             iterations: Some(s.convergence.iterations),
         })
@@ -167,10 +194,10 @@ mod tests {
     use crate::physics::lubricant::Lubricant;
 
     fn model() -> Numerical {
-        Numerical {
-            options: EhlOptions { nodes: 96, tolerance: 1e-8, ..EhlOptions::default() },
-            fallback: ClosedForm { formula: FilmFormula::PanHamrock, squeeze: false },
-        }
+        Numerical::new(
+            EhlOptions { nodes: 96, tolerance: 1e-8, ..EhlOptions::default() },
+            ClosedForm { formula: FilmFormula::PanHamrock, squeeze: false },
+        )
     }
 
     #[test]
