@@ -482,8 +482,9 @@ fn mixed_lubrication_accurate_against_fast_is_explained() {
         "base circle: h_c closed form {hc_f:.3e}, numerical {hc_a:.3e} (min {hmin_a:.3e}); share fast {sf:.3e}, GT at numerical h_c {:.3e}, node by node {sa:.3e}",
         uniform(&ca)
     );
-    // Fast's share is Greenwood–Tripp at its central film over the Hertz area, exactly.
-    assert!((uniform(&cf) / sf - 1.0).abs() < 1e-9);
+    // Fast's share is Greenwood–Tripp at its central film over the Hertz area (to 1e-5: the
+    // wear result's share is that of the worn profile after 10 h, the cycle's of the unworn one).
+    assert!((uniform(&cf) / sf - 1.0).abs() < 1e-5, "{} vs {sf}", uniform(&cf));
     // 1. the closed-form film is thicker; 2. the local film (exit constriction) raises the share.
     assert!(hc_f / hc_a > 1.15 && hmin_a < 0.9 * hc_a, "{hc_f} {hc_a} {hmin_a}");
     assert!(uniform(&ca) > 2.5 * sf && sa > 1.2 * uniform(&ca), "{sf} {} {sa}", uniform(&ca));
