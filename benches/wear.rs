@@ -2,6 +2,8 @@
 //! against update interval against error. `cargo bench --bench wear` (release). Plain `Instant`
 //! timing, best of N repetitions; "job" is the whole job as the service runs it (solve, result
 //! serialisation to JSON, finite-number check; spec preparation excluded).
+//! `cargo bench --bench wear -- fidelity` runs only the fidelity table (accurate/auto against
+//! fast).
 
 use serde_json::{json, Value};
 use std::time::Instant;
@@ -51,6 +53,11 @@ fn main() {
         s.as_object_mut().unwrap().remove("wear_limit");
     });
     let irgashev = load("examples/seed004_irgashev.json");
+    let only_fidelity = std::env::args().any(|a| a == "fidelity");
+    if only_fidelity {
+        fidelity(&flat, &roller);
+        return;
+    }
 
     println!("### 1000 h, an update every 10 h, fidelity fast\n");
     println!("| case | angles | updates | job (ms) | max wear (µm) | aim |");
@@ -99,5 +106,63 @@ fn main() {
             let max = out["summary"]["max_wear_depth"].as_f64().unwrap() * 1e6;
             println!("| {name} | {interval} | {} | {ms:.1} | {max:.4} | {err:.2e} |", out["updates"]);
         }
+    }
+}
+
+fn summary(out: &Value, key: &str) -> f64 {
+    out["summary"][key].as_f64().unwrap_or(f64::NAN)
+}
+
+/// Fidelity accurate and auto against fast on a short run (100 h, an update every 25 h, 360
+/// angles): job time, wear and its difference from fast, and the grid error of accurate against
+/// accurate on 384 nodes.
+fn fidelity(flat: &Value, roller: &Value) {
+    println!("### Fidelity: accurate and auto against fast (100 h, an update every 25 h, 360 angles)\n");
+    println!("Depth difference: largest difference of the final wear-depth profile from the reference,");
+    println!("relative to the reference's maximum. Reference for \"vs fast\": fast; for \"grid error\":");
+    println!("accurate on 384 nodes.\n");
+    println!("| case | fidelity | nodes | numerical angles | job (s) | worn volume (mm³) | max wear (µm) at (°) | volume / fast | depth vs fast | grid error |");
+    println!("| --- | --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: |");
+    for (name, base, reps) in [("seed 003 flat, asperity share", flat, 3), ("seed 000 roller, slip, asperity share", roller, 1)] {
+        let base = with(base, |s| {
+            s["hours"] = json!(100.0);
+            s["update_interval_hours"] = json!(25.0);
+            s["angles"] = json!(360);
+            s["snapshots"] = json!(0);
+        });
+        let at = |fid: &str, nodes: usize| {
+            with(&base, |s| {
+                s["fidelity"] = json!(fid);
+                s["ehl"] = json!({"nodes": nodes});
+            })
+        };
+        let (ms_fast, fast) = job(&base, 5);
+        let (_, reference) = job(&at("accurate", 384), 1);
+        let (d_fast, d_ref) = (depth(&fast), depth(&reference));
+        let v_fast = summary(&fast, "worn_volume");
+        let row = |fid: &str, nodes: &str, ms: f64, out: &Value| {
+            let numerical = out["summary"]["fidelity_used"]["numerical"].as_u64().map_or("0".to_string(), |n| n.to_string());
+            let d = depth(out);
+            let grid = if fid == "fast" { "–".to_string() } else { format!("{:.2e}", rel_err(&d, &d_ref)) };
+            let time = if ms.is_finite() { format!("{:.2}", ms / 1e3) } else { "–".to_string() };
+            println!(
+                "| {name} | {fid} | {nodes} | {numerical} | {time} | {:.4e} | {:.4} at {:.1} | {:.3} | {:.2e} | {grid} |",
+                summary(out, "worn_volume") * 1e9,
+                summary(out, "max_wear_depth") * 1e6,
+                summary(out, "max_wear_angle_deg"),
+                summary(out, "worn_volume") / v_fast,
+                rel_err(&d, &d_fast),
+            );
+        };
+        row("fast", "–", ms_fast, &fast);
+        for nodes in [128, 192, 256] {
+            let (ms, out) = job(&at("accurate", nodes), reps);
+            row("accurate", &nodes.to_string(), ms, &out);
+        }
+        let (ms, out) = job(&at("auto", 192), reps);
+        row("auto", "192", ms, &out);
+        let (ms, out) = job(&with(&at("auto", 192), |s| s["ehl"]["auto_tolerance"] = json!(0.25)), reps);
+        row("auto, tol 0.25", "192", ms, &out);
+        row("accurate (reference)", "384", f64::NAN, &reference);
     }
 }

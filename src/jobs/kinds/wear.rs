@@ -5,12 +5,16 @@
 //!   film and Greenwood–Tripp load share, roller slip), with worn-profile evolution every update
 //!   interval until the running time or the wear limit. Physics: `physics::wear::{archard,
 //!   deposit, evolution}`.
+//!   Fidelity `accurate` (and the numerical angles of `auto`): the numerical line-contact EHL film
+//!   at every angle of every cycle, whose pressure (spike and exit constriction included) and
+//!   local Greenwood–Tripp asperity pressure replace the Hertz band (`physics::wear::archard`);
+//!   the cost is bounded by a budget of numerical work (see `validate`).
 //! * `model: "irgashev"`: seed 004's method (Tables 1–5, eq. 1–15) on the paper's multi-arc cam and
 //!   spherical tappet, reproduced as printed; its inconsistencies are documented in
 //!   `physics::wear::irgashev`. Physics: `physics::wear::irgashev`.
 
 use super::cam_cycle::{CamCycle, CamCycleSpec, CamOutput, CamSpec, FollowerSpec, LoadSpec, OperationSpec, ProfileSpec, SlipSpec, ThermalPair};
-use super::cam_common::{composite_sigma, AsperitySpec, FilmSpec, LubricantSpec, TractionSpec};
+use super::cam_common::{composite_sigma, AsperitySpec, EhlSpec, FilmSpec, LubricantSpec, TractionSpec};
 use crate::jobs::kind::{Kind, Limits, Validation};
 use crate::physics::contact::{contact_modulus, Elastic};
 use crate::physics::film::{model_for, FilmFormula, FilmModelId, Fidelity};
@@ -19,13 +23,23 @@ use crate::physics::wear::{evolve, ArchardParams, LoadShare, Stop, WearRun};
 use crate::physics::{ensure_finite, Convergence, Observer, SolveError};
 use serde::{Deserialize, Serialize};
 use serde_json::{json, Value};
+use std::collections::BTreeMap;
 use utoipa::ToSchema;
 
 pub struct Wear;
 
-/// Most profile updates of one run, including the ones added for stability (each is one cam
-/// cycle).
+/// Most profile updates of one run at fidelity `fast`, including the ones added for stability
+/// (each is one cam cycle).
 pub const MAX_UPDATES: usize = 5_000;
+
+/// At fidelity `accurate`/`auto` a run takes at most this many times its planned updates
+/// (`ceil(hours / update_interval_hours)`): the stability cut may shorten intervals, but the
+/// numerical work stays within the validated budget.
+pub const NUMERICAL_UPDATE_FACTOR: usize = 2;
+
+/// The unit of numerical work of the budget: one cam cycle of 720 angles on 192-node EHL grids
+/// (`cam_cycle`'s default accurate cycle, ≈ 1–2.5 s in release on the seed cases).
+pub const STANDARD_CYCLE_WORK: usize = 720 * 192;
 
 // ---------------------------------------------------------------- spec
 
@@ -165,10 +179,21 @@ pub struct WearSpec {
     pub film: FilmSpec,
     #[serde(default)]
     pub slip: SlipSpec,
-    /// `fast` (closed forms) only: the profile evolution repeats the cycle many times (the
-    /// numerical film of `cam_cycle`'s `accurate`/`auto` is not offered here).
+    /// Film model of every cycle (archard), as in `cam_cycle`: `fast` (closed forms: Hertz
+    /// pressure, Greenwood–Tripp share at the central film; default), `accurate` (the numerical
+    /// line-contact EHL solver at every angle of every cycle: the wearing pressure is the EHL
+    /// pressure, or with `load_share: asperity` the Greenwood–Tripp asperity pressure at the local
+    /// film, which peaks at the exit constriction; spherical tappets keep the closed form), `auto`
+    /// (per angle the closed form where its estimated error is within `ehl.auto_tolerance`, the
+    /// numerical solver elsewhere; each angle wears with the model that ran there). `accurate`
+    /// and `auto` need a lubricant, and their work — angles × (2 × planned updates + 1) ×
+    /// `ehl.nodes` — counted in cycles of 720 angles × 192 nodes, must stay within the server's
+    /// evaluation limit; a run takes at most twice its planned updates (stability cuts included).
     #[serde(default)]
     pub fidelity: Fidelity,
+    /// Numerical EHL options (`accurate`, `auto`), as in `cam_cycle`.
+    #[serde(default)]
+    pub ehl: EhlSpec,
     /// Cam angles per revolution (uniform); also the resolution of the wear profile. Default 720.
     #[serde(default = "default_angles")]
     pub angles: usize,
@@ -285,6 +310,9 @@ pub struct WearSeries {
     pub initial_film_min: Option<Vec<f64>>,
     #[serde(skip_serializing_if = "Option::is_none")]
     pub final_film_min: Option<Vec<f64>>,
+    /// Film model that ran at each angle on the worn profile (fidelity accurate/auto).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub film_model: Option<Vec<FilmModelId>>,
 }
 
 /// One row of seed 004's Tables 1–5 (SI, except where the name says otherwise).
@@ -356,6 +384,10 @@ pub struct WearHistoryRow {
     pub min_film: Option<f64>,
     /// Largest Hertz pressure over the revolution, Pa.
     pub max_pressure: f64,
+    /// Largest pressure of the numerical EHL film over the revolution (exit spike included), Pa
+    /// (fidelity accurate/auto, where the numerical model ran).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub max_film_pressure: Option<f64>,
 }
 
 /// Flat follower face wear, columnar.
@@ -422,14 +454,26 @@ pub struct WearSummary {
     pub initial_max_pressure: Option<f64>,
     #[serde(skip_serializing_if = "Option::is_none")]
     pub final_max_pressure: Option<f64>,
+    /// Largest numerical EHL film pressure (exit spike included) on the original and on the final
+    /// profile, Pa (fidelity accurate/auto, where the numerical model ran).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub initial_max_film_pressure: Option<f64>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub final_max_film_pressure: Option<f64>,
+    /// Fidelity accurate/auto: angles at which each film model ran (`numerical`, `pan_hamrock`,
+    /// …), summed over every cycle of the run (the unworn profile and each update).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub fidelity_used: Option<BTreeMap<String, usize>>,
 }
 
 /// Result of a `wear` job.
 #[derive(Debug, Clone, PartialEq, Serialize, ToSchema)]
 pub struct WearResult {
     pub model: WearModel,
+    /// Fidelity requested (per-model counts: `summary.fidelity_used`).
     pub fidelity_used: Fidelity,
-    /// Film model of the cycle (when a film was computed).
+    /// Film model of the cycles (when a film was computed and one model ran at every angle;
+    /// absent when `auto` mixed models or a point contact kept the closed form).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub film_model: Option<FilmModelId>,
     /// Cam wear coefficient used, m³/(N·m).
@@ -476,7 +520,9 @@ impl WearSpec {
             WearModel::Irgashev => vec![CamOutput::Kinematics],
         };
         if self.model == WearModel::Archard {
-            if self.lubricant.is_some() && (self.load_share == LoadShareSpec::Asperity || self.is_roller()) {
+            // Accurate/auto: the film's pressure wears, whatever the load share.
+            let film_pressure = self.fidelity != Fidelity::Fast;
+            if self.lubricant.is_some() && (self.load_share == LoadShareSpec::Asperity || self.is_roller() || film_pressure) {
                 outputs.push(CamOutput::Film);
             }
             if self.is_roller() {
@@ -495,7 +541,7 @@ impl WearSpec {
             slip: self.slip,
             thermal: ThermalPair::default(),
             fidelity: self.fidelity,
-            ehl: Default::default(),
+            ehl: self.ehl,
             profile_angles_deg: Vec::new(),
             angles: self.angles,
             outputs,
@@ -517,6 +563,20 @@ impl WearSpec {
 
     fn update_hours(&self) -> f64 {
         self.update_interval_hours.unwrap_or(self.running_hours() / 10.0)
+    }
+
+    /// Profile updates the running time and interval ask for (0 when either is not usable).
+    fn planned_updates(&self) -> usize {
+        let (hours, u) = (self.running_hours(), self.update_hours());
+        if hours > 0.0 && u > 0.0 && u.is_finite() { (hours / u).ceil().min(1e15) as usize } else { 0 }
+    }
+
+    /// Most profile updates of a run (see [`NUMERICAL_UPDATE_FACTOR`]).
+    fn max_updates(&self) -> usize {
+        match self.fidelity {
+            Fidelity::Fast => MAX_UPDATES,
+            _ => self.planned_updates().max(1).saturating_mul(NUMERICAL_UPDATE_FACTOR),
+        }
     }
 
     fn composite_sigma(&self) -> f64 {
@@ -565,7 +625,12 @@ fn solve_archard(spec: &WearSpec, observer: &dyn Observer) -> Result<WearResult,
     let cc = spec.cycle_spec();
     let cycle = cc.cycle_spec()?;
     let needs = cc.needs();
-    let model = model_for(spec.fidelity, spec.film.to_physics(), super::cam_common::EhlSpec::default().to_physics());
+    let model = model_for(spec.fidelity, spec.film.to_physics(), spec.ehl.to_physics());
+    let mut cycle = cycle;
+    if spec.fidelity != Fidelity::Fast {
+        // The wear model reads the numerical film's pressure at every angle where it ran.
+        cycle.profile_angles = (0..cycle.angles).collect();
+    }
     let k_cam = spec.wear_coefficient.map_or(0.0, |c| c.k());
     let k_follower = spec.follower_wear_coefficient.map_or(k_cam, |c| c.k());
     let face_radius = match spec.follower {
@@ -589,7 +654,7 @@ fn solve_archard(spec: &WearSpec, observer: &dyn Observer) -> Result<WearResult,
         snapshots: spec.snapshots,
         face_radius,
         face_bins: spec.angles,
-        max_updates: MAX_UPDATES,
+        max_updates: spec.max_updates(),
     };
     let ev = evolve(&run, model.as_ref(), observer)?;
     let degs = |v: &[f64]| v.iter().map(|x| x.to_degrees()).collect::<Vec<_>>();
@@ -648,12 +713,26 @@ fn solve_archard(spec: &WearSpec, observer: &dyn Observer) -> Result<WearResult,
         let l = spec.cam.width.map_or(length, |w| w.min(length));
         summary.roller_wear_depth = Some(last.follower_volume / (2.0 * std::f64::consts::PI * radius * l));
     }
-    let film_model = needs.film.then(|| match (&spec.follower, spec.film.formula) {
-        (FollowerSpec::Spherical { .. }, _) => FilmModelId::HamrockDowson,
-        (_, FilmFormula::PanHamrock) => FilmModelId::PanHamrock,
-        (_, FilmFormula::DowsonHigginson) => FilmModelId::DowsonHigginson,
-        (_, FilmFormula::Seed003) => FilmModelId::Seed003,
-    });
+    let numerical = spec.fidelity != Fidelity::Fast;
+    let film_model = if numerical {
+        // The model that ran, when one model ran at every angle of every cycle.
+        match ev.film_models.as_slice() {
+            [(m, _)] => Some(*m),
+            _ => None,
+        }
+    } else {
+        needs.film.then(|| match (&spec.follower, spec.film.formula) {
+            (FollowerSpec::Spherical { .. }, _) => FilmModelId::HamrockDowson,
+            (_, FilmFormula::PanHamrock) => FilmModelId::PanHamrock,
+            (_, FilmFormula::DowsonHigginson) => FilmModelId::DowsonHigginson,
+            (_, FilmFormula::Seed003) => FilmModelId::Seed003,
+        })
+    };
+    if numerical {
+        summary.fidelity_used = Some(ev.film_models.iter().map(|(m, c)| (m.name().to_string(), *c)).collect());
+        summary.initial_max_film_pressure = first.max_film_pressure;
+        summary.final_max_film_pressure = last.max_film_pressure;
+    }
     let history = ev
         .history
         .iter()
@@ -668,6 +747,7 @@ fn solve_archard(spec: &WearSpec, observer: &dyn Observer) -> Result<WearResult,
             valve_lift_loss: h.peak_lift_loss,
             min_film: h.min_film,
             max_pressure: h.max_pressure,
+            max_film_pressure: h.max_film_pressure,
         })
         .collect();
     Ok(WearResult {
@@ -694,6 +774,7 @@ fn solve_archard(spec: &WearSpec, observer: &dyn Observer) -> Result<WearResult,
             final_hertz_pressure: fs.hertz_max_pressure.clone(),
             initial_film_min: is_series.film_min.clone(),
             final_film_min: fs.film_min.clone(),
+            film_model: if numerical { fs.film_model.clone() } else { None },
         },
         rows: None,
         history: Some(history),
@@ -851,11 +932,35 @@ impl Kind for Wear {
     fn validate(spec: &WearSpec, limits: &Limits, v: &mut Validation) {
         // The pair, as cam_cycle validates it.
         CamCycle::validate(&spec.cycle_spec(), limits, v);
-        v.check(
-            spec.fidelity == Fidelity::Fast,
-            "/fidelity",
-            "the wear kind runs fidelity fast only (its profile evolution repeats the cam cycle many times); accurate and auto films are available in cam_cycle",
-        );
+        if spec.fidelity != Fidelity::Fast {
+            match spec.model {
+                WearModel::Irgashev => {
+                    v.error("/fidelity", "model irgashev is an empirical method without a film model: use fidelity fast");
+                }
+                WearModel::Archard => {
+                    v.check(
+                        spec.lubricant.is_some(),
+                        "/fidelity",
+                        "accurate and auto solve the lubricant film: give a lubricant (without one the contact is dry: use fast)",
+                    );
+                    // Budget of numerical work: every angle of every cycle may run the EHL solver.
+                    let cycles = spec.max_updates().saturating_add(1);
+                    let work = (spec.angles as f64) * (cycles as f64) * (spec.ehl.nodes as f64);
+                    let units = (work / STANDARD_CYCLE_WORK as f64).ceil().min(1e15) as usize;
+                    v.limit(
+                        "/ehl/nodes",
+                        units,
+                        limits.max_evaluations,
+                        &format!(
+                            "the numerical EHL work of this run — {} angles × {cycles} cycles (at most {NUMERICAL_UPDATE_FACTOR} × the planned \
+                             updates, plus the unworn cycle) × {} nodes, counted in cycles of 720 angles × 192 nodes (fewer nodes, \
+                             angles or updates reduce it)",
+                            spec.angles, spec.ehl.nodes
+                        ),
+                    );
+                }
+            }
+        }
         v.check(spec.operation.startup.is_none(), "/operation/startup", "wear needs steady running (no startup)");
         match (spec.hours, spec.cycles) {
             (Some(h), None) => {
@@ -900,14 +1005,12 @@ impl Kind for Wear {
                 if spec.is_roller() {
                     v.check(spec.lubricant.is_some(), "/lubricant", "is required with a roller follower (its slip)");
                 }
-                let hours = spec.running_hours();
                 if let Some(u) = spec.update_interval_hours {
                     v.check(u.is_finite() && u > 0.0, "/update_interval_hours", "must be a finite number > 0");
                 }
-                let u = spec.update_hours();
-                if hours > 0.0 && u > 0.0 && u.is_finite() {
-                    let updates = (hours / u).ceil();
-                    v.limit("/update_interval_hours", updates.min(1e15) as usize, limits.max_evaluations, "the number of profile updates");
+                let updates = spec.planned_updates();
+                if updates > 0 {
+                    v.limit("/update_interval_hours", updates, limits.max_evaluations, "the number of profile updates");
                 }
                 if let FollowerSpec::Spherical { .. } = spec.follower {
                     // fine: point contact, no follower-face table

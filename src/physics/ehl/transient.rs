@@ -288,14 +288,25 @@ fn next_layout(current: &mut Option<Layout>, changes: &mut u64, input: &EhlInput
     l
 }
 
+/// The layout for `input` graded for its film estimate rounded to the geometric lattice
+/// `LAYOUT_BAND^(2k)`: a pure function of the input.
+pub fn lattice_layout(input: &EhlInput, options: &EhlOptions) -> Layout {
+    let (h_est, dir) = film_estimate(input);
+    let q = (LAYOUT_BAND * LAYOUT_BAND).ln();
+    let h_design = ((h_est.ln() / q).round() * q).exp();
+    Layout::for_film(h_design, dir, options.inlet, options.outlet, options.grading)
+}
+
 /// One solver reused for independent problems whose state travels with the input (the
 /// `accurate` film model of a cam cycle, which receives the previous angle's solution with each
 /// call): grids and their influence matrices, the Newton workspaces and the kept LU factors
-/// survive between calls, and the grid layout is kept while the film estimate stays within
-/// [`LAYOUT_BAND`] of the one it was graded for — what [`TransientSolver`] does, without holding
-/// the state itself (so a caller may re-solve a step or skip angles). Results agree with
-/// [`super::solve`] to the discretisation error of the grid (the grading differs by at most the
-/// layout band). [`solve_richardson`](Self::solve_richardson) marches a second, coarse grid
+/// survive between calls — what [`TransientSolver`] does, without holding the state itself (so a
+/// caller may re-solve a step or skip angles). The grid is graded for the film estimate rounded
+/// to a geometric lattice of ratio [`LAYOUT_BAND`]² ([`lattice_layout`]): within a factor
+/// [`LAYOUT_BAND`] of the estimate, the same grid for neighbouring angles, and — unlike the
+/// transient solver's band around the last design — independent of earlier calls, so the same
+/// input always gives the same result. Results agree with [`super::solve`] to the discretisation
+/// error of the grid. [`solve_richardson`](Self::solve_richardson) marches a second, coarse grid
 /// whose state the caller carries too.
 #[derive(Default)]
 pub struct ReusableSolver {
@@ -325,7 +336,7 @@ impl ReusableSolver {
     /// Solve `input` (steady, or a squeeze step when `input.transient` is set) like
     /// [`super::solve`], with the caches of earlier calls.
     pub fn solve(&mut self, input: &EhlInput, options: &EhlOptions, observer: &dyn Observer) -> Result<EhlSolution, SolveError> {
-        let layout = next_layout(&mut self.layout, &mut self.layout_changes, input, options);
+        let layout = self.layout_for(input, options);
         self.fine.get_or_insert_with(Engine::new).solve(input, options, Some(layout), None, observer)
     }
 
@@ -344,7 +355,7 @@ impl ReusableSolver {
         if options.nodes < 31 {
             return Err(SolveError::invalid("/nodes", "Richardson extrapolation needs at least 31 nodes (16 on the coarse grid)"));
         }
-        let layout = next_layout(&mut self.layout, &mut self.layout_changes, input, options);
+        let layout = self.layout_for(input, options);
         let coarse_options = EhlOptions { nodes: (options.nodes - 1) / 2 + 1, profiles: false, ..*options };
         let mut coarse_input = *input;
         if let Some(prev) = coarse_previous {
@@ -371,8 +382,17 @@ impl ReusableSolver {
         Ok(RichardsonSolution { solution: f, coarse_state })
     }
 
+    fn layout_for(&mut self, input: &EhlInput, options: &EhlOptions) -> Layout {
+        let l = lattice_layout(input, options);
+        if self.layout != Some(l) {
+            self.layout = Some(l);
+            self.layout_changes += 1;
+        }
+        l
+    }
+
     /// Work counters so far (Newton steps, factorisations, GMRES iterations of both grids;
-    /// layouts).
+    /// layout changes).
     pub fn stats(&self) -> SolverStats {
         let mut s = SolverStats::default();
         for e in self.fine.iter().chain(&self.coarse) {

@@ -8,12 +8,29 @@
 //! the speed of the contact relative to that surface; [`super::deposit`] spreads each cam step's
 //! pass over the surface cells it touches, so the worn volume is exactly `k ∫ F |v_s| dt`.
 //!
-//! * Pressure: the Hertz semi-ellipse of the cycle (`hertz_max_pressure`, `hertz_half_width`
-//!   along the rolling direction: line contacts, and the centre line of a point contact's track).
-//! * Mixed lubrication (`LoadShare::Asperity`): only the asperity-carried share of the load wears
-//!   (the Greenwood–Tripp share `W_a/W` of the cycle's film, applied to the Hertz profile); the
-//!   fluid-borne share does not. `LoadShare::Full`: the whole load wears (dry or boundary
-//!   contact, or a wear coefficient measured under the same lubrication).
+//! * Pressure, where the cycle's film model is a closed form (fidelity `fast`, the closed-form
+//!   angles of `auto`, point contacts): the Hertz semi-ellipse of the cycle
+//!   (`hertz_max_pressure`, `hertz_half_width` along the rolling direction: line contacts, and the
+//!   centre line of a point contact's track).
+//! * Pressure, where the numerical EHL model ran (fidelity `accurate`, the numerical angles of
+//!   `auto`; the cycle returns its [`FilmProfile`] there): the converged pressure along the
+//!   rolling direction, spike and exit constriction included, tabulated on the solver's nodes
+//!   ([`Band::Tabulated`]).
+//! * Mixed lubrication (`LoadShare::Asperity`): only the asperity-carried share of the load wears;
+//!   the fluid-borne share does not. Closed forms: the Greenwood–Tripp share `W_a/W` of the
+//!   cycle's film (asperity pressure at the central film over the Hertz area) applied to the Hertz
+//!   profile. Numerical film: the Greenwood–Tripp asperity pressure `p_a(h(x))` at the local film
+//!   of every node — it peaks at the exit constriction, where the film is thinnest — scaled so
+//!   that it carries exactly the share `W_a/W` the film model reported (the same node sum, capped
+//!   at the load). `LoadShare::Full`: the whole load wears (dry or boundary contact, or a wear
+//!   coefficient measured under the same lubrication): the Hertz or the EHL pressure.
+//! * Orientation of a tabulated band: the film model's `x` points the way positive entrainment
+//!   carries the oil, along which the cam surface moves (`u_c > 0`) relative to the contact, so the
+//!   contact advances over the cam towards `−x`: a cam point at arc length `σ` sees the pressure at
+//!   `x = −(σ − c)` (`c` the contact centre). On a flat face the contact moves at `u_f` along the
+//!   face coordinate (`d(s')/dt = ω s''`), so the face too sees `x = −(e − c)`. The exit spike
+//!   (`x > 0` for positive entrainment) therefore lands on the part of the cam the contact has
+//!   already passed.
 //! * Sliding: the cycle's `u_c − u_f`: the kinematic sliding `ω(r_b + s)` of a flat face, the
 //!   roller's slip from its torque balance, the spin-free sliding of a spherical tappet.
 //! * Cam surface: cell `k` is the stretch of cam surface the contact crosses during cam step `k`
@@ -24,8 +41,9 @@
 //!   wear most). Roller: its surface meets the cam many times per revolution at varying phase,
 //!   so its wear is spread evenly over the circumference (reported as a mean depth).
 
-use super::deposit::{Bins, PeriodicCells};
+use super::deposit::{Band, Bins, PeriodicCells, TabulatedBand};
 use crate::physics::cam::cycle::{CycleOutput, CycleSpec, FollowerKind};
+use crate::physics::film::FilmProfile;
 use crate::physics::{ensure_finite, SolveError};
 
 /// Which part of the contact load wears the surfaces.
@@ -111,6 +129,14 @@ pub fn revolution_wear(
         widths.push(uc * dt);
     }
     let cells = PeriodicCells::new(&widths);
+    // Angles where the numerical film ran: its pressure profile.
+    let mut profile: Vec<Option<&FilmProfile>> = vec![None; n];
+    for (i, p) in &out.profiles {
+        if let Some(slot) = profile.get_mut(*i) {
+            *slot = Some(p);
+        }
+    }
+    let per_length = s.load_per_length.as_deref();
     let mut volume = vec![0.0; n];
     let (mut cam_volume, mut follower_volume) = (0.0, 0.0);
     let mut face_volume = face.map(|f| vec![0.0; f.n]);
@@ -120,11 +146,16 @@ pub fn revolution_wear(
         let work = fa * load[k] * vs * dt; // J: the wearing load times its sliding distance
         cam_volume += params.cam_coefficient * work;
         follower_volume += params.follower_coefficient * work;
-        cells.deposit(k, fa * p0[k], b[k], params.cam_coefficient * vs * dt, &mut volume);
+        let band = match (profile[k], per_length) {
+            (Some(p), Some(w)) => numerical_band(spec, params.load_share, p, fa * w[k])?,
+            _ => None,
+        }
+        .unwrap_or(Band::Hertz { p0: fa * p0[k], b: b[k] });
+        cells.deposit(k, &band, params.cam_coefficient * vs * dt, &mut volume);
         if let (Some(bins), Some(fv)) = (face, face_volume.as_mut()) {
             let x = s.contact_offset[k];
             let half = 0.5 * s.follower_surface_velocity[k] * dt;
-            bins.deposit(x - half, x + half, fa * p0[k], b[k], params.follower_coefficient * vs * dt, fv);
+            bins.deposit(x - half, x + half, &band, params.follower_coefficient * vs * dt, fv);
         }
     }
     let cam_depth: Vec<f64> = volume.iter().enumerate().map(|(j, v)| v / cells.width(j)).collect();
@@ -137,6 +168,32 @@ pub fn revolution_wear(
     Ok(RevolutionWear { cam_depth, cells, cam_volume, follower_volume, face_depth, worn_share: share, period })
 }
 
+/// The wearing pressure of a numerical film `profile` as a band along the surface (offset
+/// `d = −x`, see the module docs) carrying `worn_per_length` (N/m: the worn share times the load
+/// per length): the EHL pressure (`LoadShare::Full`) or the Greenwood–Tripp asperity pressure at
+/// the local film (`LoadShare::Asperity`), scaled to that load. `None` when the profile carries
+/// nothing to scale (the caller falls back to the Hertz band).
+pub fn numerical_band(spec: &CycleSpec, share: LoadShare, profile: &FilmProfile, worn_per_length: f64) -> Result<Option<Band>, SolveError> {
+    if !(worn_per_length > 0.0) {
+        return Ok(None);
+    }
+    let d: Vec<f64> = profile.x.iter().rev().map(|x| -x).collect();
+    let p: Vec<f64> = match share {
+        LoadShare::Full => profile.pressure.iter().rev().map(|p| p.max(0.0)).collect(),
+        LoadShare::Asperity => {
+            profile.film.iter().rev().map(|h| spec.roughness.asperity_pressure(*h, spec.contact_modulus)).collect()
+        }
+    };
+    let Some(band) = TabulatedBand::new(d, p) else {
+        return Err(SolveError::invalid("", "the numerical film profile is not a valid pressure band"));
+    };
+    let total = band.integral();
+    if !(total > 0.0) {
+        return Ok(None);
+    }
+    Ok(Some(Band::Tabulated(band.scaled(worn_per_length / total))))
+}
+
 /// Bins over the flat follower face covering the contact path of `out` with a margin of the
 /// widest contact on each side; `None` for other followers.
 pub fn face_bins(spec: &CycleSpec, out: &CycleOutput, count: usize) -> Option<Bins> {
@@ -145,7 +202,10 @@ pub fn face_bins(spec: &CycleSpec, out: &CycleOutput, count: usize) -> Option<Bi
     }
     let s = &out.series;
     let bmax = s.hertz_half_width.as_ref()?.iter().copied().fold(0.0, f64::max);
-    let lo = s.contact_offset.iter().copied().fold(f64::INFINITY, f64::min) - 1.5 * bmax;
-    let hi = s.contact_offset.iter().copied().fold(f64::NEG_INFINITY, f64::max) + 1.5 * bmax;
+    // Numerical pressure profiles reach further (the inlet): cover them too.
+    let reach = out.profiles.iter().flat_map(|(_, p)| [p.x.first(), p.x.last()]).flatten().fold(0.0, |m: f64, x| m.max(x.abs()));
+    let margin = if reach > 0.0 { (1.5 * bmax).max(reach) } else { 1.5 * bmax };
+    let lo = s.contact_offset.iter().copied().fold(f64::INFINITY, f64::min) - margin;
+    let hi = s.contact_offset.iter().copied().fold(f64::NEG_INFINITY, f64::max) + margin;
     (hi > lo && lo.is_finite() && hi.is_finite()).then_some(Bins { lo, hi, n: count.max(8) })
 }

@@ -22,7 +22,7 @@ use super::archard::{face_bins, revolution_wear, ArchardParams, RevolutionWear};
 use super::deposit::Bins;
 use crate::physics::cam::cycle::{run_cycle, CycleOutput, CycleSpec, Needs};
 use crate::physics::cam::{CamProfile, PeriodicSpline};
-use crate::physics::film::FilmModel;
+use crate::physics::film::{FilmModel, FilmModelId};
 use crate::physics::{ensure_finite, Convergence, Observer, SolveError};
 use std::f64::consts::TAU;
 
@@ -48,8 +48,9 @@ pub struct WearRun {
     pub face_radius: Option<f64>,
     /// Bins over a flat follower's face.
     pub face_bins: usize,
-    /// Most profile updates (the update interval is shortened automatically where a step would
-    /// be unstable; see [`STABLE_FRACTION`]).
+    /// Most profile updates, those added by the stability cut included (the update interval is
+    /// shortened automatically where a step would be unstable; see [`STABLE_FRACTION`]). A run
+    /// that would need more ends with `update_limit`.
     pub max_updates: usize,
 }
 
@@ -92,6 +93,9 @@ pub struct HistoryPoint {
     pub min_film: Option<f64>,
     /// Largest Hertz pressure over the revolution, Pa.
     pub max_pressure: f64,
+    /// Largest pressure of the numerical EHL film over the revolution (exit spike included), Pa,
+    /// when that model ran at some angle.
+    pub max_film_pressure: Option<f64>,
 }
 
 /// Result of [`evolve`].
@@ -127,14 +131,19 @@ pub struct WearEvolution {
     pub period: f64,
     /// Profile updates performed.
     pub updates: usize,
-    /// The cycle on the first and on the final profile.
+    /// The cycle on the first and on the final profile (without their film profiles).
     pub initial_cycle: CycleOutput,
     pub final_cycle: CycleOutput,
+    /// Angles at which each film model ran, summed over every cycle of the run (the unworn
+    /// profile and each update), in order of first appearance. Empty without a film.
+    pub film_models: Vec<(FilmModelId, usize)>,
 }
 
 struct Evaluated {
     out: CycleOutput,
     wear: RevolutionWear,
+    /// Largest numerical-film pressure (before the profiles are dropped).
+    max_film_pressure: Option<f64>,
 }
 
 fn evaluate(
@@ -163,7 +172,33 @@ fn wear_of(run: &WearRun, cycle: &CycleSpec, out: CycleOutput, bins: Option<Bins
         }
     }
     let wear = revolution_wear(cycle, &out, &run.archard, bins)?;
-    Ok(Evaluated { out, wear })
+    let max_film_pressure =
+        (!out.profiles.is_empty()).then(|| out.profiles.iter().flat_map(|(_, p)| p.pressure.iter().copied()).fold(0.0, f64::max));
+    // The film profiles have served: keep memory flat over long runs.
+    let mut out = out;
+    out.profiles = Vec::new();
+    Ok(Evaluated { out, wear, max_film_pressure })
+}
+
+fn count_models(counts: &mut Vec<(FilmModelId, usize)>, out: &CycleOutput) {
+    for m in out.series.film_model.iter().flatten() {
+        match counts.iter_mut().find(|(id, _)| id == m) {
+            Some((_, c)) => *c += 1,
+            None => counts.push((*m, 1)),
+        }
+    }
+}
+
+fn update_limit(max_updates: usize, at_hours: f64) -> Stop {
+    Stop::Failed {
+        code: "update_limit",
+        message: format!(
+            "the wear per update must stay below {STABLE_FRACTION}·ρ·Δθ² for a stable profile update; \
+             this run would need more than {max_updates} updates (fewer angles, a smaller wear coefficient or a \
+             shorter running time help)"
+        ),
+        at_hours,
+    }
 }
 
 /// Forwards cancellation but not the cycle's own progress (the evolution reports its own).
@@ -196,6 +231,7 @@ fn point(hours: f64, period: f64, depth: &[f64], angle: &[f64], e: &Evaluated, v
         peak_lift_loss: lift0_max - max_of(&s.lift),
         min_film: s.film_min.as_ref().map(|v| v.iter().copied().fold(f64::INFINITY, f64::min)),
         max_pressure: s.hertz_max_pressure.as_ref().map_or(0.0, |v| max_of(v)),
+        max_film_pressure: e.max_film_pressure,
     }
 }
 
@@ -209,6 +245,8 @@ pub fn evolve(run: &WearRun, model: &dyn FilmModel, observer: &dyn Observer) -> 
     observer.progress(0.0, "unworn cycle");
     let first = run_cycle(&run.cycle, run.needs, model, &QuietObserver(observer))?;
     let bins = face_bins(&run.cycle, &first, run.face_bins);
+    let mut film_models = Vec::new();
+    count_models(&mut film_models, &first);
     let mut current = wear_of(run, &run.cycle, first, bins)?;
     let period = current.wear.period;
     let angle = current.out.series.angle.clone();
@@ -233,6 +271,10 @@ pub fn evolve(run: &WearRun, model: &dyn FilmModel, observer: &dyn Observer) -> 
         observer.check()?;
         observer.progress(t / run.hours, "wear");
         let mut dt_h = run.update_hours.min(run.hours - t);
+        if updates >= run.max_updates {
+            stop = update_limit(run.max_updates, t + dt_h);
+            break;
+        }
         let inc = &current.wear.cam_depth;
         // Stability of the explicit step: at most `STABLE_FRACTION ρ Δθ²` of wear per update.
         let curvature = &current.out.series.cam_curvature;
@@ -245,19 +287,6 @@ pub fn evolve(run: &WearRun, model: &dyn FilmModel, observer: &dyn Observer) -> 
             .fold(f64::INFINITY, f64::min);
         if max_revs * period / 3600.0 < dt_h {
             dt_h = max_revs * period / 3600.0;
-            if updates >= run.max_updates {
-                stop = Stop::Failed {
-                    code: "update_limit",
-                    message: format!(
-                        "the wear per update must stay below {STABLE_FRACTION}·ρ·Δθ² for a stable profile update; \
-                         this run would need more than {} updates (fewer angles, a smaller wear coefficient or a \
-                         shorter running time help)",
-                        run.max_updates
-                    ),
-                    at_hours: t + dt_h,
-                };
-                break;
-            }
         }
         let mut revs = dt_h * 3600.0 / period;
         // Cut the interval where the wear limit is crossed.
@@ -296,6 +325,7 @@ pub fn evolve(run: &WearRun, model: &dyn FilmModel, observer: &dyn Observer) -> 
         };
         // Commit.
         updates += 1;
+        count_models(&mut film_models, &next.out);
         if let (Some(f), Some(fr)) = (face.as_mut(), current.wear.face_depth.as_ref()) {
             for (a, r) in f.iter_mut().zip(fr) {
                 *a += r * revs;
@@ -347,6 +377,7 @@ pub fn evolve(run: &WearRun, model: &dyn FilmModel, observer: &dyn Observer) -> 
         updates,
         initial_cycle,
         final_cycle: current.out,
+        film_models,
     };
     ensure_finite("wear evolution", out.depth.iter().chain(&out.lift_drop).chain(&out.rate))?;
     Ok(out)

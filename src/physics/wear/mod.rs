@@ -1,8 +1,9 @@
 //! Cam wear: Archard wear over the cam cycle with worn-profile evolution, and seed 004's
 //! empirical wear-rate method.
 //!
-//! * [`archard`]: wear of one steady revolution from the cycle's kinematics, loads, Hertz contact,
-//!   roller slip and film (only the Greenwood–Tripp asperity share wears in mixed lubrication).
+//! * [`archard`]: wear of one steady revolution from the cycle's kinematics, loads, Hertz contact
+//!   (or the numerical EHL pressure where that film model ran), roller slip and film (only the
+//!   Greenwood–Tripp asperity share wears in mixed lubrication).
 //! * [`deposit`]: the closed-form spreading of a moving Hertzian pass over surface cells (exact
 //!   volume conservation at any cell size).
 //! * [`evolution`]: update interval by update interval, wear the cam, rebuild its profile, rerun
