@@ -135,6 +135,61 @@ pub type StoreResult<T> = Result<T, StoreError>;
 pub struct Store {
     writer: SqlitePool,
     reader: SqlitePool,
+    /// Accepted jobs on their way to the group-commit task ([`insert_batches`]).
+    inserts: tokio::sync::mpsc::Sender<PendingInsert>,
+}
+
+/// A job waiting for its insert to be committed, and who waits for the answer (its `seq`).
+type PendingInsert = (NewJob, tokio::sync::oneshot::Sender<StoreResult<i64>>);
+
+/// Most inserts committed in one transaction.
+const INSERT_BATCH: usize = 256;
+
+/// Group commit of accepted jobs: every insert waiting when the writer becomes free goes into one
+/// transaction, so concurrent submissions share one commit (one WAL append and sync point) instead
+/// of queueing for one each; each caller is answered only after the commit. A failed batch is
+/// retried one insert at a time so that one bad row fails only its own submission.
+async fn insert_batches(writer: SqlitePool, mut rx: tokio::sync::mpsc::Receiver<PendingInsert>) {
+    let mut batch: Vec<PendingInsert> = Vec::with_capacity(INSERT_BATCH);
+    while rx.recv_many(&mut batch, INSERT_BATCH).await > 0 {
+        let jobs: Vec<&NewJob> = batch.iter().map(|(j, _)| j).collect();
+        match insert_all(&writer, &jobs).await {
+            Ok(seqs) => {
+                for ((_, reply), seq) in batch.drain(..).zip(seqs) {
+                    let _ = reply.send(Ok(seq));
+                }
+            }
+            Err(_) => {
+                for (job, reply) in batch.drain(..) {
+                    let _ = reply.send(insert_all(&writer, &[&job]).await.map(|s| s[0]));
+                }
+            }
+        }
+    }
+}
+
+/// Insert `jobs` (status `queued`) in one transaction; their `seq`s in order.
+async fn insert_all(writer: &SqlitePool, jobs: &[&NewJob]) -> StoreResult<Vec<i64>> {
+    let mut tx = writer.begin().await?;
+    let mut seqs = Vec::with_capacity(jobs.len());
+    for job in jobs {
+        let row = sqlx::query(
+            "INSERT INTO jobs (id, kind, label, status, spec, spec_hash, solver_version, created_at) \
+             VALUES (?, ?, ?, 'queued', ?, ?, ?, ?) RETURNING seq",
+        )
+        .bind(job.id.to_string())
+        .bind(&job.kind)
+        .bind(&job.label)
+        .bind(&job.spec)
+        .bind(&job.spec_hash)
+        .bind(&job.solver_version)
+        .bind(job.created_at)
+        .fetch_one(&mut *tx)
+        .await?;
+        seqs.push(row.try_get(0)?);
+    }
+    tx.commit().await?;
+    Ok(seqs)
 }
 
 const ROW_COLUMNS: &str = "seq, id, kind, label, status, spec_hash, solver_version, created_at, \
@@ -163,7 +218,9 @@ impl Store {
             .acquire_timeout(Duration::from_secs(30))
             .connect_with(options.read_only(true))
             .await?;
-        Ok(Store { writer, reader })
+        let (inserts, rx) = tokio::sync::mpsc::channel(4 * INSERT_BATCH);
+        tokio::spawn(insert_batches(writer.clone(), rx));
+        Ok(Store { writer, reader, inserts })
     }
 
     /// Is the database reachable (for `/readyz`)?
@@ -180,21 +237,12 @@ impl Store {
 
     /// Insert an accepted job (status `queued`); committed when this returns.
     pub async fn insert(&self, job: &NewJob) -> StoreResult<JobRow> {
-        let row = sqlx::query(
-            "INSERT INTO jobs (id, kind, label, status, spec, spec_hash, solver_version, created_at) \
-             VALUES (?, ?, ?, 'queued', ?, ?, ?, ?) RETURNING seq",
-        )
-        .bind(job.id.to_string())
-        .bind(&job.kind)
-        .bind(&job.label)
-        .bind(&job.spec)
-        .bind(&job.spec_hash)
-        .bind(&job.solver_version)
-        .bind(job.created_at)
-        .fetch_one(&self.writer)
-        .await?;
+        let (reply, answer) = tokio::sync::oneshot::channel();
+        let closed = || StoreError::Sqlx(sqlx::Error::PoolClosed);
+        self.inserts.send((job.clone(), reply)).await.map_err(|_| closed())?;
+        let seq = answer.await.map_err(|_| closed())??;
         Ok(JobRow {
-            seq: row.try_get(0)?,
+            seq,
             id: job.id,
             kind: job.kind.clone(),
             label: job.label.clone(),
