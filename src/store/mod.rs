@@ -198,6 +198,11 @@ const ROW_COLUMNS: &str = "seq, id, kind, label, status, spec_hash, solver_versi
 impl Store {
     /// Open (creating if missing) the database at `url` (`sqlite://path`, a plain path, or
     /// `sqlite::memory:`), switch to WAL and apply the migrations.
+    ///
+    /// Durability: WAL with `synchronous = NORMAL` — a commit is in the WAL file when it returns,
+    /// so an accepted job survives a crash or kill of the process (`tests/restart_recovery.rs`
+    /// kills it with SIGKILL); after a power loss or OS crash the commits since the last WAL sync
+    /// may be lost. `FULL` would sync every commit (group commit of submissions shares that cost).
     pub async fn open(url: &str) -> StoreResult<Store> {
         let url = if url.starts_with("sqlite:") { url.to_string() } else { format!("sqlite://{url}") };
         let options = SqliteConnectOptions::from_str(&url)?
