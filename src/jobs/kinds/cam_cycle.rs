@@ -1128,7 +1128,7 @@ fn solve_spec(spec: &CamCycleSpec, observer: &dyn Observer) -> Result<CamCycleRe
 
 impl Kind for CamCycle {
     const NAME: &'static str = "cam_cycle";
-    const SOLVER_VERSION: &'static str = "cam_cycle-2";
+    const SOLVER_VERSION: &'static str = "cam_cycle-3";
     const DESCRIPTION: &'static str = "Cam–follower pair over one revolution: kinematics, loads, Hertz contact, \
         lubricant film, friction and power loss, roller slip (steady or startup) and flash temperature \
         (fidelity fast: closed forms; accurate: numerical line-contact EHL with squeeze at every angle; auto: \
