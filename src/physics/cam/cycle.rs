@@ -297,9 +297,20 @@ pub fn run_cycle(spec: &CycleSpec, needs: Needs, model: &dyn FilmModel, observer
         }
         FollowerKind::Roller { crown: Some(crown), .. } => {
             let (mut w_v, mut e_v, mut t_v, mut d_v) = (Vec::new(), Vec::new(), Vec::new(), Vec::new());
+            // Consecutive angles with the same load and radius (the base circle) reuse the
+            // distribution: the same inputs give the same result.
+            let mut last: Option<((f64, f64), (crate::physics::roller::CrownedContact, crate::physics::contact::LineContact))> = None;
             for (k, l) in kin.iter().zip(&loads) {
-                let cc = crown.distribute(l.contact, k.reduced_radius, es);
-                let c = hertz_line(cc.peak_load_per_length, k.reduced_radius, es);
+                let key = (l.contact, k.reduced_radius);
+                let (cc, c) = match last {
+                    Some((lk, v)) if lk == key => v,
+                    _ => {
+                        let cc = crown.distribute(l.contact, k.reduced_radius, es);
+                        let v = (cc, hertz_line(cc.peak_load_per_length, k.reduced_radius, es));
+                        last = Some((key, v));
+                        v
+                    }
+                };
                 shapes.push(ContactShape::Line { reduced_radius: k.reduced_radius, length: cc.equivalent_length });
                 p0s.push(c.max_pressure);
                 bs.push(c.half_width);
@@ -677,15 +688,31 @@ impl<'a> Context<'a> {
             PointState { film, traction: Traction { force: 0.0, slope: 0.0, stick_limit: 0.0, viscous: 0.0 }, omega: 0.0, pin_torque: 0.0 }
         };
         hist.push((first.omega, time(0)));
-        let mut prev_film = Some(first.film.clone());
+        // Slip ω − ω_roll of the steps in `hist` (for the predictor).
+        let mut slips: Vec<f64> = vec![first.omega - rolling(i0)];
         states[i0] = Some(first);
         let mut omega0 = states[i0].as_ref().unwrap().omega;
         let mut residuals = Vec::new();
         let mut starts = vec![omega0];
         let cycles = if steady { max_cycles.max(1) } else { 1 };
         let last_step = if steady { n } else { n - 1 };
+        // Later cycles stop where they rejoin the previous one: once two consecutive speeds (the
+        // BDF2 history) agree with the previous cycle's within the periodicity tolerance
+        // (relative to the rolling speed at θ = 0, as the periodicity test), the rest of the cycle
+        // would repeat the previous one to that accuracy — the linearised balance
+        // `I δΩ' = −(R_f² ∂F_t/∂u_s + ∂T_pin/∂Ω) δΩ` only damps differences, and BDF2 is A-stable —
+        // so the previous cycle's remaining states are kept and the speed at θ = 0 changes by
+        // less than the tolerance. The residual reported is the larger of the two differences.
+        // (Seed 000 at 3600 angles: the start error, 2.7e-4, falls below 1e-8 about 190° into
+        // the second revolution.)
+        let merge = tolerance;
+        let scale0 = rolling(i0).abs().max(1e-12);
         for cycle in 0..cycles {
             let mut residual = f64::INFINITY;
+            // Differences to the previous cycle at the last two steps (relative to the rolling
+            // speed; NaN: none yet) and the last signed difference.
+            let mut diffs = [f64::NAN, f64::NAN];
+            let mut last_diff = f64::NAN;
             for m in 1..=last_step {
                 observer.check()?;
                 if m % 256 == 0 {
@@ -693,23 +720,50 @@ impl<'a> Context<'a> {
                 }
                 let (i, ip) = (index(m), index(m - 1));
                 let t = time(cycle * n + m);
-                let (w1, _) = *hist.last().unwrap();
-                // Predict: keep the previous slip, follow the rolling speed.
-                let guess = w1 + rolling(i) - rolling(ip);
-                let s = step(i, t, &hist, guess, None, prev_film.as_ref(), &mut cache)?;
+                let (w1, t1) = *hist.last().unwrap();
+                let old = if cycle > 0 && m < n { states[i].as_ref().map(|s| s.omega) } else { None };
+                // Predict. In a later cycle: the previous cycle's speed plus the last difference
+                // to it (which decays smoothly). Otherwise extrapolate the slip linearly in time
+                // (constant slip after a restart of the history).
+                let guess = match old {
+                    Some(o) if last_diff.is_finite() => o + last_diff,
+                    _ if hist.len() >= 2 && slips.len() >= 2 => {
+                        let (_, t2) = hist[hist.len() - 2];
+                        let (s1, s2) = (slips[slips.len() - 1], slips[slips.len() - 2]);
+                        rolling(i) + s1 + (s1 - s2) * (t - t1) / (t1 - t2)
+                    }
+                    _ => w1 + rolling(i) - rolling(ip),
+                };
+                let prev_film = states[ip].as_ref().map(|s| &s.film);
+                let s = step(i, t, &hist, guess, None, prev_film, &mut cache)?;
                 hist.push((s.omega, t));
+                slips.push(s.omega - rolling(i));
                 if hist.len() > 2 {
                     hist.remove(0);
                 }
-                prev_film = Some(s.film.clone());
+                if slips.len() > 2 {
+                    slips.remove(0);
+                }
                 if steady && m == n {
-                    let scale = rolling(i0).abs().max(1e-12);
-                    residual = (s.omega - omega0).abs() / scale;
+                    residual = (s.omega - omega0).abs() / scale0;
                     residuals.push(residual);
                     starts.push(s.omega);
                     omega0 = s.omega;
                 }
+                let merged = match old {
+                    Some(o) => {
+                        last_diff = s.omega - o;
+                        diffs = [diffs[1], last_diff.abs() / scale0];
+                        diffs[0] <= merge && diffs[1] <= merge
+                    }
+                    None => false,
+                };
                 states[i] = Some(s);
+                if merged {
+                    residual = diffs[0].max(diffs[1]);
+                    residuals.push(residual);
+                    break;
+                }
             }
             if !steady {
                 break;
@@ -732,6 +786,8 @@ impl<'a> Context<'a> {
                     starts.push(limit);
                     hist.clear();
                     hist.push((limit, t0));
+                    slips.clear();
+                    slips.push(limit - rolling(i0));
                 }
             }
             if residual <= tolerance {

@@ -206,9 +206,15 @@ pub trait FilmModel: Send + Sync {
         Traction {
             force: viscous + asp,
             slope: vslope + aslope,
-            stick_limit: input.asperity_friction.stick_limit(&film.asperity),
+            stick_limit: self.stick_limit(film, input),
             viscous,
         }
+    }
+
+    /// Half-height of the traction jump at zero sliding ([`Traction::stick_limit`]) without
+    /// evaluating the film shear. Default: the asperity friction's stick limit.
+    fn stick_limit(&self, film: &FilmSolution, input: &ContactInput) -> f64 {
+        input.asperity_friction.stick_limit(&film.asperity)
     }
 }
 
