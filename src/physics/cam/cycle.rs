@@ -300,12 +300,13 @@ pub fn run_cycle(spec: &CycleSpec, needs: Needs, model: &dyn FilmModel, observer
             // Consecutive angles with the same load and radius (the base circle) reuse the
             // distribution: the same inputs give the same result.
             let mut last: Option<((f64, f64), (crate::physics::roller::CrownedContact, crate::physics::contact::LineContact))> = None;
+            let mut hint = [f64::NAN; 3];
             for (k, l) in kin.iter().zip(&loads) {
                 let key = (l.contact, k.reduced_radius);
                 let (cc, c) = match last {
                     Some((lk, v)) if lk == key => v,
                     _ => {
-                        let cc = crown.distribute(l.contact, k.reduced_radius, es);
+                        let cc = crown.distribute_warm(l.contact, k.reduced_radius, es, &mut hint);
                         let v = (cc, hertz_line(cc.peak_load_per_length, k.reduced_radius, es));
                         last = Some((key, v));
                         v
@@ -485,6 +486,14 @@ struct PointState {
     pin_torque: f64,
 }
 
+/// The roller's part of [`PointState`] while the cycle is marched.
+#[derive(Debug, Clone, Copy)]
+struct Slip {
+    traction: Traction,
+    omega: f64,
+    pin_torque: f64,
+}
+
 struct Context<'a> {
     spec: &'a CycleSpec,
     kin: &'a [KinematicState],
@@ -575,6 +584,18 @@ impl<'a> Context<'a> {
         Ok(out)
     }
 
+    /// Join the roller states with their films.
+    fn with_films(states: Vec<Option<Slip>>, cache: Vec<Option<(f64, FilmSolution)>>) -> Vec<PointState> {
+        states
+            .into_iter()
+            .zip(cache)
+            .map(|(s, c)| {
+                let (s, (_, film)) = (s.expect("every angle stepped"), c.expect("every angle has a film"));
+                PointState { film, traction: s.traction, omega: s.omega, pin_torque: s.pin_torque }
+            })
+            .collect()
+    }
+
     /// Roller torque balance marched through the cycle.
     fn march_roller(
         &self,
@@ -590,7 +611,8 @@ impl<'a> Context<'a> {
         let mut cache: Vec<Option<(f64, FilmSolution)>> = vec![None; n];
         // Warm start of the hydrodynamic pin's eccentricity, carried from angle to angle.
         let pin_warm = std::cell::Cell::new(f64::NAN);
-        let mut states: Vec<Option<PointState>> = vec![None; n];
+        // Per angle: the roller's state; its film is the one in `cache` (kept there, not copied).
+        let mut states: Vec<Option<Slip>> = vec![None; n];
         // History: (Ω, t) of the last two accepted steps.
         let mut hist: Vec<(f64, f64)> = Vec::new();
 
@@ -600,9 +622,9 @@ impl<'a> Context<'a> {
                         hist: &[(f64, f64)],
                         guess: f64,
                         fixed_inertia: Option<f64>,
-                        prev_film: Option<&FilmSolution>,
+                        prev: Option<usize>,
                         cache: &mut Vec<Option<(f64, FilmSolution)>>|
-         -> Result<PointState, SolveError> {
+         -> Result<Slip, SolveError> {
             let k = &self.kin[i];
             let (c_i, o_i) = if let Some(torque) = fixed_inertia {
                 (0.0, torque)
@@ -632,7 +654,8 @@ impl<'a> Context<'a> {
             if cache[i].is_none() {
                 let ue = entrainment(guess);
                 let input = self.input(i, ue, k.cam_surface_velocity - (rf * guess + k.follower_surface_base), t, dt);
-                cache[i] = Some((ue, self.model.solve(&input, prev_film)?));
+                let film = self.model.solve(&input, prev.and_then(|j| cache[j].as_ref().map(|c| &c.1)))?;
+                cache[i] = Some((ue, film));
             }
             let mut guess = guess;
             let mut last = None;
@@ -656,11 +679,12 @@ impl<'a> Context<'a> {
                 let ue_sol = entrainment(sol.omega);
                 let done = close(ue_sol, film_ue) || pass == 5;
                 if done {
-                    last = Some(PointState { film: film.clone(), traction: sol.traction, omega: sol.omega, pin_torque: sol.pin_torque });
+                    last = Some(Slip { traction: sol.traction, omega: sol.omega, pin_torque: sol.pin_torque });
                     break;
                 }
                 let input = self.input(i, ue_sol, k.cam_surface_velocity - (rf * sol.omega + k.follower_surface_base), t, dt);
-                cache[i] = Some((ue_sol, self.model.solve(&input, prev_film)?));
+                let film = self.model.solve(&input, prev.and_then(|j| cache[j].as_ref().map(|c| &c.1)))?;
+                cache[i] = Some((ue_sol, film));
                 guess = sol.omega;
             }
             Ok(last.expect("at least one pass"))
@@ -683,9 +707,10 @@ impl<'a> Context<'a> {
             step(i0, time(0), &[], rolling(i0), Some(roller.inertia * accel), None, &mut cache)?
         } else {
             // Startup: the roller is at rest; nothing turns at t = 0.
-            let input = self.input(0, 0.5 * self.kin[0].cam_surface_velocity, self.kin[0].cam_surface_velocity, 0.0, 0.0);
-            let film = self.model.solve(&input, None)?;
-            PointState { film, traction: Traction { force: 0.0, slope: 0.0, stick_limit: 0.0, viscous: 0.0 }, omega: 0.0, pin_torque: 0.0 }
+            let ue = 0.5 * self.kin[0].cam_surface_velocity;
+            let input = self.input(0, ue, self.kin[0].cam_surface_velocity, 0.0, 0.0);
+            cache[0] = Some((ue, self.model.solve(&input, None)?));
+            Slip { traction: Traction { force: 0.0, slope: 0.0, stick_limit: 0.0, viscous: 0.0 }, omega: 0.0, pin_torque: 0.0 }
         };
         hist.push((first.omega, time(0)));
         // Slip ω − ω_roll of the steps in `hist` (for the predictor).
@@ -734,8 +759,8 @@ impl<'a> Context<'a> {
                     }
                     _ => w1 + rolling(i) - rolling(ip),
                 };
-                let prev_film = states[ip].as_ref().map(|s| &s.film);
-                let s = step(i, t, &hist, guess, None, prev_film, &mut cache)?;
+                // The previous angle's film (for squeeze terms) is the one in the cache there.
+                let s = step(i, t, &hist, guess, None, Some(ip), &mut cache)?;
                 hist.push((s.omega, t));
                 slips.push(s.omega - rolling(i));
                 if hist.len() > 2 {
@@ -797,11 +822,11 @@ impl<'a> Context<'a> {
                     tolerance,
                     termination: Termination::Converged,
                 };
-                return Ok((states.into_iter().map(|s| s.unwrap()).collect(), conv));
+                return Ok((Self::with_films(states, cache), conv));
             }
         }
         if !steady {
-            return Ok((states.into_iter().map(|s| s.unwrap()).collect(), Convergence::closed_form()));
+            return Ok((Self::with_films(states, cache), Convergence::closed_form()));
         }
         Err(SolveError::NotConverged {
             solver: "periodic roller speed",

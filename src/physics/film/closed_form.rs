@@ -136,14 +136,21 @@ impl FilmModel for ClosedForm {
         let fluid_share = 1.0 - w_a / load;
         let film = hc.max(FILM_FLOOR);
         let mut nodes = Vec::with_capacity(GL8.len());
-        for &(s, c, wt) in gl8_angles() {
+        // The previous point's nodes, when their viscosities came from the same law: on a base
+        // circle the node pressures repeat exactly and so do the viscosities.
+        let reuse = previous.filter(|p| p.viscosity_law == Some(law) && p.nodes.len() == GL8.len()).map(|p| &p.nodes);
+        for (k, &(s, c, wt)) in gl8_angles().iter().enumerate() {
             let node_area = match (input.shape, point_ab) {
                 (ContactShape::Line { length, .. }, _) => 2.0 * b * length * c * wt,
                 (ContactShape::Point { .. }, Some((ax, ay))) => 2.0 * std::f64::consts::PI * ax * ay * s * c * wt,
                 _ => 0.0,
             };
             let pressure = fluid_share * p0 * c;
-            nodes.push(TractionNode { area: node_area, pressure, viscosity: law.at(pressure).min(VISCOSITY_CAP), film });
+            let viscosity = match reuse {
+                Some(prev) if prev[k].pressure == pressure => prev[k].viscosity,
+                _ => law.at(pressure).min(VISCOSITY_CAP),
+            };
+            nodes.push(TractionNode { area: node_area, pressure, viscosity, film });
         }
         let asperity = AsperityContact {
             load: w_a,
@@ -166,6 +173,7 @@ impl FilmModel for ClosedForm {
             lambda,
             regime,
             nodes,
+            viscosity_law: Some(law),
             profile: None,
             iterations: None,
         })

@@ -46,7 +46,7 @@ pub use numerical::Numerical;
 use crate::physics::friction::{
     viscous_traction, AsperityContact, AsperityFriction, Roughness, TractionLaw, TractionNode,
 };
-use crate::physics::lubricant::Lubricant;
+use crate::physics::lubricant::{Lubricant, ViscosityLaw};
 use crate::physics::SolveError;
 use serde::{Deserialize, Serialize};
 use utoipa::ToSchema;
@@ -163,6 +163,10 @@ pub struct FilmSolution {
     pub regime: Option<Regime>,
     /// Quadrature nodes for the traction integral.
     pub nodes: Vec<TractionNode>,
+    /// The viscosity law (lubricant at the film's temperature) the nodes' viscosities were
+    /// evaluated with, when one law holds for all of them (closed forms): lets the next point
+    /// reuse viscosities at identical node pressures.
+    pub viscosity_law: Option<ViscosityLaw>,
     /// Pressure and film profiles (numerical models only).
     pub profile: Option<FilmProfile>,
     /// Newton steps of a numerical model (absent for closed forms).

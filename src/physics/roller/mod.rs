@@ -175,7 +175,8 @@ impl SlipStep<'_> {
     pub fn rolling_speed(&self) -> f64 {
         (self.cam_surface_velocity - self.follower_surface_base) / self.roller.radius
     }
-    fn residual(&self, omega: f64, side: i8) -> (f64, f64) {
+    /// `(g, dg/dΩ)` of the balance, and the traction and pin torque `(T, dT/dΩ)` behind it.
+    fn residual(&self, omega: f64, side: i8) -> ((f64, f64), Traction, (f64, f64)) {
         let rf = self.roller.radius;
         let us = self.sliding(omega);
         let t = self.model.traction(self.film, self.input, us);
@@ -185,8 +186,12 @@ impl SlipStep<'_> {
         let pin_side = if omega == 0.0 { side } else { 0 };
         let (tp, dtp) = pin_torque_warm(&self.roller.pin, omega, self.pin_load, pin_side, &self.pin_warm);
         (
-            self.inertia_coefficient * omega + self.inertia_offset - rf * ft + tp,
-            self.inertia_coefficient + rf * rf * t.slope + dtp,
+            (
+                self.inertia_coefficient * omega + self.inertia_offset - rf * ft + tp,
+                self.inertia_coefficient + rf * rf * t.slope + dtp,
+            ),
+            t,
+            (tp, dtp),
         )
     }
 
@@ -203,10 +208,35 @@ impl SlipStep<'_> {
         if matches!(self.roller.pin, PinFriction::Coefficient { .. }) {
             jumps[1] = 0.0;
         }
-        let omega = monotone_root(|x, s| self.residual(x, s), &jumps, guess, scale)?;
+        // The last smooth evaluation (Ω, traction, pin torque and slope): the root is at most a
+        // converged Newton step (≤ 1e-12 of the scale) away from it, so traction and pin torque
+        // there follow to first order — error ~(1e-12)² relative — without evaluating them again.
+        let last: std::cell::Cell<Option<(f64, Traction, (f64, f64))>> = std::cell::Cell::new(None);
+        let omega = monotone_root(
+            |x, side| {
+                let (g, t, pin) = self.residual(x, side);
+                last.set((side == 0).then_some((x, t, pin)));
+                g
+            },
+            &jumps,
+            guess,
+            scale,
+        )?;
         let us = self.sliding(omega);
-        let mut traction = self.model.traction(self.film, self.input, us);
-        let (tp, _) = pin_torque_warm(&self.roller.pin, omega, self.pin_load, 0, &self.pin_warm);
+        let (mut traction, tp) = match last.get() {
+            Some((x, t, (tp, dtp))) if omega != roll && omega != 0.0 && (omega - x).abs() <= 1e-9 * scale => {
+                // u_s = u_c − u_fb − R_f Ω. The viscous part takes the total slope too: exact
+                // with Coulomb asperities (no slope away from u_s = 0); with Carter's law it is
+                // off by the asperity share of a correction that is itself ~1e-12 relative.
+                let dus = -self.roller.radius * (omega - x);
+                let traction = Traction { force: t.force + t.slope * dus, viscous: t.viscous + t.slope * dus, ..t };
+                (traction, tp + dtp * (omega - x))
+            }
+            _ => (
+                self.model.traction(self.film, self.input, us),
+                pin_torque_warm(&self.roller.pin, omega, self.pin_load, 0, &self.pin_warm).0,
+            ),
+        };
         if omega == roll {
             // Stuck: the asperities carry whatever the balance requires.
             traction.force = (self.inertia_coefficient * omega + self.inertia_offset + tp) / self.roller.radius;
