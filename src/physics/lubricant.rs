@@ -125,7 +125,8 @@ impl Lubricant {
             },
             ViscosityModel::Roelands => {
                 let a1 = self.roelands_a1();
-                let z = self.roelands_z();
+                // = roelands_z() without a second logarithm.
+                let z = self.pressure_viscosity * ROELANDS_PRESSURE / a1;
                 let t0 = self.reference_temperature;
                 let s0 = self.temperature_viscosity * (t0 - 138.0) / a1;
                 let thermal = ((t - 138.0).max(1.0) / (t0 - 138.0)).powf(-s0);

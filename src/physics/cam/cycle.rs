@@ -649,9 +649,10 @@ impl<'a> Context<'a> {
             // discretisation error at any resolution).
             let consistency = self.model.entrainment_tolerance();
             let close = |a: f64, b: f64| (a - b).abs() <= consistency * b.abs().max(1e-9);
-            // Start from the cached film of this angle (previous cycle) when there is one; the
-            // film is re-solved only when the converged entrainment moved away from it.
-            if cache[i].is_none() {
+            // Start from the cached film of this angle (previous cycle) when there is one and the
+            // guess's entrainment is within the tolerance of it; the film is re-solved when the
+            // converged entrainment moved away from it.
+            if cache[i].as_ref().is_none_or(|(ue, _)| !close(entrainment(guess), *ue)) {
                 let ue = entrainment(guess);
                 let input = self.input(i, ue, k.cam_surface_velocity - (rf * guess + k.follower_surface_base), t, dt);
                 let film = self.model.solve(&input, prev.and_then(|j| cache[j].as_ref().map(|c| &c.1)))?;
@@ -714,7 +715,7 @@ impl<'a> Context<'a> {
         };
         hist.push((first.omega, time(0)));
         // Slip ω − ω_roll of the steps in `hist` (for the predictor).
-        let mut slips: Vec<f64> = vec![first.omega - rolling(i0)];
+        let mut slips: Vec<(f64, f64)> = vec![(time(0), first.omega - rolling(i0))];
         states[i0] = Some(first);
         let mut omega0 = states[i0].as_ref().unwrap().omega;
         let mut residuals = Vec::new();
@@ -745,28 +746,22 @@ impl<'a> Context<'a> {
                 }
                 let (i, ip) = (index(m), index(m - 1));
                 let t = time(cycle * n + m);
-                let (w1, t1) = *hist.last().unwrap();
                 let old = if cycle > 0 && m < n { states[i].as_ref().map(|s| s.omega) } else { None };
                 // Predict. In a later cycle: the previous cycle's speed plus the last difference
-                // to it (which decays smoothly). Otherwise extrapolate the slip linearly in time
-                // (constant slip after a restart of the history).
+                // to it (which decays smoothly). Otherwise extrapolate the slip ω − ω_roll in time
+                // through the last three steps (Lagrange; fewer after a restart of the history).
                 let guess = match old {
                     Some(o) if last_diff.is_finite() => o + last_diff,
-                    _ if hist.len() >= 2 && slips.len() >= 2 => {
-                        let (_, t2) = hist[hist.len() - 2];
-                        let (s1, s2) = (slips[slips.len() - 1], slips[slips.len() - 2]);
-                        rolling(i) + s1 + (s1 - s2) * (t - t1) / (t1 - t2)
-                    }
-                    _ => w1 + rolling(i) - rolling(ip),
+                    _ => rolling(i) + extrapolate(&slips, t),
                 };
                 // The previous angle's film (for squeeze terms) is the one in the cache there.
                 let s = step(i, t, &hist, guess, None, Some(ip), &mut cache)?;
                 hist.push((s.omega, t));
-                slips.push(s.omega - rolling(i));
+                slips.push((t, s.omega - rolling(i)));
                 if hist.len() > 2 {
                     hist.remove(0);
                 }
-                if slips.len() > 2 {
+                if slips.len() > 3 {
                     slips.remove(0);
                 }
                 if steady && m == n {
@@ -812,7 +807,7 @@ impl<'a> Context<'a> {
                     hist.clear();
                     hist.push((limit, t0));
                     slips.clear();
-                    slips.push(limit - rolling(i0));
+                    slips.push((t0, limit - rolling(i0)));
                 }
             }
             if residual <= tolerance {
@@ -836,6 +831,21 @@ impl<'a> Context<'a> {
             history: residuals.iter().rev().take(10).rev().copied().collect(),
         })
     }
+}
+
+/// Value at `t` of the Lagrange polynomial through the points `(t_j, y_j)` (one to three).
+fn extrapolate(points: &[(f64, f64)], t: f64) -> f64 {
+    let mut sum = 0.0;
+    for (j, &(tj, yj)) in points.iter().enumerate() {
+        let mut l = 1.0;
+        for (k, &(tk, _)) in points.iter().enumerate() {
+            if k != j {
+                l *= (t - tk) / (tj - tk);
+            }
+        }
+        sum += yj * l;
+    }
+    sum
 }
 
 /// Angles (interpolated) where `values` changes sign, including across the wrap.
