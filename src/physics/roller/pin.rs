@@ -40,7 +40,7 @@ pub fn pin_torque(pin: &PinFriction, omega: f64, load: f64, side: i8) -> (f64, f
 }
 
 /// [`pin_torque`] with a warm start for the short bearing's eccentricity solve: `warm` holds the
-/// last `q = −ln(1 − ε)` (NaN: none) and is updated. Inside one torque-balance solve the load is
+/// last eccentricity ε (NaN: none) and is updated. Inside one torque-balance solve the load is
 /// fixed and Ω barely changes, so Newton then needs one or two steps.
 pub fn pin_torque_warm(pin: &PinFriction, omega: f64, load: f64, side: i8, warm: &std::cell::Cell<f64>) -> (f64, f64) {
     match *pin {
@@ -114,6 +114,31 @@ fn eccentricity_q(s: f64, q_start: f64) -> (f64, f64) {
 /// `∂T_p/∂ε = T_p ε/(1 − ε²)` and the load-moment term `T_w ∝ ε√(1 − ε²)/A` has
 /// `∂T_w/∂ε = T_w (1/ε − ε/(1 − ε²) − (16 − π²)ε/A²)`. The exact slope keeps the Newton iteration
 /// of the torque balance quadratic.
+/// One Newton step in ε from a nearby eccentricity `e0` (the last one of a warm start), without
+/// transcendental functions: taken when the relative residual there is below 1e-7 (the step then
+/// lands within ~1e-14 of the root, as in [`eccentricity_q`]) and ε stays below 1 − 1e-6 (closer
+/// to 1 the logarithmic variable of [`eccentricity_q`] is needed). `None`: not applicable.
+fn eccentricity_near(s: f64, e0: f64) -> Option<f64> {
+    if !(s > 0.0 && e0 > 0.0 && e0 < 1.0 - 1e-6) {
+        return None;
+    }
+    let pi2 = std::f64::consts::PI * std::f64::consts::PI;
+    let e2 = e0 * e0;
+    let a = pi2 + (16.0 - pi2) * e2;
+    let one_m = 1.0 - e2;
+    let f = e0 * a.sqrt() / (one_m * one_m);
+    let g = f - s;
+    if g.abs() < 1e-13 * s {
+        return Some(e0);
+    }
+    if g.abs() >= 1e-7 * s {
+        return None;
+    }
+    let df = f * (1.0 / e0 + (16.0 - pi2) * e0 / a + 4.0 * e0 / one_m);
+    let e1 = e0 - g / df;
+    (e1 > 0.0 && e1 < 1.0 - 1e-6).then_some(e1)
+}
+
 fn short_bearing_torque(pin: &PinFriction, omega: f64, load: f64, warm: &std::cell::Cell<f64>) -> (f64, f64) {
     let PinFriction::ShortBearing { pin_radius: r, clearance: c, length: l, viscosity: eta } = *pin else {
         return (0.0, 0.0);
@@ -122,8 +147,16 @@ fn short_bearing_torque(pin: &PinFriction, omega: f64, load: f64, warm: &std::ce
         return (0.0, 0.0);
     }
     let u = r * omega;
-    let (e, q) = eccentricity_q(4.0 * c * c * load / (eta * u * l * l * l), warm.get());
-    warm.set(q);
+    let s = 4.0 * c * c * load / (eta * u * l * l * l);
+    let e = match eccentricity_near(s, warm.get()) {
+        Some(e) => e,
+        None => {
+            let w = warm.get();
+            let q_start = if w > 0.0 && w < 1.0 { -(-w).ln_1p() } else { f64::NAN };
+            eccentricity_q(s, q_start).0
+        }
+    };
+    warm.set(e);
     let one_m = 1.0 - e * e;
     let root = one_m.sqrt();
     let pi = std::f64::consts::PI;
