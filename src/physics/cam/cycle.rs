@@ -4,7 +4,8 @@
 //! Angles are uniform, `θ_k = 2πk/N`. Consecutive angles are time steps (steady running:
 //! `Δt = Δθ/ω`; startup: the schedule's times). Roller slip is integrated through the cycle by
 //! variable-step BDF2 (see [`crate::physics::roller`]); steady running repeats cycles until the
-//! roller speed at θ = 0 repeats (relative change below the tolerance), startup runs one
+//! roller speed at θ = 0 repeats (relative change below the tolerance) — a repeated cycle stops
+//! early where its speeds rejoin the previous cycle's within that tolerance —, startup runs one
 //! revolution from rest.
 
 use super::kinematics::{kinematics, FollowerGeometry, KinematicState, SpeedSchedule};
