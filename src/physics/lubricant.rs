@@ -39,6 +39,29 @@ pub enum DensityModel {
     DowsonHigginson,
 }
 
+/// A lubricant's viscosity law at one temperature ([`Lubricant::viscosity_law`]).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum ViscosityLaw {
+    /// `η = η0 exp(α p − thermal)`, `thermal = β (T − T0)`.
+    Barus { viscosity: f64, alpha: f64, thermal: f64 },
+    /// `η = η0 exp(A1 (−1 + (1 + p/p_r)^Z · thermal))`, `thermal = ((T − 138)/(T0 − 138))^(−S0)`.
+    Roelands { viscosity: f64, a1: f64, z: f64, thermal: f64 },
+}
+
+impl ViscosityLaw {
+    /// Viscosity at gauge pressure `p` (Pa, clamped at 0), Pa·s.
+    #[inline]
+    pub fn at(&self, p: f64) -> f64 {
+        let p = p.max(0.0);
+        match *self {
+            ViscosityLaw::Barus { viscosity, alpha, thermal } => viscosity * (alpha * p - thermal).exp(),
+            ViscosityLaw::Roelands { viscosity, a1, z, thermal } => {
+                viscosity * (a1 * (-1.0 + (1.0 + p / ROELANDS_PRESSURE).powf(z) * thermal)).exp()
+            }
+        }
+    }
+}
+
 /// A lubricant's rheology. Plain data: build it from a spec and pass it to solvers.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 pub struct Lubricant {
@@ -85,20 +108,29 @@ impl Lubricant {
     /// `A4 = 138/(T0 − 138)`, which would be a constant; the intended Roelands factor is
     /// `((T − 138)/(T0 − 138))^(−S0)`, used here.
     pub fn viscosity_at(&self, p: f64, t: f64) -> f64 {
-        let p = p.max(0.0);
+        self.viscosity_law(t).at(p)
+    }
+
+    /// The pressure–viscosity law at temperature `t` with its pressure-independent factors
+    /// evaluated once (`A1`, `Z`, the Roelands temperature factor; Barus' `β (T − T0)`):
+    /// [`ViscosityLaw::at`] equals [`Self::viscosity_at`] bit for bit at one `powf` and one `exp`
+    /// per pressure (callers evaluating many pressures at one temperature use it).
+    pub fn viscosity_law(&self, t: f64) -> ViscosityLaw {
         let dt = t - self.reference_temperature;
         match self.viscosity_model {
-            ViscosityModel::Barus => {
-                self.viscosity * (self.pressure_viscosity * p - self.temperature_viscosity * dt).exp()
-            }
+            ViscosityModel::Barus => ViscosityLaw::Barus {
+                viscosity: self.viscosity,
+                alpha: self.pressure_viscosity,
+                thermal: self.temperature_viscosity * dt,
+            },
             ViscosityModel::Roelands => {
                 let a1 = self.roelands_a1();
-                let z = self.roelands_z();
+                // = roelands_z() without a second logarithm.
+                let z = self.pressure_viscosity * ROELANDS_PRESSURE / a1;
                 let t0 = self.reference_temperature;
                 let s0 = self.temperature_viscosity * (t0 - 138.0) / a1;
                 let thermal = ((t - 138.0).max(1.0) / (t0 - 138.0)).powf(-s0);
-                self.viscosity
-                    * (a1 * (-1.0 + (1.0 + p / ROELANDS_PRESSURE).powf(z) * thermal)).exp()
+                ViscosityLaw::Roelands { viscosity: self.viscosity, a1, z, thermal }
             }
         }
     }

@@ -59,6 +59,18 @@ const GL8: [(f64, f64); 8] = [
     (0.960_289_856_497_536_3, 0.101_228_536_290_376_3),
 ];
 
+/// `(sin t, cos t, π/4 · w)` of the [`GL8`] nodes mapped to `t ∈ [0, π/2]`, computed once.
+fn gl8_angles() -> &'static [(f64, f64, f64); 8] {
+    static TABLE: std::sync::OnceLock<[(f64, f64, f64); 8]> = std::sync::OnceLock::new();
+    TABLE.get_or_init(|| {
+        GL8.map(|(xi, wi)| {
+            let tt = std::f64::consts::FRAC_PI_4 * (1.0 + xi);
+            let (s, c) = tt.sin_cos();
+            (s, c, std::f64::consts::FRAC_PI_4 * wi)
+        })
+    })
+}
+
 impl FilmModel for ClosedForm {
     fn solve(&self, input: &ContactInput, previous: Option<&FilmSolution>) -> Result<FilmSolution, SolveError> {
         let load = input.load;
@@ -69,7 +81,8 @@ impl FilmModel for ClosedForm {
         let e_prime = 2.0 * es;
         let lub = input.lubricant;
         let t = input.temperature;
-        let eta0 = lub.viscosity_at(0.0, t);
+        let law = lub.viscosity_law(t);
+        let eta0 = law.at(0.0);
         let alpha = lub.pressure_viscosity;
         let u = input.entrainment_velocity;
         // (central, minimum, steady central, p0, half width, area, rolling radius, regime, model)
@@ -123,22 +136,21 @@ impl FilmModel for ClosedForm {
         let fluid_share = 1.0 - w_a / load;
         let film = hc.max(FILM_FLOOR);
         let mut nodes = Vec::with_capacity(GL8.len());
-        for (xi, wi) in GL8 {
-            let tt = std::f64::consts::FRAC_PI_4 * (1.0 + xi);
-            let wt = std::f64::consts::FRAC_PI_4 * wi;
-            let (s, c) = tt.sin_cos();
+        // The previous point's nodes, when their viscosities came from the same law: on a base
+        // circle the node pressures repeat exactly and so do the viscosities.
+        let reuse = previous.filter(|p| p.viscosity_law == Some(law) && p.nodes.len() == GL8.len()).map(|p| &p.nodes);
+        for (k, &(s, c, wt)) in gl8_angles().iter().enumerate() {
             let node_area = match (input.shape, point_ab) {
                 (ContactShape::Line { length, .. }, _) => 2.0 * b * length * c * wt,
                 (ContactShape::Point { .. }, Some((ax, ay))) => 2.0 * std::f64::consts::PI * ax * ay * s * c * wt,
                 _ => 0.0,
             };
             let pressure = fluid_share * p0 * c;
-            nodes.push(TractionNode {
-                area: node_area,
-                pressure,
-                viscosity: lub.viscosity_at(pressure, t).min(VISCOSITY_CAP),
-                film,
-            });
+            let viscosity = match reuse {
+                Some(prev) if prev[k].pressure == pressure => prev[k].viscosity,
+                _ => law.at(pressure).min(VISCOSITY_CAP),
+            };
+            nodes.push(TractionNode { area: node_area, pressure, viscosity, film });
         }
         let asperity = AsperityContact {
             load: w_a,
@@ -161,6 +173,7 @@ impl FilmModel for ClosedForm {
             lambda,
             regime,
             nodes,
+            viscosity_law: Some(law),
             profile: None,
             iterations: None,
         })

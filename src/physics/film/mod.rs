@@ -46,7 +46,7 @@ pub use numerical::Numerical;
 use crate::physics::friction::{
     viscous_traction, AsperityContact, AsperityFriction, Roughness, TractionLaw, TractionNode,
 };
-use crate::physics::lubricant::Lubricant;
+use crate::physics::lubricant::{Lubricant, ViscosityLaw};
 use crate::physics::SolveError;
 use serde::{Deserialize, Serialize};
 use utoipa::ToSchema;
@@ -165,6 +165,10 @@ pub struct FilmSolution {
     pub regime: Option<Regime>,
     /// Quadrature nodes for the traction integral.
     pub nodes: Vec<TractionNode>,
+    /// The viscosity law (lubricant at the film's temperature) the nodes' viscosities were
+    /// evaluated with, when one law holds for all of them (closed forms): lets the next point
+    /// reuse viscosities at identical node pressures.
+    pub viscosity_law: Option<ViscosityLaw>,
     /// Pressure and film profiles (numerical models only).
     pub profile: Option<FilmProfile>,
     /// Newton steps of a numerical model (absent for closed forms).
@@ -208,9 +212,15 @@ pub trait FilmModel: Send + Sync {
         Traction {
             force: viscous + asp,
             slope: vslope + aslope,
-            stick_limit: input.asperity_friction.stick_limit(&film.asperity),
+            stick_limit: self.stick_limit(film, input),
             viscous,
         }
+    }
+
+    /// Half-height of the traction jump at zero sliding ([`Traction::stick_limit`]) without
+    /// evaluating the film shear. Default: the asperity friction's stick limit.
+    fn stick_limit(&self, film: &FilmSolution, input: &ContactInput) -> f64 {
+        input.asperity_friction.stick_limit(&film.asperity)
     }
 }
 

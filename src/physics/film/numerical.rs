@@ -174,6 +174,7 @@ impl FilmModel for Numerical {
             lambda: (sigma > 0.0).then(|| s.min_film / sigma),
             regime,
             nodes,
+            viscosity_law: None,
             profile: Some(FilmProfile {
                 x: s.state.x,
                 pressure: s.state.pressure,

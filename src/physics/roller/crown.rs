@@ -66,6 +66,13 @@ impl Crown {
     /// Slice-model load distribution for total load `load` (N), reduced radius `r` (m) and
     /// contact modulus `E*` (Pa).
     pub fn distribute(&self, load: f64, r: f64, contact_modulus: f64) -> CrownedContact {
+        self.distribute_warm(load, r, contact_modulus, &mut [f64::NAN; 3])
+    }
+
+    /// [`Self::distribute`] with warm starts: `hint[k]` is the approach δ of pass `k` at a nearby
+    /// state (NaN: none), updated. Neighbouring cam angles then need two or three Newton steps
+    /// per pass; the result differs only within the Newton tolerance (1e-13 of δ).
+    pub fn distribute_warm(&self, load: f64, r: f64, contact_modulus: f64, hint: &mut [f64; 3]) -> CrownedContact {
         if !(load > 0.0) {
             return CrownedContact { peak_load_per_length: 0.0, effective_length: 0.0, equivalent_length: self.length };
         }
@@ -74,12 +81,13 @@ impl Crown {
         let mut w_peak = load / self.length;
         let mut delta: f64 = 0.0;
         let mut eff = self.length;
-        for _ in 0..3 {
+        for pass_hint in hint.iter_mut() {
             let b = (4.0 * w_peak * r / (pi * contact_modulus)).sqrt();
             let compliance = ((2.0 * (4.0 * r / b).ln() - 1.0) / (pi * contact_modulus)).max(1e-30);
             let target = compliance * load;
-            // Newton on the convex increasing G from a lower bound: δ ≥ target/L.
-            delta = delta.max(target / self.length);
+            // Newton on the convex increasing G from a lower bound (δ ≥ target/L) or the hint
+            // (from either side: after one step the iterates decrease monotonically to the root).
+            delta = if pass_hint.is_finite() && *pass_hint > 0.0 { *pass_hint } else { delta.max(target / self.length) };
             for _ in 0..100 {
                 let (g, dg) = self.g_integral(delta);
                 let step = if dg > 0.0 { (g - target) / dg } else { -delta.max(1e-12) };
@@ -91,6 +99,7 @@ impl Crown {
                     break;
                 }
             }
+            *pass_hint = delta;
             eff = self.g_integral(delta).1;
             w_peak = delta / compliance;
         }

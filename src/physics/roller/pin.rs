@@ -40,7 +40,7 @@ pub fn pin_torque(pin: &PinFriction, omega: f64, load: f64, side: i8) -> (f64, f
 }
 
 /// [`pin_torque`] with a warm start for the short bearing's eccentricity solve: `warm` holds the
-/// last `q = −ln(1 − ε)` (NaN: none) and is updated. Inside one torque-balance solve the load is
+/// last eccentricity ε (NaN: none) and is updated. Inside one torque-balance solve the load is
 /// fixed and Ω barely changes, so Newton then needs one or two steps.
 pub fn pin_torque_warm(pin: &PinFriction, omega: f64, load: f64, side: i8, warm: &std::cell::Cell<f64>) -> (f64, f64) {
     match *pin {
@@ -53,10 +53,9 @@ pub fn pin_torque_warm(pin: &PinFriction, omega: f64, load: f64, side: i8, warm:
             if omega == 0.0 {
                 return (0.0, 0.0);
             }
-            let t = short_bearing_torque(pin, omega.abs(), load.abs(), warm);
-            // The torque grows like Ω^p with 3/4 ≤ p ≤ 1 (Petroff at light load): T/Ω is a
-            // secant slope, enough for the safeguarded Newton of the torque balance.
-            (t * omega.signum(), t / omega.abs())
+            let (t, dt) = short_bearing_torque(pin, omega.abs(), load.abs(), warm);
+            // T is odd in Ω, so dT/dΩ is even.
+            (t * omega.signum(), dt)
         }
     }
 }
@@ -96,7 +95,11 @@ fn eccentricity_q(s: f64, q_start: f64) -> (f64, f64) {
         // Far from the root the logarithmic step is the robust one.
         let next = if (g / s).abs() > 0.5 { q - (f / s).ln() / (dg / f) } else { q - g / dg };
         let next = if next > lo && next < hi && dg > 0.0 { next } else { 0.5 * (lo + hi) };
-        let done = (next - q).abs() < 1e-11 * q.max(1e-9) || hi - lo < 1e-14;
+        // Newton converges quadratically here (f is smooth in q, |q f''/f'| = O(1)): from a
+        // relative residual below 1e-7 the step lands within ~1e-14 of the root, so it is taken
+        // without evaluating f again (the warm-started calls of the torque balance mostly end
+        // here after one evaluation).
+        let done = (next - q).abs() < 1e-11 * q.max(1e-9) || hi - lo < 1e-14 || (g / s).abs() < 1e-7;
         q = next;
         if done {
             break;
@@ -105,21 +108,71 @@ fn eccentricity_q(s: f64, q_start: f64) -> (f64, f64) {
     (-(-q).exp_m1(), q)
 }
 
-fn short_bearing_torque(pin: &PinFriction, omega: f64, load: f64, warm: &std::cell::Cell<f64>) -> f64 {
+/// `(T, dT/dΩ)` of the short bearing at `omega > 0`. With `ε(Ω)` from `f(ε) = s ∝ 1/Ω`,
+/// `dε/dΩ = −1/(Ω d ln f/dε)`, `d ln f/dε = 1/ε + (16 − π²)ε/A² + 4ε/(1 − ε²)`,
+/// `A² = π²(1 − ε²) + 16ε²`; the Petroff-like term `T_p ∝ Ω/√(1 − ε²)` has
+/// `∂T_p/∂ε = T_p ε/(1 − ε²)` and the load-moment term `T_w ∝ ε√(1 − ε²)/A` has
+/// `∂T_w/∂ε = T_w (1/ε − ε/(1 − ε²) − (16 − π²)ε/A²)`. The exact slope keeps the Newton iteration
+/// of the torque balance quadratic.
+/// One Newton step in ε from a nearby eccentricity `e0` (the last one of a warm start), without
+/// transcendental functions: taken when the relative residual there is below 1e-7 (the step then
+/// lands within ~1e-14 of the root, as in [`eccentricity_q`]) and ε stays below 1 − 1e-6 (closer
+/// to 1 the logarithmic variable of [`eccentricity_q`] is needed). `None`: not applicable.
+fn eccentricity_near(s: f64, e0: f64) -> Option<f64> {
+    if !(s > 0.0 && e0 > 0.0 && e0 < 1.0 - 1e-6) {
+        return None;
+    }
+    let pi2 = std::f64::consts::PI * std::f64::consts::PI;
+    let e2 = e0 * e0;
+    let a = pi2 + (16.0 - pi2) * e2;
+    let one_m = 1.0 - e2;
+    let f = e0 * a.sqrt() / (one_m * one_m);
+    let g = f - s;
+    if g.abs() < 1e-13 * s {
+        return Some(e0);
+    }
+    if g.abs() >= 1e-7 * s {
+        return None;
+    }
+    let df = f * (1.0 / e0 + (16.0 - pi2) * e0 / a + 4.0 * e0 / one_m);
+    let e1 = e0 - g / df;
+    (e1 > 0.0 && e1 < 1.0 - 1e-6).then_some(e1)
+}
+
+fn short_bearing_torque(pin: &PinFriction, omega: f64, load: f64, warm: &std::cell::Cell<f64>) -> (f64, f64) {
     let PinFriction::ShortBearing { pin_radius: r, clearance: c, length: l, viscosity: eta } = *pin else {
-        return 0.0;
+        return (0.0, 0.0);
     };
     if omega <= 0.0 {
-        return 0.0;
+        return (0.0, 0.0);
     }
     let u = r * omega;
-    let (e, q) = eccentricity_q(4.0 * c * c * load / (eta * u * l * l * l), warm.get());
-    warm.set(q);
-    let root = (1.0 - e * e).sqrt();
+    let s = 4.0 * c * c * load / (eta * u * l * l * l);
+    let e = match eccentricity_near(s, warm.get()) {
+        Some(e) => e,
+        None => {
+            let w = warm.get();
+            let q_start = if w > 0.0 && w < 1.0 { -(-w).ln_1p() } else { f64::NAN };
+            eccentricity_q(s, q_start).0
+        }
+    };
+    warm.set(e);
+    let one_m = 1.0 - e * e;
+    let root = one_m.sqrt();
     let pi = std::f64::consts::PI;
-    let a = (pi * pi * (1.0 - e * e) + 16.0 * e * e).sqrt();
+    let a2 = pi * pi * one_m + 16.0 * e * e;
+    let a = a2.sqrt();
     let sin_phi = pi * root / a;
-    2.0 * pi * eta * r * r * r * l * omega / (c * root) + 0.5 * c * e * load * sin_phi
+    let petroff = 2.0 * pi * eta * r * r * r * l * omega / (c * root);
+    let moment = 0.5 * c * e * load * sin_phi;
+    let mut slope = petroff / omega;
+    if e > 0.0 {
+        let k = (16.0 - pi * pi) * e / a2;
+        let dln_f = 1.0 / e + k + 4.0 * e / one_m;
+        let de_domega = -1.0 / (omega * dln_f);
+        slope += (petroff * e / one_m + moment * (1.0 / e - e / one_m - k)) * de_domega;
+    }
+    (petroff + moment, slope)
 }
 
 #[cfg(test)]
@@ -146,6 +199,18 @@ mod tests {
         let pin = PinFriction::ShortBearing { pin_radius: 0.016, clearance: 10e-6, length: 0.014, viscosity: 0.152 };
         assert!(pin_torque(&pin, 100.0, 5000.0, 0).0 > pin_torque(&pin, 100.0, 100.0, 0).0);
         assert_eq!(pin_torque(&pin, 0.0, 5000.0, 1).0, 0.0);
+    }
+
+    #[test]
+    fn short_bearing_slope_is_the_derivative() {
+        let pin = PinFriction::ShortBearing { pin_radius: 0.016, clearance: 10e-6, length: 0.014, viscosity: 0.152 };
+        for (omega, load) in [(100.0, 600.0), (5.0, 2000.0), (300.0, 50.0), (0.5, 5000.0)] {
+            let h = 1e-6 * omega;
+            let fd = (pin_torque(&pin, omega + h, load, 0).0 - pin_torque(&pin, omega - h, load, 0).0) / (2.0 * h);
+            let s = pin_torque(&pin, omega, load, 0).1;
+            assert!((fd / s - 1.0).abs() < 1e-6, "Ω = {omega}, W = {load}: {fd} vs {s}");
+            assert_eq!(pin_torque(&pin, -omega, load, 0).1, s);
+        }
     }
 
     #[test]
