@@ -28,3 +28,60 @@ fn every_operation_is_documented() {
     let one_of = doc["components"]["schemas"]["JobRequest"]["properties"]["spec"]["oneOf"].as_array().unwrap().len();
     assert_eq!(one_of, tribod::jobs::registry::KINDS.len());
 }
+
+/// Does `value` fit `schema` as far as object keys go (every key of an object is a property of
+/// the schema, recursively; `$ref`, `oneOf`/`anyOf`/`allOf` and `items` followed)? Catches two
+/// Rust types with one schema name, where the document silently keeps only one of them.
+fn keys_fit(doc: &serde_json::Value, schema: &serde_json::Value, value: &serde_json::Value) -> bool {
+    use serde_json::Value;
+    if let Some(r) = schema["$ref"].as_str() {
+        let name = r.rsplit('/').next().unwrap();
+        return keys_fit(doc, &doc["components"]["schemas"][name], value);
+    }
+    for key in ["oneOf", "anyOf"] {
+        if let Some(alts) = schema[key].as_array() {
+            return alts.iter().any(|s| keys_fit(doc, s, value));
+        }
+    }
+    if let Some(all) = schema["allOf"].as_array() {
+        // Properties may be spread over the parts: merge them.
+        let mut merged = serde_json::Map::new();
+        for s in all {
+            let s = match s["$ref"].as_str() {
+                Some(r) => &doc["components"]["schemas"][r.rsplit('/').next().unwrap()],
+                None => s,
+            };
+            if let Some(p) = s["properties"].as_object() {
+                merged.extend(p.clone());
+            }
+        }
+        if merged.is_empty() {
+            return all.iter().all(|s| keys_fit(doc, s, value));
+        }
+        return keys_fit(doc, &serde_json::json!({"type": "object", "properties": merged}), value);
+    }
+    match value {
+        Value::Object(map) => match schema["properties"].as_object() {
+            Some(props) => map.iter().all(|(k, v)| props.get(k).is_some_and(|s| keys_fit(doc, s, v))),
+            None => true,
+        },
+        Value::Array(items) => items.iter().all(|v| keys_fit(doc, &schema["items"], v)),
+        _ => true,
+    }
+}
+
+#[test]
+fn every_example_fits_its_kinds_schema() {
+    let doc = serde_json::to_value(tribod::api::openapi()).unwrap();
+    let alts = doc["components"]["schemas"]["JobRequest"]["properties"]["spec"]["oneOf"].as_array().unwrap().clone();
+    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("examples");
+    let mut checked = 0;
+    for entry in std::fs::read_dir(dir).unwrap() {
+        let path = entry.unwrap().path();
+        let v: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(&path).unwrap()).unwrap();
+        let fits = alts.iter().any(|s| keys_fit(&doc, s, &v["spec"]));
+        assert!(fits, "{}: its spec has a key the OpenAPI document does not describe", path.display());
+        checked += 1;
+    }
+    assert!(checked > 10);
+}

@@ -63,7 +63,7 @@ pub struct OperatingSpec {
 /// `force`, `sommerfeld_number`.
 #[derive(Debug, Clone, Copy, PartialEq, Default, Serialize, Deserialize, ToSchema)]
 #[serde(deny_unknown_fields)]
-pub struct LoadSpec {
+pub struct BearingLoadSpec {
     /// Fixed mid-plane eccentricity ratio ε in [0, 0.999]; the attitude angle puts the film
     /// force on the load line, unless `attitude_angle_deg` fixes it too.
     #[serde(default, skip_serializing_if = "Option::is_none")]
@@ -104,7 +104,7 @@ pub struct MisalignmentSpec {
 /// Axial edge profile of the bore (seed 002 eq. 13–15), the same at both edges.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, ToSchema)]
 #[serde(deny_unknown_fields)]
-pub struct ProfileSpec {
+pub struct BearingProfileSpec {
     /// Order n: 1 linear, 2 parabolic, 3 cubic.
     #[schema(example = 2)]
     pub order: u32,
@@ -213,11 +213,11 @@ pub struct BearingSpec {
     pub geometry: GeometrySpec,
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub operating: Option<OperatingSpec>,
-    pub load: LoadSpec,
+    pub load: BearingLoadSpec,
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub misalignment: Option<MisalignmentSpec>,
     #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub profile: Option<ProfileSpec>,
+    pub profile: Option<BearingProfileSpec>,
     #[serde(default)]
     pub grid: GridSpec,
     #[serde(default)]

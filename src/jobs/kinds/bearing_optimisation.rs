@@ -10,7 +10,7 @@
 //! read by the `bearing` kind (`friction: seed002`, default) or Raimondi & Boyd's journal friction. S/N ratios are larger-the-better, `20 log10(score)`, dB; the best
 //! level of each factor is the one with the largest mean S/N.
 
-use super::bearing::{resolve_load, solve_spec, validate_bearing, BearingSpec, ProfileSpec};
+use super::bearing::{resolve_load, solve_spec, validate_bearing, BearingSpec, BearingProfileSpec};
 use crate::jobs::kind::{Kind, Limits, Validation};
 use crate::physics::journal::taguchi::{level_means, nelder_mead, sn_larger_better, Array, Criteria, Reference, Weights};
 use crate::physics::journal::{Guess, Operating, Workspace};
@@ -255,7 +255,7 @@ struct Evaluator {
 }
 
 impl Evaluator {
-    fn design(&self, spec: &BearingSpec, p: Option<ProfileSpec>, ws: Option<&mut Workspace>, observer: &dyn Observer) -> Result<(Design, Guess), SolveError> {
+    fn design(&self, spec: &BearingSpec, p: Option<BearingProfileSpec>, ws: Option<&mut Workspace>, observer: &dyn Observer) -> Result<(Design, Guess), SolveError> {
         let mut s = spec.clone();
         s.profile = p;
         let (a, r) = solve_spec(&s, (self.op, self.guess, None), ws, observer)?;
@@ -356,10 +356,10 @@ impl Kind for BearingOptimisation {
         let array = spec.method.array();
         let rows = array.rows();
         let f = &spec.factors;
-        let profile = |r: &[usize; 3]| ProfileSpec { order: f.order[r[0]], height: f.height[r[1]], length_fraction: f.length_fraction[r[2]] };
+        let profile = |r: &[usize; 3]| BearingProfileSpec { order: f.order[r[0]], height: f.height[r[1]], length_fraction: f.length_fraction[r[2]] };
         // the unprofiled base and the runs in parallel; each worker keeps a workspace (grids)
         // between its cases, and every case starts from the reference position
-        let cases: Vec<Option<ProfileSpec>> = std::iter::once(None).chain(rows.iter().map(|r| Some(profile(r)))).collect();
+        let cases: Vec<Option<BearingProfileSpec>> = std::iter::once(None).chain(rows.iter().map(|r| Some(profile(r)))).collect();
         let mut all: Vec<Design> = cases
             .par_iter()
             .map_init(|| None::<Workspace>, |ws, p| {
@@ -463,7 +463,7 @@ impl Kind for BearingOptimisation {
                     let objective = |spec_: &BearingSpec, ws: &mut Workspace, x: &[f64], used: &mut usize| -> Result<f64, SolveError> {
                         observer.check()?;
                         *used += 1;
-                        let p = ProfileSpec { order: n, height: x[0], length_fraction: x[1] };
+                        let p = BearingProfileSpec { order: n, height: x[0], length_fraction: x[1] };
                         match ev.design(spec_, Some(p), Some(ws), observer) {
                             Ok((d, _)) => Ok(-score(&d)),
                             Err(SolveError::Interrupted(i)) => Err(SolveError::Interrupted(i)),
@@ -480,7 +480,7 @@ impl Kind for BearingOptimisation {
                         let m2 = nelder_mead(|x| objective(base, &mut ws, x, &mut used), &x, &small, &lo, &hi, 15, 1e-8)?;
                         x = m2.x;
                     }
-                    let (mut d, _) = ev.design(base, Some(ProfileSpec { order: n, height: x[0], length_fraction: x[1] }), None, observer)?;
+                    let (mut d, _) = ev.design(base, Some(BearingProfileSpec { order: n, height: x[0], length_fraction: x[1] }), None, observer)?;
                     used += 1;
                     d.score = score(&d);
                     Ok((d, used))

@@ -40,11 +40,13 @@ fn default_nu() -> f64 {
     Elastic::STEEL.poisson_ratio
 }
 
-/// Lubricant rheology. Defaults: the seed 000 oil (η0 = 0.152 Pa·s, α = 2.2e-8 1/Pa,
+/// Lubricant rheology of `ehl_point` (its own schema: every field defaults to the seed 000 oil and
+/// the film temperature is the spec's `temperature`; the cam kinds' `LubricantSpec` requires the
+/// viscosities and carries the inlet temperature). Defaults: the seed 000 oil (η0 = 0.152 Pa·s, α = 2.2e-8 1/Pa,
 /// β = 0.042 1/K, T0 = 303 K, ρ0 = 870 kg/m³, Roelands, Dowson–Higginson).
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, ToSchema)]
 #[serde(deny_unknown_fields)]
-pub struct LubricantSpec {
+pub struct EhlLubricantSpec {
     /// Viscosity at ambient pressure and the reference temperature, Pa·s.
     #[serde(default = "d_eta")]
     pub viscosity: f64,
@@ -84,10 +86,10 @@ fn d_rho() -> f64 {
     Lubricant::SEED000.density
 }
 
-impl Default for LubricantSpec {
+impl Default for EhlLubricantSpec {
     fn default() -> Self {
         let l = Lubricant::SEED000;
-        LubricantSpec {
+        EhlLubricantSpec {
             viscosity: l.viscosity,
             pressure_viscosity: l.pressure_viscosity,
             temperature_viscosity: l.temperature_viscosity,
@@ -99,7 +101,7 @@ impl Default for LubricantSpec {
     }
 }
 
-impl LubricantSpec {
+impl EhlLubricantSpec {
     fn lubricant(&self) -> Lubricant {
         Lubricant {
             viscosity: self.viscosity,
@@ -116,7 +118,7 @@ impl LubricantSpec {
 /// Shear law for the traction (the film itself is Newtonian and isothermal).
 #[derive(Debug, Clone, Copy, PartialEq, Default, Serialize, Deserialize, ToSchema)]
 #[serde(deny_unknown_fields)]
-pub struct RheologySpec {
+pub struct EhlRheologySpec {
     /// Eyring stress τ0, Pa (seed 001 eq. 25; seed 001 Table 1 uses 5e6). Absent: Newtonian.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub eyring_stress: Option<f64>,
@@ -156,13 +158,13 @@ pub struct EhlPointSpec {
     #[serde(default)]
     pub body_2: Material,
     #[serde(default)]
-    pub lubricant: LubricantSpec,
+    pub lubricant: EhlLubricantSpec,
     /// Film temperature, K (isothermal; thermal effects are not modelled). Default: the
     /// lubricant's reference temperature.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub temperature: Option<f64>,
     #[serde(default)]
-    pub rheology: RheologySpec,
+    pub rheology: EhlRheologySpec,
     /// Grid nodes across the domain (graded towards inlet and exit). Default 256; 512 resolves
     /// the central and minimum film to ≈ 0.3 %, 128 to ≈ 3 % (see BENCHMARKS.md).
     #[serde(default = "d_nodes")]
