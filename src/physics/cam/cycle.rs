@@ -217,24 +217,23 @@ pub fn run_cycle(spec: &CycleSpec, needs: Needs, model: &dyn FilmModel, observer
     // Follower surface velocity before slip: roller at its rolling speed.
     let rf = roller_radius(spec);
     let rolling_uf = |k: &KinematicState| if rf.is_some() { k.cam_surface_velocity } else { k.follower_surface_base };
-    for k in &kin {
-        series.angle.push(k.theta);
-        series.time.push(k.speed.time);
-        series.cam_speed.push(k.speed.omega);
-        series.lift.push(k.lift.v);
-        series.velocity.push(k.velocity);
-        series.acceleration.push(k.acceleration);
-        series.jerk.push(k.jerk);
-        series.pressure_angle.push(k.pressure_angle);
-        series.cam_curvature.push(k.cam_curvature);
-        series.reduced_radius.push(k.reduced_radius);
-        series.contact_offset.push(k.contact_offset);
-        series.cam_surface_velocity.push(k.cam_surface_velocity);
-        let uf = rolling_uf(k);
-        series.follower_surface_velocity.push(uf);
-        series.entrainment_velocity.push(k.entrainment(uf));
-        series.sliding_velocity.push(k.cam_surface_velocity - uf);
-    }
+    // One exactly sized column at a time (no growth copies).
+    let column = |f: &dyn Fn(&KinematicState) -> f64| -> Vec<f64> { kin.iter().map(f).collect() };
+    series.angle = column(&|k| k.theta);
+    series.time = column(&|k| k.speed.time);
+    series.cam_speed = column(&|k| k.speed.omega);
+    series.lift = column(&|k| k.lift.v);
+    series.velocity = column(&|k| k.velocity);
+    series.acceleration = column(&|k| k.acceleration);
+    series.jerk = column(&|k| k.jerk);
+    series.pressure_angle = column(&|k| k.pressure_angle);
+    series.cam_curvature = column(&|k| k.cam_curvature);
+    series.reduced_radius = column(&|k| k.reduced_radius);
+    series.contact_offset = column(&|k| k.contact_offset);
+    series.cam_surface_velocity = column(&|k| k.cam_surface_velocity);
+    series.follower_surface_velocity = column(&|k| rolling_uf(k));
+    series.entrainment_velocity = column(&|k| k.entrainment(rolling_uf(k)));
+    series.sliding_velocity = column(&|k| k.cam_surface_velocity - rolling_uf(k));
     if !needs.loads {
         events.zero_entrainment = sign_changes(&series.angle, &series.entrainment_velocity);
         return Ok(CycleOutput { series, events, convergence, duration, profiles: Vec::new() });
