@@ -56,7 +56,8 @@ impl ViscosityLaw {
         match *self {
             ViscosityLaw::Barus { viscosity, alpha, thermal } => viscosity * (alpha * p - thermal).exp(),
             ViscosityLaw::Roelands { viscosity, a1, z, thermal } => {
-                viscosity * (a1 * (-1.0 + (1.0 + p / ROELANDS_PRESSURE).powf(z) * thermal)).exp()
+                // (1 + p/p_r)^Z as exp(Z ln(1 + p/p_r)): one logarithm instead of a `powf`.
+                viscosity * (a1 * (-1.0 + (z * (p / ROELANDS_PRESSURE).ln_1p()).exp() * thermal)).exp()
             }
         }
     }
@@ -113,8 +114,8 @@ impl Lubricant {
 
     /// The pressure–viscosity law at temperature `t` with its pressure-independent factors
     /// evaluated once (`A1`, `Z`, the Roelands temperature factor; Barus' `β (T − T0)`):
-    /// [`ViscosityLaw::at`] equals [`Self::viscosity_at`] bit for bit at one `powf` and one `exp`
-    /// per pressure (callers evaluating many pressures at one temperature use it).
+    /// [`ViscosityLaw::at`] equals [`Self::viscosity_at`] bit for bit at one logarithm and two
+    /// exponentials per pressure (callers evaluating many pressures at one temperature use it).
     pub fn viscosity_law(&self, t: f64) -> ViscosityLaw {
         let dt = t - self.reference_temperature;
         match self.viscosity_model {

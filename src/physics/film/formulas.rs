@@ -71,8 +71,10 @@ pub fn pan_hamrock(g: &LineGroups) -> (f64, f64) {
     if g.speed == 0.0 {
         return (0.0, 0.0);
     }
-    let hc = 2.922 * g.load.powf(-0.166) * g.speed.powf(0.692) * g.material.powf(0.470);
-    let hm = 1.714 * g.load.powf(-0.128) * g.speed.powf(0.694) * g.material.powf(0.568);
+    // The six powers through three shared logarithms.
+    let (lw, lu, lg) = (g.load.ln(), g.speed.ln(), g.material.ln());
+    let hc = 2.922 * (-0.166 * lw + 0.692 * lu + 0.470 * lg).exp();
+    let hm = 1.714 * (-0.128 * lw + 0.694 * lu + 0.568 * lg).exp();
     (hc, hm)
 }
 
