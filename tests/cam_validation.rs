@@ -2,28 +2,13 @@
 //! Run: `cargo test --test cam_validation`.
 
 use serde_json::{json, Value};
-use tribod::jobs::{registry, Limits};
+use tribod::jobs::registry;
 use tribod::physics::cam::seed004;
 use tribod::physics::contact::{contact_modulus, hertz_point, Elastic};
-use tribod::physics::{Silent, SolveError};
-use tribod::problem::Problem;
+use tribod::physics::SolveError;
 
-#[derive(Debug)]
-enum Failure {
-    Spec(Problem),
-    Solve(SolveError),
-}
-
-fn run(kind: &str, spec: &Value) -> Result<Value, Failure> {
-    let k = registry::find(kind).expect("registered kind");
-    let prepared = k.prepare(spec, &Limits::default()).map_err(Failure::Spec)?;
-    prepared.run(&Silent).map_err(Failure::Solve)
-}
-
-fn example(name: &str) -> Value {
-    let text = std::fs::read_to_string(format!("examples/{name}.json")).unwrap();
-    serde_json::from_str::<Value>(&text).unwrap()["spec"].clone()
-}
+mod in_process;
+use in_process::{example, run, Failure};
 
 fn col(out: &Value, name: &str) -> Vec<f64> {
     out["series"][name].as_array().unwrap_or_else(|| panic!("no column {name}")).iter().map(|v| v.as_f64().unwrap()).collect()

@@ -8,26 +8,9 @@ use serde_json::{json, Value};
 use tribod::jobs::{registry, Limits};
 use tribod::physics::cam::seed004;
 use tribod::physics::wear::irgashev;
-use tribod::physics::{Silent, SolveError};
-use tribod::problem::Problem;
 
-#[derive(Debug)]
-#[allow(dead_code)]
-enum Failure {
-    Spec(Problem),
-    Solve(SolveError),
-}
-
-fn run(kind: &str, spec: &Value) -> Result<Value, Failure> {
-    let k = registry::find(kind).expect("registered kind");
-    let prepared = k.prepare(spec, &Limits::default()).map_err(Failure::Spec)?;
-    prepared.run(&Silent).map_err(Failure::Solve)
-}
-
-fn example(name: &str) -> Value {
-    let text = std::fs::read_to_string(format!("examples/{name}.json")).unwrap();
-    serde_json::from_str::<Value>(&text).unwrap()["spec"].clone()
-}
+mod in_process;
+use in_process::{example, run, Failure};
 
 fn col(v: &Value) -> Vec<f64> {
     v.as_array().unwrap_or_else(|| panic!("not an array: {v}")).iter().map(|x| x.as_f64().unwrap()).collect()
