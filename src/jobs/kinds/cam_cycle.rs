@@ -304,8 +304,10 @@ fn default_max_cycles() -> usize {
 pub struct SlipSpec {
     #[serde(default)]
     pub mode: SlipModeSpec,
-    /// Steady running: relative change of the roller speed at 0° between cycles that ends the
-    /// periodic iteration. Default 1e-8.
+    /// Steady running: change of the roller speed between cycles, relative to the rolling
+    /// speed, that ends the periodic iteration — at the angle where the march starts (the end of
+    /// the longest stretch of constant conditions, usually the base-circle dwell; 0° if there is
+    /// none) and where a later cycle rejoins the previous one. Default 1e-8.
     #[serde(default = "default_slip_tol")]
     pub tolerance: f64,
     /// Most cycles of the periodic iteration. Default 50.
@@ -1128,7 +1130,7 @@ fn solve_spec(spec: &CamCycleSpec, observer: &dyn Observer) -> Result<CamCycleRe
 
 impl Kind for CamCycle {
     const NAME: &'static str = "cam_cycle";
-    const SOLVER_VERSION: &'static str = "cam_cycle-3";
+    const SOLVER_VERSION: &'static str = "cam_cycle-4";
     const DESCRIPTION: &'static str = "Cam–follower pair over one revolution: kinematics, loads, Hertz contact, \
         lubricant film, friction and power loss, roller slip (steady or startup) and flash temperature \
         (fidelity fast: closed forms; accurate: numerical line-contact EHL with squeeze at every angle; auto: \

@@ -72,6 +72,11 @@ fn gl8_angles() -> &'static [(f64, f64, f64); 8] {
 }
 
 impl FilmModel for ClosedForm {
+    /// Only seed 003's squeeze term looks at the time step and the previous point.
+    fn history_free(&self) -> bool {
+        !(self.squeeze && self.formula == FilmFormula::Seed003)
+    }
+
     fn solve(&self, input: &ContactInput, previous: Option<&FilmSolution>) -> Result<FilmSolution, SolveError> {
         let load = input.load;
         if !(load > 0.0 && load.is_finite()) {

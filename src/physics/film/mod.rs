@@ -44,7 +44,7 @@ pub use closed_form::{ClosedForm, FilmFormula};
 pub use numerical::Numerical;
 
 use crate::physics::friction::{
-    viscous_traction, AsperityContact, AsperityFriction, Roughness, TractionLaw, TractionNode,
+    viscous_traction_local, AsperityContact, AsperityFriction, Roughness, TractionLaw, TractionNode,
 };
 use crate::physics::lubricant::{Lubricant, ViscosityLaw};
 use crate::physics::SolveError;
@@ -170,7 +170,7 @@ pub struct FilmSolution {
     /// reuse viscosities at identical node pressures.
     pub viscosity_law: Option<ViscosityLaw>,
     /// Pressure and film profiles (numerical models only).
-    pub profile: Option<FilmProfile>,
+    pub profile: Option<Box<FilmProfile>>,
     /// Newton steps of a numerical model (absent for closed forms).
     pub iterations: Option<u32>,
 }
@@ -203,18 +203,38 @@ pub trait FilmModel: Send + Sync {
         1e-6
     }
 
+    /// Whether a solution depends on its input's load, shape and entrainment alone (besides the
+    /// run's fixed settings) — not on time, time step, sliding velocity or the previous point's
+    /// solution. A history-free model's film solved at one point then stands for another point
+    /// with the same load and shape and an entrainment within [`Self::entrainment_tolerance`]
+    /// (the roller march uses this on a dwell). Default: false.
+    fn history_free(&self) -> bool {
+        false
+    }
+
     /// Traction for sliding velocity `sliding` with the film of `film` (which was solved at
-    /// `input`, possibly with a different sliding velocity). Default: film shear over
-    /// `film.nodes` plus the asperity friction of `film.asperity`.
+    /// `input`, possibly with a different sliding velocity): [`Self::traction_local`] without
+    /// the curvature.
     fn traction(&self, film: &FilmSolution, input: &ContactInput, sliding: f64) -> Traction {
-        let (viscous, vslope) = viscous_traction(&film.nodes, input.traction_law, sliding);
+        self.traction_local(film, input, sliding).0
+    }
+
+    /// Traction and what bounds its second derivative nearby: within `reach` of `sliding` the
+    /// traction is twice differentiable with `|d²F_t/du_s²| ≤ bound` (`(bound, reach)`; the root
+    /// finder of the roller balance uses it to accept a Newton step without another
+    /// evaluation). Default: film shear over `film.nodes` plus the asperity friction of
+    /// `film.asperity`.
+    fn traction_local(&self, film: &FilmSolution, input: &ContactInput, sliding: f64) -> (Traction, (f64, f64)) {
+        let v = viscous_traction_local(&film.nodes, input.traction_law, sliding);
         let (asp, aslope) = input.asperity_friction.traction(&film.asperity, sliding, input.entrainment_velocity);
-        Traction {
-            force: viscous + asp,
-            slope: vslope + aslope,
+        let (acurv, areach) = input.asperity_friction.curvature(&film.asperity, sliding, input.entrainment_velocity);
+        let traction = Traction {
+            force: v.force + asp,
+            slope: v.slope + aslope,
             stick_limit: self.stick_limit(film, input),
-            viscous,
-        }
+            viscous: v.force,
+        };
+        (traction, (1.5 * v.curvature + acurv, v.smooth_reach.min(areach)))
     }
 
     /// Half-height of the traction jump at zero sliding ([`Traction::stick_limit`]) without

@@ -84,7 +84,7 @@ impl FilmModel for Numerical {
         if !(load > 0.0 && load.is_finite()) {
             return Err(SolveError::physical("no_contact_load", format!("contact load {load} N is not positive")));
         }
-        let state: Option<EhlState> = previous.and_then(|p| p.profile.as_ref()).map(FilmProfile::to_ehl_state);
+        let state: Option<EhlState> = previous.and_then(|p| p.profile.as_deref()).map(FilmProfile::to_ehl_state);
         let transient = match &state {
             Some(s) if input.time_step > 0.0 => Some(Transient { previous: s, time_step: input.time_step }),
             _ => None,
@@ -117,7 +117,7 @@ impl FilmModel for Numerical {
         let (s, coarse) = match self.extrapolation {
             Extrapolation::None => (solver.solve(&ehl_input, &options, &Silent)?, None),
             Extrapolation::Richardson => {
-                let coarse_previous = previous.and_then(|p| p.profile.as_ref()).and_then(|p| p.coarse.as_ref());
+                let coarse_previous = previous.and_then(|p| p.profile.as_deref()).and_then(|p| p.coarse.as_ref());
                 let r = solver.solve_richardson(&ehl_input, coarse_previous, &options, &Silent)?;
                 (r.solution, r.coarse_state)
             }
@@ -175,13 +175,13 @@ impl FilmModel for Numerical {
             regime,
             nodes,
             viscosity_law: None,
-            profile: Some(FilmProfile {
+            profile: Some(Box::new(FilmProfile {
                 x: s.state.x,
                 pressure: s.state.pressure,
                 film: s.state.film,
                 density_ratio: s.state.density_ratio,
                 coarse,
-            }),
+            })),
             iterations: Some(s.convergence.iterations),
         })
     }

@@ -49,31 +49,63 @@ pub struct TractionNode {
 /// Viscous traction force (N, same sign as `u_s`) and its derivative with respect to `u_s`
 /// (N·s/m) over `nodes`.
 pub fn viscous_traction(nodes: &[TractionNode], law: &TractionLaw, sliding_velocity: f64) -> (f64, f64) {
+    let v = viscous_traction_local(nodes, law, sliding_velocity);
+    (v.force, v.slope)
+}
+
+/// [`viscous_traction`] with what bounds its second derivative nearby.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct LocalTraction {
+    /// Force, N.
+    pub force: f64,
+    /// dF/du_s, N·s/m.
+    pub slope: f64,
+    /// |d²F/du_s²| at `u_s`, N·s²/m².
+    pub curvature: f64,
+    /// Within this distance of `u_s` (m/s) the traction is twice differentiable and
+    /// `|d²F/du_s²| ≤ 1.5 × curvature`.
+    pub smooth_reach: f64,
+}
+
+/// Eyring: per node `d²τ/du² = −(g²/τ0) φ(x)`, `φ(x) = x/(1 + x²)^{3/2}`, `x = g u/τ0`, `g = η/h`.
+/// Within a tenth of `u` every node's `x` moves by at most a tenth of itself, where `|φ|` stays
+/// below 1.5 times its value (at most `1/0.9²` for large `x`), hence the reach `0.1 |u|`. A
+/// limiting-shear cap switches on or off where the uncapped stress crosses it; as `|dτ/du| ≤ g`,
+/// that is at least `|τ − Λp|/g` away. Newtonian nodes have no curvature.
+pub fn viscous_traction_local(nodes: &[TractionNode], law: &TractionLaw, sliding_velocity: f64) -> LocalTraction {
     let u = sliding_velocity;
-    let mut force = 0.0;
-    let mut slope = 0.0;
+    let mut out = LocalTraction {
+        force: 0.0,
+        slope: 0.0,
+        curvature: 0.0,
+        smooth_reach: if matches!(law.rheology, Rheology::Eyring { .. }) { 0.1 * u.abs() } else { f64::INFINITY },
+    };
     for n in nodes {
         let g = n.viscosity / n.film; // shear modulus of the rate: τ_N = g u
-        let (mut tau, mut dtau) = match law.rheology {
-            Rheology::Newtonian => (g * u, g),
+        let (mut tau, mut dtau, mut ddtau) = match law.rheology {
+            Rheology::Newtonian => (g * u, g, 0.0),
             Rheology::Eyring { tau0 } => {
                 let x = g * u / tau0;
-                let r = (x * x + 1.0).sqrt();
+                let r2 = x * x + 1.0;
+                let r = r2.sqrt();
                 // asinh(x) = sign(x) ln(|x| + r), stable for large |x|.
-                (tau0 * x.signum() * (x.abs() + r).ln(), g / r)
+                (tau0 * x.signum() * (x.abs() + r).ln(), g / r, g * g / tau0 * x.abs() / (r2 * r))
             }
         };
         if let Some(lam) = law.limiting_shear_coefficient {
             let cap = lam * n.pressure.max(0.0);
+            out.smooth_reach = out.smooth_reach.min((tau.abs() - cap).abs() / g);
             if tau.abs() > cap {
                 tau = cap * u.signum();
                 dtau = 0.0;
+                ddtau = 0.0;
             }
         }
-        force += n.area * tau;
-        slope += n.area * dtau;
+        out.force += n.area * tau;
+        out.slope += n.area * dtau;
+        out.curvature += n.area * ddtau;
     }
-    (force, slope)
+    out
 }
 
 /// Friction law of the asperity-borne load share.
@@ -139,6 +171,25 @@ impl AsperityFriction {
         }
     }
 
+    /// `(|d²Q_a/du_s²|, reach)` at fixed entrainment: the curvature is constant within `reach`
+    /// of `sliding`, which stops short of the law's kinks and jumps (`u_s = 0`, and Carter's
+    /// gross-sliding point `|u_s| = ξ_c |u_e|`).
+    pub fn curvature(&self, contact: &AsperityContact, sliding: f64, entrainment: f64) -> (f64, f64) {
+        let q = self.coefficient * contact.load;
+        if q == 0.0 {
+            return (0.0, f64::INFINITY);
+        }
+        let (ue, xc) = (entrainment.abs(), contact.gross_sliding_creep);
+        match self.model {
+            AsperityModel::Carter if ue > 0.0 && xc > 0.0 => {
+                let gross = xc * ue;
+                let reach = sliding.abs().min((sliding.abs() - gross).abs());
+                (if sliding.abs() < gross { 2.0 * q / (gross * gross) } else { 0.0 }, reach)
+            }
+            _ => (0.0, sliding.abs()),
+        }
+    }
+
     /// Half-height of the traction jump at `u_s = 0` (N): `μ_b W_a` for Coulomb, 0 for Carter.
     pub fn stick_limit(&self, contact: &AsperityContact) -> f64 {
         match self.model {
@@ -189,6 +240,36 @@ mod tests {
     }
 
     #[test]
+    fn local_curvature_is_the_second_derivative_and_bounds_it_within_reach() {
+        let n = [node(), TractionNode { pressure: 2e8, viscosity: 0.5, ..node() }];
+        let eyring = TractionLaw { rheology: Rheology::Eyring { tau0: 5e6 }, limiting_shear_coefficient: None };
+        // x from 1e-4 (Newtonian-like) through the knee (x ≈ 0.7) to the logarithmic range.
+        for u in [-0.3, 1e-9, 1e-6, 3.5e-3 / 2.0, 0.01, 0.3, 30.0] {
+            let local = viscous_traction_local(&n, &eyring, u);
+            let h = 1e-3 * u.abs();
+            let fd = (viscous_traction(&n, &eyring, u + h).1 - viscous_traction(&n, &eyring, u - h).1) / (2.0 * h);
+            // (At u = 1e-9 the slope changes below its round-off: no finite difference.)
+            if u.abs() >= 1e-6 {
+                assert!((fd.abs() - local.curvature).abs() <= 1e-3 * local.curvature, "u={u}: {fd} vs {}", local.curvature);
+            }
+            assert_eq!(local.smooth_reach, 0.1 * u.abs());
+            for k in -10..=10 {
+                let v = u + local.smooth_reach * k as f64 / 10.0;
+                let c = viscous_traction_local(&n, &eyring, v).curvature;
+                assert!(c <= 1.5 * local.curvature * (1.0 + 1e-12), "u={u}, v={v}: {c} vs {}", local.curvature);
+            }
+        }
+        // Newtonian: straight; a limiting-shear cap limits the reach to where it switches.
+        let newtonian = TractionLaw { rheology: Rheology::Newtonian, limiting_shear_coefficient: None };
+        let l = viscous_traction_local(&n, &newtonian, 0.1);
+        assert_eq!((l.curvature, l.smooth_reach), (0.0, f64::INFINITY));
+        let capped = TractionLaw { rheology: Rheology::Newtonian, limiting_shear_coefficient: Some(0.01) };
+        // Node 1: g = 2e8 s⁻¹·Pa/(m/s), cap 1e7 Pa at u = 0.05 m/s.
+        let l = viscous_traction_local(&[node()], &capped, 0.04);
+        assert!((l.smooth_reach - 0.01).abs() < 1e-12, "{}", l.smooth_reach);
+    }
+
+    #[test]
     fn carter_creep_curve() {
         let a = AsperityFriction { coefficient: 0.12, model: AsperityModel::Carter };
         let c = AsperityContact { load: 1000.0, gross_sliding_creep: 0.003 };
@@ -203,5 +284,13 @@ mod tests {
         let coulomb = AsperityFriction { model: AsperityModel::Coulomb, ..a };
         assert_eq!(coulomb.stick_limit(&c), 120.0);
         assert_eq!(a.stick_limit(&c), 0.0);
+        // Curvature: −2 μ_b W_a/(ξ_c u_e)² inside, 0 beyond; the reach stops at the kinks.
+        let gross = 0.003 * ue;
+        let (k, reach) = a.curvature(&c, 0.25 * gross, ue);
+        assert!((k - 2.0 * 120.0 / (gross * gross)).abs() < 1e-6 * k && (reach - 0.25 * gross).abs() < 1e-15);
+        let (k, reach) = a.curvature(&c, 0.9 * gross, ue);
+        assert!(k > 0.0 && (reach - 0.1 * gross).abs() < 1e-15);
+        assert_eq!(a.curvature(&c, 2.0 * gross, ue).0, 0.0);
+        assert_eq!(coulomb.curvature(&c, -0.5, ue), (0.0, 0.5));
     }
 }

@@ -177,9 +177,16 @@ impl SlipStep<'_> {
     }
     /// `(g, dg/dΩ)` of the balance, and the traction and pin torque `(T, dT/dΩ)` behind it.
     fn residual(&self, omega: f64, side: i8) -> ((f64, f64), Traction, (f64, f64)) {
+        let (g, t, pin, _) = self.residual_local(omega, side);
+        (g, t, pin)
+    }
+
+    /// [`Self::residual`] and the traction's curvature bound `(bound, reach)` in `u_s`
+    /// ([`FilmModel::traction_local`]).
+    fn residual_local(&self, omega: f64, side: i8) -> ((f64, f64), Traction, (f64, f64), (f64, f64)) {
         let rf = self.roller.radius;
         let us = self.sliding(omega);
-        let t = self.model.traction(self.film, self.input, us);
+        let (t, curvature) = self.model.traction_local(self.film, self.input, us);
         let roll = self.rolling_speed();
         // Traction jump at u_s = 0 (Ω = Ω_roll): left of it u_s > 0.
         let ft = if omega == roll && side != 0 { -(side as f64) * t.stick_limit + t.force } else { t.force };
@@ -192,7 +199,48 @@ impl SlipStep<'_> {
             ),
             t,
             (tp, dtp),
+            curvature,
         )
+    }
+
+    /// The common case of a good predictor: one evaluation of the balance at `x` and a Newton
+    /// step, accepted when the root provably lies within `tol` of its end — the pin torque is
+    /// evaluated there (cheap), the traction's deviation from its tangent is bounded by its
+    /// curvature ([`FilmModel::traction_local`]), and the slope of the balance stays above
+    /// half its value within twice the step. Traction at the end follows from its tangent (error
+    /// within the same bound). `Err(x')`: not accepted; `x'` is where to continue the search
+    /// (the Newton point when usable, else `x`).
+    fn one_newton_step(&self, x: f64, jumps: &[f64; 2], tol: f64) -> Result<SlipSolution, f64> {
+        if x == 0.0 || jumps.contains(&x) || !x.is_finite() {
+            return Err(x);
+        }
+        let ((g, dg), t, (tp, dtp), (curvature, smooth)) = self.residual_local(x, 0);
+        if !(dg > 0.0 && g.is_finite()) {
+            return Err(x);
+        }
+        let delta = -g / dg;
+        let x1 = x + delta;
+        if !x1.is_finite() {
+            return Err(x);
+        }
+        let reach = 2.0 * delta.abs();
+        if jumps.iter().any(|&j| (j - x).abs() <= reach) || x.abs() <= reach {
+            return Err(x1);
+        }
+        let rf = self.roller.radius;
+        let du = -rf * delta;
+        if rf * reach > smooth {
+            return Err(x1);
+        }
+        let (tp1, dtp1) = pin_torque_warm(&self.roller.pin, x1, self.pin_load, 0, &self.pin_warm);
+        // g(x1) is what the tangents missed: the pin's (exact) and the traction's (bounded).
+        let residual = (tp1 - (tp + dtp * delta)).abs() + rf * 0.5 * curvature * du * du;
+        let slope_min = self.inertia_coefficient + rf * rf * (t.slope - curvature * rf * reach) + dtp.min(dtp1);
+        if !(slope_min > 0.5 * dg) || !(residual <= tol * slope_min) {
+            return Err(x1);
+        }
+        let traction = Traction { force: t.force + t.slope * du, viscous: t.viscous + t.slope * du, ..t };
+        Ok(SlipSolution { omega: x1, sliding: self.sliding(x1), traction, pin_torque: tp1 })
     }
 
     /// Solve for Ω, starting the search at `guess`.
@@ -208,6 +256,11 @@ impl SlipStep<'_> {
         if matches!(self.roller.pin, PinFriction::Coefficient { .. }) {
             jumps[1] = 0.0;
         }
+        let tol = 1e-12 * scale.max(guess.abs());
+        let guess = match self.one_newton_step(guess, &jumps, tol) {
+            Ok(solution) => return Ok(solution),
+            Err(next) => next,
+        };
         // The last smooth evaluation (Ω, traction, pin torque and slope): the root is at most a
         // converged Newton step (≤ 1e-12 of the scale) away from it, so traction and pin torque
         // there follow to first order — error ~(1e-12)² relative — without evaluating them again.
@@ -254,6 +307,88 @@ impl SlipStep<'_> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::physics::film::{ClosedForm, ContactShape, FilmFormula};
+    use crate::physics::friction::{AsperityFriction, AsperityModel, Rheology, Roughness, TractionLaw};
+    use crate::physics::lubricant::{DensityModel, Lubricant, ViscosityModel};
+
+    /// Seed 001-like nose contact with an Eyring film, rough surfaces and the two pin models.
+    #[test]
+    fn one_newton_step_agrees_with_the_bracketed_search() {
+        let lub = Lubricant {
+            viscosity: 0.013,
+            pressure_viscosity: 1.84e-8,
+            temperature_viscosity: 0.0,
+            reference_temperature: 313.0,
+            density: 870.0,
+            viscosity_model: ViscosityModel::Roelands,
+            density_model: DensityModel::DowsonHigginson,
+        };
+        let rough = Roughness { sigma: 0.3e-6, eta_beta_sigma: 0.05, sigma_over_beta: 0.001 };
+        let law = TractionLaw { rheology: Rheology::Eyring { tau0: 5e6 }, limiting_shear_coefficient: None };
+        let model = ClosedForm { formula: FilmFormula::PanHamrock, squeeze: false };
+        let pins = [
+            PinFriction::ShortBearing { pin_radius: 0.0091, clearance: 10e-6, length: 0.021, viscosity: 0.013 },
+            PinFriction::Coefficient { coefficient: 0.005, pin_radius: 0.0091 },
+        ];
+        let mut fast = 0;
+        for (asp_model, pin, inertia, load) in [
+            (AsperityModel::Coulomb, pins[0], 0.0, 12_500.0),
+            (AsperityModel::Carter, pins[0], 2e-5, 12_500.0),
+            (AsperityModel::Coulomb, pins[1], 2e-5, 3_000.0),
+            (AsperityModel::Carter, pins[1], 0.0, 800.0),
+        ] {
+            let asp = AsperityFriction { coefficient: 0.12, model: asp_model };
+            let input = ContactInput {
+                load,
+                shape: ContactShape::Line { reduced_radius: 0.0105, length: 0.021 },
+                entrainment_velocity: 3.98,
+                sliding_velocity: 0.0,
+                time: 0.0,
+                time_step: 0.0,
+                contact_modulus: 100e9 / 0.91,
+                temperature: 313.0,
+                lubricant: &lub,
+                roughness: &rough,
+                traction_law: &law,
+                asperity_friction: &asp,
+            };
+            let film = model.solve(&input, None).unwrap();
+            let roller = RollerParams { radius: 0.0125, inertia, pin };
+            let step = |c: f64, o: f64| SlipStep {
+                model: &model,
+                film: &film,
+                input: &input,
+                cam_surface_velocity: 7.96,
+                follower_surface_base: 0.0,
+                roller: &roller,
+                pin_load: load,
+                inertia_coefficient: c,
+                inertia_offset: o,
+                pin_warm: std::cell::Cell::new(f64::NAN),
+            };
+            // Implicit steps of 1e-5 s from a few previous speeds (BDF1 form).
+            for previous in [600.0, 630.0, 636.0, 636.7] {
+                let (c, o) = if inertia > 0.0 { (inertia / 1e-5, -inertia * previous / 1e-5) } else { (0.0, 0.0) };
+                let reference = step(c, o).solve(previous - 50.0).unwrap(); // far guess: bracketed search
+                for rel in [1e-9, 1e-7, 1e-5, 1e-3] {
+                    let p = step(c, o);
+                    let jumps = [if p.model.stick_limit(p.film, p.input) > 0.0 { p.rolling_speed() } else { f64::NAN }, 0.0];
+                    let tol = 1e-12 * reference.omega.abs();
+                    let guess = reference.omega * (1.0 + rel);
+                    let got = p.solve(guess).unwrap();
+                    let scale = reference.omega.abs();
+                    assert!((got.omega - reference.omega).abs() <= 2.0 * tol, "{asp_model:?} {pin:?}: {} vs {}", got.omega, reference.omega);
+                    assert!((got.traction.force - reference.traction.force).abs() <= 1e-9 * reference.traction.force.abs().max(1e-9));
+                    assert!((got.pin_torque - reference.pin_torque).abs() <= 1e-9 * reference.pin_torque.abs().max(1e-12));
+                    if p.one_newton_step(guess, &jumps, 1e-12 * scale).is_ok() {
+                        fast += 1;
+                    }
+                }
+            }
+        }
+        // Close guesses take the one-evaluation path.
+        assert!(fast >= 16, "{fast} one-step solves");
+    }
 
     #[test]
     fn monotone_root_finds_smooth_roots_and_sticks_inside_jumps() {

@@ -108,37 +108,46 @@ fn eccentricity_q(s: f64, q_start: f64) -> (f64, f64) {
     (-(-q).exp_m1(), q)
 }
 
+/// Newton in ε from a nearby eccentricity `e0` (the last one of a warm start), without
+/// transcendental functions: at most four steps, each staying in `(0, 1 − 1e-6)` (closer to 1 the
+/// logarithmic variable of [`eccentricity_q`] is needed); done when the relative residual is
+/// below 1e-13, or with the step taken from a residual below 1e-7 (it then lands within ~1e-14
+/// of the root, as in [`eccentricity_q`]). From one angle of a cycle to the next the load and
+/// speed move by parts per thousand and two or three steps suffice. `None`: not applicable.
+fn eccentricity_near(s: f64, e0: f64) -> Option<f64> {
+    if !(s > 0.0 && e0 > 0.0 && e0 < 1.0 - 1e-6) {
+        return None;
+    }
+    let pi2 = std::f64::consts::PI * std::f64::consts::PI;
+    let mut e = e0;
+    for _ in 0..4 {
+        let e2 = e * e;
+        let a = pi2 + (16.0 - pi2) * e2;
+        let one_m = 1.0 - e2;
+        let f = e * a.sqrt() / (one_m * one_m);
+        let g = f - s;
+        if g.abs() < 1e-13 * s {
+            return Some(e);
+        }
+        let df = f * (1.0 / e + (16.0 - pi2) * e / a + 4.0 * e / one_m);
+        let next = e - g / df;
+        if !(next > 0.0 && next < 1.0 - 1e-6) {
+            return None;
+        }
+        if g.abs() < 1e-7 * s {
+            return Some(next);
+        }
+        e = next;
+    }
+    None
+}
+
 /// `(T, dT/dΩ)` of the short bearing at `omega > 0`. With `ε(Ω)` from `f(ε) = s ∝ 1/Ω`,
 /// `dε/dΩ = −1/(Ω d ln f/dε)`, `d ln f/dε = 1/ε + (16 − π²)ε/A² + 4ε/(1 − ε²)`,
 /// `A² = π²(1 − ε²) + 16ε²`; the Petroff-like term `T_p ∝ Ω/√(1 − ε²)` has
 /// `∂T_p/∂ε = T_p ε/(1 − ε²)` and the load-moment term `T_w ∝ ε√(1 − ε²)/A` has
 /// `∂T_w/∂ε = T_w (1/ε − ε/(1 − ε²) − (16 − π²)ε/A²)`. The exact slope keeps the Newton iteration
 /// of the torque balance quadratic.
-/// One Newton step in ε from a nearby eccentricity `e0` (the last one of a warm start), without
-/// transcendental functions: taken when the relative residual there is below 1e-7 (the step then
-/// lands within ~1e-14 of the root, as in [`eccentricity_q`]) and ε stays below 1 − 1e-6 (closer
-/// to 1 the logarithmic variable of [`eccentricity_q`] is needed). `None`: not applicable.
-fn eccentricity_near(s: f64, e0: f64) -> Option<f64> {
-    if !(s > 0.0 && e0 > 0.0 && e0 < 1.0 - 1e-6) {
-        return None;
-    }
-    let pi2 = std::f64::consts::PI * std::f64::consts::PI;
-    let e2 = e0 * e0;
-    let a = pi2 + (16.0 - pi2) * e2;
-    let one_m = 1.0 - e2;
-    let f = e0 * a.sqrt() / (one_m * one_m);
-    let g = f - s;
-    if g.abs() < 1e-13 * s {
-        return Some(e0);
-    }
-    if g.abs() >= 1e-7 * s {
-        return None;
-    }
-    let df = f * (1.0 / e0 + (16.0 - pi2) * e0 / a + 4.0 * e0 / one_m);
-    let e1 = e0 - g / df;
-    (e1 > 0.0 && e1 < 1.0 - 1e-6).then_some(e1)
-}
-
 fn short_bearing_torque(pin: &PinFriction, omega: f64, load: f64, warm: &std::cell::Cell<f64>) -> (f64, f64) {
     let PinFriction::ShortBearing { pin_radius: r, clearance: c, length: l, viscosity: eta } = *pin else {
         return (0.0, 0.0);
@@ -199,6 +208,23 @@ mod tests {
         let pin = PinFriction::ShortBearing { pin_radius: 0.016, clearance: 10e-6, length: 0.014, viscosity: 0.152 };
         assert!(pin_torque(&pin, 100.0, 5000.0, 0).0 > pin_torque(&pin, 100.0, 100.0, 0).0);
         assert_eq!(pin_torque(&pin, 0.0, 5000.0, 1).0, 0.0);
+    }
+
+    #[test]
+    fn warm_eccentricity_matches_the_cold_solve() {
+        let pi2 = std::f64::consts::PI.powi(2);
+        let f = |e: f64| e * (pi2 * (1.0 - e * e) + 16.0 * e * e).sqrt() / (1.0 - e * e).powi(2);
+        for (e, e0) in [(0.3, 0.2999), (0.3, 0.31), (0.6, 0.59), (0.9, 0.899), (0.05, 0.06)] {
+            let s = f(e);
+            let cold = short_bearing_eccentricity(s);
+            match eccentricity_near(s, e0) {
+                Some(warm) => assert!((warm - cold).abs() < 1e-13, "ε = {e} from {e0}: {warm} vs {cold}"),
+                None => panic!("ε = {e} from {e0}: no warm solve"),
+            }
+        }
+        // Too far or too close to 1: left to the logarithmic solve.
+        assert!(eccentricity_near(f(0.999), 0.5).is_none());
+        assert!(eccentricity_near(f(0.5), 1.0 - 1e-7).is_none());
     }
 
     #[test]
