@@ -185,13 +185,15 @@ impl FilmModel for ClosedForm {
     }
 }
 
+/// Test inputs shared by the film and roller unit tests: seed 001's nose contact (12.5 kN on a
+/// 21 mm line, R = 10.5 mm, u_e = 3.98 m/s, E* = 110 GPa) and its oil.
 #[cfg(test)]
-mod tests {
+pub(crate) mod test_inputs {
     use super::*;
-    use crate::physics::friction::{AsperityFriction, AsperityModel, Rheology, Roughness, TractionLaw};
+    use crate::physics::friction::{AsperityFriction, Roughness, TractionLaw};
     use crate::physics::lubricant::{DensityModel, Lubricant, ViscosityModel};
 
-    fn seed001_nose<'a>(
+    pub(crate) fn seed001_nose<'a>(
         lub: &'a Lubricant,
         rough: &'a Roughness,
         law: &'a TractionLaw,
@@ -213,7 +215,7 @@ mod tests {
         }
     }
 
-    fn oil() -> Lubricant {
+    pub(crate) fn oil() -> Lubricant {
         Lubricant {
             viscosity: 0.013,
             pressure_viscosity: 1.84e-8,
@@ -224,6 +226,13 @@ mod tests {
             density_model: DensityModel::DowsonHigginson,
         }
     }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::test_inputs::{oil, seed001_nose};
+    use super::*;
+    use crate::physics::friction::{AsperityFriction, AsperityModel, Rheology, Roughness, TractionLaw};
 
     #[test]
     fn nodes_integrate_the_hertz_load_and_area() {

@@ -307,22 +307,14 @@ impl SlipStep<'_> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::physics::film::{ClosedForm, ContactShape, FilmFormula};
+    use crate::physics::film::closed_form::test_inputs::{oil, seed001_nose};
+    use crate::physics::film::{ClosedForm, FilmFormula};
     use crate::physics::friction::{AsperityFriction, AsperityModel, Rheology, Roughness, TractionLaw};
-    use crate::physics::lubricant::{DensityModel, Lubricant, ViscosityModel};
 
     /// Seed 001-like nose contact with an Eyring film, rough surfaces and the two pin models.
     #[test]
     fn one_newton_step_agrees_with_the_bracketed_search() {
-        let lub = Lubricant {
-            viscosity: 0.013,
-            pressure_viscosity: 1.84e-8,
-            temperature_viscosity: 0.0,
-            reference_temperature: 313.0,
-            density: 870.0,
-            viscosity_model: ViscosityModel::Roelands,
-            density_model: DensityModel::DowsonHigginson,
-        };
+        let lub = oil();
         let rough = Roughness { sigma: 0.3e-6, eta_beta_sigma: 0.05, sigma_over_beta: 0.001 };
         let law = TractionLaw { rheology: Rheology::Eyring { tau0: 5e6 }, limiting_shear_coefficient: None };
         let model = ClosedForm { formula: FilmFormula::PanHamrock, squeeze: false };
@@ -338,20 +330,7 @@ mod tests {
             (AsperityModel::Carter, pins[1], 0.0, 800.0),
         ] {
             let asp = AsperityFriction { coefficient: 0.12, model: asp_model };
-            let input = ContactInput {
-                load,
-                shape: ContactShape::Line { reduced_radius: 0.0105, length: 0.021 },
-                entrainment_velocity: 3.98,
-                sliding_velocity: 0.0,
-                time: 0.0,
-                time_step: 0.0,
-                contact_modulus: 100e9 / 0.91,
-                temperature: 313.0,
-                lubricant: &lub,
-                roughness: &rough,
-                traction_law: &law,
-                asperity_friction: &asp,
-            };
+            let input = ContactInput { load, ..seed001_nose(&lub, &rough, &law, &asp) };
             let film = model.solve(&input, None).unwrap();
             let roller = RollerParams { radius: 0.0125, inertia, pin };
             let step = |c: f64, o: f64| SlipStep {

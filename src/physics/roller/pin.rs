@@ -65,14 +65,24 @@ pub fn short_bearing_eccentricity(s: f64) -> f64 {
     eccentricity_q(s, f64::NAN).0
 }
 
+/// Ocvirk's dimensionless load `f(ε) = ε √(π²(1 − ε²) + 16ε²)/(1 − ε²)²` (the short bearing's
+/// `W = (η U L³/(4c²)) f(ε)`) and `d ln f/dε = 1/ε + (16 − π²)ε/A² + 4ε/(1 − ε²)`,
+/// `A² = π²(1 − ε²) + 16ε²`.
+fn load_function(e: f64) -> (f64, f64) {
+    let pi2 = std::f64::consts::PI * std::f64::consts::PI;
+    let e2 = e * e;
+    let a2 = pi2 + (16.0 - pi2) * e2;
+    let one_m = 1.0 - e2;
+    (e * a2.sqrt() / (one_m * one_m), 1.0 / e + (16.0 - pi2) * e / a2 + 4.0 * e / one_m)
+}
+
 /// `(ε, q = −ln(1 − ε))` for target `s`, Newton from `q_start` when finite.
 fn eccentricity_q(s: f64, q_start: f64) -> (f64, f64) {
     if !(s > 0.0) {
         return (0.0, 0.0);
     }
-    let pi2 = std::f64::consts::PI * std::f64::consts::PI;
     // Newton on q = −ln(1 − ε) (resolves ε → 1) for f(ε(q)) = s, safeguarded by bisection on
-    // [0, 40]; d ln f/dq = (1 − ε)(1/ε + (16 − π²)ε/A + 4ε/(1 − ε²)).
+    // [0, 40]; d ln f/dq = (1 − ε) d ln f/dε.
     let (mut lo, mut hi) = (0.0_f64, 40.0_f64);
     // Start from the asymptotes: f ≈ πε (light load), f ≈ 4/(1 − ε²)² (heavy load).
     let mut q = if q_start.is_finite() && q_start > 0.0 {
@@ -81,17 +91,14 @@ fn eccentricity_q(s: f64, q_start: f64) -> (f64, f64) {
     q = q.clamp(1e-12, 39.0);
     for _ in 0..100 {
         let e = -(-q).exp_m1();
-        let e2 = e * e;
-        let a = pi2 + (16.0 - pi2) * e2;
-        let one_m = 1.0 - e2;
         // Newton on f − s (no logarithm per step): d(f − s)/dq = f · d ln f/dq.
-        let f = e * a.sqrt() / (one_m * one_m);
+        let (f, dln_f) = load_function(e);
         let g = f - s;
         if g.abs() < 1e-13 * s {
             break;
         }
         if g < 0.0 { lo = q } else { hi = q }
-        let dg = f * (1.0 - e) * (1.0 / e + (16.0 - pi2) * e / a + 4.0 * e / one_m);
+        let dg = f * (1.0 - e) * dln_f;
         // Far from the root the logarithmic step is the robust one.
         let next = if (g / s).abs() > 0.5 { q - (f / s).ln() / (dg / f) } else { q - g / dg };
         let next = if next > lo && next < hi && dg > 0.0 { next } else { 0.5 * (lo + hi) };
@@ -118,19 +125,14 @@ fn eccentricity_near(s: f64, e0: f64) -> Option<f64> {
     if !(s > 0.0 && e0 > 0.0 && e0 < 1.0 - 1e-6) {
         return None;
     }
-    let pi2 = std::f64::consts::PI * std::f64::consts::PI;
     let mut e = e0;
     for _ in 0..4 {
-        let e2 = e * e;
-        let a = pi2 + (16.0 - pi2) * e2;
-        let one_m = 1.0 - e2;
-        let f = e * a.sqrt() / (one_m * one_m);
+        let (f, dln_f) = load_function(e);
         let g = f - s;
         if g.abs() < 1e-13 * s {
             return Some(e);
         }
-        let df = f * (1.0 / e + (16.0 - pi2) * e / a + 4.0 * e / one_m);
-        let next = e - g / df;
+        let next = e - g / (f * dln_f);
         if !(next > 0.0 && next < 1.0 - 1e-6) {
             return None;
         }
@@ -177,8 +179,7 @@ fn short_bearing_torque(pin: &PinFriction, omega: f64, load: f64, warm: &std::ce
     let mut slope = petroff / omega;
     if e > 0.0 {
         let k = (16.0 - pi * pi) * e / a2;
-        let dln_f = 1.0 / e + k + 4.0 * e / one_m;
-        let de_domega = -1.0 / (omega * dln_f);
+        let de_domega = -1.0 / (omega * load_function(e).1);
         slope += (petroff * e / one_m + moment * (1.0 / e - e / one_m - k)) * de_domega;
     }
     (petroff + moment, slope)
@@ -212,8 +213,7 @@ mod tests {
 
     #[test]
     fn warm_eccentricity_matches_the_cold_solve() {
-        let pi2 = std::f64::consts::PI.powi(2);
-        let f = |e: f64| e * (pi2 * (1.0 - e * e) + 16.0 * e * e).sqrt() / (1.0 - e * e).powi(2);
+        let f = |e: f64| load_function(e).0;
         for (e, e0) in [(0.3, 0.2999), (0.3, 0.31), (0.6, 0.59), (0.9, 0.899), (0.05, 0.06)] {
             let s = f(e);
             let cold = short_bearing_eccentricity(s);
