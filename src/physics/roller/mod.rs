@@ -369,6 +369,66 @@ mod tests {
         assert!(fast >= 16, "{fast} one-step solves");
     }
 
+    proptest::proptest! {
+        #![proptest_config(proptest::prelude::ProptestConfig { cases: 256, ..Default::default() })]
+        /// Wherever the one-evaluation step is accepted, its speed lies within the tolerance of
+        /// the root found by the bracketed search, across loads, speeds, Eyring stresses,
+        /// asperity laws, pins, inertia and guess errors from 1e-11 to 1e-2.
+        #[test]
+        fn one_newton_step_lands_within_tolerance_of_the_root(
+            load in 50.0f64..3e4,
+            uc in 0.2f64..20.0,
+            tau0 in 1e6f64..3e7,
+            rq in 0.0f64..0.5e-6,
+            carter in proptest::bool::ANY,
+            coulomb_pin in proptest::bool::ANY,
+            inertia in 0.0f64..1e-4,
+            lag in 0.0f64..0.3,
+            log_offset in -11.0f64..-2.0,
+            above in proptest::bool::ANY,
+        ) {
+            let lub = oil();
+            let rough = Roughness { sigma: rq, eta_beta_sigma: 0.05, sigma_over_beta: 0.001 };
+            let law = TractionLaw { rheology: Rheology::Eyring { tau0 }, limiting_shear_coefficient: None };
+            let model = ClosedForm { formula: FilmFormula::PanHamrock, squeeze: false };
+            let asp = AsperityFriction { coefficient: 0.12, model: if carter { AsperityModel::Carter } else { AsperityModel::Coulomb } };
+            let input = ContactInput { load, entrainment_velocity: 0.5 * uc, ..seed001_nose(&lub, &rough, &law, &asp) };
+            let film = model.solve(&input, None).unwrap();
+            let pin = if coulomb_pin {
+                PinFriction::Coefficient { coefficient: 0.005, pin_radius: 0.0091 }
+            } else {
+                PinFriction::ShortBearing { pin_radius: 0.0091, clearance: 10e-6, length: 0.021, viscosity: 0.013 }
+            };
+            let roller = RollerParams { radius: 0.0125, inertia, pin };
+            let roll = uc / roller.radius;
+            // BDF1 step of 1e-5 s from a previous speed lagging the rolling speed.
+            let previous = roll * (1.0 - lag);
+            let (c, o) = if inertia > 0.0 { (inertia / 1e-5, -inertia * previous / 1e-5) } else { (0.0, 0.0) };
+            let p = SlipStep {
+                model: &model,
+                film: &film,
+                input: &input,
+                cam_surface_velocity: uc,
+                follower_surface_base: 0.0,
+                roller: &roller,
+                pin_load: load,
+                inertia_coefficient: c,
+                inertia_offset: o,
+                pin_warm: std::cell::Cell::new(f64::NAN),
+            };
+            let stick = p.model.stick_limit(p.film, p.input) > 0.0;
+            let jumps = [if stick { roll } else { f64::NAN }, if coulomb_pin { 0.0 } else { f64::NAN }];
+            let root = monotone_root(|x, side| p.residual(x, side).0, &jumps, previous, roll).unwrap();
+            let guess = root * (1.0 + if above { 1.0 } else { -1.0 } * 10f64.powf(log_offset));
+            let tol = 1e-12 * roll.max(guess.abs());
+            if let Ok(sol) = p.one_newton_step(guess, &jumps, tol) {
+                // The bracketed search itself stops within its own 1e-12 of the scale.
+                proptest::prop_assert!((sol.omega - root).abs() <= 2.0 * tol, "{} vs {root}", sol.omega);
+                proptest::prop_assert!(sol.traction.force.is_finite() && sol.pin_torque.is_finite());
+            }
+        }
+    }
+
     #[test]
     fn monotone_root_finds_smooth_roots_and_sticks_inside_jumps() {
         let f = |x: f64, _s: i8| (x * x * x + x - 2.0, 3.0 * x * x + 1.0);
