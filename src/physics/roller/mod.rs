@@ -243,19 +243,19 @@ impl SlipStep<'_> {
         Ok(SlipSolution { omega: x1, sliding: self.sliding(x1), traction, pin_torque: tp1 })
     }
 
+    /// Speeds where the balance jumps (NaN: none): the rolling speed when asperities can stick,
+    /// and Ω = 0 with a Coulomb pin.
+    fn jumps(&self) -> [f64; 2] {
+        let stick = self.model.stick_limit(self.film, self.input) > 0.0;
+        let coulomb_pin = matches!(self.roller.pin, PinFriction::Coefficient { .. });
+        [if stick { self.rolling_speed() } else { f64::NAN }, if coulomb_pin { 0.0 } else { f64::NAN }]
+    }
+
     /// Solve for Ω, starting the search at `guess`.
     pub fn solve(&self, guess: f64) -> Result<SlipSolution, SolveError> {
         let roll = self.rolling_speed();
         let scale = roll.abs().max(guess.abs()).max(1e-6);
-        // Jumps: the Coulomb pin at Ω = 0; the rolling speed when asperities can stick.
-        let stick = self.model.stick_limit(self.film, self.input) > 0.0;
-        let mut jumps = [f64::NAN, f64::NAN];
-        if stick {
-            jumps[0] = roll;
-        }
-        if matches!(self.roller.pin, PinFriction::Coefficient { .. }) {
-            jumps[1] = 0.0;
-        }
+        let jumps = self.jumps();
         let tol = 1e-12 * scale.max(guess.abs());
         let guess = match self.one_newton_step(guess, &jumps, tol) {
             Ok(solution) => return Ok(solution),
@@ -311,6 +311,31 @@ mod tests {
     use crate::physics::film::{ClosedForm, FilmFormula};
     use crate::physics::friction::{AsperityFriction, AsperityModel, Rheology, Roughness, TractionLaw};
 
+    /// The balance of one implicit (BDF1) step of 1e-5 s from `previous` (rad/s), cam surface
+    /// speed `uc`, pin load = contact load.
+    fn bdf1_step<'a>(
+        model: &'a ClosedForm,
+        film: &'a FilmSolution,
+        input: &'a ContactInput<'a>,
+        roller: &'a RollerParams,
+        uc: f64,
+        previous: f64,
+    ) -> SlipStep<'a> {
+        let (c, o) = if roller.inertia > 0.0 { (roller.inertia / 1e-5, -roller.inertia * previous / 1e-5) } else { (0.0, 0.0) };
+        SlipStep {
+            model,
+            film,
+            input,
+            cam_surface_velocity: uc,
+            follower_surface_base: 0.0,
+            roller,
+            pin_load: input.load,
+            inertia_coefficient: c,
+            inertia_offset: o,
+            pin_warm: std::cell::Cell::new(f64::NAN),
+        }
+    }
+
     /// Seed 001-like nose contact with an Eyring film, rough surfaces and the two pin models.
     #[test]
     fn one_newton_step_agrees_with_the_bracketed_search() {
@@ -333,25 +358,13 @@ mod tests {
             let input = ContactInput { load, ..seed001_nose(&lub, &rough, &law, &asp) };
             let film = model.solve(&input, None).unwrap();
             let roller = RollerParams { radius: 0.0125, inertia, pin };
-            let step = |c: f64, o: f64| SlipStep {
-                model: &model,
-                film: &film,
-                input: &input,
-                cam_surface_velocity: 7.96,
-                follower_surface_base: 0.0,
-                roller: &roller,
-                pin_load: load,
-                inertia_coefficient: c,
-                inertia_offset: o,
-                pin_warm: std::cell::Cell::new(f64::NAN),
-            };
-            // Implicit steps of 1e-5 s from a few previous speeds (BDF1 form).
+            // Implicit steps from a few previous speeds.
             for previous in [600.0, 630.0, 636.0, 636.7] {
-                let (c, o) = if inertia > 0.0 { (inertia / 1e-5, -inertia * previous / 1e-5) } else { (0.0, 0.0) };
-                let reference = step(c, o).solve(previous - 50.0).unwrap(); // far guess: bracketed search
+                let step = || bdf1_step(&model, &film, &input, &roller, 7.96, previous);
+                let reference = step().solve(previous - 50.0).unwrap(); // far guess: bracketed search
                 for rel in [1e-9, 1e-7, 1e-5, 1e-3] {
-                    let p = step(c, o);
-                    let jumps = [if p.model.stick_limit(p.film, p.input) > 0.0 { p.rolling_speed() } else { f64::NAN }, 0.0];
+                    let p = step();
+                    let jumps = p.jumps();
                     let tol = 1e-12 * reference.omega.abs();
                     let guess = reference.omega * (1.0 + rel);
                     let got = p.solve(guess).unwrap();
@@ -401,24 +414,10 @@ mod tests {
             };
             let roller = RollerParams { radius: 0.0125, inertia, pin };
             let roll = uc / roller.radius;
-            // BDF1 step of 1e-5 s from a previous speed lagging the rolling speed.
-            let previous = roll * (1.0 - lag);
-            let (c, o) = if inertia > 0.0 { (inertia / 1e-5, -inertia * previous / 1e-5) } else { (0.0, 0.0) };
-            let p = SlipStep {
-                model: &model,
-                film: &film,
-                input: &input,
-                cam_surface_velocity: uc,
-                follower_surface_base: 0.0,
-                roller: &roller,
-                pin_load: load,
-                inertia_coefficient: c,
-                inertia_offset: o,
-                pin_warm: std::cell::Cell::new(f64::NAN),
-            };
-            let stick = p.model.stick_limit(p.film, p.input) > 0.0;
-            let jumps = [if stick { roll } else { f64::NAN }, if coulomb_pin { 0.0 } else { f64::NAN }];
-            let root = monotone_root(|x, side| p.residual(x, side).0, &jumps, previous, roll).unwrap();
+            // From a previous speed lagging the rolling speed.
+            let p = bdf1_step(&model, &film, &input, &roller, uc, roll * (1.0 - lag));
+            let jumps = p.jumps();
+            let root = monotone_root(|x, side| p.residual(x, side).0, &jumps, roll * (1.0 - lag), roll).unwrap();
             let guess = root * (1.0 + if above { 1.0 } else { -1.0 } * 10f64.powf(log_offset));
             let tol = 1e-12 * roll.max(guess.abs());
             if let Ok(sol) = p.one_newton_step(guess, &jumps, tol) {
