@@ -200,7 +200,7 @@ impl Store {
     /// `sqlite::memory:`), switch to WAL and apply the migrations.
     ///
     /// Durability: WAL with `synchronous = NORMAL` — a commit is in the WAL file when it returns,
-    /// so an accepted job survives a crash or kill of the process (`tests/restart_recovery.rs`
+    /// so an accepted job survives a crash or kill of the process (`tests/it/restart_recovery.rs`
     /// kills it with SIGKILL); after a power loss or OS crash the commits since the last WAL sync
     /// may be lost. `FULL` would sync every commit (group commit of submissions shares that cost).
     pub async fn open(url: &str) -> StoreResult<Store> {

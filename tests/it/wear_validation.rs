@@ -9,8 +9,7 @@ use tribod::jobs::{registry, Limits};
 use tribod::physics::cam::seed004;
 use tribod::physics::wear::irgashev;
 
-mod in_process;
-use in_process::{example, run, Failure};
+use crate::in_process::{example, run, Failure};
 
 fn col(v: &Value) -> Vec<f64> {
     v.as_array().unwrap_or_else(|| panic!("not an array: {v}")).iter().map(|x| x.as_f64().unwrap()).collect()

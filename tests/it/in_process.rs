@@ -1,6 +1,5 @@
 //! Shared helpers of the validation tests that run job kinds in-process (no server): prepare and
 //! run a spec as the worker would, and read the examples.
-#![allow(dead_code)]
 
 use serde_json::Value;
 use tribod::jobs::{registry, Limits};

@@ -1,9 +1,8 @@
 //! `sweep` end to end over HTTP: cases in parallel, CSV table, failing cases as data, validation of
 //! every case at submission.
 
-mod common;
 
-use common::*;
+use crate::common::*;
 use serde_json::{json, Value};
 
 #[tokio::test(flavor = "multi_thread", worker_threads = 2)]

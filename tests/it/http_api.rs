@@ -1,8 +1,7 @@
 //! The HTTP API end to end: a real server on a loopback port, a temporary SQLite file, reqwest.
 
-mod common;
 
-use common::*;
+use crate::common::*;
 use serde_json::{json, Value};
 use std::time::Duration;
 

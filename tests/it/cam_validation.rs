@@ -7,8 +7,7 @@ use tribod::physics::cam::seed004;
 use tribod::physics::contact::{contact_modulus, hertz_point, Elastic};
 use tribod::physics::SolveError;
 
-mod in_process;
-use in_process::{example, run, Failure};
+use crate::in_process::{example, run, Failure};
 
 fn col(out: &Value, name: &str) -> Vec<f64> {
     out["series"][name].as_array().unwrap_or_else(|| panic!("no column {name}")).iter().map(|v| v.as_f64().unwrap()).collect()

@@ -1,0 +1,25 @@
+//! Every integration test in one binary: the crate is linked once, not once per file.
+//!
+//! Each module is one subject. HTTP tests start the real server on a loopback port with a
+//! temporary SQLite file (`common`); validation tests run job kinds in-process (`in_process`);
+//! `*_stability` are the property tests (their failures are saved beside them in
+//! `*.proptest-regressions` and replayed first).
+
+mod common;
+mod in_process;
+
+mod cam_stability;
+mod cam_validation;
+mod ehl_stability;
+mod ehl_validation;
+mod examples_run;
+mod http_api;
+mod journal_examples;
+mod journal_kinds;
+mod journal_stability;
+mod journal_validation;
+mod openapi_drift;
+mod restart_recovery;
+mod sweep_api;
+mod wear_stability;
+mod wear_validation;
