@@ -75,6 +75,15 @@ struct ServeArgs {
     /// Longest `Prefer: wait=N` honoured, seconds.
     #[arg(long, env = "TRIBOD_MAX_WAIT", default_value_t = 300.0)]
     max_wait: f64,
+    /// Open connections served at once (more are answered 503); lowered to fit the open-files limit.
+    #[arg(long, env = "TRIBOD_MAX_CONNECTIONS", default_value_t = 4096)]
+    max_connections: usize,
+    /// Seconds a client has to send a request's headers (also closes idle keep-alive connections).
+    #[arg(long, env = "TRIBOD_HEADER_TIMEOUT", default_value_t = 10.0)]
+    header_timeout: f64,
+    /// Seconds a client has to send a request's body.
+    #[arg(long, env = "TRIBOD_BODY_TIMEOUT", default_value_t = 30.0)]
+    body_timeout: f64,
     #[command(flatten)]
     limits: LimitArgs,
 }
@@ -162,7 +171,12 @@ fn init_tracing(format: LogFormat) {
 }
 
 fn serve(args: ServeArgs) -> ExitCode {
-    let mut tokens: Vec<String> = args.api_token.iter().map(|t| t.trim().to_string()).filter(|t| !t.is_empty()).collect();
+    // A blank token would silently switch authentication off: refuse it.
+    if args.api_token.iter().any(|t| t.trim().is_empty()) {
+        eprintln!("tribod: --api-token (TRIBOD_API_TOKEN) holds an empty or blank token; give real tokens or none");
+        return ExitCode::from(2);
+    }
+    let mut tokens: Vec<String> = args.api_token.iter().map(|t| t.trim().to_string()).collect();
     if let Some(path) = &args.api_tokens_file {
         match std::fs::read_to_string(path) {
             Ok(text) => tokens.extend(
@@ -190,8 +204,13 @@ fn serve(args: ServeArgs) -> ExitCode {
             cors_origins: args.cors_origin,
             body_limit: args.body_limit,
             max_wait: Duration::from_secs_f64(args.max_wait.max(0.0)),
+            body_timeout: Duration::from_secs_f64(args.body_timeout.max(0.1)),
         },
         shutdown_grace: Duration::from_secs_f64(args.shutdown_grace.max(0.0)),
+        connections: server::ConnectionLimits {
+            max_connections: args.max_connections.max(1),
+            header_timeout: Duration::from_secs_f64(args.header_timeout.max(0.1)),
+        },
     };
     if !config.api.tokens.is_empty() {
         tracing::info!(tokens = config.api.tokens.len(), "bearer authentication on /v1");

@@ -154,8 +154,15 @@ fn job_response(status: StatusCode, view: JobView, extra: Option<(&'static str, 
 /// that already succeeded with the same solver version is answered at once with that job
 /// (`200`, `reused: true`) unless `?fresh=true`. Invalid specs get a `problem+json` naming each
 /// offending field by JSON pointer; a full queue answers `503` with `Retry-After`.
+///
+/// A client that may retry (a lost answer, a timeout) sends an `Idempotency-Key`: the same key
+/// with the same kind, spec and label answers the job created by the first request
+/// (`Idempotent-Replayed: true`), never a second job; the same key with another request is
+/// refused (`422 idempotency_key_reused`).
 #[utoipa::path(post, path = "/v1/jobs", tag = "jobs",
-    params(SubmitQuery, ("Prefer" = Option<String>, Header, description = "`wait=N`: wait up to N seconds for the job to finish (RFC 7240)")),
+    params(SubmitQuery,
+        ("Prefer" = Option<String>, Header, description = "`wait=N`: wait up to N seconds for the job to finish (RFC 7240)"),
+        ("Idempotency-Key" = Option<String>, Header, description = "Client-chosen key (1–255 visible ASCII characters) making retries of this POST safe")),
     request_body(content = JobRequest, description = "The job kind and its spec"),
     responses(
         (status = 202, description = "Accepted and queued", body = JobView, headers(("Location" = String, description = "URL of the job"))),
@@ -179,8 +186,13 @@ pub async fn submit_job(
         }
     }
     let wait = prefer_wait(&headers);
-    match state.queue.submit(&req.kind, &req.spec, req.label.clone(), query.fresh).await? {
+    let key = idempotency_key(&headers)?;
+    match state.queue.submit(&req.kind, &req.spec, req.label.clone(), query.fresh, key).await? {
         Submitted::Reused(row) => Ok(job_response(StatusCode::OK, JobView::from_row(row, true), None)),
+        Submitted::Replayed(row) => {
+            let code = if row.status.is_finished() { StatusCode::OK } else { StatusCode::ACCEPTED };
+            Ok(job_response(code, JobView::from_row(row, false), Some(("idempotent-replayed", "true".into()))))
+        }
         Submitted::Accepted(row) => {
             let id = row.id;
             if let Some(secs) = wait.filter(|s| *s > 0.0) {
@@ -192,6 +204,20 @@ pub async fn submit_job(
                 }
             }
             Ok(job_response(StatusCode::ACCEPTED, JobView::from_row(row, false), None))
+        }
+    }
+}
+
+/// The `Idempotency-Key` header: 1–255 visible ASCII characters.
+fn idempotency_key(headers: &HeaderMap) -> ApiResult<Option<String>> {
+    let Some(value) = headers.get("idempotency-key") else { return Ok(None) };
+    let max = crate::jobs::queue::MAX_IDEMPOTENCY_KEY;
+    match value.to_str() {
+        Ok(k) if !k.is_empty() && k.len() <= max && k.bytes().all(|b| b.is_ascii_graphic()) => Ok(Some(k.to_string())),
+        _ => {
+            let mut e = ApiError::new(ErrorCode::InvalidRequest, "Idempotency-Key must be 1–255 visible ASCII characters");
+            e.problem.errors = vec![crate::problem::FieldError::new("Idempotency-Key", format!("1–{max} visible ASCII characters"))];
+            Err(e)
         }
     }
 }

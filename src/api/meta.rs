@@ -84,14 +84,18 @@ pub async fn healthz() -> &'static str {
 
 /// Readiness.
 ///
-/// `200 ready` when the database answers; `503` problem otherwise.
+/// `200 ready` when the database can be read and a commit succeeds (one heartbeat row is rewritten
+/// through the writer connection); `503` problem when it cannot or when the service shuts down.
 #[utoipa::path(get, path = "/readyz", tag = "operations",
     responses(
         (status = 200, description = "Ready", body = String, content_type = "text/plain"),
-        (status = 503, description = "Database unreachable", body = Problem, content_type = "application/problem+json"),
+        (status = 503, description = "The database cannot be read or written (a commit of a heartbeat row failed), or the service is shutting down", body = Problem, content_type = "application/problem+json"),
     ))]
 pub async fn readyz(State(state): State<AppState>) -> ApiResult<&'static str> {
-    state.queue.store().ping().await.map_err(store_error)?;
+    if !state.queue.is_accepting() {
+        return Err(super::error::ApiError::new(crate::problem::ErrorCode::ShuttingDown, "the service is shutting down"));
+    }
+    state.queue.store().ping(crate::jobs::queue::now_ms()).await.map_err(store_error)?;
     Ok("ready")
 }
 

@@ -34,11 +34,19 @@ pub struct ApiConfig {
     pub body_limit: usize,
     /// Cap on `Prefer: wait=N`.
     pub max_wait: Duration,
+    /// Longest time a request body may take to arrive (slow senders are cut off with 400).
+    pub body_timeout: Duration,
 }
 
 impl Default for ApiConfig {
     fn default() -> Self {
-        ApiConfig { tokens: Vec::new(), cors_origins: Vec::new(), body_limit: 1 << 20, max_wait: Duration::from_secs(300) }
+        ApiConfig {
+            tokens: Vec::new(),
+            cors_origins: Vec::new(),
+            body_limit: 1 << 20,
+            max_wait: Duration::from_secs(300),
+            body_timeout: Duration::from_secs(30),
+        }
     }
 }
 
@@ -149,7 +157,6 @@ pub fn app(queue: Queue, config: &ApiConfig) -> axum::Router {
         openapi: Arc::new(openapi),
     };
     let (v1, open) = routers();
-    let v1 = v1.route_layer(middleware::from_fn_with_state(state.clone(), require_token));
     let (router, _) = OpenApiRouter::new().merge(v1).merge(open).split_for_parts();
     let mut router = router
         .fallback(|| async { ApiError::new(ErrorCode::RouteNotFound, "no such route; see /openapi.json") })
@@ -157,6 +164,9 @@ pub fn app(queue: Queue, config: &ApiConfig) -> axum::Router {
             ApiError::new(ErrorCode::MethodNotAllowed, "this route does not answer that method; see /openapi.json")
         })
         .layer(DefaultBodyLimit::max(config.body_limit))
+        .layer(tower_http::timeout::RequestBodyTimeoutLayer::new(config.body_timeout))
+        // Outside the routing: an unknown /v1 route or method is also refused without a token.
+        .layer(middleware::from_fn_with_state(state.clone(), require_token))
         .layer(middleware::from_fn_with_state(state.clone(), count_requests))
         .layer(
             // One span per request (method and path only: headers, and so tokens, are never logged).
@@ -179,8 +189,8 @@ fn cors_layer(origins: &[String]) -> Option<CorsLayer> {
     }
     let layer = CorsLayer::new()
         .allow_methods([Method::GET, Method::POST, Method::DELETE, Method::OPTIONS])
-        .allow_headers([header::CONTENT_TYPE, header::AUTHORIZATION, header::ACCEPT, "prefer".parse().expect("header name")])
-        .expose_headers([header::LOCATION, header::RETRY_AFTER, "preference-applied".parse().expect("header name")]);
+        .allow_headers([header::CONTENT_TYPE, header::AUTHORIZATION, header::ACCEPT, "prefer".parse().expect("header name"), "idempotency-key".parse().expect("header name")])
+        .expose_headers([header::LOCATION, header::RETRY_AFTER, "preference-applied".parse().expect("header name"), "idempotent-replayed".parse().expect("header name")]);
     Some(if origins.iter().any(|o| o == "*") {
         layer.allow_origin(Any)
     } else {
@@ -198,8 +208,11 @@ fn token_matches(given: &[u8], expected: &[u8]) -> bool {
     diff == 0
 }
 
+/// Bearer check of every path under `/v1` (routes or not); other paths are open.
 async fn require_token(State(state): State<AppState>, req: Request, next: Next) -> Response {
-    if state.tokens.is_empty() || req.method() == Method::OPTIONS {
+    let path = req.uri().path();
+    let protected = path == "/v1" || path.starts_with("/v1/");
+    if !protected || state.tokens.is_empty() || req.method() == Method::OPTIONS {
         return next.run(req).await;
     }
     let given = req

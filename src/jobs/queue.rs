@@ -1,16 +1,23 @@
 //! The persistent queue and its worker pool.
 //!
 //! Save, then signal: a job row is committed before the request is acknowledged, and the
-//! dispatcher is woken after the commit. The dispatcher claims queued rows (oldest first) for free
-//! worker slots and runs each on a rayon pool — never on tokio's threads. Workers send their
-//! outcome (and throttled progress) to one writer task, which commits them in batches and then
-//! wakes `Prefer: wait` waiters and the dispatcher. Cancellation, time limits and shutdown reach a
-//! running solver through a flag its [`Observer`] polls.
+//! dispatcher is woken after the commit. The dispatcher claims queued rows for free worker slots
+//! only — a claimed job starts at once, so `running` means running, an attempt is charged only to
+//! a job that started, and a cancel reaches it within one solver step — and runs each on a rayon
+//! pool, never on tokio's threads. Workers send their outcome (and throttled progress) to one
+//! writer task, which commits them in batches and then wakes `Prefer: wait` waiters and the
+//! dispatcher. Cancellation, time limits and shutdown reach a running solver through a flag its
+//! [`Observer`] polls.
 //!
-//! Short jobs are claimed ahead: while the recent mean solve time is below [`PREFETCH_BELOW`], the
-//! dispatcher keeps up to [`PREFETCH_PER_WORKER`] claimed jobs per worker in the pool's queue, so
-//! tiny jobs do not each wait for a database round trip. A prefetched job shows `running` with
-//! progress 0 until a worker takes it; its time limit starts when the worker does.
+//! **Fair scheduling**: queued jobs are claimed by earliest *virtual deadline*
+//! `due_at = created_at + AGING × estimated solve time` (then by age). The estimate is the moving
+//! mean of the kind's measured solve times in this process (a first job of a kind counts as
+//! [`DEFAULT_ESTIMATE`]). A tiny job submitted behind hours of heavy work is due long before the
+//! heavy jobs and starts at the next free slot; a heavy job waits at most `AGING ×` its own
+//! estimate beyond its fair turn, so nothing starves.
+//!
+//! **Validation** runs on tokio's blocking threads, at most [`QueueConfig::validators`] at once, so a
+//! large spec never stalls the async threads that answer health checks and other requests.
 
 use super::kind::Limits;
 use super::registry;
@@ -21,7 +28,7 @@ use crate::problem::{ErrorCode, Problem};
 use crate::store::{encode_result, Finish, JobRow, JobStatus, NewJob, Store, StoreError};
 use serde_json::Value;
 use std::collections::HashMap;
-use std::sync::atomic::{AtomicBool, AtomicI64, AtomicU64, AtomicU8, AtomicUsize, Ordering};
+use std::sync::atomic::{AtomicBool, AtomicI64, AtomicU8, AtomicUsize, Ordering};
 use std::sync::{Arc, Mutex};
 use std::time::{Duration, Instant};
 use tokio::sync::{mpsc, oneshot, Notify};
@@ -43,6 +50,8 @@ pub struct QueueConfig {
     pub progress_interval: Duration,
     /// Problem-size limits applied to every spec.
     pub limits: Limits,
+    /// Specs validated at once (each on a blocking thread).
+    pub validators: usize,
 }
 
 impl Default for QueueConfig {
@@ -54,6 +63,7 @@ impl Default for QueueConfig {
             max_attempts: 3,
             progress_interval: Duration::from_millis(250),
             limits: Limits::default(),
+            validators: 2,
         }
     }
 }
@@ -65,6 +75,8 @@ pub enum Submitted {
     Accepted(JobRow),
     /// An identical succeeded job, returned instead of recomputing.
     Reused(JobRow),
+    /// The job stored earlier under the same `Idempotency-Key` with the same request.
+    Replayed(JobRow),
 }
 
 /// What `DELETE /v1/jobs/{id}` did.
@@ -78,10 +90,12 @@ pub enum Cancellation {
     Deleted,
 }
 
-/// Claim ahead only while jobs take less than this on average.
-pub const PREFETCH_BELOW: Duration = Duration::from_millis(20);
-/// Claimed-but-waiting jobs per worker when prefetching.
-pub const PREFETCH_PER_WORKER: usize = 16;
+/// Virtual-deadline weight of the estimated solve time (fair scheduling, see the module docs).
+pub const AGING: f64 = 100.0;
+/// Solve-time estimate of a kind before one of its jobs has been measured.
+pub const DEFAULT_ESTIMATE: Duration = Duration::from_secs(1);
+/// Longest `Idempotency-Key` accepted (bytes).
+pub const MAX_IDEMPOTENCY_KEY: usize = 255;
 
 const FLAG_NONE: u8 = 0;
 const FLAG_CANCEL: u8 = 1;
@@ -101,8 +115,10 @@ struct Inner {
     idle: Notify,
     claiming: AtomicBool,
     active: AtomicUsize,
-    /// Moving average of solve wall time, µs (starts pessimistic: no prefetch until measured).
-    mean_solve_us: AtomicU64,
+    /// Moving mean of measured solve wall time per kind, seconds (fair scheduling).
+    estimates: Mutex<HashMap<String, f64>>,
+    /// Specs being validated (bounded by `config.validators`).
+    validating: tokio::sync::Semaphore,
     backlog: AtomicI64,
     running: Mutex<HashMap<Uuid, Arc<AtomicU8>>>,
     waiters: Mutex<HashMap<Uuid, Vec<oneshot::Sender<()>>>>,
@@ -148,6 +164,7 @@ impl Queue {
             .build()
             .map_err(|e| StoreError::Corrupt(format!("worker pool: {e}")))?;
         let (tx, rx) = mpsc::unbounded_channel();
+        let validators = config.validators.max(1);
         let inner = Arc::new(Inner {
             store,
             config,
@@ -157,7 +174,8 @@ impl Queue {
             idle: Notify::new(),
             claiming: AtomicBool::new(true),
             active: AtomicUsize::new(0),
-            mean_solve_us: AtomicU64::new(1_000_000),
+            estimates: Mutex::new(HashMap::new()),
+            validating: tokio::sync::Semaphore::new(validators),
             backlog: AtomicI64::new(backlog),
             running: Mutex::new(HashMap::new()),
             waiters: Mutex::new(HashMap::new()),
@@ -188,7 +206,18 @@ impl Queue {
     }
 
     /// Validate, dedup, persist and signal. Problems carry field paths under `/spec`.
-    pub async fn submit(&self, kind: &str, spec: &Value, label: Option<String>, fresh: bool) -> Result<Submitted, Problem> {
+    ///
+    /// With an `idempotency_key`, a repeated request (same kind, spec and label) answers the job
+    /// stored under that key ([`Submitted::Replayed`]); another request under the same key is
+    /// refused with `idempotency_key_reused`.
+    pub async fn submit(
+        &self,
+        kind: &str,
+        spec: &Value,
+        label: Option<String>,
+        fresh: bool,
+        idempotency_key: Option<String>,
+    ) -> Result<Submitted, Problem> {
         let Some(k) = registry::find(kind) else {
             return Err(Problem::new(
                 ErrorCode::UnknownKind,
@@ -196,39 +225,81 @@ impl Queue {
             )
             .with_errors(vec![crate::problem::FieldError::new("/kind", "unknown kind")]));
         };
-        let prepared = k.prepare(spec, &self.inner.config.limits).map_err(|p| p.under("/spec"))?;
-        let spec_text = serde_json::to_string(&prepared.canonical).unwrap_or_default();
+        if !self.inner.claiming.load(Ordering::Relaxed) {
+            return Err(Problem::new(ErrorCode::ShuttingDown, "the service is shutting down"));
+        }
+        let prepared = self.validate(k, spec).await?;
+        let spec_text = serde_json::to_string(&prepared).unwrap_or_default();
         let hash = spec_hash(k.name(), &spec_text);
+        if let Some(key) = &idempotency_key {
+            if let Some(row) = self.inner.store.find_by_idempotency_key(key).await.map_err(storage_problem)? {
+                return replay(row, &hash, &label);
+            }
+        }
         if !fresh {
             if let Some(row) = self.inner.store.find_reusable(&hash, k.solver_version()).await.map_err(storage_problem)? {
                 self.inner.metrics.reused.get_or_create(&KindLabel { kind: k.name().into() }).inc();
                 return Ok(Submitted::Reused(row));
             }
         }
-        if self.backlog() >= self.inner.config.max_backlog as i64 {
-            return Err(Problem::new(
-                ErrorCode::QueueFull,
-                format!("{} jobs are waiting; retry later", self.backlog()),
-            ));
+        // Reserve a backlog place before the insert, so concurrent submissions cannot overshoot.
+        let depth = self.inner.backlog.fetch_add(1, Ordering::Relaxed);
+        if depth >= self.inner.config.max_backlog as i64 {
+            self.inner.backlog.fetch_sub(1, Ordering::Relaxed);
+            return Err(Problem::new(ErrorCode::QueueFull, format!("{depth} jobs are waiting; retry later")));
         }
-        if !self.inner.claiming.load(Ordering::Relaxed) {
-            return Err(Problem::new(ErrorCode::ShuttingDown, "the service is shutting down"));
-        }
+        let created_at = now_ms();
         let job = NewJob {
             id: Uuid::now_v7(),
             kind: k.name().to_string(),
-            label,
+            label: label.clone(),
             spec: spec_text,
-            spec_hash: hash,
+            spec_hash: hash.clone(),
             solver_version: k.solver_version().to_string(),
-            created_at: now_ms(),
+            created_at,
+            idempotency_key: idempotency_key.clone(),
+            due_at: created_at + (AGING * self.estimate(k.name()) * 1e3) as i64,
         };
-        let row = self.inner.store.insert(&job).await.map_err(storage_problem)?;
-        let depth = self.inner.backlog.fetch_add(1, Ordering::Relaxed) + 1;
-        self.inner.metrics.queue_depth.set(depth);
+        let row = match self.inner.store.insert(&job).await {
+            Ok(row) => row,
+            Err(e) => {
+                self.inner.backlog.fetch_sub(1, Ordering::Relaxed);
+                // A concurrent request with the same key won the insert: answer its job.
+                if let (StoreError::DuplicateKey, Some(key)) = (&e, &idempotency_key) {
+                    if let Some(row) = self.inner.store.find_by_idempotency_key(key).await.map_err(storage_problem)? {
+                        return replay(row, &hash, &label);
+                    }
+                }
+                return Err(storage_problem(e));
+            }
+        };
+        self.inner.metrics.queue_depth.set(depth + 1);
         self.inner.metrics.submitted.get_or_create(&KindLabel { kind: job.kind.clone() }).inc();
         self.inner.wake.notify_one();
         Ok(Submitted::Accepted(row))
+    }
+
+    /// Parse and validate a spec on a blocking thread (at most `validators` at once); the
+    /// canonical spec (defaults filled).
+    async fn validate(&self, k: &'static dyn super::kind::DynKind, spec: &Value) -> Result<Value, Problem> {
+        let _permit = self
+            .inner
+            .validating
+            .acquire()
+            .await
+            .map_err(|_| Problem::new(ErrorCode::ShuttingDown, "the service is shutting down"))?;
+        let spec = spec.clone();
+        let limits = self.inner.config.limits;
+        tokio::task::spawn_blocking(move || k.prepare(&spec, &limits).map(|p| p.canonical))
+            .await
+            .map_err(|e| Problem::new(ErrorCode::InternalError, format!("validation task failed: {e}")))?
+            .map_err(|p| p.under("/spec"))
+    }
+
+    /// Estimated solve time of a kind's job, seconds (fair scheduling).
+    fn estimate(&self, kind: &str) -> f64 {
+        let estimates = self.inner.estimates.lock().unwrap_or_else(|e| e.into_inner());
+        estimates.get(kind).copied().unwrap_or(DEFAULT_ESTIMATE.as_secs_f64())
     }
 
     /// Wait until job `id` is finished or `timeout` passes; the job as it then is.
@@ -243,7 +314,8 @@ impl Queue {
         // Registered before looking, so a finish between the look and the wait is not missed.
         let row = self.inner.store.get(id).await.map_err(storage_problem)?;
         match row {
-            Some(r) if !r.status.is_finished() => {
+            // Shutting down: answer with the job as it is (`begin_shutdown` wakes earlier waiters).
+            Some(r) if !r.status.is_finished() && self.inner.claiming.load(Ordering::Relaxed) => {
                 let _ = tokio::time::timeout(timeout, rx).await;
                 self.inner.store.get(id).await.map_err(storage_problem)
             }
@@ -295,8 +367,7 @@ impl Queue {
     /// Stop claiming; let running jobs finish within `grace`; interrupt the rest, which go back to
     /// the queue. Returns when no job runs in this process (or after `grace` + 10 s at most).
     pub async fn shutdown(&self, grace: Duration) {
-        self.inner.claiming.store(false, Ordering::Relaxed);
-        self.inner.wake.notify_one();
+        self.begin_shutdown();
         let running = self.inner.active.load(Ordering::Relaxed);
         if running > 0 {
             info!(running, grace_seconds = grace.as_secs_f64(), "waiting for running jobs");
@@ -309,6 +380,22 @@ impl Queue {
             }
             self.wait_idle(Duration::from_secs(10)).await;
         }
+    }
+
+    /// Stop claiming and accepting at once, and answer every `Prefer: wait` request now with its
+    /// job as it is. Idempotent; [`Queue::shutdown`] calls it too.
+    pub fn begin_shutdown(&self) {
+        self.inner.claiming.store(false, Ordering::Relaxed);
+        self.inner.wake.notify_one();
+        let waiters: Vec<_> = self.inner.waiters.lock().unwrap_or_else(|e| e.into_inner()).drain().collect();
+        for s in waiters.into_iter().flat_map(|(_, list)| list) {
+            let _ = s.send(());
+        }
+    }
+
+    /// Whether the queue still claims and accepts jobs.
+    pub fn is_accepting(&self) -> bool {
+        self.inner.claiming.load(Ordering::Relaxed)
     }
 
     async fn wait_idle(&self, timeout: Duration) -> bool {
@@ -338,8 +425,7 @@ impl Queue {
             if !inner.claiming.load(Ordering::Relaxed) {
                 return;
             }
-            let fast = inner.mean_solve_us.load(Ordering::Relaxed) < PREFETCH_BELOW.as_micros() as u64;
-            let target = inner.config.workers * if fast { 1 + PREFETCH_PER_WORKER } else { 1 };
+            let target = inner.config.workers.max(1);
             let free = target.saturating_sub(inner.active.load(Ordering::Relaxed));
             let mut claimed_all = false;
             if free > 0 {
@@ -463,11 +549,12 @@ impl Queue {
                 } else {
                     inner.metrics.finished.get_or_create(&KindStatusLabel { kind: kind.clone(), status: status.as_str().into() }).inc();
                     if status == JobStatus::Succeeded {
+                        let mut estimates = inner.estimates.lock().unwrap_or_else(|e| e.into_inner());
+                        let mean = estimates.entry(kind.clone()).or_insert(wall);
+                        *mean = 0.8 * *mean + 0.2 * wall;
+                        drop(estimates);
                         inner.metrics.solve_seconds.get_or_create(&KindLabel { kind }).observe(wall);
                     }
-                    let us = (wall * 1e6) as u64;
-                    let mean = inner.mean_solve_us.load(Ordering::Relaxed);
-                    inner.mean_solve_us.store((mean * 4 + us) / 5, Ordering::Relaxed);
                 }
                 let active = inner.active.fetch_sub(1, Ordering::Relaxed) - 1;
                 inner.metrics.running.set(active as i64);
@@ -476,6 +563,19 @@ impl Queue {
             inner.wake.notify_one();
             inner.idle.notify_waiters();
         }
+    }
+}
+
+/// The answer to a repeated `Idempotency-Key`: its job when the request is the same.
+fn replay(row: JobRow, spec_hash: &str, label: &Option<String>) -> Result<Submitted, Problem> {
+    if row.spec_hash == spec_hash && &row.label == label {
+        Ok(Submitted::Replayed(row))
+    } else {
+        Err(Problem::new(
+            ErrorCode::IdempotencyKeyReused,
+            format!("this Idempotency-Key was used for job {} with another kind, spec or label", row.id),
+        )
+        .with_errors(vec![crate::problem::FieldError::new("/", "differs from the request first sent with this Idempotency-Key")]))
     }
 }
 

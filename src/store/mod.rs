@@ -2,17 +2,24 @@
 //!
 //! One file in WAL mode, two pools: a single writer connection (SQLite admits one writer at a time;
 //! funnelling writes through one connection avoids busy-waiting) and several readers.
+//!
+//! After any failed write the writer connection is closed, never returned to the pool: on
+//! `SQLITE_FULL` or `SQLITE_IOERR` SQLite may roll a transaction back by itself or leave it open
+//! holding the write lock, behind the back of the driver's own bookkeeping. A fresh connection is
+//! the only state known to be clean (issue 10: jobs acknowledged after a disk-full error were lost
+//! because later "commits" ran inside the failed transaction).
 
 mod codec;
 
 pub use codec::{decode_result, encode_result, Encoded};
 
 use serde::{Deserialize, Serialize};
+use sqlx::pool::PoolConnection;
 use sqlx::sqlite::{
-    SqliteConnectOptions, SqliteJournalMode, SqlitePool, SqlitePoolOptions, SqliteRow,
+    SqliteConnectOptions, SqliteConnection, SqliteJournalMode, SqlitePool, SqlitePoolOptions, SqliteRow,
     SqliteSynchronous,
 };
-use sqlx::{AssertSqlSafe, Row};
+use sqlx::{AssertSqlSafe, Connection, Row, Sqlite};
 use std::str::FromStr;
 use std::time::Duration;
 use utoipa::ToSchema;
@@ -85,6 +92,10 @@ pub struct NewJob {
     pub spec_hash: String,
     pub solver_version: String,
     pub created_at: i64,
+    /// The client's `Idempotency-Key` (unique among stored jobs).
+    pub idempotency_key: Option<String>,
+    /// Virtual deadline for fair scheduling (unix ms); queued jobs are claimed by `due_at`, `seq`.
+    pub due_at: i64,
 }
 
 /// A job a worker has claimed.
@@ -126,6 +137,9 @@ pub enum StoreError {
     Migrate(#[from] sqlx::migrate::MigrateError),
     #[error("corrupt row: {0}")]
     Corrupt(String),
+    /// An insert collided with a stored job's `Idempotency-Key`.
+    #[error("a job with this idempotency key exists")]
+    DuplicateKey,
 }
 
 pub type StoreResult<T> = Result<T, StoreError>;
@@ -170,12 +184,34 @@ async fn insert_batches(writer: SqlitePool, mut rx: tokio::sync::mpsc::Receiver<
 
 /// Insert `jobs` (status `queued`) in one transaction; their `seq`s in order.
 async fn insert_all(writer: &SqlitePool, jobs: &[&NewJob]) -> StoreResult<Vec<i64>> {
-    let mut tx = writer.begin().await?;
+    let mut conn = writer.acquire().await?;
+    let result = insert_on(&mut conn, jobs).await;
+    settle(conn, result).await
+}
+
+/// Return the writer connection to the pool after a success; close it after any error (see the
+/// module docs), so the pool opens a fresh one for the next write.
+async fn settle<T>(conn: PoolConnection<Sqlite>, result: StoreResult<T>) -> StoreResult<T> {
+    if result.is_err() {
+        let _ = conn.close().await;
+    }
+    result
+}
+
+fn unique_violation(e: sqlx::Error) -> StoreError {
+    match &e {
+        sqlx::Error::Database(d) if d.is_unique_violation() => StoreError::DuplicateKey,
+        _ => StoreError::Sqlx(e),
+    }
+}
+
+async fn insert_on(conn: &mut SqliteConnection, jobs: &[&NewJob]) -> StoreResult<Vec<i64>> {
+    let mut tx = conn.begin().await?;
     let mut seqs = Vec::with_capacity(jobs.len());
     for job in jobs {
         let row = sqlx::query(
-            "INSERT INTO jobs (id, kind, label, status, spec, spec_hash, solver_version, created_at) \
-             VALUES (?, ?, ?, 'queued', ?, ?, ?, ?) RETURNING seq",
+            "INSERT INTO jobs (id, kind, label, status, spec, spec_hash, solver_version, created_at, \
+             idempotency_key, due_at) VALUES (?, ?, ?, 'queued', ?, ?, ?, ?, ?, ?) RETURNING seq",
         )
         .bind(job.id.to_string())
         .bind(&job.kind)
@@ -184,8 +220,11 @@ async fn insert_all(writer: &SqlitePool, jobs: &[&NewJob]) -> StoreResult<Vec<i6
         .bind(&job.spec_hash)
         .bind(&job.solver_version)
         .bind(job.created_at)
+        .bind(&job.idempotency_key)
+        .bind(job.due_at)
         .fetch_one(&mut *tx)
-        .await?;
+        .await
+        .map_err(unique_violation)?;
         seqs.push(row.try_get(0)?);
     }
     tx.commit().await?;
@@ -228,10 +267,18 @@ impl Store {
         Ok(Store { writer, reader, inserts })
     }
 
-    /// Is the database reachable (for `/readyz`)?
-    pub async fn ping(&self) -> StoreResult<()> {
+    /// Can the database be read *and written* (for `/readyz`)? Commits one heartbeat row through
+    /// the writer connection, so a full disk, a read-only file or a stuck writer shows as not ready.
+    pub async fn ping(&self, now: i64) -> StoreResult<()> {
         sqlx::query("SELECT 1").execute(&self.reader).await?;
-        Ok(())
+        let mut conn = self.writer.acquire().await?;
+        let result = sqlx::query("UPDATE heartbeat SET beat = ? WHERE id = 1")
+            .bind(now)
+            .execute(&mut *conn)
+            .await
+            .map(|_| ())
+            .map_err(StoreError::from);
+        settle(conn, result).await
     }
 
     /// Close both pools (checkpoints the WAL).
@@ -278,6 +325,13 @@ impl Store {
             .fetch_optional(&self.reader)
             .await?;
         row.map(|r| job_from_row(&r, false)).transpose()
+    }
+
+    /// The job stored under a client's `Idempotency-Key`.
+    pub async fn find_by_idempotency_key(&self, key: &str) -> StoreResult<Option<JobRow>> {
+        let sql = format!("SELECT {ROW_COLUMNS}, spec FROM jobs WHERE idempotency_key = ?");
+        let row = sqlx::query(AssertSqlSafe(sql)).bind(key).fetch_optional(&self.reader).await?;
+        row.map(|r| job_from_row(&r, true)).transpose()
     }
 
     /// One job with its spec.
@@ -333,26 +387,29 @@ impl Store {
         rows.iter().map(|r| job_from_row(r, false)).collect()
     }
 
-    /// Claim up to `n` queued jobs, oldest first: `running`, attempts + 1.
+    /// Claim up to `n` queued jobs, earliest virtual deadline (`due_at`) first, then oldest:
+    /// `running`, attempts + 1.
     pub async fn claim(&self, n: usize, now: i64) -> StoreResult<Vec<ClaimedJob>> {
         if n == 0 {
             return Ok(Vec::new());
         }
+        let mut conn = self.writer.acquire().await?;
         let rows = sqlx::query(
             "UPDATE jobs SET status = 'running', started_at = ?, attempts = attempts + 1, \
              progress = 0, stage = NULL \
-             WHERE seq IN (SELECT seq FROM jobs WHERE status = 'queued' ORDER BY seq LIMIT ?) \
-             RETURNING id, kind, spec, attempts, seq",
+             WHERE seq IN (SELECT seq FROM jobs WHERE status = 'queued' ORDER BY due_at, seq LIMIT ?) \
+             RETURNING id, kind, spec, attempts, due_at, seq",
         )
         .bind(now)
         .bind(n as i64)
-        .fetch_all(&self.writer)
-        .await?;
+        .fetch_all(&mut *conn)
+        .await;
+        let rows = settle(conn, rows.map_err(StoreError::from)).await?;
         let mut jobs = rows
             .iter()
             .map(|r| {
                 Ok((
-                    r.try_get::<i64, _>(4)?,
+                    (r.try_get::<i64, _>(4)?, r.try_get::<i64, _>(5)?),
                     ClaimedJob {
                         id: parse_uuid(&r.try_get::<String, _>(0)?)?,
                         kind: r.try_get(1)?,
@@ -362,109 +419,60 @@ impl Store {
                 ))
             })
             .collect::<StoreResult<Vec<_>>>()?;
-        jobs.sort_by_key(|(seq, _)| *seq);
+        jobs.sort_by_key(|(order, _)| *order);
         Ok(jobs.into_iter().map(|(_, j)| j).collect())
     }
 
     /// Write several workers' final words in one transaction.
     pub async fn finish_batch(&self, items: &[Finish], now: i64) -> StoreResult<()> {
-        let mut tx = self.writer.begin().await?;
-        for item in items {
-            match item {
-                Finish::Succeeded { id, result } => {
-                    sqlx::query(
-                        "INSERT OR REPLACE INTO job_results (job_id, encoding, size, body) VALUES (?, ?, ?, ?)",
-                    )
-                    .bind(id.to_string())
-                    .bind(result.encoding)
-                    .bind(result.size as i64)
-                    .bind(&result.body)
-                    .execute(&mut *tx)
-                    .await?;
-                    sqlx::query(
-                        "UPDATE jobs SET status = 'succeeded', finished_at = ?, progress = 1, stage = NULL \
-                         WHERE id = ?",
-                    )
-                    .bind(now)
-                    .bind(id.to_string())
-                    .execute(&mut *tx)
-                    .await?;
-                }
-                Finish::Failed { id, error } => {
-                    sqlx::query("UPDATE jobs SET status = 'failed', finished_at = ?, error = ? WHERE id = ?")
-                        .bind(now)
-                        .bind(error)
-                        .bind(id.to_string())
-                        .execute(&mut *tx)
-                        .await?;
-                }
-                Finish::Canceled { id } => {
-                    sqlx::query("UPDATE jobs SET status = 'canceled', finished_at = ? WHERE id = ?")
-                        .bind(now)
-                        .bind(id.to_string())
-                        .execute(&mut *tx)
-                        .await?;
-                }
-                Finish::Requeue { id } => {
-                    sqlx::query(
-                        "UPDATE jobs SET status = 'queued', started_at = NULL, progress = 0, stage = NULL, \
-                         attempts = MAX(attempts - 1, 0) WHERE id = ? AND status = 'running'",
-                    )
-                    .bind(id.to_string())
-                    .execute(&mut *tx)
-                    .await?;
-                }
-            }
-        }
-        tx.commit().await?;
-        Ok(())
+        let mut conn = self.writer.acquire().await?;
+        let result = finish_on(&mut conn, items, now).await;
+        settle(conn, result).await
     }
 
     /// Record progress of running jobs (one transaction).
     pub async fn progress_batch(&self, items: &[(Uuid, f64, String)]) -> StoreResult<()> {
-        let mut tx = self.writer.begin().await?;
-        for (id, fraction, stage) in items {
-            sqlx::query("UPDATE jobs SET progress = ?, stage = ? WHERE id = ? AND status = 'running'")
-                .bind(fraction)
-                .bind(stage)
-                .bind(id.to_string())
-                .execute(&mut *tx)
-                .await?;
-        }
-        tx.commit().await?;
-        Ok(())
+        let mut conn = self.writer.acquire().await?;
+        let result = progress_on(&mut conn, items).await;
+        settle(conn, result).await
     }
 
     /// Cancel a queued job; `true` when it was queued.
     pub async fn cancel_queued(&self, id: Uuid, now: i64) -> StoreResult<bool> {
+        let mut conn = self.writer.acquire().await?;
         let r = sqlx::query(
             "UPDATE jobs SET status = 'canceled', finished_at = ?, cancel_requested = 1 \
              WHERE id = ? AND status = 'queued'",
         )
         .bind(now)
         .bind(id.to_string())
-        .execute(&self.writer)
-        .await?;
+        .execute(&mut *conn)
+        .await;
+        let r = settle(conn, r.map_err(StoreError::from)).await?;
         Ok(r.rows_affected() == 1)
     }
 
     /// Mark a running job as asked to cancel; `true` when it was running.
     pub async fn request_cancel(&self, id: Uuid) -> StoreResult<bool> {
+        let mut conn = self.writer.acquire().await?;
         let r = sqlx::query("UPDATE jobs SET cancel_requested = 1 WHERE id = ? AND status = 'running'")
             .bind(id.to_string())
-            .execute(&self.writer)
-            .await?;
+            .execute(&mut *conn)
+            .await;
+        let r = settle(conn, r.map_err(StoreError::from)).await?;
         Ok(r.rows_affected() == 1)
     }
 
     /// Delete a finished job and its result; `true` when one was deleted.
     pub async fn delete_finished(&self, id: Uuid) -> StoreResult<bool> {
+        let mut conn = self.writer.acquire().await?;
         let r = sqlx::query(
             "DELETE FROM jobs WHERE id = ? AND status IN ('succeeded', 'failed', 'canceled')",
         )
         .bind(id.to_string())
-        .execute(&self.writer)
-        .await?;
+        .execute(&mut *conn)
+        .await;
+        let r = settle(conn, r.map_err(StoreError::from)).await?;
         Ok(r.rows_affected() == 1)
     }
 
@@ -472,33 +480,9 @@ impl Store {
     /// `max_attempts` they are queued again; at the cap they fail with `error`.
     /// Returns `(requeued, failed)`.
     pub async fn recover_interrupted(&self, max_attempts: i64, error: &str, now: i64) -> StoreResult<(u64, u64)> {
-        let mut tx = self.writer.begin().await?;
-        let failed = sqlx::query(
-            "UPDATE jobs SET status = 'failed', finished_at = ?, error = ? \
-             WHERE status = 'running' AND attempts >= ?",
-        )
-        .bind(now)
-        .bind(error)
-        .bind(max_attempts)
-        .execute(&mut *tx)
-        .await?
-        .rows_affected();
-        let requeued = sqlx::query(
-            "UPDATE jobs SET status = 'queued', started_at = NULL, progress = 0, stage = NULL \
-             WHERE status = 'running'",
-        )
-        .execute(&mut *tx)
-        .await?
-        .rows_affected();
-        // A cancel requested while the process died is honoured now.
-        sqlx::query(
-            "UPDATE jobs SET status = 'canceled', finished_at = ? WHERE status = 'queued' AND cancel_requested = 1",
-        )
-        .bind(now)
-        .execute(&mut *tx)
-        .await?;
-        tx.commit().await?;
-        Ok((requeued, failed))
+        let mut conn = self.writer.acquire().await?;
+        let result = recover_on(&mut conn, max_attempts, error, now).await;
+        settle(conn, result).await
     }
 
     /// Number of jobs in each status.
@@ -535,6 +519,103 @@ impl Store {
             }
         }
     }
+}
+
+async fn finish_on(conn: &mut SqliteConnection, items: &[Finish], now: i64) -> StoreResult<()> {
+    let mut tx = conn.begin().await?;
+    for item in items {
+        match item {
+            Finish::Succeeded { id, result } => {
+                sqlx::query(
+                    "INSERT OR REPLACE INTO job_results (job_id, encoding, size, body) VALUES (?, ?, ?, ?)",
+                )
+                .bind(id.to_string())
+                .bind(result.encoding)
+                .bind(result.size as i64)
+                .bind(&result.body)
+                .execute(&mut *tx)
+                .await?;
+                sqlx::query(
+                    "UPDATE jobs SET status = 'succeeded', finished_at = ?, progress = 1, stage = NULL \
+                     WHERE id = ?",
+                )
+                .bind(now)
+                .bind(id.to_string())
+                .execute(&mut *tx)
+                .await?;
+            }
+            Finish::Failed { id, error } => {
+                sqlx::query("UPDATE jobs SET status = 'failed', finished_at = ?, error = ? WHERE id = ?")
+                    .bind(now)
+                    .bind(error)
+                    .bind(id.to_string())
+                    .execute(&mut *tx)
+                    .await?;
+            }
+            Finish::Canceled { id } => {
+                sqlx::query("UPDATE jobs SET status = 'canceled', finished_at = ? WHERE id = ?")
+                    .bind(now)
+                    .bind(id.to_string())
+                    .execute(&mut *tx)
+                    .await?;
+            }
+            Finish::Requeue { id } => {
+                sqlx::query(
+                    "UPDATE jobs SET status = 'queued', started_at = NULL, progress = 0, stage = NULL, \
+                     attempts = MAX(attempts - 1, 0) WHERE id = ? AND status = 'running'",
+                )
+                .bind(id.to_string())
+                .execute(&mut *tx)
+                .await?;
+            }
+        }
+    }
+    tx.commit().await?;
+    Ok(())
+}
+
+async fn progress_on(conn: &mut SqliteConnection, items: &[(Uuid, f64, String)]) -> StoreResult<()> {
+    let mut tx = conn.begin().await?;
+    for (id, fraction, stage) in items {
+        sqlx::query("UPDATE jobs SET progress = ?, stage = ? WHERE id = ? AND status = 'running'")
+            .bind(fraction)
+            .bind(stage)
+            .bind(id.to_string())
+            .execute(&mut *tx)
+            .await?;
+    }
+    tx.commit().await?;
+    Ok(())
+}
+
+async fn recover_on(conn: &mut SqliteConnection, max_attempts: i64, error: &str, now: i64) -> StoreResult<(u64, u64)> {
+    let mut tx = conn.begin().await?;
+    let failed = sqlx::query(
+        "UPDATE jobs SET status = 'failed', finished_at = ?, error = ? \
+         WHERE status = 'running' AND attempts >= ?",
+    )
+    .bind(now)
+    .bind(error)
+    .bind(max_attempts)
+    .execute(&mut *tx)
+    .await?
+    .rows_affected();
+    let requeued = sqlx::query(
+        "UPDATE jobs SET status = 'queued', started_at = NULL, progress = 0, stage = NULL \
+         WHERE status = 'running'",
+    )
+    .execute(&mut *tx)
+    .await?
+    .rows_affected();
+    // A cancel requested while the process died is honoured now.
+    sqlx::query(
+        "UPDATE jobs SET status = 'canceled', finished_at = ? WHERE status = 'queued' AND cancel_requested = 1",
+    )
+    .bind(now)
+    .execute(&mut *tx)
+    .await?;
+    tx.commit().await?;
+    Ok((requeued, failed))
 }
 
 fn parse_uuid(s: &str) -> StoreResult<Uuid> {

@@ -24,6 +24,7 @@ pub fn config(dir: &tempfile::TempDir) -> ServeConfig {
         queue: QueueConfig { workers: 2, ..QueueConfig::default() },
         api: ApiConfig::default(),
         shutdown_grace: Duration::from_secs(5),
+        connections: Default::default(),
     }
 }
 

@@ -1,4 +1,13 @@
 //! `tribod serve`: open the store, start the queue, serve HTTP, shut down gracefully.
+//!
+//! Shutdown (SIGTERM, SIGINT or [`Server::shutdown`]): the queue stops claiming and accepting at
+//! once and answers every `Prefer: wait` request with its job as it is; connections finish the
+//! request in flight; running jobs get `shutdown_grace` to finish and are then interrupted and
+//! queued again; connections still open after the grace period are closed.
+
+mod connections;
+
+pub use connections::{raise_open_files_limit, ConnectionLimits};
 
 use crate::api::{self, ApiConfig};
 use crate::jobs::queue::{Queue, QueueConfig};
@@ -9,7 +18,7 @@ use std::net::SocketAddr;
 use std::sync::Arc;
 use std::time::Duration;
 use tokio::net::TcpListener;
-use tokio::sync::oneshot;
+use tokio::sync::{oneshot, watch};
 use tracing::info;
 
 /// Everything `serve` needs.
@@ -20,8 +29,10 @@ pub struct ServeConfig {
     pub queue: QueueConfig,
     pub api: ApiConfig,
     /// How long running jobs may take to finish at shutdown before they are interrupted and
-    /// queued again.
+    /// queued again (also the longest wait for requests in flight).
     pub shutdown_grace: Duration,
+    /// Connection cap and header timeout.
+    pub connections: ConnectionLimits,
 }
 
 impl Default for ServeConfig {
@@ -32,6 +43,7 @@ impl Default for ServeConfig {
             queue: QueueConfig::default(),
             api: ApiConfig::default(),
             shutdown_grace: Duration::from_secs(30),
+            connections: ConnectionLimits::default(),
         }
     }
 }
@@ -90,10 +102,17 @@ async fn prepare(
     let addr = listener.local_addr()?;
     info!(%addr, workers = config.queue.workers, database = %config.database_url, "tribod listening");
     let grace = config.shutdown_grace;
+    let (stopping, stop_rx) = watch::channel(false);
+    let http = tokio::spawn(connections::serve(listener, app, config.connections, stop_rx, grace));
     let fut = async move {
-        axum::serve(listener, app).with_graceful_shutdown(stop).await?;
-        info!("HTTP stopped; draining the queue");
-        queue.shutdown(grace).await;
+        stop.await;
+        info!("shutting down: no new jobs; waiting requests answered; running jobs get the grace period");
+        queue.begin_shutdown();
+        let _ = stopping.send(true);
+        let (_, http) = tokio::join!(queue.shutdown(grace), http);
+        if let Err(e) = http {
+            tracing::warn!(error = %e, "HTTP task ended abnormally");
+        }
         store.close().await;
         info!("shutdown complete");
         Ok(())
