@@ -140,6 +140,8 @@ pub enum StoreError {
     /// An insert collided with a stored job's `Idempotency-Key`.
     #[error("a job with this idempotency key exists")]
     DuplicateKey,
+    #[error("a write to the database failed {ms_ago} ms ago")]
+    RecentWriteFailure { ms_ago: i64 },
 }
 
 pub type StoreResult<T> = Result<T, StoreError>;
@@ -148,6 +150,8 @@ pub type StoreResult<T> = Result<T, StoreError>;
 #[derive(Clone, Debug)]
 pub struct Store {
     writer: SqlitePool,
+    /// Unix ms of the last failed write (0: none) — `/readyz` reports a recent failure.
+    last_write_failure: std::sync::Arc<std::sync::atomic::AtomicI64>,
     reader: SqlitePool,
     /// Accepted jobs on their way to the group-commit task ([`insert_batches`]).
     inserts: tokio::sync::mpsc::Sender<PendingInsert>,
@@ -163,7 +167,11 @@ const INSERT_BATCH: usize = 256;
 /// transaction, so concurrent submissions share one commit (one WAL append and sync point) instead
 /// of queueing for one each; each caller is answered only after the commit. A failed batch is
 /// retried one insert at a time so that one bad row fails only its own submission.
-async fn insert_batches(writer: SqlitePool, mut rx: tokio::sync::mpsc::Receiver<PendingInsert>) {
+async fn insert_batches(
+    writer: SqlitePool,
+    mut rx: tokio::sync::mpsc::Receiver<PendingInsert>,
+    last_failure: std::sync::Arc<std::sync::atomic::AtomicI64>,
+) {
     let mut batch: Vec<PendingInsert> = Vec::with_capacity(INSERT_BATCH);
     while rx.recv_many(&mut batch, INSERT_BATCH).await > 0 {
         let jobs: Vec<&NewJob> = batch.iter().map(|(j, _)| j).collect();
@@ -174,6 +182,7 @@ async fn insert_batches(writer: SqlitePool, mut rx: tokio::sync::mpsc::Receiver<
                 }
             }
             Err(_) => {
+                last_failure.store(unix_ms(), std::sync::atomic::Ordering::Relaxed);
                 for (job, reply) in batch.drain(..) {
                     let _ = reply.send(insert_all(&writer, &[&job]).await.map(|s| s[0]));
                 }
@@ -196,6 +205,13 @@ async fn settle<T>(conn: PoolConnection<Sqlite>, result: StoreResult<T>) -> Stor
         let _ = conn.close().await;
     }
     result
+}
+
+/// How long `/readyz` reports a failed write.
+pub const FAILURE_MEMORY_MS: i64 = 5_000;
+
+fn unix_ms() -> i64 {
+    std::time::SystemTime::now().duration_since(std::time::UNIX_EPOCH).map(|d| d.as_millis() as i64).unwrap_or(0)
 }
 
 fn unique_violation(e: sqlx::Error) -> StoreError {
@@ -263,14 +279,20 @@ impl Store {
             .connect_with(options.read_only(true))
             .await?;
         let (inserts, rx) = tokio::sync::mpsc::channel(4 * INSERT_BATCH);
-        tokio::spawn(insert_batches(writer.clone(), rx));
-        Ok(Store { writer, reader, inserts })
+        let last_write_failure = std::sync::Arc::new(std::sync::atomic::AtomicI64::new(0));
+        tokio::spawn(insert_batches(writer.clone(), rx, last_write_failure.clone()));
+        Ok(Store { writer, reader, inserts, last_write_failure })
     }
 
-    /// Can the database be read *and written* (for `/readyz`)? Commits one heartbeat row through
-    /// the writer connection, so a full disk, a read-only file or a stuck writer shows as not ready.
+    /// Can the database be read *and written* (for `/readyz`)? Fails while any write failed in the
+    /// last [`FAILURE_MEMORY_MS`], and otherwise commits one heartbeat row through the writer, so a
+    /// full disk, a read-only file or a stuck writer shows as not ready.
     pub async fn ping(&self, now: i64) -> StoreResult<()> {
         sqlx::query("SELECT 1").execute(&self.reader).await?;
+        let failed_at = self.last_write_failure.load(std::sync::atomic::Ordering::Relaxed);
+        if failed_at > 0 && now - failed_at < FAILURE_MEMORY_MS {
+            return Err(StoreError::RecentWriteFailure { ms_ago: now - failed_at });
+        }
         let mut conn = self.writer.acquire().await?;
         let result = sqlx::query("UPDATE heartbeat SET beat = ? WHERE id = 1")
             .bind(now)
@@ -278,7 +300,7 @@ impl Store {
             .await
             .map(|_| ())
             .map_err(StoreError::from);
-        settle(conn, result).await
+        self.settle(conn, result).await
     }
 
     /// Close both pools (checkpoints the WAL).
@@ -404,7 +426,7 @@ impl Store {
         .bind(n as i64)
         .fetch_all(&mut *conn)
         .await;
-        let rows = settle(conn, rows.map_err(StoreError::from)).await?;
+        let rows = self.settle(conn, rows.map_err(StoreError::from)).await?;
         let mut jobs = rows
             .iter()
             .map(|r| {
@@ -427,14 +449,14 @@ impl Store {
     pub async fn finish_batch(&self, items: &[Finish], now: i64) -> StoreResult<()> {
         let mut conn = self.writer.acquire().await?;
         let result = finish_on(&mut conn, items, now).await;
-        settle(conn, result).await
+        self.settle(conn, result).await
     }
 
     /// Record progress of running jobs (one transaction).
     pub async fn progress_batch(&self, items: &[(Uuid, f64, String)]) -> StoreResult<()> {
         let mut conn = self.writer.acquire().await?;
         let result = progress_on(&mut conn, items).await;
-        settle(conn, result).await
+        self.settle(conn, result).await
     }
 
     /// Cancel a queued job; `true` when it was queued.
@@ -448,7 +470,7 @@ impl Store {
         .bind(id.to_string())
         .execute(&mut *conn)
         .await;
-        let r = settle(conn, r.map_err(StoreError::from)).await?;
+        let r = self.settle(conn, r.map_err(StoreError::from)).await?;
         Ok(r.rows_affected() == 1)
     }
 
@@ -459,7 +481,7 @@ impl Store {
             .bind(id.to_string())
             .execute(&mut *conn)
             .await;
-        let r = settle(conn, r.map_err(StoreError::from)).await?;
+        let r = self.settle(conn, r.map_err(StoreError::from)).await?;
         Ok(r.rows_affected() == 1)
     }
 
@@ -472,7 +494,7 @@ impl Store {
         .bind(id.to_string())
         .execute(&mut *conn)
         .await;
-        let r = settle(conn, r.map_err(StoreError::from)).await?;
+        let r = self.settle(conn, r.map_err(StoreError::from)).await?;
         Ok(r.rows_affected() == 1)
     }
 
@@ -482,7 +504,7 @@ impl Store {
     pub async fn recover_interrupted(&self, max_attempts: i64, error: &str, now: i64) -> StoreResult<(u64, u64)> {
         let mut conn = self.writer.acquire().await?;
         let result = recover_on(&mut conn, max_attempts, error, now).await;
-        settle(conn, result).await
+        self.settle(conn, result).await
     }
 
     /// Number of jobs in each status.
@@ -518,6 +540,14 @@ impl Store {
                 decode_result(&encoding, &body).map(Some).map_err(StoreError::Corrupt)
             }
         }
+    }
+
+    /// [`settle`], remembering a failure for `/readyz`.
+    async fn settle<T>(&self, conn: PoolConnection<Sqlite>, result: StoreResult<T>) -> StoreResult<T> {
+        if result.is_err() {
+            self.last_write_failure.store(unix_ms(), std::sync::atomic::Ordering::Relaxed);
+        }
+        settle(conn, result).await
     }
 }
 

@@ -20,6 +20,7 @@ mod journal_stability;
 mod journal_validation;
 mod openapi_drift;
 mod restart_recovery;
+mod storage_faults;
 mod sweep_api;
 mod wear_stability;
 mod wear_validation;
