@@ -102,6 +102,9 @@ struct LimitArgs {
     /// Most solver evaluations in one optimisation.
     #[arg(long, env = "TRIBOD_MAX_EVALUATIONS", default_value_t = Limits::default().max_evaluations)]
     max_evaluations: usize,
+    /// Most memory one job may need by the solvers' memory models, MiB.
+    #[arg(long, env = "TRIBOD_MAX_JOB_MEMORY_MB", default_value_t = Limits::default().max_job_memory >> 20)]
+    max_job_memory_mb: u64,
 }
 
 impl LimitArgs {
@@ -111,6 +114,7 @@ impl LimitArgs {
             max_angles: self.max_angles,
             max_sweep_cases: self.max_sweep_cases,
             max_evaluations: self.max_evaluations,
+            max_job_memory: self.max_job_memory_mb.saturating_mul(1 << 20),
         }
     }
 }

@@ -75,3 +75,21 @@ where
         })
     }
 }
+
+/// The `{id}` of a job route: a UUID. Anything else — including a segment that is not UTF-8 after
+/// percent-decoding, which axum's own `Path` rejects in plain text — is a `404 job_not_found`
+/// problem: no job has that id.
+pub struct JobIdPath(pub uuid::Uuid);
+
+impl<S: Send + Sync> FromRequestParts<S> for JobIdPath {
+    type Rejection = ApiError;
+
+    async fn from_request_parts(parts: &mut Parts, state: &S) -> Result<Self, ApiError> {
+        let axum::extract::Path(raw) = axum::extract::Path::<String>::from_request_parts(parts, state)
+            .await
+            .map_err(|_| ApiError::new(ErrorCode::JobNotFound, "the job id is not UTF-8 text, so no job has it"))?;
+        uuid::Uuid::parse_str(&raw)
+            .map(JobIdPath)
+            .map_err(|_| ApiError::new(ErrorCode::JobNotFound, format!("'{raw}' is not a job id (a UUID)")))
+    }
+}

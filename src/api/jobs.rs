@@ -1,13 +1,13 @@
 //! `/v1/jobs`: submit, list, inspect, fetch results, cancel or delete.
 
 use super::error::{ApiError, ApiResult};
-use super::extract::{ApiJson, ApiQuery};
+use super::extract::{ApiJson, ApiQuery, JobIdPath};
 use super::AppState;
 use crate::jobs::queue::{Cancellation, Submitted};
 use crate::jobs::{registry, table};
 use crate::problem::{ErrorCode, Problem};
 use crate::store::{JobRow, JobStatus, ListFilter};
-use axum::extract::{Path, State};
+use axum::extract::State;
 use axum::http::{header, HeaderMap, HeaderValue, StatusCode};
 use axum::response::{IntoResponse, Response};
 use axum::Json;
@@ -320,10 +320,6 @@ fn not_found(id: Uuid) -> ApiError {
 
 /// A job id from the path; anything that is not a UUID names no job (404 problem, not axum's
 /// plain-text 400).
-fn job_id(raw: &str) -> ApiResult<Uuid> {
-    Uuid::parse_str(raw).map_err(|_| ApiError::new(ErrorCode::JobNotFound, format!("'{raw}' is not a job id (a UUID)")))
-}
-
 /// Get a job.
 ///
 /// Status, progress, timing, the canonical spec and, for a failed job, its problem.
@@ -333,8 +329,7 @@ fn job_id(raw: &str) -> ApiResult<Uuid> {
         (status = 200, description = "The job", body = JobView),
         (status = 404, description = "No such job", body = Problem, content_type = "application/problem+json"),
     ))]
-pub async fn get_job(State(state): State<AppState>, Path(id): Path<String>) -> ApiResult<Json<JobView>> {
-    let id = job_id(&id)?;
+pub async fn get_job(State(state): State<AppState>, JobIdPath(id): JobIdPath) -> ApiResult<Json<JobView>> {
     let row = state.queue.store().get(id).await.map_err(store_error)?.ok_or_else(|| not_found(id))?;
     Ok(Json(JobView::from_row(row, false)))
 }
@@ -368,11 +363,10 @@ pub struct ResultQuery {
     ))]
 pub async fn get_result(
     State(state): State<AppState>,
-    Path(id): Path<String>,
+    JobIdPath(id): JobIdPath,
     headers: HeaderMap,
     ApiQuery(q): ApiQuery<ResultQuery>,
 ) -> ApiResult<Response> {
-    let id = job_id(&id)?;
     let store = state.queue.store();
     let row = store.get(id).await.map_err(store_error)?.ok_or_else(|| not_found(id))?;
     match row.status {
@@ -444,8 +438,7 @@ pub async fn get_result(
         (status = 202, description = "Cancel requested (running)", body = JobView),
         (status = 204, description = "Deleted, or never existed"),
     ))]
-pub async fn delete_job(State(state): State<AppState>, Path(id): Path<String>) -> ApiResult<Response> {
-    let id = job_id(&id)?;
+pub async fn delete_job(State(state): State<AppState>, JobIdPath(id): JobIdPath) -> ApiResult<Response> {
     Ok(match state.queue.cancel(id).await? {
         Cancellation::Canceled(row) => (StatusCode::OK, Json(JobView::from_row(row, false))).into_response(),
         Cancellation::Requested(row) => (StatusCode::ACCEPTED, Json(JobView::from_row(row, false))).into_response(),

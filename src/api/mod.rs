@@ -165,6 +165,7 @@ pub fn app(queue: Queue, config: &ApiConfig) -> axum::Router {
         })
         .layer(DefaultBodyLimit::max(config.body_limit))
         .layer(tower_http::timeout::RequestBodyTimeoutLayer::new(config.body_timeout))
+        .layer(middleware::from_fn(refuse_unacceptable))
         // Outside the routing: an unknown /v1 route or method is also refused without a token.
         .layer(middleware::from_fn_with_state(state.clone(), require_token))
         .layer(middleware::from_fn_with_state(state.clone(), count_requests))
@@ -206,6 +207,43 @@ fn token_matches(given: &[u8], expected: &[u8]) -> bool {
         diff |= (given.get(i).copied().unwrap_or(0) ^ b) as usize;
     }
     diff == 0
+}
+
+/// Content negotiation for reads: a `GET` whose `Accept` header excludes the media type of the
+/// answer gets `406 not_acceptable` instead (reads have no effects, so the answer can be
+/// dropped). Routes with several representations (the result's JSON or CSV) choose among them
+/// before this check.
+async fn refuse_unacceptable(req: Request, next: Next) -> Response {
+    let accept = req.headers().get(header::ACCEPT).and_then(|v| v.to_str().ok()).map(str::to_owned);
+    let read = req.method() == Method::GET || req.method() == Method::HEAD;
+    let res = next.run(req).await;
+    let (Some(accept), true, true) = (accept, read, res.status().is_success()) else { return res };
+    let produced = res
+        .headers()
+        .get(header::CONTENT_TYPE)
+        .and_then(|v| v.to_str().ok())
+        .and_then(|v| v.split(';').next())
+        .map(|v| v.trim().to_ascii_lowercase())
+        .unwrap_or_default();
+    if produced.is_empty() || accepts(&accept, &produced) {
+        return res;
+    }
+    ApiError::new(
+        ErrorCode::NotAcceptable,
+        format!("this resource is available as {produced}; the request accepts only '{accept}'"),
+    )
+    .into_response()
+}
+
+/// Does an `Accept` header admit `media` (`type/subtype`)? Ranges with `q=0` exclude.
+fn accepts(accept: &str, media: &str) -> bool {
+    let (ty, _) = media.split_once('/').unwrap_or((media, ""));
+    accept.split(',').any(|range| {
+        let mut parts = range.split(';').map(str::trim);
+        let r = parts.next().unwrap_or("").to_ascii_lowercase();
+        let refused = parts.any(|p| p.replace(' ', "").eq_ignore_ascii_case("q=0") || p.replace(' ', "") == "q=0.0");
+        !refused && (r == "*/*" || r == media || r.strip_suffix("/*") == Some(ty))
+    })
 }
 
 /// Bearer check of every path under `/v1` (routes or not); other paths are open.

@@ -25,6 +25,10 @@ pub struct Limits {
     pub max_sweep_cases: usize,
     /// Most solver evaluations in one optimisation.
     pub max_evaluations: usize,
+    /// Most memory one job may need by the solvers' memory models (bytes): what a spec would
+    /// allocate is estimated at validation (e.g. the dense EHL influence and Newton matrices,
+    /// ≈ 20·n² bytes for n nodes) and refused above this, before anything is allocated.
+    pub max_job_memory: u64,
 }
 
 impl Limits {
@@ -34,12 +38,19 @@ impl Limits {
         max_angles: usize::MAX,
         max_sweep_cases: usize::MAX,
         max_evaluations: usize::MAX,
+        max_job_memory: u64::MAX,
     };
 }
 
 impl Default for Limits {
     fn default() -> Self {
-        Limits { max_grid_nodes: 1_000_000, max_angles: 36_000, max_sweep_cases: 1_000, max_evaluations: 2_000 }
+        Limits {
+            max_grid_nodes: 1_000_000,
+            max_angles: 36_000,
+            max_sweep_cases: 1_000,
+            max_evaluations: 2_000,
+            max_job_memory: 2 << 30,
+        }
     }
 }
 
@@ -94,6 +105,22 @@ impl Validation {
             self.limit_errors.push(FieldError::new(
                 path,
                 format!("{what} is {value}; this server accepts at most {max} (configurable)"),
+            ));
+        }
+        self
+    }
+
+    /// The memory a spec's solver would need (by its memory model) against the server's budget.
+    pub fn memory(&mut self, path: &str, bytes: f64, limits: &Limits, what: &str) -> &mut Self {
+        if !(bytes <= limits.max_job_memory as f64) {
+            let mib = |b: f64| b / (1u64 << 20) as f64;
+            self.limit_errors.push(FieldError::new(
+                path,
+                format!(
+                    "{what} would need about {:.0} MiB; this server accepts at most {:.0} MiB per job (configurable)",
+                    mib(bytes),
+                    mib(limits.max_job_memory as f64)
+                ),
             ));
         }
         self

@@ -19,6 +19,7 @@ mod journal_kinds;
 mod journal_stability;
 mod journal_validation;
 mod openapi_drift;
+mod reliability;
 mod restart_recovery;
 mod storage_faults;
 mod sweep_api;

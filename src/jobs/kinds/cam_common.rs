@@ -324,6 +324,7 @@ impl EhlSpec {
     pub fn validate(&self, path: &str, limits: &Limits, v: &mut Validation) {
         v.count_in_range(&format!("{path}/nodes"), self.nodes, 32, 1 << 16);
         v.limit(&format!("{path}/nodes"), self.nodes, limits.max_grid_nodes, "the number of EHL grid nodes");
+        v.memory(&format!("{path}/nodes"), crate::physics::ehl::dense_memory_bytes(self.nodes), limits, "the dense EHL solver");
         v.in_range(&format!("{path}/tolerance"), self.tolerance, 1e-13, 1e-2);
         v.check(self.max_iterations >= 1 && self.max_iterations <= 1000, &format!("{path}/max_iterations"), "must be in [1, 1000]");
         v.in_range(&format!("{path}/auto_tolerance"), self.auto_tolerance, 0.0, 10.0);

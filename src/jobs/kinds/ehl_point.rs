@@ -329,6 +329,7 @@ impl Kind for EhlPoint {
         v.non_negative("/rheology/limiting_shear_stress", spec.rheology.limiting_shear_stress);
         v.count_in_range("/nodes", spec.nodes, 32, 4096);
         v.limit("/nodes", spec.nodes, limits.max_grid_nodes, "the number of grid nodes");
+        v.memory("/nodes", crate::physics::ehl::dense_memory_bytes(spec.nodes), limits, "the dense EHL solver");
         v.in_range("/tolerance", spec.tolerance, 1e-14, 1e-2);
         v.count_in_range("/max_iterations", spec.max_iterations as usize, 1, 1000);
     }

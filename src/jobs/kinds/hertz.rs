@@ -222,9 +222,12 @@ impl Kind for Hertz {
     }
 
     fn validate(spec: &HertzSpec, _limits: &Limits, v: &mut Validation) {
-        v.positive("/load", spec.load);
+        // Upper bounds far above any machine element, low enough that no intermediate overflows
+        // (a load of 1e308 N used to end as an internal error instead of a 422).
+        v.positive("/load", spec.load).check(spec.load <= 1e9, "/load", "must be at most 1e9 N");
         for (name, body) in [("/body_1", &spec.body_1), ("/body_2", &spec.body_2)] {
-            v.positive(&format!("{name}/youngs_modulus"), body.youngs_modulus);
+            let e = body.youngs_modulus;
+            v.positive(&format!("{name}/youngs_modulus"), e).check(e <= 1e13, &format!("{name}/youngs_modulus"), "must be at most 1e13 Pa");
             v.check(
                 body.poisson_ratio.is_finite() && (-1.0..0.5).contains(&body.poisson_ratio),
                 &format!("{name}/poisson_ratio"),

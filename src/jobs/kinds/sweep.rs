@@ -92,6 +92,15 @@ fn column(pointer: &str) -> String {
 }
 
 impl Parameter {
+    /// Number of values, counted without building them (a hostile `num` must not allocate).
+    fn len(&self) -> usize {
+        match (&self.values, &self.linspace) {
+            (Some(v), _) => v.len(),
+            (None, Some(l)) => l.num,
+            (None, None) => 0,
+        }
+    }
+
     fn values(&self) -> Vec<Value> {
         match (&self.values, &self.linspace) {
             (Some(v), _) => v.clone(),
@@ -163,7 +172,7 @@ fn cases(spec: &SweepSpec) -> Vec<Vec<Value>> {
 }
 
 fn case_count(spec: &SweepSpec) -> usize {
-    let lens: Vec<usize> = spec.parameters.iter().map(|p| p.values().len()).collect();
+    let lens: Vec<usize> = spec.parameters.iter().map(Parameter::len).collect();
     match spec.combine {
         Combine::Zip => lens.first().copied().unwrap_or(0),
         Combine::Grid => lens.iter().fold(1usize, |a, &n| a.saturating_mul(n)),
@@ -249,7 +258,7 @@ impl Kind for Sweep {
             }
         }
         if spec.combine == Combine::Zip {
-            let lens: Vec<usize> = spec.parameters.iter().map(|p| p.values().len()).collect();
+            let lens: Vec<usize> = spec.parameters.iter().map(Parameter::len).collect();
             v.check(lens.windows(2).all(|w| w[0] == w[1]), "/parameters", "`zip` needs the same number of values for every parameter");
         }
         for (i, q) in spec.quantities.iter().enumerate() {

@@ -1,0 +1,263 @@
+//! Issue 10: hostile sizes, slow clients, shutdown, prefetching, idempotency, fair scheduling and
+//! the smaller defects — each against the real server on loopback.
+
+use crate::common::*;
+use serde_json::{json, Value};
+use std::time::{Duration, Instant};
+use tokio::io::{AsyncReadExt, AsyncWriteExt};
+
+fn kind_example(name: &str) -> Value {
+    tribod::jobs::registry::find(name).expect("kind").example()
+}
+
+#[tokio::test]
+async fn hostile_sizes_are_refused_before_anything_is_allocated() {
+    let s = start().await;
+    // 1e12 linspace values: refused by counting, not by building them (it used to abort).
+    let sweep = json!({"kind": "sweep", "spec": {"kind": "hertz", "base": {},
+        "parameters": [{"path": "/load", "linspace": {"start": 1, "stop": 2, "num": 1_000_000_000_000u64}}]}});
+    let p = expect_problem(s.post_job(&sweep).await, 422, "invalid_spec").await;
+    assert!(p.to_string().contains("/spec/parameters/0/linspace/num"), "{p}");
+    // A grid of 8 × 1000 values: 1e24 cases, counted with saturation.
+    let params: Vec<Value> = (0..8)
+        .map(|i| json!({"path": format!("/p{i}"), "linspace": {"start": 1, "stop": 2, "num": 1000}}))
+        .collect();
+    let grid = json!({"kind": "sweep", "spec": {"kind": "hertz", "base": {}, "parameters": params}});
+    expect_problem(s.post_job(&grid).await, 422, "limit_exceeded").await;
+
+    // 65,536 EHL nodes: the dense matrices would need ~80 GiB; refused by the memory model.
+    let mut cam = kind_example("cam_cycle");
+    cam["ehl"] = json!({"nodes": 65536});
+    let p = expect_problem(s.post_job(&json!({"kind": "cam_cycle", "spec": cam})).await, 422, "limit_exceeded").await;
+    let text = p.to_string();
+    assert!(text.contains("/spec/ehl/nodes") && text.contains("MiB"), "{p}");
+
+    // A load of 1e308 N is a field error, not an internal error.
+    let mut hertz = hertz_job(1e308);
+    let p = expect_problem(s.post_job(&hertz).await, 422, "invalid_spec").await;
+    assert!(p.to_string().contains("/spec/load"), "{p}");
+    hertz["spec"]["load"] = json!(1000.0);
+    assert_eq!(s.post_job(&hertz).await.status(), 202);
+    s.stop().await;
+}
+
+#[test]
+fn dense_ehl_memory_model_admits_the_documented_grids() {
+    let limits = tribod::jobs::kind::Limits::default();
+    // 4096 nodes (ehl_point's largest) fit the default 2 GiB budget; 16,384 do not.
+    assert!(tribod::physics::ehl::dense_memory_bytes(4096) < limits.max_job_memory as f64);
+    assert!(tribod::physics::ehl::dense_memory_bytes(16384) > limits.max_job_memory as f64);
+}
+
+#[tokio::test]
+async fn smaller_defects_of_the_http_layer() {
+    let s = start_with(|c| c.api.tokens = vec!["s3cret-token".into()]).await;
+    // Unknown /v1 routes and methods ask for the token first.
+    for (method, path) in [("GET", "/v1/nope"), ("PUT", "/v1/jobs"), ("GET", "/v1")] {
+        let res = s.client.request(method.parse().unwrap(), s.url(path)).send().await.unwrap();
+        expect_problem(res, 401, "unauthorized").await;
+    }
+    let auth = |r: reqwest::RequestBuilder| r.bearer_auth("s3cret-token");
+    // An id that is not UTF-8 after decoding: a problem document, not text/plain.
+    let res = auth(s.client.get(s.url("/v1/jobs/%FF%FE"))).send().await.unwrap();
+    expect_problem(res, 404, "job_not_found").await;
+    // Accept that excludes JSON: 406.
+    let res = auth(s.client.get(s.url("/v1/kinds"))).header("accept", "image/png").send().await.unwrap();
+    expect_problem(res, 406, "not_acceptable").await;
+    let res = auth(s.client.get(s.url("/v1/kinds"))).header("accept", "application/*").send().await.unwrap();
+    assert_eq!(res.status(), 200);
+    s.stop().await;
+}
+
+#[test]
+fn a_blank_api_token_is_refused_at_start() {
+    let out = std::process::Command::new(env!("CARGO_BIN_EXE_tribod"))
+        .args(["serve", "--addr", "127.0.0.1:0", "--database-url", "sqlite::memory:", "--api-token", " "])
+        .output()
+        .expect("run tribod");
+    assert_eq!(out.status.code(), Some(2), "{}", String::from_utf8_lossy(&out.stderr));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("blank token"));
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 4)]
+async fn the_backlog_limit_holds_under_concurrent_submissions() {
+    let s = start_with(|c| {
+        c.queue.workers = 1;
+        c.queue.max_backlog = 10;
+    })
+    .await;
+    let mut tasks = Vec::new();
+    for i in 0..60u64 {
+        let client = s.client.clone();
+        let url = s.url("/v1/jobs");
+        tasks.push(tokio::spawn(async move {
+            client.post(url).json(&sleep_job(2.0, 1000 + i)).send().await.unwrap().status().as_u16()
+        }));
+    }
+    let mut accepted = 0;
+    for t in tasks {
+        match t.await.unwrap() {
+            202 => accepted += 1,
+            503 => {}
+            other => panic!("unexpected {other}"),
+        }
+    }
+    let (_, page) = s.get_json("/v1/jobs?status=queued&limit=500").await;
+    let queued = page["jobs"].as_array().unwrap().len();
+    assert!(queued <= 10, "{queued} queued with --max-queue 10");
+    assert!(accepted <= 11, "{accepted} accepted: 10 queued + at most 1 started meanwhile");
+    s.stop().await;
+}
+
+#[tokio::test]
+async fn idempotency_key_makes_a_retried_post_safe() {
+    let s = start().await;
+    let post = |body: &Value, key: &str| s.client.post(s.url("/v1/jobs")).header("idempotency-key", key).json(body).send();
+    let first = post(&sleep_job(0.2, 77), "order-4711").await.unwrap();
+    assert_eq!(first.status(), 202);
+    let first: Value = first.json().await.unwrap();
+    let again = post(&sleep_job(0.2, 77), "order-4711").await.unwrap();
+    assert!(matches!(again.status().as_u16(), 200 | 202));
+    assert_eq!(again.headers()["idempotent-replayed"], "true");
+    let again: Value = again.json().await.unwrap();
+    assert_eq!(again["id"], first["id"], "the same key and body answer the same job");
+    let other = post(&sleep_job(0.2, 78), "order-4711").await.unwrap();
+    expect_problem(other, 422, "idempotency_key_reused").await;
+    let bad = post(&sleep_job(0.2, 79), "").await.unwrap();
+    expect_problem(bad, 422, "invalid_request").await;
+    // Concurrent first attempts with one key make one job.
+    let mut tasks = Vec::new();
+    for _ in 0..8 {
+        let req = s.client.post(s.url("/v1/jobs")).header("idempotency-key", "burst-1").json(&sleep_job(0.1, 80));
+        tasks.push(tokio::spawn(async move { req.send().await.unwrap().json::<Value>().await.unwrap()["id"].clone() }));
+    }
+    let mut ids = Vec::new();
+    for t in tasks {
+        ids.push(t.await.unwrap());
+    }
+    ids.dedup();
+    assert_eq!(ids.len(), 1, "one job for one key: {ids:?}");
+    s.stop().await;
+}
+
+#[tokio::test]
+async fn only_started_jobs_are_running_and_a_queued_job_cancels_at_once() {
+    let s = start_with(|c| c.queue.workers = 1).await;
+    let mut ids = Vec::new();
+    for i in 0..5 {
+        let res: Value = s.post_job(&sleep_job(0.3, 500 + i)).await.json().await.unwrap();
+        ids.push(res["id"].as_str().unwrap().to_string());
+    }
+    tokio::time::sleep(Duration::from_millis(100)).await;
+    let (_, running) = s.get_json("/v1/jobs?status=running").await;
+    assert_eq!(running["jobs"].as_array().unwrap().len(), 1, "one worker, one running job: {running}");
+    let res = s.client.delete(s.url(&format!("/v1/jobs/{}", ids[3]))).send().await.unwrap();
+    let job: Value = res.json().await.unwrap();
+    assert_eq!(job["status"], "canceled", "a queued job is canceled by DELETE at once: {job}");
+    for id in &ids {
+        let job = s.wait_finished(id, Duration::from_secs(20)).await;
+        assert_eq!(job["attempts"].as_i64().unwrap() <= 1, true, "{job}");
+    }
+    s.stop().await;
+}
+
+#[tokio::test]
+async fn a_tiny_job_does_not_wait_behind_the_heavy_backlog() {
+    let s = start_with(|c| c.queue.workers = 1).await;
+    // Calibrate both kinds' estimates with one job each.
+    let h: Value = s.post_job(&hertz_job(999.0)).await.json().await.unwrap();
+    s.wait_finished(h["id"].as_str().unwrap(), Duration::from_secs(10)).await;
+    let w: Value = s.post_job(&sleep_job(0.3, 900)).await.json().await.unwrap();
+    s.wait_finished(w["id"].as_str().unwrap(), Duration::from_secs(10)).await;
+    // A heavy backlog, then a tiny job.
+    let mut heavy = Vec::new();
+    for i in 0..8 {
+        let res: Value = s.post_job(&sleep_job(0.3, 901 + i)).await.json().await.unwrap();
+        heavy.push(res["id"].as_str().unwrap().to_string());
+    }
+    let tiny: Value = s.post_job(&hertz_job(1234.0)).await.json().await.unwrap();
+    let tiny = s.wait_finished(tiny["id"].as_str().unwrap(), Duration::from_secs(20)).await;
+    assert_eq!(tiny["status"], "succeeded");
+    let mut waiting_heavy = 0;
+    for id in &heavy {
+        let (_, job) = s.get_json(&format!("/v1/jobs/{id}")).await;
+        if job["status"] == "queued" {
+            waiting_heavy += 1;
+        }
+    }
+    assert!(waiting_heavy >= 5, "the tiny job ran after only {} of 8 heavy jobs started", 8 - waiting_heavy);
+    s.stop().await;
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 4)]
+async fn shutdown_answers_waiters_and_hands_running_jobs_back() {
+    let dir = tempfile::tempdir().unwrap();
+    let mut cfg = config(&dir);
+    cfg.queue.workers = 1;
+    cfg.shutdown_grace = Duration::from_millis(500);
+    let s = start_in(dir, cfg.clone()).await;
+    let long: Value = s.post_job(&sleep_job(30.0, 1)).await.json().await.unwrap();
+    let long_id = long["id"].as_str().unwrap().to_string();
+    s.wait_status(&long_id, "running", Duration::from_secs(5)).await;
+    // A client waiting for a queued job, and a client that sent half a request.
+    let waiter = {
+        let req = s.client.post(s.url("/v1/jobs")).header("prefer", "wait=300").json(&sleep_job(1.0, 2));
+        tokio::spawn(async move { req.send().await.unwrap() })
+    };
+    let mut half = tokio::net::TcpStream::connect(s.base.trim_start_matches("http://")).await.unwrap();
+    half.write_all(b"POST /v1/jobs HTTP/1.1\r\nhost: x\r\ncontent-length: 100\r\n\r\n{\"kind\":").await.unwrap();
+    tokio::time::sleep(Duration::from_millis(200)).await;
+
+    let started = Instant::now();
+    let dir = s.stop().await;
+    let took = started.elapsed();
+    let answer = tokio::time::timeout(Duration::from_secs(5), waiter).await.expect("waiter answered").unwrap();
+    assert_eq!(answer.status(), 202, "the waiting request gets the job as it is");
+    assert!(took < Duration::from_secs(5), "shutdown took {took:?} with open waits and a half-sent request");
+
+    // The interrupted job is queued again, its attempt not charged.
+    let s = start_in(dir, cfg).await;
+    let (_, job) = s.get_json(&format!("/v1/jobs/{long_id}")).await;
+    assert!(matches!(job["status"].as_str(), Some("queued" | "running")), "{job}");
+    assert!(job["attempts"].as_i64().unwrap() <= 1, "{job}");
+    s.stop().await;
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 4)]
+async fn slow_clients_cannot_lock_others_out() {
+    let s = start_with(|c| {
+        c.connections.max_connections = 50;
+        c.connections.header_timeout = Duration::from_millis(500);
+    })
+    .await;
+    let addr = s.base.trim_start_matches("http://").to_string();
+    // 200 clients that never finish their headers.
+    let mut slow = Vec::new();
+    for _ in 0..200 {
+        let mut c = tokio::net::TcpStream::connect(&addr).await.unwrap();
+        let _ = c.write_all(b"GET /healthz HTTP/1.1\r\nhost: x\r\n").await;
+        slow.push(c);
+    }
+    // Those over the cap are told so at once.
+    let mut busy = 0;
+    for c in slow.iter_mut().skip(100) {
+        let mut buf = [0u8; 64];
+        if let Ok(Ok(n)) = tokio::time::timeout(Duration::from_millis(200), c.read(&mut buf)).await {
+            busy += String::from_utf8_lossy(&buf[..n]).contains(" 503 ") as usize;
+        }
+    }
+    assert!(busy >= 90, "{busy} of 100 connections over the cap were answered 503");
+    // After the header timeout the slow ones are gone and a normal client is served.
+    tokio::time::sleep(Duration::from_millis(800)).await;
+    let res = s.client.get(s.url("/healthz")).send().await.unwrap();
+    assert_eq!(res.status(), 200);
+    let mut closed = 0;
+    for c in slow.iter_mut().take(50) {
+        let mut buf = [0u8; 256];
+        if let Ok(Ok(_)) = tokio::time::timeout(Duration::from_millis(100), c.read(&mut buf)).await {
+            closed += 1;
+        }
+    }
+    assert!(closed >= 45, "only {closed} of 50 slow connections were closed by the header timeout");
+    s.stop().await;
+}
