@@ -117,6 +117,7 @@ impl JobView {
 
 /// Query of `POST /v1/jobs`.
 #[derive(Debug, Deserialize, IntoParams)]
+#[into_params(parameter_in = Query)]
 #[serde(deny_unknown_fields)]
 pub struct SubmitQuery {
     /// Solve again even when an identical succeeded job exists.
@@ -224,6 +225,7 @@ fn idempotency_key(headers: &HeaderMap) -> ApiResult<Option<String>> {
 
 /// Query of `GET /v1/jobs`.
 #[derive(Debug, Deserialize, IntoParams)]
+#[into_params(parameter_in = Query)]
 #[serde(deny_unknown_fields)]
 pub struct ListQuery {
     /// Only jobs in these statuses (comma-separated).
@@ -336,6 +338,7 @@ pub async fn get_job(State(state): State<AppState>, JobIdPath(id): JobIdPath) ->
 
 /// Query of `GET /v1/jobs/{id}/result`.
 #[derive(Debug, Deserialize, IntoParams)]
+#[into_params(parameter_in = Query)]
 #[serde(deny_unknown_fields)]
 pub struct ResultQuery {
     /// `json` (default) or `csv`; same as `Accept: text/csv`.

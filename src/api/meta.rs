@@ -104,7 +104,7 @@ pub async fn readyz(State(state): State<AppState>) -> ApiResult<&'static str> {
 /// Text exposition format: jobs by status, queue depth, running jobs, solve-time histogram by
 /// kind, submissions, reuses and HTTP requests.
 #[utoipa::path(get, path = "/metrics", tag = "operations",
-    responses((status = 200, description = "Metrics", body = String, content_type = "text/plain")))]
+    responses((status = 200, description = "Metrics (OpenMetrics 1.0 text)", body = String, content_type = "application/openmetrics-text; version=1.0.0; charset=utf-8")))]
 pub async fn metrics(State(state): State<AppState>) -> Response {
     let metrics = state.queue.metrics();
     if let Ok(counts) = state.queue.store().count_by_status().await {

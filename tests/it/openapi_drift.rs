@@ -24,9 +24,35 @@ fn every_operation_is_documented() {
             assert!(op["description"].as_str().is_some_and(|s| !s.is_empty()), "{method} {path} lacks a description");
         }
     }
-    // Every kind's spec is in the oneOf of the request body.
-    let one_of = doc["components"]["schemas"]["JobRequest"]["properties"]["spec"]["oneOf"].as_array().unwrap().len();
-    assert_eq!(one_of, tribod::jobs::registry::KINDS.len());
+    // The request body is a oneOf of one request per kind, tagged by `kind`.
+    let request = &doc["components"]["schemas"]["JobRequest"];
+    assert_eq!(request["oneOf"].as_array().unwrap().len(), tribod::jobs::registry::KINDS.len());
+    assert_eq!(request["discriminator"]["propertyName"], "kind");
+    for k in tribod::jobs::registry::KINDS {
+        let target = request["discriminator"]["mapping"][k.name()].as_str().expect("kind in the mapping");
+        let variant = &doc["components"]["schemas"][target.rsplit('/').next().unwrap()];
+        assert_eq!(variant["properties"]["kind"]["enum"][0], k.name());
+        let spec = variant["properties"]["spec"]["$ref"].as_str().unwrap();
+        assert!(spec.ends_with(&format!("/{}", k.schema_names().0)), "{} → {spec}", k.name());
+    }
+    // Query parameters are query parameters; reads document 406, /v1 routes 401.
+    for (path, item) in doc["paths"].as_object().unwrap() {
+        for (method, op) in item.as_object().unwrap() {
+            for p in op["parameters"].as_array().into_iter().flatten() {
+                let name = p["name"].as_str().unwrap();
+                let expected = if path.contains(&format!("{{{name}}}")) { "path" } else if p["in"] == "header" { "header" } else { "query" };
+                assert_eq!(p["in"], expected, "{method} {path}: parameter {name}");
+            }
+            let codes = op["responses"].as_object().unwrap();
+            assert!(codes.contains_key("405"), "{method} {path}");
+            if method == "get" {
+                assert!(codes.contains_key("406"), "{method} {path}");
+            }
+            if path.starts_with("/v1") {
+                assert!(codes.contains_key("401"), "{method} {path}");
+            }
+        }
+    }
 }
 
 /// Does `value` fit `schema` as far as object keys go (every key of an object is a property of
@@ -73,13 +99,15 @@ fn keys_fit(doc: &serde_json::Value, schema: &serde_json::Value, value: &serde_j
 #[test]
 fn every_example_fits_its_kinds_schema() {
     let doc = serde_json::to_value(tribod::api::openapi()).unwrap();
-    let alts = doc["components"]["schemas"]["JobRequest"]["properties"]["spec"]["oneOf"].as_array().unwrap().clone();
+    let mapping = doc["components"]["schemas"]["JobRequest"]["discriminator"]["mapping"].clone();
     let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("examples");
     let mut checked = 0;
     for entry in std::fs::read_dir(dir).unwrap() {
         let path = entry.unwrap().path();
         let v: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(&path).unwrap()).unwrap();
-        let fits = alts.iter().any(|s| keys_fit(&doc, s, &v["spec"]));
+        // The example as a whole request, against its own kind's request schema.
+        let target = mapping[v["kind"].as_str().unwrap()].as_str().expect("the example's kind is in the mapping");
+        let fits = keys_fit(&doc, &serde_json::json!({"$ref": target}), &v);
         assert!(fits, "{}: its spec has a key the OpenAPI document does not describe", path.display());
         checked += 1;
     }

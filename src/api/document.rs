@@ -1,0 +1,102 @@
+//! The finishing pass over the generated OpenAPI document: what the route annotations cannot say
+//! once for every route. A client generator must be able to build a typed request and handle
+//! every answer from this document alone (issue 10, defect 8).
+//!
+//! * `JobRequest` becomes a `oneOf` of one request schema per kind (`HertzJobRequest`, …) with
+//!   `kind` as the discriminator, each tying its `kind` constant to its spec schema.
+//! * Answers every route can give are added where they apply: `401` under `/v1` (bearer token),
+//!   `405` (other methods), `406` on reads (`Accept`), `503` where the job store is read or
+//!   written, `415` on bodies.
+
+use crate::jobs::registry;
+use serde_json::{json, Map, Value};
+
+/// Apply the finishing pass to the document utoipa generated.
+pub fn finish(mut doc: Value) -> Value {
+    kind_tagged_requests(&mut doc);
+    common_responses(&mut doc);
+    doc
+}
+
+fn schema_ref(name: &str) -> Value {
+    json!({ "$ref": format!("#/components/schemas/{name}") })
+}
+
+fn kind_tagged_requests(doc: &mut Value) {
+    let Some(schemas) = doc.pointer_mut("/components/schemas").and_then(Value::as_object_mut) else { return };
+    let mut variants = Vec::new();
+    let mut mapping = Map::new();
+    for k in registry::KINDS {
+        let (spec, _) = k.schema_names();
+        let camel: String = k.name().split('_').map(|w| w[..1].to_uppercase() + &w[1..]).collect();
+        let name = format!("{camel}JobRequest");
+        schemas.insert(
+            name.clone(),
+            json!({
+                "type": "object",
+                "description": format!("A `{}` job: {}", k.name(), k.description()),
+                "required": ["kind", "spec"],
+                "additionalProperties": false,
+                "properties": {
+                    "kind": { "type": "string", "enum": [k.name()], "description": "The job kind." },
+                    "spec": schema_ref(&spec),
+                    "label": { "type": "string", "maxLength": 200, "description": "Free text to find the job again." }
+                }
+            }),
+        );
+        mapping.insert(k.name().to_string(), json!(format!("#/components/schemas/{name}")));
+        variants.push(schema_ref(&name));
+    }
+    schemas.insert(
+        "JobRequest".into(),
+        json!({
+            "description": "Body of `POST /v1/jobs`: a job kind and the spec of that kind.",
+            "oneOf": variants,
+            "discriminator": { "propertyName": "kind", "mapping": mapping }
+        }),
+    );
+}
+
+fn problem(description: &str) -> Value {
+    json!({
+        "description": description,
+        "content": { "application/problem+json": { "schema": schema_ref("Problem") } }
+    })
+}
+
+fn common_responses(doc: &mut Value) {
+    let Some(paths) = doc.get_mut("paths").and_then(Value::as_object_mut) else { return };
+    for (path, item) in paths.iter_mut() {
+        let Some(item) = item.as_object_mut() else { continue };
+        for (method, op) in item.iter_mut() {
+            let Some(responses) = op.get_mut("responses").and_then(Value::as_object_mut) else { continue };
+            let mut add = |code: &str, description: &str| {
+                responses.entry(code.to_string()).or_insert_with(|| problem(description));
+            };
+            let v1 = path.starts_with("/v1");
+            if v1 {
+                add("401", "Missing or wrong bearer token (when the server runs with --api-token)");
+            }
+            if method == "get" {
+                add("406", "The Accept header excludes every representation of this resource");
+            }
+            if method == "post" {
+                add("415", "The body is not JSON");
+            }
+            if path.starts_with("/v1/jobs") {
+                add("503", "The job store cannot be reached, or the service is shutting down");
+            }
+            if path.contains("{id}") {
+                add("404", "No job has this id (also for an id that is not a UUID)");
+            }
+            if path.ends_with("/result") {
+                add("400", "Invalid query (unknown format or table)");
+            }
+            add("405", "This route does not answer that method");
+            // Stable order of codes for the drift test and for readers.
+            let mut sorted: Vec<(String, Value)> = std::mem::take(responses).into_iter().collect();
+            sorted.sort_by(|a, b| a.0.cmp(&b.0));
+            responses.extend(sorted);
+        }
+    }
+}
