@@ -7,12 +7,14 @@
 //! * Answers every route can give are added where they apply: `401` under `/v1` (bearer token),
 //!   `405` (other methods), `406` on reads (`Accept`), `503` where the job store is read or
 //!   written, `415` on bodies.
+//! * Object schemas are closed (`additionalProperties: false`), as the specs reject unknown fields.
 
 use crate::jobs::registry;
 use serde_json::{json, Map, Value};
 
 /// Apply the finishing pass to the document utoipa generated.
 pub fn finish(mut doc: Value) -> Value {
+    closed_objects(&mut doc);
     kind_tagged_requests(&mut doc);
     common_responses(&mut doc);
     doc
@@ -55,6 +57,52 @@ fn kind_tagged_requests(doc: &mut Value) {
             "discriminator": { "propertyName": "kind", "mapping": mapping }
         }),
     );
+}
+
+/// Specs reject unknown fields (`deny_unknown_fields`): say so on every object schema a spec
+/// uses, so that generators and fuzzers do not invent fields. (Results stay open: a result's
+/// `meta` gains the job id when stored.)
+fn closed_objects(doc: &mut Value) {
+    fn refs(v: &Value, out: &mut Vec<String>) {
+        match v {
+            Value::Object(map) => {
+                if let Some(r) = map.get("$ref").and_then(Value::as_str) {
+                    out.push(r.rsplit('/').next().unwrap_or("").to_string());
+                }
+                map.values().for_each(|v| refs(v, out));
+            }
+            Value::Array(items) => items.iter().for_each(|v| refs(v, out)),
+            _ => {}
+        }
+    }
+    fn close(v: &mut Value) {
+        match v {
+            Value::Object(map) => {
+                if map.get("properties").is_some_and(Value::is_object) && !map.contains_key("additionalProperties") {
+                    map.insert("additionalProperties".into(), Value::Bool(false));
+                }
+                map.values_mut().for_each(close);
+            }
+            Value::Array(items) => items.iter_mut().for_each(close),
+            _ => {}
+        }
+    }
+    let Some(schemas) = doc.pointer_mut("/components/schemas").and_then(Value::as_object_mut) else { return };
+    let mut todo: Vec<String> = registry::KINDS.iter().map(|k| k.schema_names().0).collect();
+    let mut seen = std::collections::HashSet::new();
+    while let Some(name) = todo.pop() {
+        if !seen.insert(name.clone()) {
+            continue;
+        }
+        if let Some(schema) = schemas.get(&name) {
+            refs(schema, &mut todo);
+        }
+    }
+    for name in seen {
+        if let Some(schema) = schemas.get_mut(&name) {
+            close(schema);
+        }
+    }
 }
 
 fn problem(description: &str) -> Value {

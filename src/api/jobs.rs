@@ -234,10 +234,13 @@ pub struct ListQuery {
     /// Only jobs of this kind.
     pub kind: Option<String>,
     /// Only jobs created after this instant (RFC 3339).
+    #[param(format = DateTime)]
     pub created_after: Option<String>,
     /// Only jobs created before this instant (RFC 3339).
+    #[param(format = DateTime)]
     pub created_before: Option<String>,
     /// Page size, 1–500 (default 50).
+    #[param(minimum = 1, maximum = 500)]
     pub limit: Option<u32>,
     /// Cursor: the `next` of the previous page (jobs older than this id).
     pub after: Option<Uuid>,
@@ -342,6 +345,7 @@ pub async fn get_job(State(state): State<AppState>, JobIdPath(id): JobIdPath) ->
 #[serde(deny_unknown_fields)]
 pub struct ResultQuery {
     /// `json` (default) or `csv`; same as `Accept: text/csv`.
+    #[param(pattern = "^(json|csv)$")]
     pub format: Option<String>,
     /// For CSV: which table of the result (see the kind's `tables` in `/v1/kinds`); default the first.
     pub table: Option<String>,

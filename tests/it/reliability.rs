@@ -32,6 +32,12 @@ async fn hostile_sizes_are_refused_before_anything_is_allocated() {
     let text = p.to_string();
     assert!(text.contains("/spec/ehl/nodes") && text.contains("MiB"), "{p}");
 
+    // A grid whose node count overflows usize (found by schemathesis: a panic in validation, 500).
+    let mut bearing = kind_example("bearing");
+    bearing["grid"] = json!({"circumferential": 11784423u64, "axial": 478913318372841856u64});
+    let p = expect_problem(s.post_job(&json!({"kind": "bearing", "spec": bearing})).await, 422, "invalid_spec").await;
+    assert!(p.to_string().contains("/spec/grid"), "{p}");
+
     // A load of 1e308 N is a field error, not an internal error.
     let mut hertz = hertz_job(1e308);
     let p = expect_problem(s.post_job(&hertz).await, 422, "invalid_spec").await;

@@ -510,7 +510,7 @@ pub fn validate_bearing(spec: &BearingSpec, limits: &Limits, v: &mut Validation,
     }
     v.count_in_range(&px("/grid/circumferential"), spec.grid.circumferential, 17, 4001);
     v.count_in_range(&px("/grid/axial"), spec.grid.axial, 5, 2001);
-    v.limit(&px("/grid"), spec.grid.circumferential * spec.grid.axial, limits.max_grid_nodes, "circumferential × axial nodes");
+    v.limit(&px("/grid"), spec.grid.circumferential.saturating_mul(spec.grid.axial), limits.max_grid_nodes, "circumferential × axial nodes");
     if let SupplySpec::Angle { angle_deg } = spec.supply {
         v.check(angle_deg.is_finite(), &px("/supply/angle_deg"), "must be a finite number");
     }

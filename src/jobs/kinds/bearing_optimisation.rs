@@ -239,10 +239,11 @@ pub struct OptimisationResult {
 fn planned_evaluations(spec: &OptimisationSpec) -> usize {
     let runs = spec.method.array().rows().len();
     // reference + baseline + runs + confirmation
-    let mut n = 3 + runs;
+    let mut n = 3usize.saturating_add(runs);
     if spec.continuous.enabled {
         let orders = spec.factors.order.len();
-        n += orders * (spec.continuous.evaluations_per_order + if spec.continuous.coarse_search { 15 } else { 0 });
+        let per_order = spec.continuous.evaluations_per_order.saturating_add(if spec.continuous.coarse_search { 15 } else { 0 });
+        n = n.saturating_add(orders.saturating_mul(per_order));
     }
     n
 }
