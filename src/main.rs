@@ -105,6 +105,9 @@ struct LimitArgs {
     /// Most memory one job may need by the solvers' memory models, MiB.
     #[arg(long, env = "TRIBOD_MAX_JOB_MEMORY_MB", default_value_t = Limits::default().max_job_memory >> 20)]
     max_job_memory_mb: u64,
+    /// Most solver time one job may need by the solvers' work models, seconds of one core.
+    #[arg(long, env = "TRIBOD_MAX_JOB_SECONDS", default_value_t = Limits::default().max_job_seconds)]
+    max_job_seconds: f64,
 }
 
 impl LimitArgs {
@@ -115,6 +118,7 @@ impl LimitArgs {
             max_sweep_cases: self.max_sweep_cases,
             max_evaluations: self.max_evaluations,
             max_job_memory: self.max_job_memory_mb.saturating_mul(1 << 20),
+            max_job_seconds: if self.max_job_seconds > 0.0 { self.max_job_seconds } else { f64::INFINITY },
         }
     }
 }

@@ -15,7 +15,7 @@ use utoipa::ToSchema;
 /// Server-wide limits on problem size, so one request cannot occupy the pool for hours.
 /// Each kind checks the ones that apply to it in [`Kind::validate`] and reports
 /// `limit_exceeded` with the field path.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct Limits {
     /// Most nodes in one solver grid (circumferential × axial, or EHL nodes).
     pub max_grid_nodes: usize,
@@ -29,6 +29,10 @@ pub struct Limits {
     /// allocate is estimated at validation (e.g. the dense EHL influence and Newton matrices,
     /// ≈ 20·n² bytes for n nodes) and refused above this, before anything is allocated.
     pub max_job_memory: u64,
+    /// Most solver time one job may need by the solvers' work models (seconds of one core on
+    /// the reference machine of BENCHMARKS.md); refused at validation above this. The per-job
+    /// wall-time limit (`--job-timeout`) still bounds what the models miss.
+    pub max_job_seconds: f64,
 }
 
 impl Limits {
@@ -39,6 +43,7 @@ impl Limits {
         max_sweep_cases: usize::MAX,
         max_evaluations: usize::MAX,
         max_job_memory: u64::MAX,
+        max_job_seconds: f64::INFINITY,
     };
 }
 
@@ -50,6 +55,7 @@ impl Default for Limits {
             max_sweep_cases: 1_000,
             max_evaluations: 2_000,
             max_job_memory: 2 << 30,
+            max_job_seconds: 60.0,
         }
     }
 }
@@ -120,6 +126,20 @@ impl Validation {
                     "{what} would need about {:.0} MiB; this server accepts at most {:.0} MiB per job (configurable)",
                     mib(bytes),
                     mib(limits.max_job_memory as f64)
+                ),
+            ));
+        }
+        self
+    }
+
+    /// The solver time a spec would need (by its work model) against the server's budget.
+    pub fn work(&mut self, path: &str, seconds: f64, limits: &Limits, what: &str) -> &mut Self {
+        if !(seconds <= limits.max_job_seconds) {
+            self.limit_errors.push(FieldError::new(
+                path,
+                format!(
+                    "{what} would take about {seconds:.0} s of solver time; this server accepts at most {:.0} s per job (configurable)",
+                    limits.max_job_seconds
                 ),
             ));
         }

@@ -38,6 +38,15 @@ async fn hostile_sizes_are_refused_before_anything_is_allocated() {
     let p = expect_problem(s.post_job(&json!({"kind": "bearing", "spec": bearing})).await, 422, "invalid_spec").await;
     assert!(p.to_string().contains("/spec/grid"), "{p}");
 
+    // A bearing optimisation of ~350 analyses on 3001×181 nodes (~3 min of solver time; 52 s jobs
+    // of this sort were accepted before): refused by the work model, naming the grid.
+    let mut opt = kind_example("bearing_optimisation");
+    opt["base"]["grid"] = json!({"circumferential": 3001, "axial": 181});
+    opt["continuous"]["enabled"] = json!(true);
+    opt["continuous"]["evaluations_per_order"] = json!(100);
+    let p = expect_problem(s.post_job(&json!({"kind": "bearing_optimisation", "spec": opt})).await, 422, "limit_exceeded").await;
+    assert!(p.to_string().contains("/spec/base/grid") && p.to_string().contains("s of solver time"), "{p}");
+
     // A load of 1e308 N is a field error, not an internal error.
     let mut hertz = hertz_job(1e308);
     let p = expect_problem(s.post_job(&hertz).await, 422, "invalid_spec").await;

@@ -344,6 +344,9 @@ impl Kind for BearingOptimisation {
             v.check(lo.is_finite() && hi.is_finite() && 0.0 < lo && lo < hi && hi <= 0.5, "/continuous/length_fraction", "needs 0 < lo < hi <= 0.5");
         }
         v.limit("/continuous/evaluations_per_order", planned_evaluations(spec), limits.max_evaluations, "planned bearing analyses");
+        let nodes = spec.base.grid.circumferential.saturating_mul(spec.base.grid.axial);
+        let seconds = planned_evaluations(spec) as f64 * crate::physics::journal::analysis_seconds_estimate(nodes);
+        v.work("/base/grid", seconds, limits, &format!("{} analyses on {nodes} nodes", planned_evaluations(spec)));
     }
 
     fn solve(spec: &OptimisationSpec, observer: &dyn Observer) -> Result<OptimisationResult, SolveError> {
