@@ -153,7 +153,9 @@ fn job_response(status: StatusCode, view: JobView, extra: Option<(&'static str, 
 /// the job and its `Location`. With `Prefer: wait=N` the server waits up to N seconds (capped by
 /// the server) and answers `200` with the finished job if it finishes in time. An identical spec
 /// that already succeeded with the same solver version is answered at once with that job
-/// (`200`, `reused: true`) unless `?fresh=true`. Invalid specs get a `problem+json` naming each
+/// (`200`, `reused: true`) unless `?fresh=true`; one that is queued or running (on any instance
+/// sharing the database) is joined: the answer is that job (`202`, `reused: true`), one solve
+/// serves both. Invalid specs get a `problem+json` naming each
 /// offending field by JSON pointer; a full queue answers `503` with `Retry-After`.
 ///
 /// A client that may retry (a lost answer, a timeout) sends an `Idempotency-Key`: the same key
@@ -194,17 +196,22 @@ pub async fn submit_job(
             let code = if row.status.is_finished() { StatusCode::OK } else { StatusCode::ACCEPTED };
             Ok(job_response(code, JobView::from_row(row, false), Some(("idempotent-replayed", "true".into()))))
         }
-        Submitted::Accepted(row) => {
+        submitted @ (Submitted::Accepted(_) | Submitted::Joined(_)) => {
+            // Joined: an identical job was already queued or running; it serves this request too.
+            let (row, joined) = match submitted {
+                Submitted::Joined(row) => (row, true),
+                Submitted::Accepted(row) | Submitted::Reused(row) | Submitted::Replayed(row) => (row, false),
+            };
             let id = row.id;
             if let Some(secs) = wait.filter(|s| *s > 0.0) {
                 let secs = secs.min(state.max_wait.as_secs_f64());
                 let applied = Some(("preference-applied", format!("wait={}", secs.round() as u64)));
                 if let Some(row) = state.queue.wait(id, Duration::from_secs_f64(secs)).await? {
                     let code = if row.status.is_finished() { StatusCode::OK } else { StatusCode::ACCEPTED };
-                    return Ok(job_response(code, JobView::from_row(row, false), applied));
+                    return Ok(job_response(code, JobView::from_row(row, joined), applied));
                 }
             }
-            Ok(job_response(StatusCode::ACCEPTED, JobView::from_row(row, false), None))
+            Ok(job_response(StatusCode::ACCEPTED, JobView::from_row(row, joined), None))
         }
     }
 }

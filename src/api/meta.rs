@@ -85,7 +85,8 @@ pub async fn healthz() -> &'static str {
 /// Readiness.
 ///
 /// `200 ready` when the database can be read and a commit succeeds (one heartbeat row is rewritten
-/// through the writer connection); `503` problem when it cannot or when the service shuts down.
+/// through the writer connection) and, with workers, the claim loop ran in the last 10 s; `503`
+/// problem otherwise or when the service shuts down.
 #[utoipa::path(get, path = "/readyz", tag = "operations",
     responses(
         (status = 200, description = "Ready", body = String, content_type = "text/plain"),
@@ -96,6 +97,12 @@ pub async fn readyz(State(state): State<AppState>) -> ApiResult<&'static str> {
         return Err(super::error::ApiError::new(crate::problem::ErrorCode::ShuttingDown, "the service is shutting down"));
     }
     state.queue.store().ping(crate::jobs::queue::now_ms()).await.map_err(store_error)?;
+    if !state.queue.claim_loop_alive() {
+        return Err(super::error::ApiError::new(
+            crate::problem::ErrorCode::StorageUnavailable,
+            "this instance's workers have not looked for jobs for over 10 s",
+        ));
+    }
     Ok("ready")
 }
 

@@ -52,6 +52,10 @@ pub struct QueueConfig {
     pub limits: Limits,
     /// Specs validated at once (each on a blocking thread).
     pub validators: usize,
+    /// How long a claimed job stays with this instance without a renewal. The holder renews
+    /// every [`RENEW_EVERY`]; when an instance dies, others re-queue its jobs this long after
+    /// its last renewal.
+    pub lease: Duration,
 }
 
 impl Default for QueueConfig {
@@ -64,6 +68,7 @@ impl Default for QueueConfig {
             progress_interval: Duration::from_millis(250),
             limits: Limits::default(),
             validators: 2,
+            lease: Duration::from_secs(30),
         }
     }
 }
@@ -77,6 +82,8 @@ pub enum Submitted {
     Reused(JobRow),
     /// The job stored earlier under the same `Idempotency-Key` with the same request.
     Replayed(JobRow),
+    /// An identical job already queued or running (on any instance): one solve serves both.
+    Joined(JobRow),
 }
 
 /// What `DELETE /v1/jobs/{id}` did.
@@ -94,6 +101,12 @@ pub enum Cancellation {
 pub const AGING: f64 = 100.0;
 /// Solve-time estimate of a kind before one of its jobs has been measured.
 pub const DEFAULT_ESTIMATE: Duration = Duration::from_secs(1);
+/// How often a worker renews the leases of its running jobs, and so how soon it sees a cancel
+/// made through another instance.
+pub const RENEW_EVERY: Duration = Duration::from_millis(500);
+/// How often an instance looks for jobs whose lease expired (their worker is gone).
+pub const EXPIRY_SCAN_EVERY: Duration = Duration::from_secs(2);
+
 /// Longest `Idempotency-Key` accepted (bytes).
 pub const MAX_IDEMPOTENCY_KEY: usize = 255;
 
@@ -108,6 +121,10 @@ enum Event {
 
 struct Inner {
     store: Store,
+    /// This process's name in leases (a fresh UUID per start).
+    instance: String,
+    /// Unix ms of the dispatcher's last pass (for `/readyz`).
+    claim_loop_at: AtomicI64,
     config: QueueConfig,
     metrics: Arc<Metrics>,
     pool: rayon::ThreadPool,
@@ -166,6 +183,8 @@ impl Queue {
         let (tx, rx) = mpsc::unbounded_channel();
         let validators = config.validators.max(1);
         let inner = Arc::new(Inner {
+            instance: Uuid::new_v4().to_string(),
+            claim_loop_at: AtomicI64::new(now_ms()),
             store,
             config,
             metrics,
@@ -184,7 +203,13 @@ impl Queue {
         inner.metrics.queue_depth.set(backlog);
         let queue = Queue { inner };
         tokio::spawn(queue.clone().writer(rx));
-        tokio::spawn(queue.clone().dispatcher());
+        if queue.inner.config.workers > 0 {
+            tokio::spawn(queue.clone().dispatcher());
+            tokio::spawn(queue.clone().leases(error_json));
+        }
+        if let Some(events) = queue.inner.store.events() {
+            tokio::spawn(queue.clone().forward(events));
+        }
         Ok(queue)
     }
 
@@ -242,7 +267,15 @@ impl Queue {
                 return Ok(Submitted::Reused(row));
             }
         }
+        if let Some(row) = self.inner.store.find_in_flight(&hash, k.solver_version()).await.map_err(storage_problem)? {
+            return Ok(Submitted::Joined(row));
+        }
         // Reserve a backlog place before the insert, so concurrent submissions cannot overshoot.
+        // A shared database counts every instance's queue.
+        if self.inner.store.is_shared() {
+            let queued = self.inner.store.queued_count().await.map_err(storage_problem)?;
+            self.inner.backlog.store(queued, Ordering::Relaxed);
+        }
         let depth = self.inner.backlog.fetch_add(1, Ordering::Relaxed);
         if depth >= self.inner.config.max_backlog as i64 {
             self.inner.backlog.fetch_sub(1, Ordering::Relaxed);
@@ -268,6 +301,12 @@ impl Queue {
                 if let (StoreError::DuplicateKey, Some(key)) = (&e, &idempotency_key) {
                     if let Some(row) = self.inner.store.find_by_idempotency_key(key).await.map_err(storage_problem)? {
                         return replay(row, &hash, &label);
+                    }
+                }
+                // An identical job was queued meanwhile (here or on another instance): join it.
+                if let StoreError::InFlight = e {
+                    if let Some(row) = self.inner.store.find_in_flight(&hash, k.solver_version()).await.map_err(storage_problem)? {
+                        return Ok(Submitted::Joined(row));
                     }
                 }
                 return Err(storage_problem(e));
@@ -316,8 +355,19 @@ impl Queue {
         match row {
             // Shutting down: answer with the job as it is (`begin_shutdown` wakes earlier waiters).
             Some(r) if !r.status.is_finished() && self.inner.claiming.load(Ordering::Relaxed) => {
-                let _ = tokio::time::timeout(timeout, rx).await;
-                self.inner.store.get(id).await.map_err(storage_problem)
+                // Woken by this instance's writer, another instance's notification, or shutdown;
+                // a slow poll covers a lost notification.
+                let deadline = tokio::time::Instant::now() + timeout;
+                let mut rx = rx;
+                loop {
+                    let step = tokio::time::Instant::now() + Duration::from_secs(1);
+                    let woken = tokio::time::timeout_at(step.min(deadline), &mut rx).await.is_ok();
+                    let row = self.inner.store.get(id).await.map_err(storage_problem)?;
+                    let done = row.as_ref().is_none_or(|r| r.status.is_finished());
+                    if woken || done || tokio::time::Instant::now() >= deadline || !self.is_accepting() {
+                        return Ok(row);
+                    }
+                }
             }
             other => Ok(other),
         }
@@ -393,6 +443,68 @@ impl Queue {
         }
     }
 
+    /// Whether this instance's claim loop ran recently (always true without workers).
+    pub fn claim_loop_alive(&self) -> bool {
+        self.inner.config.workers == 0 || now_ms() - self.inner.claim_loop_at.load(Ordering::Relaxed) < 10_000
+    }
+
+    /// Renew the leases of this instance's running jobs, pass on cancels made through other
+    /// instances, stop jobs whose lease was lost, and re-queue jobs whose worker is gone.
+    async fn leases(self, expired_error: String) {
+        let inner = &self.inner;
+        let mut renew = tokio::time::interval(RENEW_EVERY);
+        let mut last_scan = Instant::now();
+        loop {
+            renew.tick().await;
+            if !inner.claiming.load(Ordering::Relaxed) && inner.active.load(Ordering::Relaxed) == 0 {
+                return;
+            }
+            let flags: Vec<(Uuid, Arc<AtomicU8>)> =
+                inner.running.lock().unwrap_or_else(|e| e.into_inner()).iter().map(|(id, f)| (*id, f.clone())).collect();
+            if !flags.is_empty() {
+                let ids: Vec<Uuid> = flags.iter().map(|(id, _)| *id).collect();
+                let until = now_ms() + inner.config.lease.as_millis() as i64;
+                match inner.store.renew_leases(&inner.instance, &ids, until).await {
+                    Ok(held) => {
+                        for (id, flag) in &flags {
+                            match held.iter().find(|r| r.id == *id) {
+                                Some(r) if r.cancel_requested => flag.store(FLAG_CANCEL, Ordering::Relaxed),
+                                Some(_) => {}
+                                // Lost (expired and taken over): stop; the finish will be dropped.
+                                None => flag.store(FLAG_SHUTDOWN, Ordering::Relaxed),
+                            }
+                        }
+                    }
+                    Err(e) => warn!(error = %e, "renewing leases failed"),
+                }
+            }
+            if last_scan.elapsed() >= EXPIRY_SCAN_EVERY {
+                last_scan = Instant::now();
+                match inner.store.requeue_expired(inner.config.max_attempts, &expired_error, now_ms()).await {
+                    Ok((0, 0)) => {}
+                    Ok((requeued, failed)) => {
+                        info!(requeued, failed, "jobs whose worker stopped renewing its lease");
+                        inner.wake.notify_one();
+                    }
+                    Err(e) => warn!(error = %e, "scanning for expired leases failed"),
+                }
+            }
+        }
+    }
+
+    /// Other instances' events: claim when they queue, answer waiters when they finish.
+    async fn forward(self, mut events: tokio::sync::broadcast::Receiver<crate::store::StoreEvent>) {
+        use tokio::sync::broadcast::error::RecvError;
+        loop {
+            match events.recv().await {
+                Ok(crate::store::StoreEvent::Queued) => self.inner.wake.notify_one(),
+                Ok(crate::store::StoreEvent::Finished(id)) => self.notify_waiters(id),
+                Err(RecvError::Lagged(_)) => self.inner.wake.notify_one(),
+                Err(RecvError::Closed) => return,
+            }
+        }
+    }
+
     /// Whether the queue still claims and accepts jobs.
     pub fn is_accepting(&self) -> bool {
         self.inner.claiming.load(Ordering::Relaxed)
@@ -422,6 +534,7 @@ impl Queue {
         let inner = &self.inner;
         loop {
             let notified = inner.wake.notified();
+            inner.claim_loop_at.store(now_ms(), Ordering::Relaxed);
             if !inner.claiming.load(Ordering::Relaxed) {
                 return;
             }
@@ -429,7 +542,9 @@ impl Queue {
             let free = target.saturating_sub(inner.active.load(Ordering::Relaxed));
             let mut claimed_all = false;
             if free > 0 {
-                match inner.store.claim(free, now_ms()).await {
+                let now = now_ms();
+                let lease_until = now + inner.config.lease.as_millis() as i64;
+                match inner.store.claim(free, now, &inner.instance, lease_until).await {
                     Ok(jobs) => {
                         claimed_all = jobs.len() == free;
                         let n = jobs.len() as i64;
@@ -536,7 +651,7 @@ impl Queue {
             }
             // A finished job must not be lost: retry until the database takes it.
             let mut delay = Duration::from_millis(50);
-            while let Err(e) = inner.store.finish_batch(&finishes, now_ms()).await {
+            while let Err(e) = inner.store.finish_batch(&finishes, now_ms(), &inner.instance).await {
                 warn!(error = %e, "writing finished jobs failed; retrying");
                 tokio::time::sleep(delay).await;
                 delay = (delay * 2).min(Duration::from_secs(5));

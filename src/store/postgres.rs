@@ -1,0 +1,473 @@
+//! The PostgreSQL backend of the store: one database shared by any number of instances.
+//!
+//! * Claims take the next queued rows with `FOR UPDATE SKIP LOCKED`, so concurrent claimers never
+//!   wait for nor take the same job, and record a lease (owner instance, expiry).
+//! * Every state change other instances must hear about is announced with `pg_notify` on the
+//!   channel [`CHANNEL`] inside its transaction (delivered at commit): `queued` wakes dispatchers,
+//!   `finished:<id>` answers `Prefer: wait` requests held by any instance. A listener task turns
+//!   notifications into [`StoreEvent`]s; callers also poll slowly, so a lost notification costs
+//!   latency, never a job.
+//! * Identical in-flight submissions are decided by the unique partial index `jobs_in_flight`
+//!   (not an advisory lock: the index holds across every code path and survives crashes, and the
+//!   loser of the race simply reads the winner's row).
+
+use super::*;
+use sqlx::postgres::{PgListener, PgPool, PgPoolOptions, PgRow};
+use sqlx::{AssertSqlSafe, Row};
+use std::sync::atomic::{AtomicI64, Ordering};
+use std::sync::Arc;
+use std::time::Duration;
+use tokio::sync::broadcast;
+use tracing::warn;
+
+/// The `LISTEN/NOTIFY` channel of tribod's events.
+pub const CHANNEL: &str = "tribod_events";
+
+#[derive(Clone, Debug)]
+pub struct PgStore {
+    pool: PgPool,
+    events: broadcast::Sender<StoreEvent>,
+    last_write_failure: Arc<AtomicI64>,
+}
+
+/// Which unique index an insert hit.
+fn unique_violation(e: sqlx::Error) -> StoreError {
+    match &e {
+        sqlx::Error::Database(d) if d.is_unique_violation() => match d.constraint() {
+            Some("jobs_by_idempotency_key") => StoreError::DuplicateKey,
+            _ => StoreError::InFlight,
+        },
+        _ => StoreError::Sqlx(e),
+    }
+}
+
+impl PgStore {
+    /// Connect, apply `migrations/postgres` and start listening for other instances' events.
+    pub async fn open(url: &str) -> StoreResult<PgStore> {
+        let pool = PgPoolOptions::new()
+            .max_connections(16)
+            .acquire_timeout(Duration::from_secs(30))
+            .connect(url)
+            .await?;
+        sqlx::migrate!("./migrations/postgres").run(&pool).await?;
+        let (events, _) = broadcast::channel(1024);
+        let mut listener = PgListener::connect_with(&pool).await?;
+        listener.listen(CHANNEL).await?;
+        tokio::spawn(listen(listener, events.clone(), pool.clone()));
+        Ok(PgStore { pool, events, last_write_failure: Arc::new(AtomicI64::new(0)) })
+    }
+
+    pub fn events(&self) -> broadcast::Receiver<StoreEvent> {
+        self.events.subscribe()
+    }
+
+    fn note<T>(&self, r: Result<T, sqlx::Error>) -> StoreResult<T> {
+        r.map_err(|e| {
+            self.last_write_failure.store(unix_ms(), Ordering::Relaxed);
+            StoreError::from(e)
+        })
+    }
+
+    pub async fn ping(&self, now: i64) -> StoreResult<()> {
+        let failed_at = self.last_write_failure.load(Ordering::Relaxed);
+        if failed_at > 0 && now - failed_at < FAILURE_MEMORY_MS {
+            return Err(StoreError::RecentWriteFailure { ms_ago: now - failed_at });
+        }
+        let r = sqlx::query("UPDATE heartbeat SET beat = $1 WHERE id = 1").bind(now).execute(&self.pool).await;
+        self.note(r).map(|_| ())
+    }
+
+    pub async fn close(&self) {
+        self.pool.close().await;
+    }
+
+    pub async fn insert(&self, job: &NewJob) -> StoreResult<JobRow> {
+        let r = sqlx::query(
+            "WITH ins AS (INSERT INTO jobs (id, kind, label, status, spec, spec_hash, solver_version, created_at, \
+             idempotency_key, due_at) VALUES ($1, $2, $3, 'queued', $4, $5, $6, $7, $8, $9) RETURNING seq) \
+             SELECT seq, pg_notify($10, 'queued')::text FROM ins",
+        )
+        .bind(job.id.to_string())
+        .bind(&job.kind)
+        .bind(&job.label)
+        .bind(&job.spec)
+        .bind(&job.spec_hash)
+        .bind(&job.solver_version)
+        .bind(job.created_at)
+        .bind(&job.idempotency_key)
+        .bind(job.due_at)
+        .bind(CHANNEL)
+        .fetch_one(&self.pool)
+        .await;
+        let row = match r {
+            Ok(row) => row,
+            Err(e) => {
+                let e = unique_violation(e);
+                if matches!(e, StoreError::Sqlx(_)) {
+                    self.last_write_failure.store(unix_ms(), Ordering::Relaxed);
+                }
+                return Err(e);
+            }
+        };
+        Ok(job.queued_row(row.try_get(0)?))
+    }
+
+    async fn one(&self, sql: String, binds: &[&str]) -> StoreResult<Option<JobRow>> {
+        let mut q = sqlx::query(AssertSqlSafe(sql));
+        for b in binds {
+            q = q.bind(*b);
+        }
+        let row = q.fetch_optional(&self.pool).await?;
+        row.map(|r| job_from_row(&r)).transpose()
+    }
+
+    pub async fn find_reusable(&self, spec_hash: &str, solver_version: &str) -> StoreResult<Option<JobRow>> {
+        let sql = format!(
+            "SELECT {ROW_COLUMNS}, NULL::text AS spec FROM jobs WHERE spec_hash = $1 AND solver_version = $2 \
+             AND status = 'succeeded' ORDER BY seq DESC LIMIT 1"
+        );
+        self.one(sql, &[spec_hash, solver_version]).await
+    }
+
+    pub async fn find_in_flight(&self, spec_hash: &str, solver_version: &str) -> StoreResult<Option<JobRow>> {
+        let sql = format!(
+            "SELECT {ROW_COLUMNS}, spec FROM jobs WHERE spec_hash = $1 AND solver_version = $2 \
+             AND status IN ('queued', 'running') LIMIT 1"
+        );
+        self.one(sql, &[spec_hash, solver_version]).await
+    }
+
+    pub async fn find_by_idempotency_key(&self, key: &str) -> StoreResult<Option<JobRow>> {
+        self.one(format!("SELECT {ROW_COLUMNS}, spec FROM jobs WHERE idempotency_key = $1"), &[key]).await
+    }
+
+    pub async fn get(&self, id: Uuid) -> StoreResult<Option<JobRow>> {
+        self.one(format!("SELECT {ROW_COLUMNS}, spec FROM jobs WHERE id = $1"), &[&id.to_string()]).await
+    }
+
+    pub async fn seq_of(&self, id: Uuid) -> StoreResult<Option<i64>> {
+        Ok(sqlx::query_scalar::<_, i64>("SELECT seq FROM jobs WHERE id = $1")
+            .bind(id.to_string())
+            .fetch_optional(&self.pool)
+            .await?)
+    }
+
+    pub async fn list(&self, f: &ListFilter) -> StoreResult<Vec<JobRow>> {
+        let mut sql = format!("SELECT {ROW_COLUMNS}, NULL::text AS spec FROM jobs WHERE TRUE");
+        let mut n = 0;
+        let mut next = || {
+            n += 1;
+            format!("${n}")
+        };
+        if !f.statuses.is_empty() {
+            // Status names come from a closed enum, never from the request text.
+            let names: Vec<String> = f.statuses.iter().map(|s| format!("'{}'", s.as_str())).collect();
+            sql.push_str(&format!(" AND status IN ({})", names.join(", ")));
+        }
+        if f.kind.is_some() {
+            sql.push_str(&format!(" AND kind = {}", next()));
+        }
+        if f.created_after.is_some() {
+            sql.push_str(&format!(" AND created_at > {}", next()));
+        }
+        if f.created_before.is_some() {
+            sql.push_str(&format!(" AND created_at < {}", next()));
+        }
+        if f.before_seq.is_some() {
+            sql.push_str(&format!(" AND seq < {}", next()));
+        }
+        sql.push_str(&format!(" ORDER BY seq DESC LIMIT {}", next()));
+        let mut q = sqlx::query(AssertSqlSafe(sql));
+        if let Some(k) = &f.kind {
+            q = q.bind(k.clone());
+        }
+        for t in [f.created_after, f.created_before, f.before_seq].into_iter().flatten() {
+            q = q.bind(t);
+        }
+        let rows = q.bind(f.limit as i64).fetch_all(&self.pool).await?;
+        rows.iter().map(job_from_row).collect()
+    }
+
+    pub async fn claim(&self, n: usize, now: i64, owner: &str, lease_until: i64) -> StoreResult<Vec<ClaimedJob>> {
+        if n == 0 {
+            return Ok(Vec::new());
+        }
+        let rows = sqlx::query(
+            "UPDATE jobs SET status = 'running', started_at = $1, attempts = attempts + 1, progress = 0, \
+             stage = NULL, lease_owner = $2, lease_until = $3 \
+             WHERE seq IN (SELECT seq FROM jobs WHERE status = 'queued' ORDER BY due_at, seq LIMIT $4 \
+                           FOR UPDATE SKIP LOCKED) \
+             RETURNING id, kind, spec, attempts, due_at, seq",
+        )
+        .bind(now)
+        .bind(owner)
+        .bind(lease_until)
+        .bind(n as i64)
+        .fetch_all(&self.pool)
+        .await;
+        let rows = self.note(rows)?;
+        let mut jobs = rows
+            .iter()
+            .map(|r| {
+                Ok((
+                    (r.try_get::<i64, _>(4)?, r.try_get::<i64, _>(5)?),
+                    ClaimedJob {
+                        id: parse_uuid(&r.try_get::<String, _>(0)?)?,
+                        kind: r.try_get(1)?,
+                        spec: r.try_get(2)?,
+                        attempts: r.try_get(3)?,
+                    },
+                ))
+            })
+            .collect::<StoreResult<Vec<_>>>()?;
+        jobs.sort_by_key(|(order, _)| *order);
+        Ok(jobs.into_iter().map(|(_, j)| j).collect())
+    }
+
+    pub async fn finish_batch(&self, items: &[Finish], now: i64, owner: &str) -> StoreResult<()> {
+        let r = self.finish_tx(items, now, owner).await;
+        self.note(r)
+    }
+
+    async fn finish_tx(&self, items: &[Finish], now: i64, owner: &str) -> Result<(), sqlx::Error> {
+        let mut tx = self.pool.begin().await?;
+        for item in items {
+            // Only the lease holder finishes a job: after a lost lease the job runs elsewhere.
+            let (sql, id, event) = match item {
+                Finish::Succeeded { id, .. } => (
+                    "UPDATE jobs SET status = 'succeeded', finished_at = $1, progress = 1, stage = NULL, lease_owner = NULL \
+                     WHERE id = $2 AND status = 'running' AND lease_owner = $3",
+                    id,
+                    format!("finished:{id}"),
+                ),
+                Finish::Failed { id, .. } => (
+                    "UPDATE jobs SET status = 'failed', finished_at = $1, error = $4, lease_owner = NULL \
+                     WHERE id = $2 AND status = 'running' AND lease_owner = $3",
+                    id,
+                    format!("finished:{id}"),
+                ),
+                Finish::Canceled { id } => (
+                    "UPDATE jobs SET status = 'canceled', finished_at = $1, lease_owner = NULL \
+                     WHERE id = $2 AND status = 'running' AND lease_owner = $3",
+                    id,
+                    format!("finished:{id}"),
+                ),
+                Finish::Requeue { id } => (
+                    "UPDATE jobs SET status = 'queued', started_at = NULL, progress = 0, stage = NULL, \
+                     attempts = GREATEST(attempts - 1, 0), lease_owner = NULL, lease_until = NULL \
+                     WHERE id = $2 AND status = 'running' AND lease_owner = $3 AND $1::bigint IS NOT NULL",
+                    id,
+                    "queued".to_string(),
+                ),
+            };
+            let mut q = sqlx::query(sql).bind(now).bind(id.to_string()).bind(owner);
+            if let Finish::Failed { error, .. } = item {
+                q = q.bind(error);
+            }
+            if q.execute(&mut *tx).await?.rows_affected() != 1 {
+                continue;
+            }
+            if let Finish::Succeeded { id, result } = item {
+                sqlx::query(
+                    "INSERT INTO job_results (job_id, encoding, size, body) VALUES ($1, $2, $3, $4) \
+                     ON CONFLICT (job_id) DO UPDATE SET encoding = EXCLUDED.encoding, size = EXCLUDED.size, body = EXCLUDED.body",
+                )
+                .bind(id.to_string())
+                .bind(result.encoding)
+                .bind(result.size as i64)
+                .bind(&result.body)
+                .execute(&mut *tx)
+                .await?;
+            }
+            sqlx::query("SELECT pg_notify($1, $2)").bind(CHANNEL).bind(event).execute(&mut *tx).await?;
+        }
+        tx.commit().await
+    }
+
+    pub async fn progress_batch(&self, items: &[(Uuid, f64, String)]) -> StoreResult<()> {
+        let ids: Vec<String> = items.iter().map(|(id, _, _)| id.to_string()).collect();
+        let fractions: Vec<f64> = items.iter().map(|(_, f, _)| *f).collect();
+        let stages: Vec<String> = items.iter().map(|(_, _, s)| s.clone()).collect();
+        let r = sqlx::query(
+            "UPDATE jobs SET progress = u.fraction, stage = u.stage \
+             FROM UNNEST($1::text[], $2::float8[], $3::text[]) AS u(id, fraction, stage) \
+             WHERE jobs.id = u.id AND jobs.status = 'running'",
+        )
+        .bind(ids)
+        .bind(fractions)
+        .bind(stages)
+        .execute(&self.pool)
+        .await;
+        self.note(r).map(|_| ())
+    }
+
+    pub async fn cancel_queued(&self, id: Uuid, now: i64) -> StoreResult<bool> {
+        let r = sqlx::query(
+            "WITH up AS (UPDATE jobs SET status = 'canceled', finished_at = $1, cancel_requested = TRUE \
+             WHERE id = $2 AND status = 'queued' RETURNING id) \
+             SELECT pg_notify($3, 'finished:' || id)::text FROM up",
+        )
+        .bind(now)
+        .bind(id.to_string())
+        .bind(CHANNEL)
+        .fetch_all(&self.pool)
+        .await;
+        Ok(self.note(r)?.len() == 1)
+    }
+
+    pub async fn request_cancel(&self, id: Uuid) -> StoreResult<bool> {
+        let r = sqlx::query("UPDATE jobs SET cancel_requested = TRUE WHERE id = $1 AND status = 'running'")
+            .bind(id.to_string())
+            .execute(&self.pool)
+            .await;
+        Ok(self.note(r)?.rows_affected() == 1)
+    }
+
+    pub async fn delete_finished(&self, id: Uuid) -> StoreResult<bool> {
+        let r = sqlx::query("DELETE FROM jobs WHERE id = $1 AND status IN ('succeeded', 'failed', 'canceled')")
+            .bind(id.to_string())
+            .execute(&self.pool)
+            .await;
+        Ok(self.note(r)?.rows_affected() == 1)
+    }
+
+    /// Other instances may hold running jobs: only expired leases are recovered.
+    pub async fn recover_interrupted(&self, max_attempts: i64, error: &str, now: i64) -> StoreResult<(u64, u64)> {
+        self.requeue_expired(max_attempts, error, now).await
+    }
+
+    pub async fn requeue_expired(&self, max_attempts: i64, error: &str, now: i64) -> StoreResult<(u64, u64)> {
+        let r = self.requeue_tx(max_attempts, error, now).await;
+        self.note(r)
+    }
+
+    async fn requeue_tx(&self, max_attempts: i64, error: &str, now: i64) -> Result<(u64, u64), sqlx::Error> {
+        let mut tx = self.pool.begin().await?;
+        let failed = sqlx::query(
+            "UPDATE jobs SET status = 'failed', finished_at = $1, error = $2, lease_owner = NULL \
+             WHERE status = 'running' AND attempts >= $3 AND COALESCE(lease_until, 0) < $1",
+        )
+        .bind(now)
+        .bind(error)
+        .bind(max_attempts)
+        .execute(&mut *tx)
+        .await?
+        .rows_affected();
+        let requeued = sqlx::query(
+            "UPDATE jobs SET status = 'queued', started_at = NULL, progress = 0, stage = NULL, \
+             lease_owner = NULL, lease_until = NULL \
+             WHERE status = 'running' AND COALESCE(lease_until, 0) < $1",
+        )
+        .bind(now)
+        .execute(&mut *tx)
+        .await?
+        .rows_affected();
+        // A cancel requested while the worker was gone is honoured now.
+        sqlx::query("UPDATE jobs SET status = 'canceled', finished_at = $1 WHERE status = 'queued' AND cancel_requested")
+            .bind(now)
+            .execute(&mut *tx)
+            .await?;
+        if requeued > 0 {
+            sqlx::query("SELECT pg_notify($1, 'queued')").bind(CHANNEL).execute(&mut *tx).await?;
+        }
+        tx.commit().await?;
+        Ok((requeued, failed))
+    }
+
+    pub async fn renew_leases(&self, owner: &str, ids: &[Uuid], until: i64) -> StoreResult<Vec<Renewed>> {
+        if ids.is_empty() {
+            return Ok(Vec::new());
+        }
+        let ids: Vec<String> = ids.iter().map(Uuid::to_string).collect();
+        let rows = sqlx::query(
+            "UPDATE jobs SET lease_until = $1 WHERE lease_owner = $2 AND status = 'running' AND id = ANY($3) \
+             RETURNING id, cancel_requested",
+        )
+        .bind(until)
+        .bind(owner)
+        .bind(ids)
+        .fetch_all(&self.pool)
+        .await;
+        self.note(rows)?
+            .iter()
+            .map(|r| Ok(Renewed { id: parse_uuid(&r.try_get::<String, _>(0)?)?, cancel_requested: r.try_get(1)? }))
+            .collect()
+    }
+
+    pub async fn count_by_status(&self) -> StoreResult<Vec<(JobStatus, i64)>> {
+        let rows = sqlx::query("SELECT status, COUNT(*) FROM jobs GROUP BY status").fetch_all(&self.pool).await?;
+        rows.iter()
+            .map(|r| {
+                let s: String = r.try_get(0)?;
+                let status = JobStatus::parse(&s).ok_or_else(|| StoreError::Corrupt(format!("status {s}")))?;
+                Ok((status, r.try_get(1)?))
+            })
+            .collect()
+    }
+
+    pub async fn queued_count(&self) -> StoreResult<i64> {
+        Ok(sqlx::query_scalar::<_, i64>("SELECT COUNT(*) FROM jobs WHERE status = 'queued'").fetch_one(&self.pool).await?)
+    }
+
+    pub async fn result(&self, id: Uuid) -> StoreResult<Option<String>> {
+        let row = sqlx::query("SELECT encoding, body FROM job_results WHERE job_id = $1")
+            .bind(id.to_string())
+            .fetch_optional(&self.pool)
+            .await?;
+        match row {
+            None => Ok(None),
+            Some(r) => {
+                let encoding: String = r.try_get(0)?;
+                let body: Vec<u8> = r.try_get(1)?;
+                decode_result(&encoding, &body).map(Some).map_err(StoreError::Corrupt)
+            }
+        }
+    }
+}
+
+/// Forward `LISTEN` notifications as events until the store is dropped. `recv` reconnects by
+/// itself after a lost connection; notifications sent meanwhile are lost, which the callers'
+/// slow polls cover.
+async fn listen(mut listener: PgListener, events: broadcast::Sender<StoreEvent>, pool: PgPool) {
+    while !pool.is_closed() {
+        match listener.recv().await {
+            Ok(n) => {
+                let event = match n.payload().strip_prefix("finished:") {
+                    Some(id) => match Uuid::parse_str(id) {
+                        Ok(id) => StoreEvent::Finished(id),
+                        Err(_) => continue,
+                    },
+                    None => StoreEvent::Queued,
+                };
+                // No receiver yet (or any more): the event is dropped, the connection kept.
+                let _ = events.send(event);
+            }
+            Err(e) => {
+                warn!(error = %e, "LISTEN connection failed; retrying");
+                tokio::time::sleep(Duration::from_secs(1)).await;
+            }
+        }
+    }
+}
+
+fn job_from_row(r: &PgRow) -> StoreResult<JobRow> {
+    let status: String = r.try_get("status")?;
+    Ok(JobRow {
+        seq: r.try_get("seq")?,
+        id: parse_uuid(&r.try_get::<String, _>("id")?)?,
+        kind: r.try_get("kind")?,
+        label: r.try_get("label")?,
+        status: JobStatus::parse(&status).ok_or_else(|| StoreError::Corrupt(format!("status {status}")))?,
+        spec: r.try_get("spec")?,
+        spec_hash: r.try_get("spec_hash")?,
+        solver_version: r.try_get("solver_version")?,
+        created_at: r.try_get("created_at")?,
+        started_at: r.try_get("started_at")?,
+        finished_at: r.try_get("finished_at")?,
+        attempts: r.try_get("attempts")?,
+        progress: r.try_get("progress")?,
+        stage: r.try_get("stage")?,
+        cancel_requested: r.try_get("cancel_requested")?,
+        error: r.try_get("error")?,
+    })
+}
