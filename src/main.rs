@@ -1,4 +1,4 @@
-//! The `tribod` command line: `serve`, `run`, `openapi`.
+//! The `tribod` command line: `serve`, `worker`, `run`, `openapi`.
 
 use clap::{Parser, Subcommand, ValueEnum};
 use std::io::Read;
@@ -29,8 +29,10 @@ enum LogFormat {
 
 #[derive(Subcommand)]
 enum Command {
-    /// Serve the HTTP API (SQLite file store, worker pool).
+    /// Serve the HTTP API with a worker pool (`--workers 0`: API only).
     Serve(ServeArgs),
+    /// Run workers only, no HTTP: compute nodes sharing a PostgreSQL store with `serve` instances.
+    Worker(WorkerArgs),
     /// Validate and solve one job spec offline; print the result JSON (or a CSV table).
     Run(RunArgs),
     /// Print the OpenAPI document.
@@ -38,14 +40,12 @@ enum Command {
 }
 
 #[derive(clap::Args)]
-struct ServeArgs {
-    /// Address to listen on.
-    #[arg(long, env = "TRIBOD_ADDR", default_value = "127.0.0.1:8080")]
-    addr: String,
-    /// SQLite database (file path or sqlite:// URL), created on first start.
+struct QueueArgs {
+    /// Job store: a SQLite file path or sqlite:// URL (created on first start), or a
+    /// postgres:// URL shared by several instances.
     #[arg(long, env = "TRIBOD_DATABASE_URL", default_value = "tribod.db")]
     database_url: String,
-    /// Worker threads (jobs solved at once); default: number of cores.
+    /// Worker threads (jobs solved at once); default: number of cores. 0 with `serve`: API only.
     #[arg(long, env = "TRIBOD_WORKERS")]
     workers: Option<usize>,
     /// Queued jobs accepted before POST answers 503.
@@ -54,12 +54,47 @@ struct ServeArgs {
     /// Per-job time limit in seconds (0 = none).
     #[arg(long, env = "TRIBOD_JOB_TIMEOUT", default_value_t = 600.0)]
     job_timeout: f64,
-    /// Start attempts before a job interrupted by restarts fails.
+    /// Start attempts before a job interrupted by restarts or lost workers fails.
     #[arg(long, env = "TRIBOD_MAX_ATTEMPTS", default_value_t = 3)]
     max_attempts: i64,
     /// Seconds running jobs get to finish at shutdown before being re-queued.
     #[arg(long, env = "TRIBOD_SHUTDOWN_GRACE", default_value_t = 30.0)]
     shutdown_grace: f64,
+    /// Seconds a claimed job stays with an instance that stopped renewing its lease (it renews
+    /// twice a second); after that any instance re-queues the job.
+    #[arg(long, env = "TRIBOD_LEASE_SECONDS", default_value_t = 30.0)]
+    lease_seconds: f64,
+    #[command(flatten)]
+    limits: LimitArgs,
+}
+
+impl QueueArgs {
+    fn queue(&self, default_workers: usize) -> QueueConfig {
+        QueueConfig {
+            workers: self.workers.unwrap_or(default_workers),
+            max_backlog: self.max_queue,
+            job_timeout: (self.job_timeout > 0.0).then(|| Duration::from_secs_f64(self.job_timeout)),
+            max_attempts: self.max_attempts.max(1),
+            limits: self.limits.limits(),
+            lease: Duration::from_secs_f64(self.lease_seconds.max(1.0)),
+            ..QueueConfig::default()
+        }
+    }
+}
+
+#[derive(clap::Args)]
+struct WorkerArgs {
+    #[command(flatten)]
+    queue: QueueArgs,
+}
+
+#[derive(clap::Args)]
+struct ServeArgs {
+    /// Address to listen on.
+    #[arg(long, env = "TRIBOD_ADDR", default_value = "127.0.0.1:8080")]
+    addr: String,
+    #[command(flatten)]
+    queue: QueueArgs,
     /// Bearer token(s) required on /v1 routes (comma-separated). Never logged.
     #[arg(long, env = "TRIBOD_API_TOKEN", value_delimiter = ',', hide_env_values = true)]
     api_token: Vec<String>,
@@ -84,8 +119,6 @@ struct ServeArgs {
     /// Seconds a client has to send a request's body.
     #[arg(long, env = "TRIBOD_BODY_TIMEOUT", default_value_t = 30.0)]
     body_timeout: f64,
-    #[command(flatten)]
-    limits: LimitArgs,
 }
 
 #[derive(clap::Args)]
@@ -153,6 +186,10 @@ fn main() -> ExitCode {
             init_tracing(cli.log_format);
             serve(args)
         }
+        Command::Worker(args) => {
+            init_tracing(cli.log_format);
+            worker(args)
+        }
         Command::Run(args) => {
             init_tracing(cli.log_format);
             run(args)
@@ -178,6 +215,33 @@ fn init_tracing(format: LogFormat) {
     }
 }
 
+fn worker(args: WorkerArgs) -> ExitCode {
+    let default_workers = QueueConfig::default().workers;
+    let config = server::WorkerConfig {
+        database_url: args.queue.database_url.clone(),
+        queue: args.queue.queue(default_workers),
+        shutdown_grace: Duration::from_secs_f64(args.queue.shutdown_grace.max(0.0)),
+    };
+    if config.queue.workers == 0 {
+        eprintln!("tribod: a worker needs --workers of at least 1");
+        return ExitCode::from(2);
+    }
+    let runtime = match tokio::runtime::Builder::new_multi_thread().enable_all().build() {
+        Ok(r) => r,
+        Err(e) => {
+            eprintln!("tribod: cannot start the async runtime: {e}");
+            return ExitCode::FAILURE;
+        }
+    };
+    match runtime.block_on(server::work(config)) {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(e) => {
+            eprintln!("tribod: {e}");
+            ExitCode::FAILURE
+        }
+    }
+}
+
 fn serve(args: ServeArgs) -> ExitCode {
     // A blank token would silently switch authentication off: refuse it.
     if args.api_token.iter().any(|t| t.trim().is_empty()) {
@@ -198,15 +262,8 @@ fn serve(args: ServeArgs) -> ExitCode {
     }
     let config = ServeConfig {
         addr: args.addr,
-        database_url: args.database_url,
-        queue: QueueConfig {
-            workers: args.workers.unwrap_or_else(|| QueueConfig::default().workers).max(1),
-            max_backlog: args.max_queue,
-            job_timeout: (args.job_timeout > 0.0).then(|| Duration::from_secs_f64(args.job_timeout)),
-            max_attempts: args.max_attempts.max(1),
-            limits: args.limits.limits(),
-            ..QueueConfig::default()
-        },
+        database_url: args.queue.database_url.clone(),
+        queue: args.queue.queue(QueueConfig::default().workers),
         api: ApiConfig {
             tokens,
             cors_origins: args.cors_origin,
@@ -214,7 +271,7 @@ fn serve(args: ServeArgs) -> ExitCode {
             max_wait: Duration::from_secs_f64(args.max_wait.max(0.0)),
             body_timeout: Duration::from_secs_f64(args.body_timeout.max(0.1)),
         },
-        shutdown_grace: Duration::from_secs_f64(args.shutdown_grace.max(0.0)),
+        shutdown_grace: Duration::from_secs_f64(args.queue.shutdown_grace.max(0.0)),
         connections: server::ConnectionLimits {
             max_connections: args.max_connections.max(1),
             header_timeout: Duration::from_secs_f64(args.header_timeout.max(0.1)),

@@ -120,6 +120,36 @@ async fn prepare(
     Ok((addr, fut))
 }
 
+/// Everything `worker` needs: a queue without HTTP, sharing a PostgreSQL store with servers.
+#[derive(Debug, Clone)]
+pub struct WorkerConfig {
+    pub database_url: String,
+    pub queue: QueueConfig,
+    /// How long running jobs may take to finish at shutdown before they are queued again.
+    pub shutdown_grace: Duration,
+}
+
+/// `tribod worker`: claim and run jobs from a shared store until SIGINT/SIGTERM.
+pub async fn work(config: WorkerConfig) -> Result<(), StartError> {
+    let url = config.database_url.clone();
+    let store = Store::open(&url).await.map_err(|source| StartError::Store { url: url.clone(), source })?;
+    if !store.is_shared() {
+        store.close().await;
+        return Err(StartError::NotShared { url });
+    }
+    let metrics = Arc::new(Metrics::new());
+    let queue = Queue::start(store.clone(), config.queue.clone(), metrics)
+        .await
+        .map_err(|source| StartError::Store { url, source })?;
+    info!(workers = config.queue.workers, database = %config.database_url, "tribod worker running");
+    shutdown_signal().await;
+    queue.begin_shutdown();
+    queue.shutdown(config.shutdown_grace).await;
+    store.close().await;
+    info!("worker stopped");
+    Ok(())
+}
+
 async fn shutdown_signal() {
     let ctrl_c = async {
         let _ = tokio::signal::ctrl_c().await;
@@ -146,6 +176,8 @@ async fn shutdown_signal() {
 pub enum StartError {
     #[error("opening the database {url}: {source}")]
     Store { url: String, source: StoreError },
+    #[error("{url} is an embedded SQLite file, which one `tribod serve` owns; separate workers need a shared PostgreSQL database (postgres://…)")]
+    NotShared { url: String },
     #[error("binding {addr}: {source}")]
     Bind { addr: String, source: std::io::Error },
     #[error(transparent)]

@@ -1,13 +1,29 @@
-//! The HTTP API end to end: a real server on a loopback port, a temporary SQLite file, reqwest.
+//! The HTTP API end to end: a real server on a loopback port, a temporary SQLite file or a fresh
+//! PostgreSQL database (every test runs on both backends), reqwest.
 
 
 use crate::common::*;
+
+on_both_backends!(
+    submit_poll_and_fetch_result_json_and_csv,
+    prefer_wait_returns_the_finished_job,
+    list_filters_and_keyset_pagination,
+    cancel_queued_and_running_then_delete,
+    identical_specs_are_reused_unless_fresh,
+    bad_inputs_are_4xx_problems_with_paths,
+    timeouts_and_panics_fail_the_job_not_the_worker,
+    full_backlog_answers_503_with_retry_after,
+    progress_is_visible_while_running,
+    bearer_tokens_guard_v1_but_not_operations,
+    operations_endpoints_and_kinds,
+    graceful_shutdown_requeues_unfinished_jobs,
+    cors_is_off_by_default_and_configurable,
+);
 use serde_json::{json, Value};
 use std::time::Duration;
 
 const LONG: Duration = Duration::from_secs(20);
 
-#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
 async fn submit_poll_and_fetch_result_json_and_csv() {
     let s = start().await;
     let res = s.post_job(&hertz_job(1000.0)).await;
@@ -63,7 +79,6 @@ async fn submit_poll_and_fetch_result_json_and_csv() {
     s.stop().await;
 }
 
-#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
 async fn prefer_wait_returns_the_finished_job() {
     let s = start().await;
     let res = s.client.post(s.url("/v1/jobs")).header("prefer", "respond-async, wait=10").json(&hertz_job(2000.0)).send().await.unwrap();
@@ -80,7 +95,6 @@ async fn prefer_wait_returns_the_finished_job() {
     s.stop().await;
 }
 
-#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
 async fn list_filters_and_keyset_pagination() {
     let s = start().await;
     let mut ids = Vec::new();
@@ -150,7 +164,6 @@ async fn list_filters_and_keyset_pagination() {
     s.stop().await;
 }
 
-#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
 async fn cancel_queued_and_running_then_delete() {
     let s = start_with(|c| c.queue.workers = 1).await;
     let running: Value = s.post_job(&sleep_job(30.0, 1)).await.json().await.unwrap();
@@ -191,7 +204,6 @@ async fn cancel_queued_and_running_then_delete() {
     s.stop().await;
 }
 
-#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
 async fn identical_specs_are_reused_unless_fresh() {
     let s = start().await;
     let first: Value = s.client.post(s.url("/v1/jobs")).header("prefer", "wait=10").json(&hertz_job(500.0)).send().await.unwrap().json().await.unwrap();
@@ -217,7 +229,6 @@ async fn identical_specs_are_reused_unless_fresh() {
     s.stop().await;
 }
 
-#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
 async fn bad_inputs_are_4xx_problems_with_paths() {
     let s = start_with(|c| c.api.body_limit = 4096).await;
     let post_raw = |body: &'static str| s.client.post(s.url("/v1/jobs")).header("content-type", "application/json").body(body).send();
@@ -278,7 +289,6 @@ async fn bad_inputs_are_4xx_problems_with_paths() {
     s.stop().await;
 }
 
-#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
 async fn timeouts_and_panics_fail_the_job_not_the_worker() {
     let s = start_with(|c| {
         c.queue.workers = 1;
@@ -304,7 +314,6 @@ async fn timeouts_and_panics_fail_the_job_not_the_worker() {
     s.stop().await;
 }
 
-#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
 async fn full_backlog_answers_503_with_retry_after() {
     let s = start_with(|c| {
         c.queue.workers = 1;
@@ -321,7 +330,6 @@ async fn full_backlog_answers_503_with_retry_after() {
     s.stop().await;
 }
 
-#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
 async fn progress_is_visible_while_running() {
     let s = start().await;
     let job: Value = s.post_job(&sleep_job(1.5, 9)).await.json().await.unwrap();
@@ -345,7 +353,6 @@ async fn progress_is_visible_while_running() {
     s.stop().await;
 }
 
-#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
 async fn bearer_tokens_guard_v1_but_not_operations() {
     let s = start_with(|c| c.api.tokens = vec!["s3cret".into(), "other".into()]).await;
     let res = s.client.get(s.url("/v1/kinds")).send().await.unwrap();
@@ -366,7 +373,6 @@ async fn bearer_tokens_guard_v1_but_not_operations() {
     s.stop().await;
 }
 
-#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
 async fn operations_endpoints_and_kinds() {
     let s = start().await;
     let res = s.client.get(s.url("/healthz")).send().await.unwrap();
@@ -404,10 +410,9 @@ async fn operations_endpoints_and_kinds() {
     s.stop().await;
 }
 
-#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
 async fn graceful_shutdown_requeues_unfinished_jobs() {
     let dir = tempfile::tempdir().unwrap();
-    let mut cfg = config(&dir);
+    let mut cfg = test_config(&dir).await;
     cfg.shutdown_grace = Duration::from_millis(200);
     cfg.queue.workers = 1;
     let s = start_in(dir, cfg.clone()).await;
@@ -425,7 +430,6 @@ async fn graceful_shutdown_requeues_unfinished_jobs() {
     s.stop().await;
 }
 
-#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
 async fn cors_is_off_by_default_and_configurable() {
     let s = start().await;
     let res = s.client.get(s.url("/v1/kinds")).header("origin", "https://dash.example").send().await.unwrap();

@@ -5,6 +5,7 @@
 //! `*_stability` are the property tests (their failures are saved beside them in
 //! `*.proptest-regressions` and replayed first).
 
+#[macro_use]
 mod common;
 mod in_process;
 

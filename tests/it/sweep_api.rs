@@ -3,9 +3,14 @@
 
 
 use crate::common::*;
+
+on_both_backends!(
+    sweep_tabulates_cases_and_serves_csv,
+    every_case_is_validated_at_submission_and_limits_apply,
+    canceling_a_sweep_stops_its_cases,
+);
 use serde_json::{json, Value};
 
-#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
 async fn sweep_tabulates_cases_and_serves_csv() {
     let s = start().await;
     let job = json!({"kind": "sweep", "spec": {
@@ -45,7 +50,6 @@ async fn sweep_tabulates_cases_and_serves_csv() {
     s.stop().await;
 }
 
-#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
 async fn every_case_is_validated_at_submission_and_limits_apply() {
     let s = start_with(|c| c.queue.limits.max_sweep_cases = 50).await;
     let job = json!({"kind": "sweep", "spec": {"kind": "hertz", "base": hertz_job(1000.0)["spec"],
@@ -71,7 +75,6 @@ async fn every_case_is_validated_at_submission_and_limits_apply() {
     s.stop().await;
 }
 
-#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
 async fn canceling_a_sweep_stops_its_cases() {
     let s = start().await;
     let values: Vec<u64> = (1..=40).collect();
