@@ -104,6 +104,21 @@ pub const DEFAULT_ESTIMATE: Duration = Duration::from_secs(1);
 /// How often a worker renews the leases of its running jobs, and so how soon it sees a cancel
 /// made through another instance.
 pub const RENEW_EVERY: Duration = Duration::from_millis(500);
+/// This instance's name in leases (`lease_owner`): `host/pid/random`, so an operator can tell
+/// which process holds a running job; the random part keeps restarts with a reused pid apart.
+fn instance_name() -> String {
+    let mut buf = [0u8; 256];
+    // SAFETY: gethostname writes at most buf.len() bytes into buf.
+    let host = if unsafe { libc::gethostname(buf.as_mut_ptr().cast(), buf.len()) } == 0 {
+        let end = buf.iter().position(|&b| b == 0).unwrap_or(buf.len());
+        String::from_utf8_lossy(&buf[..end]).into_owned()
+    } else {
+        "host".to_string()
+    };
+    let random = Uuid::new_v4().simple().to_string();
+    format!("{host}/{}/{}", std::process::id(), &random[..8])
+}
+
 /// How often an instance looks for jobs whose lease expired (their worker is gone).
 pub const EXPIRY_SCAN_EVERY: Duration = Duration::from_secs(2);
 
@@ -183,7 +198,7 @@ impl Queue {
         let (tx, rx) = mpsc::unbounded_channel();
         let validators = config.validators.max(1);
         let inner = Arc::new(Inner {
-            instance: Uuid::new_v4().to_string(),
+            instance: instance_name(),
             claim_loop_at: AtomicI64::new(now_ms()),
             store,
             config,

@@ -19,6 +19,7 @@ mod journal_examples;
 mod journal_kinds;
 mod journal_stability;
 mod journal_validation;
+mod multi_instance;
 mod openapi_drift;
 mod reliability;
 mod restart_recovery;

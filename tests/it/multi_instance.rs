@@ -1,0 +1,327 @@
+//! Several tribod instances on one PostgreSQL database (issue 12): one job list, one claim per
+//! job, leases that move the jobs of a killed instance to the others, cancellation across
+//! instances, and identical submissions racing on different instances solved once.
+//!
+//! Every test here needs `TRIBOD_TEST_POSTGRES_URL` (set by `.ci/run`); without it each says
+//! SKIPPED on stderr and passes. Each test creates its own database.
+
+use crate::common::*;
+use serde_json::{json, Value};
+use sqlx::{Connection, Executor, Row};
+use std::collections::{HashMap, HashSet};
+use std::io::{BufRead, BufReader};
+use std::process::{Child, Command, Stdio};
+use std::sync::Arc;
+use std::time::{Duration, Instant};
+
+/// A `tribod` child process, killed (SIGKILL) when dropped.
+struct Instance {
+    child: Child,
+    /// `http://addr` of a `serve` instance; empty for a `worker`.
+    base: String,
+}
+
+impl Drop for Instance {
+    fn drop(&mut self) {
+        let _ = self.child.kill();
+        let _ = self.child.wait();
+    }
+}
+
+impl Instance {
+    /// `tribod serve` on `url`; returns once it listens (its migrations have run).
+    fn serve(url: &str, extra: &[&str]) -> Instance {
+        let mut child = Command::new(env!("CARGO_BIN_EXE_tribod"))
+            .args(["serve", "--addr", "127.0.0.1:0", "--database-url", url])
+            .args(extra)
+            .env("RUST_LOG", "warn")
+            .stdout(Stdio::piped())
+            .stderr(Stdio::null())
+            .spawn()
+            .expect("spawn tribod serve");
+        let mut line = String::new();
+        BufReader::new(child.stdout.take().unwrap()).read_line(&mut line).expect("listening line");
+        let base = line.trim().strip_prefix("tribod listening on ").expect("listening line format").to_string();
+        Instance { child, base }
+    }
+
+    /// `tribod worker` on `url`; returns once its queue runs.
+    fn worker(url: &str, extra: &[&str]) -> Instance {
+        let mut child = Command::new(env!("CARGO_BIN_EXE_tribod"))
+            .args(["worker", "--database-url", url, "--log-format", "json"])
+            .args(extra)
+            .env("RUST_LOG", "info")
+            .stdout(Stdio::null())
+            .stderr(Stdio::piped())
+            .spawn()
+            .expect("spawn tribod worker");
+        let mut lines = BufReader::new(child.stderr.take().unwrap()).lines();
+        loop {
+            let line = lines.next().expect("worker log line").expect("worker log line");
+            if line.contains("tribod worker running") {
+                break;
+            }
+        }
+        // Keep draining its log so the worker never blocks on a full pipe.
+        std::thread::spawn(move || for _ in lines {});
+        Instance { child, base: String::new() }
+    }
+}
+
+/// Record every terminal status change and every result write, so a test can prove that each job
+/// finished exactly once.
+async fn install_finish_log(url: &str) {
+    let mut conn = sqlx::PgConnection::connect(url).await.expect("connect");
+    conn.execute(
+        "CREATE TABLE finish_log (job_id TEXT NOT NULL, what TEXT NOT NULL);
+         CREATE FUNCTION log_finish() RETURNS trigger AS $$
+         BEGIN
+             IF TG_TABLE_NAME = 'jobs' THEN
+                 INSERT INTO finish_log VALUES (NEW.id, NEW.status);
+             ELSE
+                 INSERT INTO finish_log VALUES (NEW.job_id, 'result');
+             END IF;
+             RETURN NEW;
+         END $$ LANGUAGE plpgsql;
+         CREATE TRIGGER jobs_finish AFTER UPDATE OF status ON jobs FOR EACH ROW
+             WHEN (OLD.status IS DISTINCT FROM NEW.status AND NEW.status IN ('succeeded', 'failed', 'canceled'))
+             EXECUTE FUNCTION log_finish();
+         CREATE TRIGGER results_write AFTER INSERT OR UPDATE ON job_results FOR EACH ROW
+             EXECUTE FUNCTION log_finish();",
+    )
+    .await
+    .expect("install the finish log");
+    let _ = conn.close().await;
+}
+
+/// The i-th job of the mixed load: short sleeps, Hertz contacts and small cam cycles, all distinct.
+fn mixed_job(i: usize) -> Value {
+    match i % 3 {
+        0 => sleep_job(0.02 + 0.02 * (i % 5) as f64, i as u64),
+        1 => hertz_job(100.0 + i as f64),
+        _ => {
+            let mut job: Value =
+                serde_json::from_str(include_str!("../../examples/seed000_roller_steady.json")).unwrap();
+            job["spec"]["operation"]["speed_rpm"] = json!(500.0 + i as f64);
+            job["spec"]["angles"] = json!(90);
+            job
+        }
+    }
+}
+
+/// POST `job` to `base`; the job id if it was acknowledged (202/200), else None.
+async fn submit(client: &reqwest::Client, base: &str, job: &Value) -> Option<String> {
+    let res = client.post(format!("{base}/v1/jobs")).json(job).send().await.ok()?;
+    if !res.status().is_success() {
+        return None;
+    }
+    let body: Value = res.json().await.ok()?;
+    body["id"].as_str().map(str::to_string)
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn three_instances_share_one_queue_and_a_killed_one_loses_nothing() {
+    if !postgres_available("three_instances_share_one_queue_and_a_killed_one_loses_nothing") {
+        return;
+    }
+    let url = fresh_postgres_database().await;
+    let lease = ["--workers", "1", "--lease-seconds", "2", "--max-attempts", "5"];
+    let a = Instance::serve(&url, &lease);
+    install_finish_log(&url).await;
+    let mut b = Instance::serve(&url, &lease);
+    let _c = Instance::worker(&url, &lease);
+    let client = reqwest::Client::new();
+
+    // 300 jobs, submitted alternately to A and B, 6 at a time; B is killed (SIGKILL) after the
+    // 120th submission while it runs a job, and started again. A submission that B never answered is sent to A.
+    let mut acknowledged: Vec<String> = Vec::new();
+    let mut killed_at = None;
+    let mut i = 0;
+    while i < 300 {
+        if i >= 120 && killed_at.is_none() {
+            // Three 1.5 s jobs keep every instance busy; kill B while it holds one (its lease
+            // owner is `host/pid/random`).
+            for n in 0..3 {
+                acknowledged.push(submit(&client, &a.base, &sleep_job(1.5, 10_000 + n)).await.unwrap());
+            }
+            let owner = format!("%/{}/%", b.child.id());
+            let mut db = sqlx::PgConnection::connect(&url).await.unwrap();
+            let deadline = Instant::now() + Duration::from_secs(30);
+            loop {
+                let held: i64 = sqlx::query("SELECT count(*) FROM jobs WHERE status = 'running' AND lease_owner LIKE $1")
+                    .bind(&owner)
+                    .fetch_one(&mut db)
+                    .await
+                    .unwrap()
+                    .get(0);
+                if held > 0 {
+                    break;
+                }
+                assert!(Instant::now() < deadline, "B never ran a job");
+                tokio::time::sleep(Duration::from_millis(5)).await;
+            }
+            let _ = db.close().await;
+            b.child.kill().unwrap();
+            b.child.wait().unwrap();
+            killed_at = Some(Instant::now());
+            b = Instance::serve(&url, &lease);
+        }
+        let batch: Vec<(usize, String)> =
+            (i..(i + 6).min(300)).map(|k| (k, if k % 2 == 0 { a.base.clone() } else { b.base.clone() })).collect();
+        let handles: Vec<_> = batch
+            .into_iter()
+            .map(|(k, base)| {
+                let client = client.clone();
+                let fallback = a.base.clone();
+                tokio::spawn(async move {
+                    let job = mixed_job(k);
+                    match submit(&client, &base, &job).await {
+                        Some(id) => Some(id),
+                        None => submit(&client, &fallback, &job).await,
+                    }
+                })
+            })
+            .collect();
+        for h in handles {
+            acknowledged.push(h.await.unwrap().expect("every job is acknowledged by A or B"));
+        }
+        i += 6;
+    }
+    assert!(killed_at.is_some());
+    assert_eq!(acknowledged.len(), 303);
+    assert_eq!(acknowledged.iter().collect::<HashSet<_>>().len(), 303, "303 distinct jobs");
+
+    // Everything finishes: the killed instance's running job is re-queued when its 2 s lease ends.
+    let mut db = sqlx::PgConnection::connect(&url).await.unwrap();
+    let deadline = Instant::now() + Duration::from_secs(180);
+    loop {
+        let open: i64 = sqlx::query("SELECT count(*) FROM jobs WHERE status IN ('queued', 'running')")
+            .fetch_one(&mut db)
+            .await
+            .unwrap()
+            .get(0);
+        if open == 0 {
+            break;
+        }
+        assert!(Instant::now() < deadline, "{open} jobs still open after 180 s");
+        tokio::time::sleep(Duration::from_millis(200)).await;
+    }
+
+    let rows = sqlx::query("SELECT id, status, attempts FROM jobs").fetch_all(&mut db).await.unwrap();
+    let status: HashMap<String, (String, i64)> =
+        rows.iter().map(|r| (r.get::<String, _>(0), (r.get::<String, _>(1), r.get::<i64, _>(2)))).collect();
+    for id in &acknowledged {
+        let (s, _) = status.get(id).unwrap_or_else(|| panic!("acknowledged job {id} is not stored"));
+        assert_eq!(s, "succeeded", "job {id}");
+    }
+    let max_attempts = status.values().map(|(_, a)| *a).max().unwrap();
+    assert!(max_attempts >= 2, "the job B was running when killed ran again (max attempts {max_attempts})");
+
+    // Exactly once: one terminal status change and one result write per job.
+    let log = sqlx::query("SELECT job_id, what, count(*) FROM finish_log GROUP BY job_id, what")
+        .fetch_all(&mut db)
+        .await
+        .unwrap();
+    let mut finishes: HashMap<(String, String), i64> = HashMap::new();
+    for r in &log {
+        finishes.insert((r.get(0), r.get(1)), r.get(2));
+    }
+    for id in &acknowledged {
+        assert_eq!(finishes.get(&(id.clone(), "succeeded".into())), Some(&1), "job {id} finished once");
+        assert_eq!(finishes.get(&(id.clone(), "result".into())), Some(&1), "job {id} result written once");
+    }
+    assert!(finishes.keys().all(|(_, what)| what == "succeeded" || what == "result"), "{finishes:?}");
+
+    // One job list: a job submitted to A is served, with its result, by the restarted B.
+    let sample = &acknowledged[0];
+    let job: Value = client.get(format!("{}/v1/jobs/{sample}", b.base)).send().await.unwrap().json().await.unwrap();
+    assert_eq!(job["status"], "succeeded");
+    let res = client.get(format!("{}/v1/jobs/{sample}/result", b.base)).send().await.unwrap();
+    assert_eq!(res.status(), 200);
+    let _ = db.close().await;
+}
+
+/// In-process servers on one PostgreSQL database.
+async fn servers_on(url: &str, workers: &[usize]) -> Vec<TestServer> {
+    let mut out = Vec::new();
+    for &w in workers {
+        let dir = tempfile::tempdir().unwrap();
+        let mut cfg = config(&dir);
+        cfg.database_url = url.to_string();
+        cfg.queue.workers = w;
+        cfg.shutdown_grace = Duration::from_millis(500);
+        out.push(start_in(dir, cfg).await);
+    }
+    out
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn a_cancel_on_one_instance_stops_the_job_running_on_another() {
+    if !postgres_available("a_cancel_on_one_instance_stops_the_job_running_on_another") {
+        return;
+    }
+    let url = fresh_postgres_database().await;
+    // A answers the API only; B solves.
+    let servers = servers_on(&url, &[0, 1]).await;
+    let (a, b) = (&servers[0], &servers[1]);
+    let job: Value = a.post_job(&sleep_job(60.0, 7)).await.json().await.unwrap();
+    let id = job["id"].as_str().unwrap().to_string();
+    let running = a.wait_status(&id, "running", Duration::from_secs(10)).await;
+    assert_eq!(running["status"], "running", "B claimed the job A accepted");
+
+    let asked = Instant::now();
+    let res = a.client.delete(a.url(&format!("/v1/jobs/{id}"))).send().await.unwrap();
+    assert!(res.status().is_success(), "{}", res.status());
+    let done = b.wait_status(&id, "canceled", Duration::from_secs(10)).await;
+    let took = asked.elapsed();
+    assert_eq!(done["status"], "canceled", "{done}");
+    assert!(took < Duration::from_secs(2), "cancel crossed instances in {took:?} (lease renewal every 0.5 s)");
+    for s in servers {
+        s.stop().await;
+    }
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn identical_submissions_racing_on_three_instances_are_solved_once() {
+    if !postgres_available("identical_submissions_racing_on_three_instances_are_solved_once") {
+        return;
+    }
+    let url = fresh_postgres_database().await;
+    let servers = Arc::new(servers_on(&url, &[1, 1, 1]).await);
+    install_finish_log(&url).await;
+    let job = sleep_job(0.3, 4242);
+    let handles: Vec<_> = (0..30)
+        .map(|k| {
+            let servers = servers.clone();
+            let job = job.clone();
+            tokio::spawn(async move {
+                let s = &servers[k % 3];
+                let res = s.post_job(&job).await;
+                assert!(res.status().is_success(), "{}", res.status());
+                let body: Value = res.json().await.unwrap();
+                body["id"].as_str().unwrap().to_string()
+            })
+        })
+        .collect();
+    let mut ids = HashSet::new();
+    for h in handles {
+        ids.insert(h.await.unwrap());
+    }
+    assert_eq!(ids.len(), 1, "30 identical submissions on 3 instances name one job: {ids:?}");
+    let id = ids.into_iter().next().unwrap();
+    let done = servers[2].wait_finished(&id, Duration::from_secs(20)).await;
+    assert_eq!(done["status"], "succeeded");
+
+    let mut db = sqlx::PgConnection::connect(&url).await.unwrap();
+    let jobs: i64 = sqlx::query("SELECT count(*) FROM jobs").fetch_one(&mut db).await.unwrap().get(0);
+    let solves: i64 = sqlx::query("SELECT count(*) FROM finish_log WHERE what = 'result'")
+        .fetch_one(&mut db)
+        .await
+        .unwrap()
+        .get(0);
+    assert_eq!((jobs, solves), (1, 1), "one job row, one solve");
+    let _ = db.close().await;
+    for s in Arc::into_inner(servers).unwrap() {
+        s.stop().await;
+    }
+}
