@@ -86,6 +86,10 @@ impl QueueArgs {
 struct WorkerArgs {
     #[command(flatten)]
     queue: QueueArgs,
+    /// Serve /healthz, /readyz (database and claim loop) and /metrics on this address, for
+    /// probes and scrapes; no API. Default: no port.
+    #[arg(long, env = "TRIBOD_HEALTH_ADDR")]
+    health_addr: Option<String>,
 }
 
 #[derive(clap::Args)]
@@ -221,6 +225,7 @@ fn worker(args: WorkerArgs) -> ExitCode {
         database_url: args.queue.database_url.clone(),
         queue: args.queue.queue(default_workers),
         shutdown_grace: Duration::from_secs_f64(args.queue.shutdown_grace.max(0.0)),
+        health_addr: args.health_addr.clone(),
     };
     if config.queue.workers == 0 {
         eprintln!("tribod: a worker needs --workers of at least 1");

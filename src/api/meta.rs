@@ -118,6 +118,10 @@ pub async fn metrics(State(state): State<AppState>) -> Response {
         for status in JobStatus::ALL {
             let n = counts.iter().find(|(s, _)| *s == status).map(|(_, n)| *n).unwrap_or(0);
             metrics.jobs.get_or_create(&StatusLabel { status: status.as_str().into() }).set(n);
+            if status == JobStatus::Queued {
+                // The store's count: with a shared database, every instance's queue.
+                metrics.queue_depth.set(n);
+            }
         }
     }
     (

@@ -174,6 +174,23 @@ pub fn app(queue: Queue, config: &ApiConfig) -> axum::Router {
     router
 }
 
+/// The operations routes alone (`/healthz`, `/readyz`, `/metrics`), for a `tribod worker`'s
+/// health port: probes and scrapes of a compute node that serves no API.
+pub fn operations_app(queue: Queue) -> axum::Router {
+    let state = AppState {
+        queue,
+        tokens: Arc::new(Vec::new()),
+        max_wait: std::time::Duration::ZERO,
+        openapi: Arc::new(String::new()),
+    };
+    axum::Router::new()
+        .route("/healthz", axum::routing::get(meta::healthz))
+        .route("/readyz", axum::routing::get(meta::readyz))
+        .route("/metrics", axum::routing::get(meta::metrics))
+        .fallback(|| async { ApiError::new(ErrorCode::RouteNotFound, "a worker serves /healthz, /readyz and /metrics only") })
+        .with_state(state)
+}
+
 fn cors_layer(origins: &[String]) -> Option<CorsLayer> {
     if origins.is_empty() {
         return None;

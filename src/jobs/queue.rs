@@ -119,6 +119,9 @@ fn instance_name() -> String {
     format!("{host}/{}/{}", std::process::id(), &random[..8])
 }
 
+/// How often a shared store's queue length is re-read for the backlog limit, ms.
+const BACKLOG_RECOUNT_MS: i64 = 100;
+
 /// How often an instance looks for jobs whose lease expired (their worker is gone).
 pub const EXPIRY_SCAN_EVERY: Duration = Duration::from_secs(2);
 
@@ -152,6 +155,8 @@ struct Inner {
     /// Specs being validated (bounded by `config.validators`).
     validating: tokio::sync::Semaphore,
     backlog: AtomicI64,
+    /// When `backlog` was last re-read from a shared store (unix ms).
+    backlog_counted_at: AtomicI64,
     running: Mutex<HashMap<Uuid, Arc<AtomicU8>>>,
     waiters: Mutex<HashMap<Uuid, Vec<oneshot::Sender<()>>>>,
     events: mpsc::UnboundedSender<Event>,
@@ -211,6 +216,7 @@ impl Queue {
             estimates: Mutex::new(HashMap::new()),
             validating: tokio::sync::Semaphore::new(validators),
             backlog: AtomicI64::new(backlog),
+            backlog_counted_at: AtomicI64::new(now_ms()),
             running: Mutex::new(HashMap::new()),
             waiters: Mutex::new(HashMap::new()),
             events: tx,
@@ -276,20 +282,27 @@ impl Queue {
                 return replay(row, &hash, &label);
             }
         }
-        if !fresh {
-            if let Some(row) = self.inner.store.find_reusable(&hash, k.solver_version()).await.map_err(storage_problem)? {
+        match self.inner.store.find_same(&hash, k.solver_version(), !fresh).await.map_err(storage_problem)? {
+            Some(row) if row.status == JobStatus::Succeeded => {
                 self.inner.metrics.reused.get_or_create(&KindLabel { kind: k.name().into() }).inc();
                 return Ok(Submitted::Reused(row));
             }
-        }
-        if let Some(row) = self.inner.store.find_in_flight(&hash, k.solver_version()).await.map_err(storage_problem)? {
-            return Ok(Submitted::Joined(row));
+            Some(row) => return Ok(Submitted::Joined(row)),
+            None => {}
         }
         // Reserve a backlog place before the insert, so concurrent submissions cannot overshoot.
-        // A shared database counts every instance's queue.
+        // A shared database counts every instance's queue: re-read at most every
+        // BACKLOG_RECOUNT, counted locally in between (other instances' submissions within
+        // that window can overshoot the limit by what they accept in it).
         if self.inner.store.is_shared() {
-            let queued = self.inner.store.queued_count().await.map_err(storage_problem)?;
-            self.inner.backlog.store(queued, Ordering::Relaxed);
+            let now = now_ms();
+            let counted = self.inner.backlog_counted_at.load(Ordering::Relaxed);
+            if now - counted >= BACKLOG_RECOUNT_MS
+                && self.inner.backlog_counted_at.compare_exchange(counted, now, Ordering::Relaxed, Ordering::Relaxed).is_ok()
+            {
+                let queued = self.inner.store.queued_count().await.map_err(storage_problem)?;
+                self.inner.backlog.store(queued, Ordering::Relaxed);
+            }
         }
         let depth = self.inner.backlog.fetch_add(1, Ordering::Relaxed);
         if depth >= self.inner.config.max_backlog as i64 {
@@ -469,6 +482,7 @@ impl Queue {
         let inner = &self.inner;
         let mut renew = tokio::time::interval(RENEW_EVERY);
         let mut last_scan = Instant::now();
+        let mut last_renewed = Instant::now();
         loop {
             renew.tick().await;
             if !inner.claiming.load(Ordering::Relaxed) && inner.active.load(Ordering::Relaxed) == 0 {
@@ -481,6 +495,7 @@ impl Queue {
                 let until = now_ms() + inner.config.lease.as_millis() as i64;
                 match inner.store.renew_leases(&inner.instance, &ids, until).await {
                     Ok(held) => {
+                        last_renewed = Instant::now();
                         for (id, flag) in &flags {
                             match held.iter().find(|r| r.id == *id) {
                                 Some(r) if r.cancel_requested => flag.store(FLAG_CANCEL, Ordering::Relaxed),
@@ -490,8 +505,20 @@ impl Queue {
                             }
                         }
                     }
-                    Err(e) => warn!(error = %e, "renewing leases failed"),
+                    Err(e) => {
+                        warn!(error = %e, "renewing leases failed");
+                        // Past our lease another instance may take the jobs over: stop them
+                        // rather than race it (their finishes would be refused anyway).
+                        if last_renewed.elapsed() >= inner.config.lease {
+                            warn!(jobs = flags.len(), "leases could not be renewed in time: stopping this instance's jobs");
+                            for (_, flag) in &flags {
+                                flag.store(FLAG_SHUTDOWN, Ordering::Relaxed);
+                            }
+                        }
+                    }
                 }
+            } else {
+                last_renewed = Instant::now();
             }
             if last_scan.elapsed() >= EXPIRY_SCAN_EVERY {
                 last_scan = Instant::now();

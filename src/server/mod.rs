@@ -127,6 +127,8 @@ pub struct WorkerConfig {
     pub queue: QueueConfig,
     /// How long running jobs may take to finish at shutdown before they are queued again.
     pub shutdown_grace: Duration,
+    /// Where to serve `/healthz`, `/readyz` and `/metrics` (none: no port at all).
+    pub health_addr: Option<String>,
 }
 
 /// `tribod worker`: claim and run jobs from a shared store until SIGINT/SIGTERM.
@@ -141,10 +143,27 @@ pub async fn work(config: WorkerConfig) -> Result<(), StartError> {
     let queue = Queue::start(store.clone(), config.queue.clone(), metrics)
         .await
         .map_err(|source| StartError::Store { url, source })?;
+    let (stopping, stop_rx) = watch::channel(false);
+    let health = match &config.health_addr {
+        Some(addr) => {
+            let listener = TcpListener::bind(addr)
+                .await
+                .map_err(|source| StartError::Bind { addr: addr.clone(), source })?;
+            info!(addr = %listener.local_addr()?, "health port: /healthz /readyz /metrics");
+            let app = api::operations_app(queue.clone());
+            let limits = ConnectionLimits { max_connections: 64, ..ConnectionLimits::default() };
+            Some(tokio::spawn(connections::serve(listener, app, limits, stop_rx, Duration::from_secs(1))))
+        }
+        None => None,
+    };
     info!(workers = config.queue.workers, database = %config.database_url, "tribod worker running");
     shutdown_signal().await;
     queue.begin_shutdown();
+    let _ = stopping.send(true);
     queue.shutdown(config.shutdown_grace).await;
+    if let Some(h) = health {
+        let _ = h.await;
+    }
     store.close().await;
     info!("worker stopped");
     Ok(())

@@ -246,6 +246,11 @@ impl Store {
     pub async fn find_in_flight(&self, spec_hash: &str, solver_version: &str) -> StoreResult<Option<JobRow>> {
         each!(self, s => s.find_in_flight(spec_hash, solver_version).await)
     }
+    /// The newest succeeded job with this spec (when `reusable`), else the queued or running one:
+    /// the job a submission of this spec reuses (status succeeded) or joins (queued, running).
+    pub async fn find_same(&self, spec_hash: &str, solver_version: &str, reusable: bool) -> StoreResult<Option<JobRow>> {
+        each!(self, s => s.find_same(spec_hash, solver_version, reusable).await)
+    }
     pub async fn find_by_idempotency_key(&self, key: &str) -> StoreResult<Option<JobRow>> {
         each!(self, s => s.find_by_idempotency_key(key).await)
     }

@@ -17,7 +17,7 @@ use sqlx::{AssertSqlSafe, Row};
 use std::sync::atomic::{AtomicI64, Ordering};
 use std::sync::Arc;
 use std::time::Duration;
-use tokio::sync::broadcast;
+use tokio::sync::{broadcast, mpsc, oneshot};
 use tracing::warn;
 
 /// The `LISTEN/NOTIFY` channel of tribod's events.
@@ -25,10 +25,20 @@ pub const CHANNEL: &str = "tribod_events";
 
 #[derive(Clone, Debug)]
 pub struct PgStore {
+    /// Durable writes (submissions, finishes, cancels) and reads.
     pool: PgPool,
+    /// Writes that may be lost in a database crash without losing a job (claims, lease renewals,
+    /// progress): committed with `synchronous_commit = off`, so they do not wait for a WAL flush.
+    /// A lost claim or renewal leaves the job queued or its lease expiring: it runs again.
+    relaxed: PgPool,
+    /// Submissions for the batch writer (one multi-row insert, one commit, per batch).
+    inserts: mpsc::Sender<(NewJob, oneshot::Sender<StoreResult<i64>>)>,
     events: broadcast::Sender<StoreEvent>,
     last_write_failure: Arc<AtomicI64>,
 }
+
+/// Most submissions in one insert batch.
+const INSERT_BATCH: usize = 256;
 
 /// Which unique index an insert hit.
 fn unique_violation(e: sqlx::Error) -> StoreError {
@@ -50,11 +60,25 @@ impl PgStore {
             .connect(url)
             .await?;
         sqlx::migrate!("./migrations/postgres").run(&pool).await?;
+        let relaxed = PgPoolOptions::new()
+            .max_connections(4)
+            .acquire_timeout(Duration::from_secs(30))
+            .after_connect(|conn, _| {
+                Box::pin(async move {
+                    sqlx::query("SET synchronous_commit = off").execute(conn).await?;
+                    Ok(())
+                })
+            })
+            .connect(url)
+            .await?;
         let (events, _) = broadcast::channel(1024);
         let mut listener = PgListener::connect_with(&pool).await?;
         listener.listen(CHANNEL).await?;
         tokio::spawn(listen(listener, events.clone(), pool.clone()));
-        Ok(PgStore { pool, events, last_write_failure: Arc::new(AtomicI64::new(0)) })
+        let last_write_failure = Arc::new(AtomicI64::new(0));
+        let (inserts, queue) = mpsc::channel(4 * INSERT_BATCH);
+        tokio::spawn(insert_batches(pool.clone(), queue, last_write_failure.clone()));
+        Ok(PgStore { pool, relaxed, inserts, events, last_write_failure })
     }
 
     pub fn events(&self) -> broadcast::Receiver<StoreEvent> {
@@ -78,10 +102,25 @@ impl PgStore {
     }
 
     pub async fn close(&self) {
+        self.relaxed.close().await;
         self.pool.close().await;
     }
 
+    /// Insert a queued job: batched with concurrent submissions into one statement and one commit;
+    /// a job the batch could not insert (a unique index said no) is retried alone for its error.
     pub async fn insert(&self, job: &NewJob) -> StoreResult<JobRow> {
+        let (reply, answer) = oneshot::channel();
+        let closed = || StoreError::Sqlx(sqlx::Error::PoolClosed);
+        self.inserts.send((job.clone(), reply)).await.map_err(|_| closed())?;
+        match answer.await.map_err(|_| closed())? {
+            Ok(seq) => Ok(job.queued_row(seq)),
+            Err(StoreError::InFlight) => self.insert_one(job).await,
+            Err(e) => Err(e),
+        }
+    }
+
+    /// Insert one job; a unique index violation is named (in flight, or idempotency key reused).
+    async fn insert_one(&self, job: &NewJob) -> StoreResult<JobRow> {
         let r = sqlx::query(
             "WITH ins AS (INSERT INTO jobs (id, kind, label, status, spec, spec_hash, solver_version, created_at, \
              idempotency_key, due_at) VALUES ($1, $2, $3, 'queued', $4, $5, $6, $7, $8, $9) RETURNING seq) \
@@ -135,6 +174,26 @@ impl PgStore {
              AND status IN ('queued', 'running') LIMIT 1"
         );
         self.one(sql, &[spec_hash, solver_version]).await
+    }
+
+    /// The newest succeeded job with this spec (when `reusable`), else the in-flight one, in one
+    /// round trip (each branch on its own partial index).
+    pub async fn find_same(&self, spec_hash: &str, solver_version: &str, reusable: bool) -> StoreResult<Option<JobRow>> {
+        let sql = format!(
+            "(SELECT {ROW_COLUMNS}, NULL::text AS spec, 0 AS rank FROM jobs WHERE spec_hash = $1 AND solver_version = $2 \
+              AND status = 'succeeded' AND $3 ORDER BY seq DESC LIMIT 1) \
+             UNION ALL \
+             (SELECT {ROW_COLUMNS}, spec, 1 AS rank FROM jobs WHERE spec_hash = $1 AND solver_version = $2 \
+              AND status IN ('queued', 'running') LIMIT 1) \
+             ORDER BY rank LIMIT 1"
+        );
+        let row = sqlx::query(AssertSqlSafe(sql))
+            .bind(spec_hash)
+            .bind(solver_version)
+            .bind(reusable)
+            .fetch_optional(&self.pool)
+            .await?;
+        row.map(|r| job_from_row(&r)).transpose()
     }
 
     pub async fn find_by_idempotency_key(&self, key: &str) -> StoreResult<Option<JobRow>> {
@@ -203,7 +262,7 @@ impl PgStore {
         .bind(owner)
         .bind(lease_until)
         .bind(n as i64)
-        .fetch_all(&self.pool)
+        .fetch_all(&self.relaxed)
         .await;
         let rows = self.note(rows)?;
         let mut jobs = rows
@@ -296,7 +355,7 @@ impl PgStore {
         .bind(ids)
         .bind(fractions)
         .bind(stages)
-        .execute(&self.pool)
+        .execute(&self.relaxed)
         .await;
         self.note(r).map(|_| ())
     }
@@ -386,7 +445,7 @@ impl PgStore {
         .bind(until)
         .bind(owner)
         .bind(ids)
-        .fetch_all(&self.pool)
+        .fetch_all(&self.relaxed)
         .await;
         self.note(rows)?
             .iter()
@@ -420,6 +479,64 @@ impl PgStore {
                 let encoding: String = r.try_get(0)?;
                 let body: Vec<u8> = r.try_get(1)?;
                 decode_result(&encoding, &body).map(Some).map_err(StoreError::Corrupt)
+            }
+        }
+    }
+}
+
+/// The batch writer: take every waiting submission (up to [`INSERT_BATCH`]), insert them with one
+/// multi-row statement that also notifies `queued` once, and answer each with its `seq`. Rows a
+/// unique index refused (`ON CONFLICT DO NOTHING`) are answered [`StoreError::InFlight`], and
+/// [`PgStore::insert`] retries them alone to learn which index; a failed statement fails the
+/// whole batch (nothing of it was committed).
+async fn insert_batches(
+    pool: PgPool,
+    mut queue: mpsc::Receiver<(NewJob, oneshot::Sender<StoreResult<i64>>)>,
+    last_write_failure: Arc<AtomicI64>,
+) {
+    let mut batch = Vec::with_capacity(INSERT_BATCH);
+    while queue.recv_many(&mut batch, INSERT_BATCH).await > 0 {
+        let r = sqlx::query(
+            "WITH ins AS (INSERT INTO jobs (id, kind, label, status, spec, spec_hash, solver_version, created_at, \
+             idempotency_key, due_at) \
+             SELECT u.id, u.kind, u.label, 'queued', u.spec, u.spec_hash, u.solver_version, u.created_at, u.key, u.due_at \
+             FROM UNNEST($1::text[], $2::text[], $3::text[], $4::text[], $5::text[], $6::text[], $7::bigint[], \
+                         $8::text[], $9::bigint[]) \
+                  AS u(id, kind, label, spec, spec_hash, solver_version, created_at, key, due_at) \
+             ON CONFLICT DO NOTHING RETURNING id, seq) \
+             SELECT id, seq, (SELECT pg_notify($10, 'queued'))::text FROM ins",
+        )
+        .bind(batch.iter().map(|(j, _)| j.id.to_string()).collect::<Vec<_>>())
+        .bind(batch.iter().map(|(j, _)| j.kind.clone()).collect::<Vec<_>>())
+        .bind(batch.iter().map(|(j, _)| j.label.clone()).collect::<Vec<_>>())
+        .bind(batch.iter().map(|(j, _)| j.spec.clone()).collect::<Vec<_>>())
+        .bind(batch.iter().map(|(j, _)| j.spec_hash.clone()).collect::<Vec<_>>())
+        .bind(batch.iter().map(|(j, _)| j.solver_version.clone()).collect::<Vec<_>>())
+        .bind(batch.iter().map(|(j, _)| j.created_at).collect::<Vec<_>>())
+        .bind(batch.iter().map(|(j, _)| j.idempotency_key.clone()).collect::<Vec<_>>())
+        .bind(batch.iter().map(|(j, _)| j.due_at).collect::<Vec<_>>())
+        .bind(CHANNEL)
+        .fetch_all(&pool)
+        .await;
+        match r {
+            Ok(rows) => {
+                let mut seqs = std::collections::HashMap::with_capacity(rows.len());
+                for row in &rows {
+                    if let (Ok(id), Ok(seq)) = (row.try_get::<String, _>(0), row.try_get::<i64, _>(1)) {
+                        seqs.insert(id, seq);
+                    }
+                }
+                for (job, reply) in batch.drain(..) {
+                    let answer = seqs.get(&job.id.to_string()).copied().ok_or(StoreError::InFlight);
+                    let _ = reply.send(answer);
+                }
+            }
+            Err(e) => {
+                last_write_failure.store(unix_ms(), Ordering::Relaxed);
+                let message = e.to_string();
+                for (_, reply) in batch.drain(..) {
+                    let _ = reply.send(Err(StoreError::Sqlx(sqlx::Error::Protocol(message.clone()))));
+                }
             }
         }
     }

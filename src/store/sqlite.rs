@@ -206,6 +206,16 @@ impl SqliteStore {
         row.map(|r| job_from_row(&r, false)).transpose()
     }
 
+    /// The newest succeeded job with this spec (when `reusable`), else the in-flight one.
+    pub async fn find_same(&self, spec_hash: &str, solver_version: &str, reusable: bool) -> StoreResult<Option<JobRow>> {
+        if reusable {
+            if let Some(row) = self.find_reusable(spec_hash, solver_version).await? {
+                return Ok(Some(row));
+            }
+        }
+        self.find_in_flight(spec_hash, solver_version).await
+    }
+
     /// The job stored under a client's `Idempotency-Key`.
     pub async fn find_by_idempotency_key(&self, key: &str) -> StoreResult<Option<JobRow>> {
         let sql = format!("SELECT {ROW_COLUMNS}, spec FROM jobs WHERE idempotency_key = ?");

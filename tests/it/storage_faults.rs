@@ -139,3 +139,97 @@ async fn every_acknowledged_job_survives_a_full_disk() {
     restarted.stop().await;
     drop(fs);
 }
+
+/// `chattr` the files of a SQLite database (immutable on or off); false when not permitted.
+fn set_immutable(db: &Path, on: bool) -> bool {
+    let flag = if on { "+i" } else { "-i" };
+    let files = [db.to_path_buf(), PathBuf::from(format!("{}-wal", db.display()))];
+    Command::new("chattr")
+        .arg(flag)
+        .args(&files)
+        .stderr(std::process::Stdio::null())
+        .status()
+        .is_ok_and(|s| s.success())
+}
+
+/// The database file and its WAL made immutable under a running server (issue 10, defect 1, the
+/// second way): every write fails with an I/O error until the flag is removed.
+#[tokio::test(flavor = "multi_thread", worker_threads = 4)]
+async fn every_acknowledged_job_survives_an_immutable_database() {
+    let base = tempfile::tempdir_in(std::env::temp_dir()).expect("temp dir");
+    let db = base.path().join("tribod.db");
+    let server = start_with(|c| c.database_url = db.display().to_string()).await;
+    let mut acknowledged: Vec<String> = Vec::new();
+    let mut nonce = 0u64;
+    for _ in 0..5 {
+        nonce += 1;
+        let body: Value = server.post_job(&sleep_job(0.0, nonce)).await.json().await.unwrap();
+        acknowledged.push(body["id"].as_str().unwrap().to_string());
+    }
+    if !set_immutable(&db, true) {
+        eprintln!("SKIPPED every_acknowledged_job_survives_an_immutable_database: chattr +i not permitted here (run as root on ext4, as .ci/run does)");
+        server.stop().await;
+        return;
+    }
+    struct Unlock<'a>(&'a Path);
+    impl Drop for Unlock<'_> {
+        fn drop(&mut self) {
+            set_immutable(self.0, false);
+        }
+    }
+    let unlock = Unlock(&db);
+
+    let mut refused = 0;
+    let mut readyz_while_locked = None;
+    let start = Instant::now();
+    while refused < 5 && start.elapsed() < Duration::from_secs(30) {
+        nonce += 1;
+        let res = server.post_job(&sleep_job(0.0, nonce)).await;
+        let status = res.status().as_u16();
+        let body: Value = res.json().await.unwrap_or(Value::Null);
+        match status {
+            200 | 202 => acknowledged.push(body["id"].as_str().expect("job id").to_string()),
+            503 => {
+                assert_eq!(body["code"], "storage_unavailable", "{body}");
+                refused += 1;
+                if readyz_while_locked.is_none() {
+                    readyz_while_locked = Some(server.client.get(server.url("/readyz")).send().await.unwrap().status().as_u16());
+                }
+            }
+            other => panic!("unexpected {other}: {body}"),
+        }
+    }
+    assert!(refused >= 5, "writes never failed ({} jobs accepted)", acknowledged.len());
+    assert_eq!(readyz_while_locked, Some(503), "/readyz must report a database that cannot commit");
+
+    drop(unlock);
+    let ready_again = Instant::now();
+    while server.client.get(server.url("/readyz")).send().await.unwrap().status() != 200 {
+        assert!(ready_again.elapsed() < Duration::from_secs(15), "/readyz did not recover");
+        tokio::time::sleep(Duration::from_millis(50)).await;
+    }
+    for _ in 0..20 {
+        nonce += 1;
+        let res = server.post_job(&sleep_job(0.0, nonce)).await;
+        assert_eq!(res.status().as_u16(), 202, "after the flag was removed");
+        let body: Value = res.json().await.unwrap();
+        acknowledged.push(body["id"].as_str().unwrap().to_string());
+    }
+    for id in &acknowledged {
+        let job = server.wait_finished(id, Duration::from_secs(30)).await;
+        assert_eq!(job["status"], "succeeded", "acknowledged job {id}: {job}");
+    }
+    let dir = server.stop().await;
+    let restarted = start_in(dir, {
+        let mut c = config(&base);
+        c.database_url = db.display().to_string();
+        c
+    })
+    .await;
+    for id in &acknowledged {
+        let (status, job) = restarted.get_json(&format!("/v1/jobs/{id}")).await;
+        assert_eq!((status, job["status"].as_str()), (200, Some("succeeded")), "acknowledged job {id} after restart");
+    }
+    eprintln!("immutable database: {} jobs acknowledged, {refused} refused with 503, 0 lost", acknowledged.len());
+    restarted.stop().await;
+}
