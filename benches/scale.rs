@@ -6,12 +6,14 @@
 //!
 //! * tiny `hertz` jobs end to end (POST → solved → stored) through 1 SQLite instance and 1, 2 and 4
 //!   PostgreSQL instances (`serve`, default workers), 32 clients spread round-robin over the
-//!   instances: jobs/s, POST latency p50/p99, and `GET /v1/jobs/{id}` latency p50/p99 of 4 readers;
+//!   instances: jobs/s, POST latency p50/p99, `GET /v1/jobs/{id}` latency p50/p99 of 4 readers
+//!   (each pausing 5 ms between requests), and CPU per job of tribod, PostgreSQL and the machine;
 //! * heavy jobs (the seed 002 Taguchi L9, distinct viscosities so none is reused) through an API
 //!   instance (`serve --workers 0`) and 1 or 2 `tribod worker --workers 1` instances: jobs/s and
 //!   the speed-up of the second worker.
 //!
-//! Client, servers and PostgreSQL share the machine's cores: on 2 cores the numbers are a floor.
+//! A third argument runs only the rows whose name contains it: `sqlite`, `pg1`, `pg2`, `pg4`,
+//! `heavy`. Client, servers and PostgreSQL share the machine's cores: on 2 cores the numbers are a floor.
 
 use serde_json::{json, Value};
 use sqlx::{Connection, Executor};
@@ -69,6 +71,40 @@ fn worker(url: &str, extra: &[&str]) -> Instance {
         .spawn()
         .expect("start tribod worker");
     Instance { child, base: String::new() }
+}
+
+/// CPU seconds (user + system) a process has used.
+fn cpu_seconds(pid: u32) -> f64 {
+    let ticks = unsafe { libc::sysconf(libc::_SC_CLK_TCK) } as f64;
+    std::fs::read_to_string(format!("/proc/{pid}/stat"))
+        .ok()
+        .and_then(|s| {
+            let rest = s.rsplit_once(") ")?.1.split_whitespace().map(str::to_string).collect::<Vec<_>>();
+            Some((rest.get(11)?.parse::<f64>().ok()? + rest.get(12)?.parse::<f64>().ok()?) / ticks)
+        })
+        .unwrap_or(0.0)
+}
+
+/// CPU seconds used by all `postgres` processes now alive (the server and its backends).
+fn postgres_cpu_seconds() -> f64 {
+    let mut total = 0.0;
+    for entry in std::fs::read_dir("/proc").into_iter().flatten().flatten() {
+        let Some(pid) = entry.file_name().to_str().and_then(|n| n.parse::<u32>().ok()) else { continue };
+        if std::fs::read_to_string(format!("/proc/{pid}/comm")).is_ok_and(|c| c.trim() == "postgres") {
+            total += cpu_seconds(pid);
+        }
+    }
+    total
+}
+
+/// CPU seconds the whole machine spent busy (all cores).
+fn machine_busy_seconds() -> f64 {
+    let ticks = unsafe { libc::sysconf(libc::_SC_CLK_TCK) } as f64;
+    let stat = std::fs::read_to_string("/proc/stat").unwrap_or_default();
+    let fields: Vec<f64> = stat.lines().next().unwrap_or("").split_whitespace().skip(1).filter_map(|v| v.parse().ok()).collect();
+    // user nice system idle iowait irq softirq steal
+    let busy: f64 = fields.iter().enumerate().filter(|(i, _)| *i != 3 && *i != 4).map(|(_, v)| v).sum();
+    busy / ticks
 }
 
 fn percentile(sorted: &[f64], p: f64) -> f64 {
@@ -139,7 +175,7 @@ async fn drive(bases: &[String], jobs: usize, clients: usize, body: impl Fn(usiz
                 assert_eq!(res.status().as_u16(), 200);
                 let _ = res.bytes().await.unwrap();
                 gets.lock().unwrap().push(t.elapsed().as_secs_f64() * 1e3);
-                tokio::time::sleep(Duration::from_millis(1)).await;
+                tokio::time::sleep(Duration::from_millis(5)).await;
             }
         }));
     }
@@ -164,8 +200,9 @@ async fn drive(bases: &[String], jobs: usize, clients: usize, body: impl Fn(usiz
     for w in writers {
         w.await.unwrap();
     }
+    // Poll for completion every 100 ms (each poll counts the whole table by status).
     while succeeded(&client, &bases[0]).await < jobs {
-        tokio::time::sleep(Duration::from_millis(20)).await;
+        tokio::time::sleep(Duration::from_millis(100)).await;
     }
     let elapsed = start.elapsed().as_secs_f64();
     running.store(false, Ordering::Relaxed);
@@ -196,6 +233,9 @@ async fn main() {
     let args: Vec<String> = std::env::args().skip(1).filter(|a| !a.starts_with("--")).collect();
     let tiny_jobs: usize = args.first().and_then(|s| s.parse().ok()).unwrap_or(5000);
     let heavy_jobs: usize = args.get(1).and_then(|s| s.parse().ok()).unwrap_or(8);
+    // Optional: run only the rows whose name contains this (`sqlite`, `pg1`, `pg2`, `pg4`, `heavy`).
+    let only = args.get(2).cloned().unwrap_or_default();
+    let want = |name: &str| only.is_empty() || name.contains(only.as_str());
     let Some(admin) = std::env::var("TRIBOD_TEST_POSTGRES_URL").ok().filter(|u| !u.is_empty()) else {
         eprintln!("scale bench: set TRIBOD_TEST_POSTGRES_URL (e.g. postgres://root@127.0.0.1:5432/test)");
         std::process::exit(2);
@@ -203,31 +243,73 @@ async fn main() {
     let clients = 32;
 
     println!("Tiny hertz jobs, {tiny_jobs} per row, {clients} clients round-robin over the instances:\n");
-    println!("| store | instances | end-to-end jobs/s | POST p50 ms | POST p99 ms | GET p50 ms | GET p99 ms |");
-    println!("|---|---|---|---|---|---|---|");
-    let row = |store: &str, n: usize, r: &Run| {
+    println!("| store | instances | end-to-end jobs/s | POST p50 ms | POST p99 ms | GET p50 ms | GET p99 ms | tribod CPU ms/job | PostgreSQL CPU ms/job | machine CPU ms/job |");
+    println!("|---|---|---|---|---|---|---|---|---|---|");
+    let row = |store: &str, n: usize, r: &Run, tribod_cpu: f64, pg_cpu: f64, machine_cpu: f64| {
         println!(
-            "| {store} | {n} | {:.0} | {:.2} | {:.2} | {:.2} | {:.2} |",
+            "| {store} | {n} | {:.0} | {:.2} | {:.2} | {:.2} | {:.2} | {:.2} | {:.2} | {:.2} |",
             r.jobs_per_s,
             percentile(&r.post, 0.5),
             percentile(&r.post, 0.99),
             percentile(&r.get, 0.5),
-            percentile(&r.get, 0.99)
+            percentile(&r.get, 0.99),
+            tribod_cpu * 1e3 / tiny_jobs as f64,
+            pg_cpu * 1e3 / tiny_jobs as f64,
+            machine_cpu * 1e3 / tiny_jobs as f64,
         )
     };
-    {
+    if want("sqlite") {
         let dir = tempfile::tempdir().unwrap();
         let db = dir.path().join("bench.db").display().to_string();
         let one = serve(&db, &[]);
+        let (cpu0, busy0) = (cpu_seconds(one.child.id()), machine_busy_seconds());
         let r = drive(&[one.base.clone()], tiny_jobs, clients, tiny).await;
-        row("SQLite", 1, &r);
+        row("SQLite", 1, &r, cpu_seconds(one.child.id()) - cpu0, 0.0, machine_busy_seconds() - busy0);
     }
     for n in [1, 2, 4] {
+        if !want(&format!("pg{n}")) {
+            continue;
+        }
         let (url, name) = create_database(&admin).await;
+        if std::env::var_os("TRIBOD_BENCH_EXPLAIN").is_some() {
+            // Diagnosis: the server log gets the plan of every statement slower than 1 ms.
+            let mut conn = sqlx::PgConnection::connect(&admin).await.unwrap();
+            for sql in [
+                format!("ALTER DATABASE \"{name}\" SET session_preload_libraries = 'auto_explain'"),
+                format!("ALTER DATABASE \"{name}\" SET auto_explain.log_min_duration = '1ms'"),
+            ] {
+                conn.execute(sqlx::AssertSqlSafe(sql)).await.unwrap();
+            }
+            let _ = conn.close().await;
+        }
         let instances: Vec<Instance> = (0..n).map(|_| serve(&url, &[])).collect();
         let bases: Vec<String> = instances.iter().map(|i| i.base.clone()).collect();
+        let cpu = || instances.iter().map(|i| cpu_seconds(i.child.id())).sum::<f64>();
+        let (cpu0, pg0, busy0) = (cpu(), postgres_cpu_seconds(), machine_busy_seconds());
         let r = drive(&bases, tiny_jobs, clients, tiny).await;
-        row("PostgreSQL", n, &r);
+        row("PostgreSQL", n, &r, cpu() - cpu0, postgres_cpu_seconds() - pg0, machine_busy_seconds() - busy0);
+        if std::env::var_os("TRIBOD_BENCH_DB_STATS").is_some() {
+            let mut conn = sqlx::PgConnection::connect(&url).await.unwrap();
+            let stats: (i64, i64, i64, i64, i64) = sqlx::query_as(
+                "SELECT xact_commit, tup_returned, tup_fetched, blks_hit, tup_updated FROM pg_stat_database WHERE datname = current_database()",
+            )
+            .fetch_one(&mut conn)
+            .await
+            .unwrap();
+            let per = |v: i64| v as f64 / tiny_jobs as f64;
+            eprintln!(
+                "per job: commits {:.1}, rows returned {:.0}, rows fetched {:.1}, buffer hits {:.0}, rows updated {:.1}",
+                per(stats.0), per(stats.1), per(stats.2), per(stats.3), per(stats.4)
+            );
+            let t: (i64, i64, i64, i64) = sqlx::query_as(
+                "SELECT seq_scan, seq_tup_read, idx_scan, idx_tup_fetch FROM pg_stat_user_tables WHERE relname = 'jobs'",
+            )
+            .fetch_one(&mut conn)
+            .await
+            .unwrap();
+            eprintln!("jobs table: {} seq scans reading {} rows; {} index scans fetching {} rows", t.0, t.1, t.2, t.3);
+            let _ = conn.close().await;
+        }
         drop(instances);
         drop_database(&admin, &name).await;
     }
@@ -237,6 +319,9 @@ async fn main() {
     println!("|---|---|---|---|");
     let mut first = None;
     for n in [1, 2] {
+        if !want("heavy") {
+            continue;
+        }
         let (url, name) = create_database(&admin).await;
         let api = serve(&url, &["--workers", "0"]);
         let workers: Vec<Instance> = (0..n).map(|_| worker(&url, &["--workers", "1"])).collect();

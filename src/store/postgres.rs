@@ -247,6 +247,9 @@ impl PgStore {
         rows.iter().map(job_from_row).collect()
     }
 
+    /// Claim up to `n` queued jobs in virtual-deadline order. The locked `seq`s come back as an
+    /// array (`= ANY(ARRAY(…))`), so the update is a primary-key lookup: written as `IN (…)` the
+    /// generic plan hash-joins against a scan of the whole table on every claim.
     pub async fn claim(&self, n: usize, now: i64, owner: &str, lease_until: i64) -> StoreResult<Vec<ClaimedJob>> {
         if n == 0 {
             return Ok(Vec::new());
@@ -254,10 +257,13 @@ impl PgStore {
         let rows = sqlx::query(
             "UPDATE jobs SET status = 'running', started_at = $1, attempts = attempts + 1, progress = 0, \
              stage = NULL, lease_owner = $2, lease_until = $3 \
-             WHERE seq IN (SELECT seq FROM jobs WHERE status = 'queued' ORDER BY due_at, seq LIMIT $4 \
-                           FOR UPDATE SKIP LOCKED) \
+             WHERE seq = ANY(ARRAY(SELECT seq FROM jobs WHERE status = 'queued' ORDER BY due_at, seq LIMIT $4 \
+                                   FOR UPDATE SKIP LOCKED)) \
              RETURNING id, kind, spec, attempts, due_at, seq",
         )
+        // Planned at each call: a plan cached while the table was small scans it sequentially
+        // for ever after (found with auto_explain under `cargo bench --bench scale`).
+        .persistent(false)
         .bind(now)
         .bind(owner)
         .bind(lease_until)
@@ -288,57 +294,78 @@ impl PgStore {
         self.note(r)
     }
 
+    /// Finish a batch in one statement: the terminal updates (guarded by the lease), the results of
+    /// the succeeded ones, and a `finished:<id>` notification per finished job; re-queues (rare:
+    /// shutdown) follow in the same transaction.
     async fn finish_tx(&self, items: &[Finish], now: i64, owner: &str) -> Result<(), sqlx::Error> {
-        let mut tx = self.pool.begin().await?;
+        let mut ids = Vec::new();
+        let mut statuses = Vec::new();
+        let mut errors: Vec<Option<String>> = Vec::new();
+        let mut encodings: Vec<Option<String>> = Vec::new();
+        let mut sizes: Vec<Option<i64>> = Vec::new();
+        let mut bodies: Vec<Option<Vec<u8>>> = Vec::new();
+        let mut requeue = Vec::new();
         for item in items {
-            // Only the lease holder finishes a job: after a lost lease the job runs elsewhere.
-            let (sql, id, event) = match item {
-                Finish::Succeeded { id, .. } => (
-                    "UPDATE jobs SET status = 'succeeded', finished_at = $1, progress = 1, stage = NULL, lease_owner = NULL \
-                     WHERE id = $2 AND status = 'running' AND lease_owner = $3",
-                    id,
-                    format!("finished:{id}"),
-                ),
-                Finish::Failed { id, .. } => (
-                    "UPDATE jobs SET status = 'failed', finished_at = $1, error = $4, lease_owner = NULL \
-                     WHERE id = $2 AND status = 'running' AND lease_owner = $3",
-                    id,
-                    format!("finished:{id}"),
-                ),
-                Finish::Canceled { id } => (
-                    "UPDATE jobs SET status = 'canceled', finished_at = $1, lease_owner = NULL \
-                     WHERE id = $2 AND status = 'running' AND lease_owner = $3",
-                    id,
-                    format!("finished:{id}"),
-                ),
-                Finish::Requeue { id } => (
-                    "UPDATE jobs SET status = 'queued', started_at = NULL, progress = 0, stage = NULL, \
-                     attempts = GREATEST(attempts - 1, 0), lease_owner = NULL, lease_until = NULL \
-                     WHERE id = $2 AND status = 'running' AND lease_owner = $3 AND $1::bigint IS NOT NULL",
-                    id,
-                    "queued".to_string(),
-                ),
+            let (id, status, error, result) = match item {
+                Finish::Succeeded { id, result } => (id, "succeeded", None, Some(result)),
+                Finish::Failed { id, error } => (id, "failed", Some(error.clone()), None),
+                Finish::Canceled { id } => (id, "canceled", None, None),
+                Finish::Requeue { id } => {
+                    requeue.push(id.to_string());
+                    continue;
+                }
             };
-            let mut q = sqlx::query(sql).bind(now).bind(id.to_string()).bind(owner);
-            if let Finish::Failed { error, .. } = item {
-                q = q.bind(error);
+            ids.push(id.to_string());
+            statuses.push(status);
+            errors.push(error);
+            encodings.push(result.map(|r| r.encoding.to_string()));
+            sizes.push(result.map(|r| r.size as i64));
+            bodies.push(result.map(|r| r.body.clone()));
+        }
+        let mut tx = self.pool.begin().await?;
+        if !ids.is_empty() {
+            // Only the lease holder finishes a job: after a lost lease the job runs elsewhere.
+            sqlx::query(
+                "WITH u AS (SELECT * FROM UNNEST($1::text[], $2::text[], $3::text[], $4::text[], $5::bigint[], $6::bytea[]) \
+                            AS u(id, status, error, encoding, size, body)), \
+                 done AS (UPDATE jobs SET status = u.status, finished_at = $7, lease_owner = NULL, error = u.error, \
+                          progress = CASE WHEN u.status = 'succeeded' THEN 1 ELSE jobs.progress END, \
+                          stage = CASE WHEN u.status = 'succeeded' THEN NULL ELSE jobs.stage END \
+                          FROM u WHERE jobs.id = ANY($1) AND jobs.id = u.id AND jobs.status = 'running' AND jobs.lease_owner = $8 \
+                          RETURNING jobs.id, jobs.status), \
+                 stored AS (INSERT INTO job_results (job_id, encoding, size, body) \
+                            SELECT u.id, u.encoding, u.size, u.body FROM u JOIN done ON done.id = u.id \
+                            WHERE done.status = 'succeeded' \
+                            ON CONFLICT (job_id) DO UPDATE SET encoding = EXCLUDED.encoding, size = EXCLUDED.size, \
+                            body = EXCLUDED.body RETURNING job_id) \
+                 SELECT pg_notify($9, 'finished:' || done.id), (SELECT count(*) FROM stored) FROM done",
+            )
+            .bind(&ids)
+            .bind(&statuses)
+            .bind(&errors)
+            .bind(&encodings)
+            .bind(&sizes)
+            .bind(&bodies)
+            .bind(now)
+            .bind(owner)
+            .bind(CHANNEL)
+            .fetch_all(&mut *tx)
+            .await?;
+        }
+        if !requeue.is_empty() {
+            let n = sqlx::query(
+                "UPDATE jobs SET status = 'queued', started_at = NULL, progress = 0, stage = NULL, \
+                 attempts = GREATEST(attempts - 1, 0), lease_owner = NULL, lease_until = NULL \
+                 WHERE id = ANY($1) AND status = 'running' AND lease_owner = $2",
+            )
+            .bind(&requeue)
+            .bind(owner)
+            .execute(&mut *tx)
+            .await?
+            .rows_affected();
+            if n > 0 {
+                sqlx::query("SELECT pg_notify($1, 'queued')").bind(CHANNEL).execute(&mut *tx).await?;
             }
-            if q.execute(&mut *tx).await?.rows_affected() != 1 {
-                continue;
-            }
-            if let Finish::Succeeded { id, result } = item {
-                sqlx::query(
-                    "INSERT INTO job_results (job_id, encoding, size, body) VALUES ($1, $2, $3, $4) \
-                     ON CONFLICT (job_id) DO UPDATE SET encoding = EXCLUDED.encoding, size = EXCLUDED.size, body = EXCLUDED.body",
-                )
-                .bind(id.to_string())
-                .bind(result.encoding)
-                .bind(result.size as i64)
-                .bind(&result.body)
-                .execute(&mut *tx)
-                .await?;
-            }
-            sqlx::query("SELECT pg_notify($1, $2)").bind(CHANNEL).bind(event).execute(&mut *tx).await?;
         }
         tx.commit().await
     }
@@ -350,7 +377,7 @@ impl PgStore {
         let r = sqlx::query(
             "UPDATE jobs SET progress = u.fraction, stage = u.stage \
              FROM UNNEST($1::text[], $2::float8[], $3::text[]) AS u(id, fraction, stage) \
-             WHERE jobs.id = u.id AND jobs.status = 'running'",
+             WHERE jobs.id = ANY($1) AND jobs.id = u.id AND jobs.status = 'running'",
         )
         .bind(ids)
         .bind(fractions)
