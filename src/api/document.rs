@@ -7,6 +7,10 @@
 //! * Answers every route can give are added where they apply: `401` under `/v1` (bearer token),
 //!   `405` (other methods), `406` on reads (`Accept`), `503` where the job store is read or
 //!   written, `415` on bodies.
+//! * Numeric fields carry the bounds the kinds' validation checks (`minimum`, `exclusiveMinimum`,
+//!   `maximum`), taken from the rules `validate` checks on each kind's example spec, so the
+//!   validator is the one source of truth; where one schema serves several fields or kinds the
+//!   loosest bound is kept (the schema is then necessary, the validator decides).
 //! * Object schemas are closed (`additionalProperties: false`), as the specs reject unknown fields.
 
 use crate::jobs::registry;
@@ -14,6 +18,7 @@ use serde_json::{json, Map, Value};
 
 /// Apply the finishing pass to the document utoipa generated.
 pub fn finish(mut doc: Value) -> Value {
+    numeric_bounds(&mut doc);
     closed_objects(&mut doc);
     kind_tagged_requests(&mut doc);
     common_responses(&mut doc);
@@ -147,4 +152,122 @@ fn common_responses(doc: &mut Value) {
             responses.extend(sorted);
         }
     }
+}
+
+/// A numeric range, merged loosely across every rule that lands on one schema.
+#[derive(Debug, Clone, Copy)]
+struct Range {
+    min: Option<f64>,
+    min_exclusive: bool,
+    max: Option<f64>,
+}
+
+impl Range {
+    fn loosest(self, other: Range) -> Range {
+        let (min, min_exclusive) = match (self.min, other.min) {
+            (Some(a), Some(b)) if a < b => (Some(a), self.min_exclusive),
+            (Some(a), Some(b)) if b < a => (Some(b), other.min_exclusive),
+            (Some(a), Some(_)) => (Some(a), self.min_exclusive && other.min_exclusive),
+            _ => (None, false),
+        };
+        let max = match (self.max, other.max) {
+            (Some(a), Some(b)) => Some(a.max(b)),
+            _ => None,
+        };
+        Range { min, min_exclusive, max }
+    }
+}
+
+fn numeric_bounds(doc: &mut Value) {
+    // Where each bound lands: a JSON pointer into the document.
+    let mut ranges: Vec<(String, Range)> = Vec::new();
+    for k in registry::KINDS {
+        let (spec, _) = k.schema_names();
+        for b in k.bounds() {
+            let Some(target) = schema_pointer(doc, &format!("/components/schemas/{spec}"), &b.path) else { continue };
+            let range = Range { min: b.min, min_exclusive: b.min_exclusive, max: b.max };
+            match ranges.iter_mut().find(|(t, _)| *t == target) {
+                Some((_, r)) => *r = r.loosest(range),
+                None => ranges.push((target, range)),
+            }
+        }
+    }
+    for (target, range) in ranges {
+        let Some(schema) = doc.pointer_mut(&target).and_then(Value::as_object_mut) else { continue };
+        if let Some(min) = range.min {
+            if range.min_exclusive {
+                schema.insert("exclusiveMinimum".into(), json!(min));
+            } else {
+                schema.insert("minimum".into(), json!(min));
+            }
+        }
+        if let Some(max) = range.max {
+            schema.insert("maximum".into(), json!(max));
+        }
+    }
+}
+
+/// The schema of a numeric spec field of `kind` (`path` relative to the spec), as the document
+/// describes it (for tests that the bounds and the validator agree).
+pub fn spec_field_schema(doc: &Value, kind: &str, path: &str) -> Option<Value> {
+    let k = registry::find(kind)?;
+    let (spec, _) = k.schema_names();
+    let at = schema_pointer(doc, &format!("/components/schemas/{spec}"), path)?;
+    doc.pointer(&at).cloned()
+}
+
+/// The pointer of the numeric schema a spec field (`path`, a JSON pointer into the spec) is
+/// described by, starting at the schema at `at`: through `$ref`s, `properties`, array `items` and
+/// the one non-null member of an optional's `oneOf`.
+fn schema_pointer(doc: &Value, at: &str, path: &str) -> Option<String> {
+    let mut here = resolve(doc, at.to_string())?;
+    for segment in path.split('/').skip(1) {
+        let schema = doc.pointer(&here)?;
+        let has = |s: &Value| s.pointer(&format!("/properties/{segment}")).is_some();
+        let next = if segment.parse::<usize>().is_ok() && schema.get("items").is_some() {
+            format!("{here}/items")
+        } else if has(schema) {
+            format!("{here}/properties/{segment}")
+        } else {
+            // A tagged union: the one variant that has this field (ambiguous → no bound).
+            let members = schema.get("oneOf").and_then(Value::as_array)?;
+            let with: Vec<String> = (0..members.len())
+                .filter_map(|i| resolve(doc, format!("{here}/oneOf/{i}")))
+                .filter(|m| doc.pointer(m).is_some_and(has))
+                .collect();
+            match with.as_slice() {
+                [only] => format!("{only}/properties/{segment}"),
+                _ => return None,
+            }
+        };
+        here = resolve(doc, next)?;
+    }
+    let leaf = doc.pointer(&here)?;
+    let numeric = |t: &Value| t == "number" || t == "integer";
+    let is_numeric = match leaf.get("type") {
+        Some(Value::Array(types)) => types.iter().any(numeric),
+        Some(t) => numeric(t),
+        None => false,
+    };
+    is_numeric.then_some(here)
+}
+
+/// Follow `$ref`s and an optional's `oneOf: [null, X]` to the schema that describes a value.
+fn resolve(doc: &Value, mut at: String) -> Option<String> {
+    for _ in 0..16 {
+        let schema = doc.pointer(&at)?;
+        if let Some(r) = schema.get("$ref").and_then(Value::as_str) {
+            at = r.strip_prefix('#')?.to_string();
+            continue;
+        }
+        if let Some(members) = schema.get("oneOf").and_then(Value::as_array) {
+            let real: Vec<usize> = (0..members.len()).filter(|&i| members[i].get("type") != Some(&json!("null"))).collect();
+            if real.len() == 1 && members.len() == 2 {
+                at = format!("{at}/oneOf/{}", real[0]);
+                continue;
+            }
+        }
+        return Some(at);
+    }
+    None
 }

@@ -66,6 +66,22 @@ impl Default for Limits {
 pub struct Validation {
     errors: Vec<FieldError>,
     limit_errors: Vec<FieldError>,
+    bounds: Vec<Bound>,
+}
+
+/// A numeric rule a kind checked, with the value it checked: the OpenAPI document turns the rules
+/// checked on the example spec's own fields into `minimum`/`maximum` (one source of truth).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Bound {
+    /// JSON pointer relative to the spec.
+    pub path: String,
+    /// The value checked (compared with the spec's field to know the rule is about the field).
+    pub value: f64,
+    pub min: Option<f64>,
+    /// `min` itself is not allowed (`> min`).
+    pub min_exclusive: bool,
+    pub max: Option<f64>,
+    pub integer: bool,
 }
 
 impl Validation {
@@ -81,18 +97,30 @@ impl Validation {
         self
     }
 
+    fn bound(&mut self, path: &str, value: f64, min: Option<f64>, min_exclusive: bool, max: Option<f64>, integer: bool) {
+        self.bounds.push(Bound { path: path.to_string(), value, min, min_exclusive, max, integer });
+    }
+
+    /// The numeric rules checked so far.
+    pub fn bounds(&self) -> &[Bound] {
+        &self.bounds
+    }
+
     /// `value` must be finite and `> 0`.
     pub fn positive(&mut self, path: &str, value: f64) -> &mut Self {
+        self.bound(path, value, Some(0.0), true, None, false);
         self.check(value.is_finite() && value > 0.0, path, "must be a finite number > 0")
     }
 
     /// `value` must be finite and `≥ 0`.
     pub fn non_negative(&mut self, path: &str, value: f64) -> &mut Self {
+        self.bound(path, value, Some(0.0), false, None, false);
         self.check(value.is_finite() && value >= 0.0, path, "must be a finite number >= 0")
     }
 
     /// `value` must lie in the closed interval `[lo, hi]`.
     pub fn in_range(&mut self, path: &str, value: f64, lo: f64, hi: f64) -> &mut Self {
+        self.bound(path, value, Some(lo), false, Some(hi), false);
         self.check(
             value.is_finite() && value >= lo && value <= hi,
             path,
@@ -102,6 +130,7 @@ impl Validation {
 
     /// An integer count in `[lo, hi]`.
     pub fn count_in_range(&mut self, path: &str, value: usize, lo: usize, hi: usize) -> &mut Self {
+        self.bound(path, value as f64, Some(lo as f64), false, Some(hi as f64), true);
         self.check(value >= lo && value <= hi, path, format!("must be an integer in [{lo}, {hi}]"))
     }
 
@@ -268,6 +297,9 @@ pub trait DynKind: Send + Sync {
     fn schema_names(&self) -> (String, String);
     /// Push the spec and output schemas and everything they reference.
     fn schemas(&self, out: &mut Vec<(String, RefOr<Schema>)>);
+    /// The numeric rules `validate` checks on the example spec's own fields (a rule on a derived
+    /// quantity is left out: its value differs from the field's). For the OpenAPI bounds.
+    fn bounds(&self) -> Vec<Bound>;
     /// Parse (unknown fields rejected, JSON paths in errors) and validate a spec.
     /// Error paths are relative to the spec.
     fn prepare(&'static self, spec: &Value, limits: &Limits) -> Result<Prepared, Problem>;
@@ -315,6 +347,16 @@ impl<K: Kind> DynKind for Registered<K> {
         K::Spec::schemas(out);
         out.push((K::Output::name().into_owned(), <K::Output as utoipa::PartialSchema>::schema()));
         K::Output::schemas(out);
+    }
+    fn bounds(&self) -> Vec<Bound> {
+        let Ok(typed) = parse_spec::<K::Spec>(&K::example()) else { return Vec::new() };
+        let Ok(example) = serde_json::to_value(&typed) else { return Vec::new() };
+        let mut v = Validation::new();
+        K::validate(&typed, &Limits::UNLIMITED, &mut v);
+        v.bounds
+            .into_iter()
+            .filter(|b| example.pointer(&b.path).and_then(Value::as_f64) == Some(b.value))
+            .collect()
     }
     fn prepare(&'static self, spec: &Value, limits: &Limits) -> Result<Prepared, Problem> {
         let typed: K::Spec = parse_spec(spec)?;

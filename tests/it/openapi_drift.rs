@@ -113,3 +113,51 @@ fn every_example_fits_its_kinds_schema() {
     }
     assert!(checked > 10);
 }
+
+/// The numeric bounds in the document come from the validation rules (issue 10, defect 8): for
+/// every rule a kind checks on its example's fields, the document's schema for that field carries
+/// a bound no stricter than the rule, and the validator refuses a value beyond it, naming the field.
+#[test]
+fn numeric_bounds_in_the_document_agree_with_the_validator() {
+    let doc = tribod::api::openapi();
+    let mut checked = 0;
+    for k in tribod::jobs::registry::KINDS {
+        for b in k.bounds() {
+            // A field of a union variant shared by several variants gets no bound (ambiguous).
+            let Some(schema) = tribod::api::spec_field_schema(&doc, k.name(), &b.path) else {
+                eprintln!("{} {}: no single numeric schema; no bound in the document", k.name(), b.path);
+                continue;
+            };
+            if let Some(min) = b.min {
+                let (doc_min, exclusive) = match (schema.get("minimum"), schema.get("exclusiveMinimum")) {
+                    (Some(m), _) => (m.as_f64().unwrap(), false),
+                    (None, Some(m)) => (m.as_f64().unwrap(), true),
+                    (None, None) => panic!("{} {}: no lower bound in {schema}", k.name(), b.path),
+                };
+                assert!(doc_min <= min && (!exclusive || b.min_exclusive || doc_min < min), "{} {}: {schema} vs {b:?}", k.name(), b.path);
+                let below = if b.integer { min - 1.0 } else if b.min_exclusive { min } else { min - (min.abs() * 0.5).max(1e-300) };
+                refused(*k, &b.path, below);
+            }
+            if let Some(max) = b.max {
+                let doc_max = schema.get("maximum").and_then(|m| m.as_f64()).unwrap_or_else(|| panic!("{} {}: no upper bound in {schema}", k.name(), b.path));
+                assert!(doc_max >= max, "{} {}: {schema} vs {b:?}", k.name(), b.path);
+                let above = if b.integer { max + 1.0 } else { max + (max.abs() * 0.5).max(1.0) };
+                refused(*k, &b.path, above);
+            }
+            checked += 1;
+        }
+    }
+    assert!(checked >= 60, "only {checked} bounds checked");
+}
+
+/// The kind's example with the field at `path` set to `value` is refused, naming that field.
+fn refused(k: &'static dyn tribod::jobs::kind::DynKind, path: &str, value: f64) {
+    let limits = tribod::jobs::kind::Limits::default();
+    // The example with its defaults filled in (the field may be a default).
+    let mut spec = k.prepare(&k.example(), &limits).expect("the example validates").canonical;
+    *spec.pointer_mut(path).unwrap() = serde_json::json!(value);
+    match k.prepare(&spec, &limits) {
+        Ok(_) => panic!("{} {path} = {value} was accepted", k.name()),
+        Err(p) => assert!(p.errors.iter().any(|e| e.path == path), "{} {path} = {value}: {p:?}", k.name()),
+    }
+}
