@@ -14,6 +14,7 @@ pub mod lubricant;
 pub mod roller;
 pub mod solver;
 pub mod thermal;
+pub mod units;
 pub mod wear;
 
 pub use solver::{

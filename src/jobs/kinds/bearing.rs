@@ -393,7 +393,7 @@ impl BearingSpec {
             radius: g.radius?,
             length: g.length?,
             clearance: g.radial_clearance?,
-            omega: o.speed_rpm * 2.0 * PI / 60.0,
+            omega: crate::physics::units::rpm_to_rad_per_s(o.speed_rpm),
             viscosity: o.viscosity,
         })
     }

@@ -838,7 +838,7 @@ impl CamCycleSpec {
                 (FollowerShape::Curved { radius: *radius, offset: *offset }, FollowerKind::Spherical { face_radius: *radius })
             }
         };
-        let omega = self.operation.speed_rpm * 2.0 * PI / 60.0;
+        let omega = crate::physics::units::rpm_to_rad_per_s(self.operation.speed_rpm);
         let schedule = match self.operation.startup {
             None => SpeedSchedule::Steady { omega },
             Some(s) => SpeedSchedule::Startup { omega, rated_angle: deg(s.rated_angle_deg) },

@@ -549,14 +549,14 @@ impl WearSpec {
     }
 
     fn omega(&self) -> f64 {
-        self.operation.speed_rpm * std::f64::consts::PI / 30.0
+        crate::physics::units::rpm_to_rad_per_s(self.operation.speed_rpm)
     }
 
     /// Running time, h.
     pub fn running_hours(&self) -> f64 {
         match (self.hours, self.cycles) {
             (Some(h), _) => h,
-            (None, Some(c)) => c / (self.operation.speed_rpm * 60.0),
+            (None, Some(c)) => crate::physics::units::hours_for_revolutions(c, self.operation.speed_rpm),
             _ => 0.0,
         }
     }
@@ -816,7 +816,7 @@ pub fn irgashev_input(spec: &WearSpec) -> Result<IrgashevInput, SolveError> {
         yield_strength: ir.yield_strength * 1e-6,
         deformation_coefficient: ir.deformation_coefficient,
         cycles_to_failure: ir.cycles_to_failure,
-        speed: spec.operation.speed_rpm / 60.0,
+        speed: crate::physics::units::rpm_to_rev_per_s(spec.operation.speed_rpm),
         archard: spec.wear_coefficient.map(|c| (c.k(), es)),
     })
 }
