@@ -179,7 +179,7 @@ impl Problem {
             SolveError::NotConverged { .. } => Problem::new(ErrorCode::NotConverged, err.to_string()),
             SolveError::Physical { code, message } => {
                 let (status, title) = ErrorCode::NonPhysical.describe();
-                Problem::with_code(code, status, title, message.clone())
+                Problem::with_code(code.code(), status, title, message.clone())
             }
             SolveError::NonFinite { .. } => Problem::new(ErrorCode::InternalError, err.to_string()),
             SolveError::Interrupted(Interrupt::TimedOut) => {

@@ -326,6 +326,20 @@ pub fn circular_max_shear(a: f64, p0: f64, poisson_ratio: f64) -> StressMaximum 
     StressMaximum { value: v, depth: z, offset: 0.0 }
 }
 
+/// `SRR = 2(u_c − u_r)/(u_c + u_r)` (seed 000). When both surfaces are at rest (the first instant
+/// of a startup) the limit of a cam starting under a still roller, 2, is returned; when the sum
+/// vanishes otherwise, 0.
+pub fn slide_roll_ratio(uc: f64, ur: f64) -> f64 {
+    let sum = uc + ur;
+    if sum.abs() > 1e-12 * (uc.abs() + ur.abs()).max(1e-300) && sum != 0.0 {
+        2.0 * (uc - ur) / sum
+    } else if uc == 0.0 && ur == 0.0 {
+        2.0
+    } else {
+        0.0
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

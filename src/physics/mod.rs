@@ -18,5 +18,5 @@ pub mod units;
 pub mod wear;
 
 pub use solver::{
-    ensure_finite, Convergence, Interrupt, Observer, Silent, SolveError, Termination,
+    ensure_finite, Convergence, Interrupt, Observer, PhysicalFailure, Silent, SolveError, Termination,
 };

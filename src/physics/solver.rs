@@ -69,6 +69,68 @@ pub trait Observer: Sync {
 pub struct Silent;
 impl Observer for Silent {}
 
+/// Why the physics has no solution for an input: each a stable snake_case problem code
+/// ([`PhysicalFailure::code`]), mapped to the HTTP problem in one place (`crate::problem`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum PhysicalFailure {
+    /// The cam profile does not close over one revolution.
+    CamNotClosed,
+    /// The cam surface velocity reverses where the model needs one direction.
+    CamSurfaceReversal,
+    /// The cam is undercut: its pitch curve's radius of curvature turns negative.
+    CamUndercut,
+    /// The contact point runs off the follower's face.
+    ContactOffFace,
+    /// The bearing film closes (zero or negative thickness).
+    FilmClosed,
+    /// The converged EHL film is not positive.
+    FilmCollapse,
+    /// The follower leaves the cam (the contact load turns negative).
+    FollowerSeparation,
+    /// The contact carries no positive load.
+    NoContactLoad,
+    /// There is no entrainment velocity to build a film.
+    NoEntrainment,
+    /// No attitude angle balances the bearing load.
+    NoEquilibriumAttitude,
+    /// No journal position balances the bearing load.
+    NoEquilibriumPosition,
+    /// The design carries no load.
+    NoLoad,
+    /// The roller torque balance has no root.
+    RollerSpeedUnbounded,
+    /// A wear run would need more profile updates than allowed for a stable update.
+    UpdateLimit,
+}
+
+impl PhysicalFailure {
+    /// The problem code clients see (`code` of the stored problem).
+    pub fn code(self) -> &'static str {
+        match self {
+            PhysicalFailure::CamNotClosed => "cam_not_closed",
+            PhysicalFailure::CamSurfaceReversal => "cam_surface_reversal",
+            PhysicalFailure::CamUndercut => "cam_undercut",
+            PhysicalFailure::ContactOffFace => "contact_off_face",
+            PhysicalFailure::FilmClosed => "film_closed",
+            PhysicalFailure::FilmCollapse => "film_collapse",
+            PhysicalFailure::FollowerSeparation => "follower_separation",
+            PhysicalFailure::NoContactLoad => "no_contact_load",
+            PhysicalFailure::NoEntrainment => "no_entrainment",
+            PhysicalFailure::NoEquilibriumAttitude => "no_equilibrium_attitude",
+            PhysicalFailure::NoEquilibriumPosition => "no_equilibrium_position",
+            PhysicalFailure::NoLoad => "no_load",
+            PhysicalFailure::RollerSpeedUnbounded => "roller_speed_unbounded",
+            PhysicalFailure::UpdateLimit => "update_limit",
+        }
+    }
+}
+
+impl std::fmt::Display for PhysicalFailure {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(self.code())
+    }
+}
+
 /// A solver failure. The job layer maps each variant to one problem code.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum SolveError {
@@ -87,9 +149,9 @@ pub enum SolveError {
         history: Vec<f64>,
     },
     /// The physics has no solution for this input (film closed, follower separation, undercut
-    /// cam, load beyond capacity...). `code` is a stable snake_case identifier.
+    /// cam, load beyond capacity...).
     #[error("{message}")]
-    Physical { code: &'static str, message: String },
+    Physical { code: PhysicalFailure, message: String },
     /// A NaN or infinity was produced; a bug or an input far outside a model's range.
     #[error("non-finite value in {quantity}")]
     NonFinite { quantity: String },
@@ -110,7 +172,7 @@ impl SolveError {
         SolveError::InvalidInput { path: path.into(), message: message.into() }
     }
     /// Shorthand for [`SolveError::Physical`].
-    pub fn physical(code: &'static str, message: impl Into<String>) -> Self {
+    pub fn physical(code: PhysicalFailure, message: impl Into<String>) -> Self {
         SolveError::Physical { code, message: message.into() }
     }
 }

@@ -399,7 +399,7 @@ fn separation_is_reported_for_loads_and_refused_for_contact() {
     assert!(loads["summary"]["min_axial_load"].as_f64().unwrap() < 0.0);
     match run("cam_cycle", &fast) {
         Err(Failure::Solve(SolveError::Physical { code, message })) => {
-            assert_eq!(code, "follower_separation");
+            assert_eq!(code, tribod::physics::PhysicalFailure::FollowerSeparation);
             assert!(message.contains("preload"), "{message}");
         }
         other => panic!("{other:?}"),
@@ -415,7 +415,7 @@ fn undercut_cam_is_refused() {
         s["outputs"] = json!(["kinematics"]);
     });
     match run("cam_cycle", &spec) {
-        Err(Failure::Solve(SolveError::Physical { code, .. })) => assert_eq!(code, "cam_undercut"),
+        Err(Failure::Solve(SolveError::Physical { code, .. })) => assert_eq!(code, tribod::physics::PhysicalFailure::CamUndercut),
         other => panic!("{other:?}"),
     }
 }
@@ -467,7 +467,7 @@ fn contact_running_off_a_small_flat_face_is_refused() {
     // Peak contact offset of the seed 003 cam is s'_max = 2h/β = 10.2 mm.
     let spec = with(&example("seed003_cycloidal_flat"), |s| s["follower"]["face_radius"] = json!(0.008));
     match run("cam_cycle", &spec) {
-        Err(Failure::Solve(SolveError::Physical { code, .. })) => assert_eq!(code, "contact_off_face"),
+        Err(Failure::Solve(SolveError::Physical { code, .. })) => assert_eq!(code, tribod::physics::PhysicalFailure::ContactOffFace),
         other => panic!("{other:?}"),
     }
 }

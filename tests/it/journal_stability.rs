@@ -78,7 +78,7 @@ fn check(c: &Case) -> Result<(), TestCaseError> {
             }
             Ok(())
         }
-        Err(SolveError::Physical { code: code @ ("film_closed" | "no_equilibrium_attitude" | "no_equilibrium_position"), .. }) => {
+        Err(SolveError::Physical { code: code @ (tribod::physics::PhysicalFailure::FilmClosed | tribod::physics::PhysicalFailure::NoEquilibriumAttitude | tribod::physics::PhysicalFailure::NoEquilibriumPosition), .. }) => {
             eprintln!("typed: {code} {c:?}");
             Ok(())
         }
@@ -103,10 +103,10 @@ fn film_closed_is_reported_for_a_touching_journal() {
     let b = Bearing { misalignment: Misalignment { vertical: 1.5, horizontal: 0.0 }, ..Bearing::plain(1.0) };
     let s = Settings { circumferential: 61, axial: 31, ..Settings::default() };
     let e = analyse(&b, &Operating::Load(0.5), &s, None, None, false, &Silent).unwrap_err();
-    assert!(matches!(e, SolveError::Physical { code: "film_closed", .. }), "{e:?}");
+    assert!(matches!(e, SolveError::Physical { code: tribod::physics::PhysicalFailure::FilmClosed, .. }), "{e:?}");
     // a load far beyond what any open film carries
     let e = analyse(&Bearing::plain(1.0), &Operating::Load(1e7), &s, None, None, false, &Silent).unwrap_err();
-    assert!(matches!(e, SolveError::Physical { code: "film_closed", .. }), "{e:?}");
+    assert!(matches!(e, SolveError::Physical { code: tribod::physics::PhysicalFailure::FilmClosed, .. }), "{e:?}");
 }
 
 /// Regression (proptest case): a light load on a strongly tilted journal is the small difference

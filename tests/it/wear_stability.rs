@@ -56,7 +56,7 @@ fn check(spec: &Value, hours: f64, limit: Option<f64>) -> Result<Option<Value>, 
     match result {
         // The unworn pair may be unable to run (separation at this speed): a typed error.
         Err(SolveError::Physical { code, .. }) => {
-            prop_assert!(["follower_separation", "cam_undercut", "no_contact_load", "film_collapse"].contains(&code), "{code}");
+            prop_assert!(["follower_separation", "cam_undercut", "no_contact_load", "film_collapse"].contains(&code.code()), "{code}");
         }
         Err(SolveError::NotConverged { solver, .. }) => {
             prop_assert!(["periodic roller speed", "ehl line contact (Newton)"].contains(&solver), "{solver}")

@@ -264,7 +264,7 @@ impl Evaluator {
             FrictionDefinition::Seed002 => r.friction_variable_seed002,
             FrictionDefinition::RaimondiBoyd => r.friction_variable,
         }
-        .ok_or_else(|| SolveError::physical("no_load", "the design carries no load"))?;
+        .ok_or_else(|| SolveError::physical(crate::physics::PhysicalFailure::NoLoad, "the design carries no load"))?;
         Ok((
             Design {
                 order: p.map_or(0, |p| p.order),

@@ -946,7 +946,7 @@ fn solve_spec(spec: &CamCycleSpec, observer: &dyn Observer) -> Result<CamCycleRe
     if let FollowerSpec::FlatFaced { face_radius: Some(r), offset, .. } = spec.follower {
         if let Some((i, x)) = s.contact_offset.iter().map(|x| x - offset).enumerate().find(|(_, x)| x.abs() > r) {
             return Err(SolveError::physical(
-                "contact_off_face",
+                crate::physics::PhysicalFailure::ContactOffFace,
                 format!(
                     "the contact runs off the follower face at {:.2}° ({:.3} mm from its centre, face radius {:.3} mm)",
                     s.angle[i].to_degrees(),

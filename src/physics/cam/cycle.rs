@@ -8,6 +8,7 @@
 //! early where its speeds rejoin the previous cycle's within that tolerance —, startup runs one
 //! revolution from rest.
 
+use crate::physics::contact::slide_roll_ratio;
 use super::kinematics::{kinematics, FollowerGeometry, KinematicState, SpeedSchedule};
 use super::loads::{FollowerLoad, LoadModel};
 use super::profile::CamProfile;
@@ -254,7 +255,7 @@ pub fn run_cycle(spec: &CycleSpec, needs: Needs, model: &dyn FilmModel, observer
     if let Some(&(a, b)) = events.separation.first() {
         let worst = loads.iter().map(|l| l.contact).fold(f64::INFINITY, f64::min);
         return Err(SolveError::physical(
-            "follower_separation",
+            crate::physics::PhysicalFailure::FollowerSeparation,
             format!(
                 "the follower leaves the cam between {:.1}° and {:.1}° ({} range(s); the contact load \
                  falls to {:.1} N): raise the spring preload by at least {:.1} N, stiffen the spring or \
@@ -462,19 +463,6 @@ pub fn run_cycle(spec: &CycleSpec, needs: Needs, model: &dyn FilmModel, observer
     Ok(CycleOutput { series, events, convergence, duration, profiles })
 }
 
-/// `SRR = 2(u_c − u_r)/(u_c + u_r)` (seed 000). When both surfaces are at rest (the first instant
-/// of a startup) the limit of a cam starting under a still roller, 2, is returned; when the sum
-/// vanishes otherwise, 0.
-pub fn slide_roll_ratio(uc: f64, ur: f64) -> f64 {
-    let sum = uc + ur;
-    if sum.abs() > 1e-12 * (uc.abs() + ur.abs()).max(1e-300) && sum != 0.0 {
-        2.0 * (uc - ur) / sum
-    } else if uc == 0.0 && ur == 0.0 {
-        2.0
-    } else {
-        0.0
-    }
-}
 
 /// State of the contact at one angle after film, traction and slip.
 #[derive(Debug, Clone)]

@@ -158,7 +158,7 @@ pub fn kinematics(
             let rho = rb + lift.v + lift.d2;
             if !(rho > 0.0) {
                 return Err(SolveError::physical(
-                    "cam_undercut",
+                    crate::physics::PhysicalFailure::CamUndercut,
                     format!(
                         "the cam undercuts at {deg:.2}°: a flat follower needs r_b + s + s'' > 0 but it is \
                          {:.4} mm (increase the base radius or lengthen the rise/return angles)",
@@ -201,7 +201,7 @@ pub fn kinematics(
             let shrink = 1.0 - rf * kappa_p;
             if !(shrink > 0.0) {
                 return Err(SolveError::physical(
-                    "cam_undercut",
+                    crate::physics::PhysicalFailure::CamUndercut,
                     format!(
                         "the cam undercuts at {deg:.2}°: the pitch curve's radius of curvature \
                          {:.4} mm is not larger than the follower radius {:.4} mm (use a smaller \
@@ -359,13 +359,13 @@ mod tests {
         let sp = CamSpeed { omega: 1.0, alpha: 0.0, time: 0.0 };
         let any_err = (0..360).any(|d| matches!(
             kinematics(&cam, &f, (d as f64).to_radians(), sp),
-            Err(SolveError::Physical { code: "cam_undercut", .. })
+            Err(SolveError::Physical { code: crate::physics::PhysicalFailure::CamUndercut, .. })
         ));
         assert!(any_err);
         let roller = FollowerGeometry { shape: FollowerShape::Curved { radius: 0.02, offset: 0.0 }, clockwise: false };
         let any_err = (0..360).any(|d| matches!(
             kinematics(&cam, &roller, (d as f64).to_radians(), sp),
-            Err(SolveError::Physical { code: "cam_undercut", .. })
+            Err(SolveError::Physical { code: crate::physics::PhysicalFailure::CamUndercut, .. })
         ));
         assert!(any_err);
     }

@@ -82,7 +82,7 @@ impl MultiArc {
         let total: f64 = arcs.iter().map(|a| a.1).sum();
         if (total - TAU).abs() > 1e-9 {
             return Err(SolveError::physical(
-                "cam_not_closed",
+                crate::physics::PhysicalFailure::CamNotClosed,
                 format!("the arc angles add up to {:.6}°, not 360°", total.to_degrees()),
             ));
         }
@@ -105,7 +105,7 @@ impl MultiArc {
         let gap = end.0.hypot(end.1);
         if gap > 1e-6 * arcs[0].0 {
             return Err(SolveError::physical(
-                "cam_not_closed",
+                crate::physics::PhysicalFailure::CamNotClosed,
                 format!(
                     "the arcs do not close: the chain of centres misses the cam centre by {:.4} mm \
                      (tangent arcs with these radii and angles do not form a closed cam)",
@@ -132,7 +132,7 @@ impl MultiArc {
         let nose_span = TAU - 2.0 * gamma;
         if !(nose_span > 0.0) {
             return Err(SolveError::physical(
-                "cam_not_closed",
+                crate::physics::PhysicalFailure::CamNotClosed,
                 format!("base and flank angles add up to {:.4}° > 360°", (2.0 * gamma).to_degrees()),
             ));
         }
@@ -141,7 +141,7 @@ impl MultiArc {
         let nose_r = if s.abs() < 1e-12 { f64::NAN } else { prev_r + centre.0 / s };
         if !(nose_r > 0.0 && nose_r.is_finite()) {
             return Err(SolveError::physical(
-                "cam_not_closed",
+                crate::physics::PhysicalFailure::CamNotClosed,
                 format!(
                     "no convex nose arc closes this cam (the closing radius would be {:.3} mm): \
                      reduce the flank angles or radii",
@@ -308,7 +308,7 @@ mod tests {
         // The first and last arcs are both the base circle: merge them (116° + 116° centred on 0).
         let merged: Vec<(f64, f64)> = std::iter::once((arcs[0].0, arcs[0].1 + arcs[5].1)).chain(arcs[1..5].iter().copied()).collect();
         match MultiArc::new(&merged) {
-            Err(SolveError::Physical { code, .. }) => assert_eq!(code, "cam_not_closed"),
+            Err(SolveError::Physical { code, .. }) => assert_eq!(code, crate::physics::PhysicalFailure::CamNotClosed),
             other => panic!("expected cam_not_closed, got {other:?}"),
         }
     }

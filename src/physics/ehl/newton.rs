@@ -101,7 +101,7 @@ impl Rheology {
 }
 
 /// Discrete problem in the dimensionless variables of [`super`] on one grid.
-struct Problem {
+struct Discretisation {
     grid: Arc<Grid>,
     /// Couette coefficient `λ` (signed).
     lambda: f64,
@@ -139,7 +139,7 @@ impl Fields {
     }
 }
 
-impl Problem {
+impl Discretisation {
     fn n(&self) -> usize {
         self.grid.n
     }
@@ -632,7 +632,7 @@ fn residual_norm(p: &[f64], phi: &[f64], load: f64) -> f64 {
 
 /// Damped semismooth Newton from `(p, h0)`, in place.
 fn newton(
-    prob: &Problem,
+    prob: &Discretisation,
     ws: &mut Workspace,
     p: &mut [f64],
     h0: &mut f64,
@@ -862,7 +862,7 @@ impl Engine {
         let dir = if um >= 0.0 { 1.0 } else { -1.0 };
         if sc.lambda == 0.0 && sc.kappa == 0.0 {
             return Err(SolveError::physical(
-                "no_entrainment",
+                crate::physics::PhysicalFailure::NoEntrainment,
                 "a steady film needs entrainment: u_m = 0 without squeeze (no previous state) has no lubricated solution",
             ));
         }
@@ -874,7 +874,7 @@ impl Engine {
                 Some(s) => grid.x.iter().map(|&xi| s.previous.mass_per_area(xi * b, r) * r / (b * b)).collect(),
                 None => Vec::new(),
             };
-            Problem { grid, lambda: sc.lambda, kappa: sc.kappa, q_old, upwind: options.upwind, rheology, ph }
+            Discretisation { grid, lambda: sc.lambda, kappa: sc.kappa, q_old, upwind: options.upwind, rheology, ph }
         };
         // Nested iteration: from the previous state straight on the target grid; from a cold
         // start (or when the warm start fails), solve on grids of n/2^k ≥ 64 nodes first and
@@ -1015,7 +1015,7 @@ pub fn solve(input: &EhlInput, options: &EhlOptions, observer: &dyn Observer) ->
 }
 
 /// `H0` that puts the centre film at `target` (and keeps the film positive everywhere).
-fn h0_for(p: &[f64], prob: &Problem, target: f64) -> f64 {
+fn h0_for(p: &[f64], prob: &Discretisation, target: f64) -> f64 {
     let n = prob.n();
     let x = &prob.grid.x;
     let mut d = vec![0.0; n];
@@ -1028,7 +1028,7 @@ fn h0_for(p: &[f64], prob: &Problem, target: f64) -> f64 {
 
 /// A guess on a grid from a dimensionless pressure `gp` at `gx` and the centre film `hc`: the
 /// interpolated pressure scaled to carry the load.
-fn from_guess(prob: &Problem, gx: &[f64], gp: &[f64], hc: f64) -> (Vec<f64>, f64) {
+fn from_guess(prob: &Discretisation, gx: &[f64], gp: &[f64], hc: f64) -> (Vec<f64>, f64) {
     let n = prob.n();
     let x = &prob.grid.x;
     let mut p: Vec<f64> = x.iter().map(|&x| if x <= gx[0] || x >= gx[gx.len() - 1] { 0.0 } else { interpolate(gx, gp, x) }).collect();
@@ -1045,7 +1045,7 @@ fn from_guess(prob: &Problem, gx: &[f64], gp: &[f64], hc: f64) -> (Vec<f64>, f64
 }
 
 /// A cold start: a (widened, for light loads) Hertzian pressure and the centre film `hc`.
-fn cold(prob: &Problem, hc: f64, h_est: f64) -> (Vec<f64>, f64) {
+fn cold(prob: &Discretisation, hc: f64, h_est: f64) -> (Vec<f64>, f64) {
     let mut p = vec![0.0; prob.n()];
     hertz_guess(&prob.grid.x, &mut p, 1f64.max((2.0 * h_est).sqrt()));
     let h0 = h0_for(&p, prob, hc);
@@ -1141,13 +1141,13 @@ struct Meta {
     residual: f64,
 }
 
-fn finish(input: &EhlInput, options: &EhlOptions, prob: &Problem, p: &[f64], h0: f64, meta: &Meta) -> Result<EhlSolution, SolveError> {
+fn finish(input: &EhlInput, options: &EhlOptions, prob: &Discretisation, p: &[f64], h0: f64, meta: &Meta) -> Result<EhlSolution, SolveError> {
     let &Meta { b, ph, moes_m, moes_l, iterations, residual } = meta;
     let n = prob.n();
     let r = input.reduced_radius;
     let mut v = Fields::new(n);
     if !prob.evaluate(p, h0, &mut v) {
-        return Err(SolveError::physical("film_collapse", "the converged film is not positive"));
+        return Err(SolveError::physical(crate::physics::PhysicalFailure::FilmCollapse, "the converged film is not positive"));
     }
     let hs = b * b / r; // film scale
     let x: Vec<f64> = prob.grid.x.iter().map(|&x| x * b).collect();
@@ -1277,7 +1277,7 @@ mod tests {
         let sc = scales(&input);
         let layout = Layout::for_film(sc.h_est, 1.0, None, None, true);
         let grid = Arc::new(Grid::new(80, layout));
-        let prob = Problem { grid: grid.clone(), lambda: sc.lambda, kappa: 0.0, q_old: Vec::new(), upwind: Upwind::Second, rheology: Rheology::new(&lub, input.temperature), ph: sc.ph };
+        let prob = Discretisation { grid: grid.clone(), lambda: sc.lambda, kappa: 0.0, q_old: Vec::new(), upwind: Upwind::Second, rheology: Rheology::new(&lub, input.temperature), ph: sc.ph };
         let (mut p, mut h0) = cold(&prob, sc.h_est, sc.h_est);
         let mut ws = Workspace::new();
         // Two Newton steps to get an active set with cavitated nodes, then inspect the system.

@@ -80,7 +80,7 @@ impl FilmModel for ClosedForm {
     fn solve(&self, input: &ContactInput, previous: Option<&FilmSolution>) -> Result<FilmSolution, SolveError> {
         let load = input.load;
         if !(load > 0.0 && load.is_finite()) {
-            return Err(SolveError::physical("no_contact_load", format!("contact load {load} N is not positive")));
+            return Err(SolveError::physical(crate::physics::PhysicalFailure::NoContactLoad, format!("contact load {load} N is not positive")));
         }
         let es = input.contact_modulus;
         let e_prime = 2.0 * es;

@@ -82,7 +82,7 @@ impl FilmModel for Numerical {
         };
         let load = input.load;
         if !(load > 0.0 && load.is_finite()) {
-            return Err(SolveError::physical("no_contact_load", format!("contact load {load} N is not positive")));
+            return Err(SolveError::physical(crate::physics::PhysicalFailure::NoContactLoad, format!("contact load {load} N is not positive")));
         }
         let state: Option<EhlState> = previous.and_then(|p| p.profile.as_deref()).map(FilmProfile::to_ehl_state);
         let transient = match &state {

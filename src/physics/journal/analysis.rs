@@ -227,7 +227,7 @@ struct Eval {
     rep: LcpReport,
 }
 
-struct Problem<'a> {
+struct BalanceSearch<'a> {
     bearing: &'a Bearing,
     settings: &'a Settings,
     h: &'a mut Hierarchy,
@@ -235,7 +235,7 @@ struct Problem<'a> {
     coarse_loose: bool,
 }
 
-impl Problem<'_> {
+impl BalanceSearch<'_> {
     fn feasible(&self, eps: f64, beta: f64) -> bool {
         eps >= 0.0 && self.bearing.film(eps, beta).min_film().0 > self.settings.min_film
     }
@@ -258,7 +258,7 @@ impl Problem<'_> {
         self.eval_tol(k, eps, beta, cold, tol)
     }
 
-    /// [`Problem::eval`] with an explicit pressure tolerance (inexact Newton steps).
+    /// [`BalanceSearch::eval`] with an explicit pressure tolerance (inexact Newton steps).
     fn eval_tol(&mut self, k: usize, eps: f64, beta: f64, cold: bool, tol: f64) -> Result<Eval, SolveError> {
         let film = self.bearing.film(eps, beta);
         let (_, theta0) = self.bearing.groove_angle(beta);
@@ -338,7 +338,7 @@ pub fn analyse(
     }
     let ks = ks.min(nlev - 1);
     let coarse_loose = !matches!(operating, Operating::Load(_)) && bearing.rotation_invariant();
-    let mut prob = Problem { bearing, settings, h: &mut ws.hierarchy, coarse_loose };
+    let mut prob = BalanceSearch { bearing, settings, h: &mut ws.hierarchy, coarse_loose };
     let mut steps_per_grid = Vec::new();
 
     // unknowns and starting point
@@ -388,7 +388,7 @@ pub fn analyse(
         }
     }
 
-    let dims = |p: &Problem, k: usize| (p.h.levels[k].nt + 1, p.h.levels[k].nz);
+    let dims = |p: &BalanceSearch, k: usize| (p.h.levels[k].nt + 1, p.h.levels[k].nz);
     let mut jac: Option<[[f64; 2]; 2]> = None;
     let mut final_eval = None;
     let mut final_conv = None;
@@ -423,7 +423,7 @@ pub fn analyse(
                         match load_balance(&mut prob, k, w, &mut eps, &mut beta, &mut jac, false, tol_load, cap, observer) {
                             Err(SolveError::NotConverged { residual, .. }) => {
                                 return Err(SolveError::physical(
-                                    "no_equilibrium_position",
+                                    crate::physics::PhysicalFailure::NoEquilibriumPosition,
                                     format!(
                                         "no journal position carries this load along the load line (best relative load residual {residual:.3e}); \
                                          the misalignment's own film force is comparable with the load"
@@ -452,14 +452,14 @@ pub fn analyse(
 
 fn no_attitude(eps: f64) -> SolveError {
     SolveError::physical(
-        "no_equilibrium_attitude",
+        crate::physics::PhysicalFailure::NoEquilibriumAttitude,
         format!("with this misalignment no attitude angle puts the film force on the load line at eccentricity ratio {eps}"),
     )
 }
 
 fn film_closed(settings: &Settings) -> SolveError {
     SolveError::physical(
-        "film_closed",
+        crate::physics::PhysicalFailure::FilmClosed,
         format!(
             "the journal would touch the bearing: no position with a film above h/c = {} carries this load with this misalignment",
             settings.min_film
@@ -498,7 +498,7 @@ fn initial_attitude(e: f64) -> f64 {
 
 #[allow(clippy::too_many_arguments)]
 fn attitude_search(
-    p: &mut Problem,
+    p: &mut BalanceSearch,
     k: usize,
     eps: f64,
     beta: &mut f64,
@@ -611,7 +611,7 @@ fn attitude_search(
 
 #[allow(clippy::too_many_arguments)]
 fn load_balance(
-    p: &mut Problem,
+    p: &mut BalanceSearch,
     k: usize,
     w: f64,
     eps: &mut f64,
@@ -762,7 +762,7 @@ fn load_balance(
 
 /// Evaluate the load residual over a polar grid of mid-plane positions on level `k` and return
 /// the best feasible one.
-fn scan_positions(p: &mut Problem, k: usize, w: f64) -> Result<(f64, f64), SolveError> {
+fn scan_positions(p: &mut BalanceSearch, k: usize, w: f64) -> Result<(f64, f64), SolveError> {
     let mut best = (f64::INFINITY, 0.5, 0.0);
     for ie in 1..=19 {
         let e = ie as f64 * 0.05;
@@ -787,12 +787,12 @@ fn scan_positions(p: &mut Problem, k: usize, w: f64) -> Result<(f64, f64), Solve
 
 /// The film at the position is within a factor 10 of the closure floor: a load that still
 /// cannot be reached there needs a closed film.
-fn near_closure(p: &Problem, eps: f64, beta: f64) -> bool {
+fn near_closure(p: &BalanceSearch, eps: f64, beta: f64) -> bool {
     p.bearing.film(eps, beta).min_film().0 < 10.0 * p.settings.min_film
 }
 
 /// Forward-difference Jacobian of the load residual in (ε, β); restores the level's pressure.
-fn fd_jacobian(p: &mut Problem, k: usize, w: f64, eps: f64, beta: f64, r0: &[f64; 2]) -> Result<[[f64; 2]; 2], SolveError> {
+fn fd_jacobian(p: &mut BalanceSearch, k: usize, w: f64, eps: f64, beta: f64, r0: &[f64; 2]) -> Result<[[f64; 2]; 2], SolveError> {
     let saved = p.h.levels[k].u.clone();
     let mut de = 1e-4 * (1.0 - eps).min(eps).max(1e-6);
     if !p.feasible(eps + de, beta) {
@@ -872,7 +872,7 @@ fn figures(
         let wz = if j == 0 || j + 1 == nz { 0.5 } else { 1.0 };
         let disc = a * a - r.x * r.x - r.y * r.y;
         if disc <= 0.0 {
-            return Err(SolveError::physical("film_closed", "the film closes in the friction integral"));
+            return Err(SolveError::physical(crate::physics::PhysicalFailure::FilmClosed, "the film closes in the friction integral"));
         }
         couette += wz * TAU / disc.sqrt();
         let row = &u[j * nt..(j + 1) * nt];

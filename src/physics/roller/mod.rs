@@ -123,7 +123,7 @@ pub fn monotone_root(
         }
     }
     if a.is_none() || b.is_none() {
-        return Err(SolveError::physical("roller_speed_unbounded", "the roller torque balance has no root (no sign change found)"));
+        return Err(SolveError::physical(crate::physics::PhysicalFailure::RollerSpeedUnbounded, "the roller torque balance has no root (no sign change found)"));
     }
     Err(SolveError::NotConverged {
         solver: "roller torque balance",

@@ -105,7 +105,7 @@ impl PointCase<'_> {
         Ok(PointBalance {
             pin_friction: mu_rp,
             sliding_velocity: us,
-            slide_roll_ratio: crate::physics::cam::cycle::slide_roll_ratio(uc, ur),
+            slide_roll_ratio: crate::physics::contact::slide_roll_ratio(uc, ur),
             cam_roller_friction: traction.force / load,
             traction,
             film,

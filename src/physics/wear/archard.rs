@@ -118,7 +118,7 @@ pub fn revolution_wear(
     for (k, &uc) in s.cam_surface_velocity.iter().enumerate() {
         if !(uc > 0.0) {
             return Err(SolveError::physical(
-                "cam_surface_reversal",
+                crate::physics::PhysicalFailure::CamSurfaceReversal,
                 format!(
                     "the cam surface speed relative to the contact is {uc:.4} m/s at {:.2}°: the wear \
                      model needs the contact to advance over the cam",

@@ -70,7 +70,7 @@ pub enum Stop {
     /// The cam wear reached the limit.
     WearLimit,
     /// The next worn profile cannot run: the cycle's typed error.
-    Failed { code: &'static str, message: String, at_hours: f64 },
+    Failed { code: crate::physics::PhysicalFailure, message: String, at_hours: f64 },
 }
 
 /// The state after one update.
@@ -161,7 +161,7 @@ fn wear_of(run: &WearRun, cycle: &CycleSpec, out: CycleOutput, bins: Option<Bins
     if let Some(r) = run.face_radius {
         if let Some((i, x)) = out.series.contact_offset.iter().enumerate().find(|(_, x)| x.abs() > r) {
             return Err(SolveError::physical(
-                "contact_off_face",
+                crate::physics::PhysicalFailure::ContactOffFace,
                 format!(
                     "the contact runs off the follower face at {:.2}° ({:.3} mm from its centre, face radius {:.3} mm)",
                     out.series.angle[i].to_degrees(),
@@ -191,7 +191,7 @@ fn count_models(counts: &mut Vec<(FilmModelId, usize)>, out: &CycleOutput) {
 
 fn update_limit(max_updates: usize, at_hours: f64) -> Stop {
     Stop::Failed {
-        code: "update_limit",
+        code: crate::physics::PhysicalFailure::UpdateLimit,
         message: format!(
             "the wear per update must stay below {STABLE_FRACTION}·ρ·Δθ² for a stable profile update; \
              this run would need more than {max_updates} updates (fewer angles, a smaller wear coefficient or a \
