@@ -33,7 +33,7 @@ fn kind_tagged_requests(doc: &mut Value) {
     let Some(schemas) = doc.pointer_mut("/components/schemas").and_then(Value::as_object_mut) else { return };
     let mut variants = Vec::new();
     let mut mapping = Map::new();
-    for k in registry::KINDS {
+    for k in registry::KINDS.iter() {
         let (spec, _) = k.schema_names();
         let camel: String = k.name().split('_').map(|w| w[..1].to_uppercase() + &w[1..]).collect();
         let name = format!("{camel}JobRequest");
@@ -181,7 +181,7 @@ impl Range {
 fn numeric_bounds(doc: &mut Value) {
     // Where each bound lands: a JSON pointer into the document.
     let mut ranges: Vec<(String, Range)> = Vec::new();
-    for k in registry::KINDS {
+    for k in registry::KINDS.iter() {
         let (spec, _) = k.schema_names();
         for b in k.bounds() {
             let Some(target) = schema_pointer(doc, &format!("/components/schemas/{spec}"), &b.path) else { continue };

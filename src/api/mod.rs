@@ -121,7 +121,7 @@ pub fn openapi() -> serde_json::Value {
     let mut doc = OpenApiRouter::<AppState>::with_openapi(ApiDoc::openapi()).merge(v1).merge(open).into_openapi();
     // The kinds' spec and result schemas, and `JobRequest.spec` as one of the specs.
     let mut schemas = Vec::new();
-    for k in registry::KINDS {
+    for k in registry::KINDS.iter() {
         k.schemas(&mut schemas);
     }
     let components = doc.components.get_or_insert_with(Default::default);

@@ -1,30 +1,24 @@
-//! The list of job kinds. Adding a kind is one line here.
+//! The list of job kinds (the case kinds of `jobs::kinds` and `sweep`), and lookup by name.
 
 use super::kind::{DynKind, Registered};
 use super::kinds;
+use std::sync::LazyLock;
 
-/// Every kind the service runs, in the order `GET /v1/kinds` and the OpenAPI document list them.
-pub static KINDS: &[&dyn DynKind] = &[
-    &Registered::<kinds::hertz::Hertz>::new(),
-    &Registered::<kinds::bearing::BearingKind>::new(),
-    &Registered::<kinds::bearing_optimisation::BearingOptimisation>::new(),
-    &Registered::<kinds::cam_cycle::CamCycle>::new(),
-    &Registered::<kinds::cam_point::CamPoint>::new(),
-    &Registered::<kinds::ehl_point::EhlPoint>::new(),
-    &Registered::<kinds::wear::Wear>::new(),
-    &Registered::<kinds::sweep::Sweep>::new(),
-];
+/// Every kind the service runs, in the order `GET /v1/kinds` and the OpenAPI document list them:
+/// the case kinds (`jobs::kinds::CASE_KINDS`; a new kind is one line there) and `sweep`.
+pub static KINDS: LazyLock<Vec<&'static dyn DynKind>> = LazyLock::new(|| {
+    let mut all = kinds::CASE_KINDS.to_vec();
+    all.push(&SWEEP);
+    all
+});
 
-/// Kinds compiled only into test builds (feature `test-kinds`): runnable, but neither listed nor
-/// documented, so the OpenAPI document is the same in every build.
-#[cfg(feature = "test-kinds")]
-static TEST_KINDS: &[&dyn DynKind] = &[&Registered::<kinds::test_sleep::TestSleep>::new()];
-#[cfg(not(feature = "test-kinds"))]
-static TEST_KINDS: &[&dyn DynKind] = &[];
+static SWEEP: Registered<kinds::sweep::Sweep> = Registered::new();
+
+
 
 /// The kind named `name`.
 pub fn find(name: &str) -> Option<&'static dyn DynKind> {
-    KINDS.iter().chain(TEST_KINDS).copied().find(|k| k.name() == name)
+    KINDS.iter().chain(kinds::TEST_KINDS).copied().find(|k| k.name() == name)
 }
 
 /// The names of all kinds, for error messages.

@@ -28,7 +28,7 @@ fn every_operation_is_documented() {
     let request = &doc["components"]["schemas"]["JobRequest"];
     assert_eq!(request["oneOf"].as_array().unwrap().len(), tribod::jobs::registry::KINDS.len());
     assert_eq!(request["discriminator"]["propertyName"], "kind");
-    for k in tribod::jobs::registry::KINDS {
+    for k in tribod::jobs::registry::KINDS.iter() {
         let target = request["discriminator"]["mapping"][k.name()].as_str().expect("kind in the mapping");
         let variant = &doc["components"]["schemas"][target.rsplit('/').next().unwrap()];
         assert_eq!(variant["properties"]["kind"]["enum"][0], k.name());
@@ -121,7 +121,7 @@ fn every_example_fits_its_kinds_schema() {
 fn numeric_bounds_in_the_document_agree_with_the_validator() {
     let doc = tribod::api::openapi();
     let mut checked = 0;
-    for k in tribod::jobs::registry::KINDS {
+    for k in tribod::jobs::registry::KINDS.iter() {
         for b in k.bounds() {
             // A field of a union variant shared by several variants gets no bound (ambiguous).
             let Some(schema) = tribod::api::spec_field_schema(&doc, k.name(), &b.path) else {

@@ -3,7 +3,6 @@
 //! quantities per case. A failing case is data (its error code is in its row), not a failed sweep.
 
 use crate::jobs::kind::{Kind, Limits, Validation};
-use crate::jobs::registry;
 use crate::physics::{Interrupt, Observer, SolveError};
 use crate::problem::Problem;
 use rayon::prelude::*;
@@ -189,7 +188,7 @@ fn case_spec(spec: &SweepSpec, values: &[Value]) -> Result<Value, (usize, String
 
 static VERSION: LazyLock<String> = LazyLock::new(|| {
     let inner: Vec<String> =
-        registry::KINDS.iter().filter(|k| k.name() != Sweep::NAME).map(|k| k.solver_version().to_string()).collect();
+        super::CASE_KINDS.iter().map(|k| k.solver_version().to_string()).collect();
     format!("{}({})", Sweep::SOLVER_VERSION, inner.join(","))
 });
 
@@ -230,13 +229,16 @@ impl Kind for Sweep {
     }
 
     fn validate(spec: &SweepSpec, limits: &Limits, v: &mut Validation) {
-        let inner = registry::find(&spec.kind);
+        let inner = super::case_kind(&spec.kind);
         match inner {
             None => {
-                v.error("/kind", format!("unknown kind; known kinds: {}", registry::names().join(", ")));
-            }
-            Some(k) if k.name() == Self::NAME => {
-                v.error("/kind", "a sweep cannot run sweeps");
+                let names: Vec<&str> = super::CASE_KINDS.iter().map(|k| k.name()).collect();
+                let message = if spec.kind == Self::NAME {
+                    "a sweep cannot run sweeps".to_string()
+                } else {
+                    format!("unknown kind; kinds a sweep can run: {}", names.join(", "))
+                };
+                v.error("/kind", message);
             }
             Some(_) => {}
         }
@@ -301,7 +303,7 @@ impl Kind for Sweep {
     }
 
     fn solve(spec: &SweepSpec, observer: &dyn Observer) -> Result<SweepResult, SolveError> {
-        let k = registry::find(&spec.kind).ok_or_else(|| SolveError::invalid("/kind", "unknown kind"))?;
+        let k = super::case_kind(&spec.kind).ok_or_else(|| SolveError::invalid("/kind", "unknown kind"))?;
         let all = cases(spec);
         let total = all.len();
         let done = AtomicUsize::new(0);
