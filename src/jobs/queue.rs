@@ -420,6 +420,10 @@ impl Queue {
                     // Claimed meanwhile: look again.
                 }
                 JobStatus::Running => {
+                    // The stored flag first (other instances and the response see it), then this
+                    // instance's flag: the other order lets a local job finish as canceled before
+                    // the stored flag is written, and the answer says no cancel was requested.
+                    store.request_cancel(id).await.map_err(storage_problem)?;
                     // The flag may not exist yet (claimed, not yet spawned): create it set, and
                     // `spawn` adopts it.
                     self.inner
@@ -429,7 +433,6 @@ impl Queue {
                         .entry(id)
                         .or_insert_with(|| Arc::new(AtomicU8::new(FLAG_NONE)))
                         .store(FLAG_CANCEL, Ordering::Relaxed);
-                    store.request_cancel(id).await.map_err(storage_problem)?;
                     let row = store.get(id).await.map_err(storage_problem)?;
                     return Ok(row.map(Cancellation::Requested).unwrap_or(Cancellation::Deleted));
                 }

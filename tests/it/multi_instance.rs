@@ -136,30 +136,41 @@ async fn three_instances_share_one_queue_and_a_killed_one_loses_nothing() {
     // 120th submission while it runs a job, and started again. A submission that B never answered is sent to A.
     let mut acknowledged: Vec<String> = Vec::new();
     let mut killed_at = None;
+    let mut marker_count = 0;
     let mut i = 0;
     while i < 300 {
         if i >= 120 && killed_at.is_none() {
-            // Three 1.5 s jobs keep every instance busy; kill B while it holds one (its lease
-            // owner is `host/pid/random`).
-            for n in 0..3 {
-                acknowledged.push(submit(&client, &a.base, &sleep_job(1.5, 10_000 + n)).await.unwrap());
-            }
+            // Kill B while it runs one of our 2 s marker jobs (its lease owner is
+            // `host/pid/random`): a marker is submitted every second until B has claimed one, so
+            // the kill cannot fall between two jobs.
             let owner = format!("%/{}/%", b.child.id());
             let mut db = sqlx::PgConnection::connect(&url).await.unwrap();
-            let deadline = Instant::now() + Duration::from_secs(30);
+            let mut markers: Vec<String> = Vec::new();
+            let deadline = Instant::now() + Duration::from_secs(60);
+            let mut last_marker = Instant::now() - Duration::from_secs(10);
             loop {
-                let held: i64 = sqlx::query("SELECT count(*) FROM jobs WHERE status = 'running' AND lease_owner LIKE $1")
-                    .bind(&owner)
-                    .fetch_one(&mut db)
-                    .await
-                    .unwrap()
-                    .get(0);
+                if last_marker.elapsed() >= Duration::from_secs(1) {
+                    let nonce = 10_000 + markers.len() as u64;
+                    markers.push(submit(&client, &a.base, &sleep_job(2.0, nonce)).await.unwrap());
+                    last_marker = Instant::now();
+                }
+                let held: i64 = sqlx::query(
+                    "SELECT count(*) FROM jobs WHERE status = 'running' AND lease_owner LIKE $1 AND id = ANY($2)",
+                )
+                .bind(&owner)
+                .bind(&markers)
+                .fetch_one(&mut db)
+                .await
+                .unwrap()
+                .get(0);
                 if held > 0 {
                     break;
                 }
-                assert!(Instant::now() < deadline, "B never ran a job");
+                assert!(Instant::now() < deadline, "B never ran a marker job");
                 tokio::time::sleep(Duration::from_millis(5)).await;
             }
+            marker_count = markers.len();
+            acknowledged.extend(markers);
             let _ = db.close().await;
             b.child.kill().unwrap();
             b.child.wait().unwrap();
@@ -188,8 +199,9 @@ async fn three_instances_share_one_queue_and_a_killed_one_loses_nothing() {
         i += 6;
     }
     assert!(killed_at.is_some());
-    assert_eq!(acknowledged.len(), 303);
-    assert_eq!(acknowledged.iter().collect::<HashSet<_>>().len(), 303, "303 distinct jobs");
+    let total = 300 + marker_count;
+    assert_eq!(acknowledged.len(), total);
+    assert_eq!(acknowledged.iter().collect::<HashSet<_>>().len(), total, "{total} distinct jobs");
 
     // Everything finishes: the killed instance's running job is re-queued when its 2 s lease ends.
     let mut db = sqlx::PgConnection::connect(&url).await.unwrap();
