@@ -43,7 +43,9 @@
 pub mod elastic;
 pub mod formulas;
 pub mod grid;
+mod linear;
 pub mod newton;
+mod rheology;
 pub mod traction;
 pub mod transient;
 

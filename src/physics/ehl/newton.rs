@@ -22,13 +22,12 @@
 
 use super::formulas::{moes_central, Groups};
 use super::grid::{Grid, GridCache, Layout};
+use super::linear::{assemble, gmres, Factor, Krylov, System, GMRES_MAX, GMRES_TOL};
+use super::rheology::PressureRheology;
 use super::traction::traction;
 use super::{EhlInput, EhlOptions, EhlSolution, EhlState, PressureSpike, Profiles, Upwind};
 use crate::physics::contact::hertz_line;
-use crate::physics::lubricant::{DensityModel, Lubricant, ViscosityModel, DH_C1, DH_C2, DH_C3, ROELANDS_PRESSURE};
 use crate::physics::{ensure_finite, Convergence, Observer, SolveError, Termination};
-use faer::dyn_stack::{MemBuffer, MemStack};
-use faer::{MatMut, MatRef, Par};
 use std::sync::Arc;
 
 pub use super::grid::graded_grid;
@@ -38,67 +37,6 @@ const PI: f64 = std::f64::consts::PI;
 const MAX_HALVINGS: u32 = 30;
 /// Largest `ln(η/η0)` used: keeps `ρH³/η` and the traction finite at absurd trial pressures.
 const LN_ETA_CAP: f64 = 600.0;
-/// Relative residual of the preconditioned GMRES solve of a Newton step.
-const GMRES_TOL: f64 = 1e-4;
-/// Most GMRES iterations before the Jacobian is factorised afresh.
-const GMRES_MAX: usize = 12;
-
-/// Pressure dependence of `ln η̄ = ln(η/η(0,T))` and `ρ̄ = ρ/ρ0` at the (uniform) temperature,
-/// with the temperature factors evaluated once per problem (same laws as [`Lubricant`]).
-#[derive(Debug, Clone, Copy)]
-struct Rheology {
-    /// Barus: `ln η̄ = α p`. Roelands: `ln η̄ = A1 θ ((1 + p/p_r)^Z − 1)`.
-    roelands: bool,
-    alpha: f64,
-    /// Roelands `A1 θ` and `Z`.
-    a1_theta: f64,
-    z: f64,
-    /// Dowson–Higginson thermal term `1 − C3 (T − T0)` (1 when incompressible, and then no
-    /// pressure dependence).
-    compressible: bool,
-    rho_thermal: f64,
-}
-
-impl Rheology {
-    fn new(lub: &Lubricant, t: f64) -> Self {
-        let roelands = lub.viscosity_model == ViscosityModel::Roelands;
-        // ln η̄ = ln η(p,T)/η0 − ln η(0,T)/η0; for Roelands both share A1 θ with
-        // θ = ((T − 138)/(T0 − 138))^(−S0): recover A1 θ from the ratio at one pressure.
-        let (a1_theta, z) = if roelands {
-            let z = lub.roelands_z();
-            let pr = ROELANDS_PRESSURE;
-            // ln η̄(p_r) = A1 θ (2^Z − 1).
-            let l = lub.ln_viscosity_ratio(pr, t) - lub.ln_viscosity_ratio(0.0, t);
-            (l / (2f64.powf(z) - 1.0), z)
-        } else {
-            (0.0, 0.0)
-        };
-        let compressible = lub.density_model == DensityModel::DowsonHigginson;
-        let rho_thermal = if compressible { 1.0 - DH_C3 * (t - lub.reference_temperature) } else { 1.0 };
-        Rheology { roelands, alpha: lub.pressure_viscosity, a1_theta, z, compressible, rho_thermal }
-    }
-
-    /// `(ln η̄, d ln η̄/dp, ρ̄, dρ̄/dp)` at gauge pressure `p` (Pa; clamped at 0, slopes 0 below).
-    #[inline]
-    fn at(&self, p: f64) -> (f64, f64, f64, f64) {
-        let pc = p.max(0.0);
-        let on = if p < 0.0 { 0.0 } else { 1.0 };
-        let (ln_eta, dln) = if self.roelands {
-            let s = 1.0 + pc / ROELANDS_PRESSURE;
-            let q = s.powf(self.z);
-            (self.a1_theta * (q - 1.0), on * self.a1_theta * self.z * q / (s * ROELANDS_PRESSURE))
-        } else {
-            (self.alpha * pc, on * self.alpha)
-        };
-        let (rho, drho) = if self.compressible {
-            let d = 1.0 + DH_C2 * pc;
-            (self.rho_thermal + DH_C1 * pc / d, on * DH_C1 / (d * d))
-        } else {
-            (1.0, 0.0)
-        };
-        (ln_eta, dln, rho, drho)
-    }
-}
 
 /// Discrete problem in the dimensionless variables of [`super`] on one grid.
 struct Discretisation {
@@ -110,7 +48,7 @@ struct Discretisation {
     /// `(ρ̄H)` of the previous time step at the nodes.
     q_old: Vec<f64>,
     upwind: Upwind,
-    rheology: Rheology,
+    rheology: PressureRheology,
     /// Hertzian pressure, Pa.
     ph: f64,
 }
@@ -248,101 +186,6 @@ impl Discretisation {
     }
 }
 
-/// The scaled, active-set linear system of one Newton step, in banded form: for an interior node
-/// `i` (row `i − 1`), `Σ_o aa[o][i] δP_{i+o−2} + Σ_o cg[o][i] δH_{i+o−2}` with
-/// `δH = δH0 − (1/π) K δP`; the last row is the load balance. Active (cavitated) rows are the
-/// identity. Out-of-range stencil entries are zero.
-#[derive(Default)]
-struct System {
-    aa: [Vec<f64>; 5],
-    cg: [Vec<f64>; 5],
-    /// `Σ_o cg[o][i]`: the `δH0` column.
-    gsum: Vec<f64>,
-    rhs: Vec<f64>,
-}
-
-/// Saved LU factors (with partial pivoting) of a Jacobian on one grid.
-struct Factor {
-    /// Grid the factors belong to (0: none).
-    grid_id: u64,
-    dim: usize,
-    lu: Vec<f64>,
-    perm: Vec<usize>,
-    perm_inv: Vec<usize>,
-    stack: MemBuffer,
-    par: Par,
-}
-
-impl Factor {
-    fn empty() -> Self {
-        Factor { grid_id: 0, dim: 0, lu: Vec::new(), perm: Vec::new(), perm_inv: Vec::new(), stack: MemBuffer::new(faer::dyn_stack::StackReq::EMPTY), par: Par::Seq }
-    }
-
-    fn resize(&mut self, dim: usize) {
-        if self.dim != dim {
-            self.dim = dim;
-            self.lu = vec![0.0; dim * dim];
-            self.perm = vec![0; dim];
-            self.perm_inv = vec![0; dim];
-            // The parallel LU pays off only for large systems; small ones stay on this thread
-            // (the transient solver runs two grids side by side).
-            self.par = if dim >= 384 { faer::get_global_parallelism() } else { Par::Seq };
-            let req = faer::linalg::lu::partial_pivoting::factor::lu_in_place_scratch::<usize, f64>(dim, dim, self.par, Default::default())
-                .or(faer::linalg::lu::partial_pivoting::solve::solve_in_place_scratch::<usize, f64>(dim, 1, self.par));
-            self.stack = MemBuffer::new(req);
-        }
-        self.grid_id = 0;
-    }
-
-    /// Factorise the matrix stored (column-major) in `self.lu`, in place.
-    fn factorise(&mut self, grid_id: u64) -> bool {
-        let dim = self.dim;
-        let a = MatMut::from_column_major_slice_mut(&mut self.lu, dim, dim);
-        faer::linalg::lu::partial_pivoting::factor::lu_in_place(
-            a,
-            &mut self.perm,
-            &mut self.perm_inv,
-            self.par,
-            MemStack::new(&mut self.stack),
-            Default::default(),
-        );
-        // A zero pivot (singular Jacobian) makes the factors useless.
-        let ok = (0..dim).all(|k| {
-            let d = self.lu[k * dim + k];
-            d.is_finite() && d != 0.0
-        });
-        self.grid_id = if ok { grid_id } else { 0 };
-        ok
-    }
-
-    /// `x ← A⁻¹ x` with the stored factors.
-    fn solve(&mut self, x: &mut [f64]) {
-        let dim = self.dim;
-        let lu = MatRef::from_column_major_slice(&self.lu, dim, dim);
-        let perm = unsafe { faer::perm::PermRef::new_unchecked(&self.perm, &self.perm_inv, dim) };
-        let rhs = MatMut::from_column_major_slice_mut(x, dim, 1);
-        faer::linalg::lu::partial_pivoting::solve::solve_in_place(lu, lu, perm, rhs, self.par, MemStack::new(&mut self.stack));
-    }
-}
-
-/// Scratch of the GMRES solver and the matrix-free product.
-#[derive(Default)]
-struct Krylov {
-    /// Orthonormal basis, `(GMRES_MAX + 1)` vectors of the system dimension.
-    basis: Vec<f64>,
-    /// Hessenberg matrix, column `k` at `k (GMRES_MAX + 1)`.
-    hess: Vec<f64>,
-    cs: Vec<f64>,
-    sn: Vec<f64>,
-    g: Vec<f64>,
-    w: Vec<f64>,
-    z: Vec<f64>,
-    /// Padded (two zeros each side) `δP` and `δH` at the nodes, and the deflection.
-    dp: Vec<f64>,
-    dh: Vec<f64>,
-    defl: Vec<f64>,
-}
-
 /// Work counters of a solver (for benchmarks and diagnostics).
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
 pub struct SolverStats {
@@ -432,148 +275,6 @@ impl Workspace {
             defl: vec![0.0; n],
         };
     }
-}
-
-/// `y = A z` for the system `sys` on `grid` (matrix-free: one dense `K δP`).
-fn apply(sys: &System, grid: &Grid, kr: &mut Krylov, z: &[f64], y: &mut [f64]) {
-    let n = grid.n;
-    let m = n - 2;
-    kr.dp.iter_mut().for_each(|v| *v = 0.0);
-    kr.dp[3..3 + m].copy_from_slice(&z[..m]);
-    grid.kernel.deflection(&kr.dp[2..2 + n], &mut kr.defl);
-    let dh0 = z[m];
-    for k in 0..n {
-        kr.dh[k + 2] = dh0 - kr.defl[k];
-    }
-    // Row i − 1 reads the padded index i + o (node i + o − 2).
-    let out = &mut y[..m];
-    out.iter_mut().for_each(|v| *v = 0.0);
-    for o in 0..5 {
-        let (aa, cg) = (&sys.aa[o][1..n - 1], &sys.cg[o][1..n - 1]);
-        let (dp, dh) = (&kr.dp[1 + o..1 + o + m], &kr.dh[1 + o..1 + o + m]);
-        for r in 0..m {
-            out[r] += aa[r] * dp[r] + cg[r] * dh[r];
-        }
-    }
-    let load: f64 = kr.dp[2..2 + n].iter().zip(&grid.cell).map(|(p, w)| p * w).sum();
-    y[m] = load / (0.5 * PI);
-}
-
-/// Assemble the system matrix explicitly (column-major) into `out`.
-fn assemble(sys: &System, grid: &Grid, kr: &mut Krylov, out: &mut [f64]) {
-    let n = grid.n;
-    let m = n - 2;
-    let dim = m + 1;
-    let inv_pi = 1.0 / PI;
-    // Elastic part: J[i−1, j−1] = −(1/π) Σ_o cg[o][i] K[i+o−2, j].
-    for j in 1..n - 1 {
-        let col = &mut out[(j - 1) * dim..j * dim];
-        kr.dp[2..2 + n].copy_from_slice(grid.kernel.column(j));
-        let rows = &mut col[..m];
-        rows.iter_mut().for_each(|v| *v = 0.0);
-        for o in 0..5 {
-            let cg = &sys.cg[o][1..n - 1];
-            let k = &kr.dp[1 + o..1 + o + m];
-            for r in 0..m {
-                rows[r] -= inv_pi * cg[r] * k[r];
-            }
-        }
-        // Banded part.
-        for i in j.saturating_sub(2).max(1)..=(j + 2).min(n - 2) {
-            rows[i - 1] += sys.aa[j + 2 - i][i];
-        }
-        col[m] = grid.cell[j] / (0.5 * PI);
-    }
-    let last = &mut out[m * dim..(m + 1) * dim];
-    last[..m].copy_from_slice(&sys.gsum[1..n - 1]);
-    last[m] = 0.0;
-    // The padded buffer is shared with `apply`: clear its ends again.
-    kr.dp.iter_mut().for_each(|v| *v = 0.0);
-}
-
-/// Right-preconditioned GMRES for `A x = b` (`A` from `sys`), preconditioned by `factor`, from
-/// `x = 0`. Returns the iterations when the relative residual reached `tol` within `GMRES_MAX`.
-fn gmres(sys: &System, grid: &Grid, factor: &mut Factor, kr: &mut Krylov, x: &mut [f64], tol: f64) -> Option<usize> {
-    let dim = grid.n - 1;
-    let k1 = GMRES_MAX + 1;
-    let b = &sys.rhs;
-    let beta = b.iter().map(|v| v * v).sum::<f64>().sqrt();
-    x.iter_mut().for_each(|v| *v = 0.0);
-    if beta == 0.0 {
-        return Some(0);
-    }
-    for (v, bv) in kr.basis[..dim].iter_mut().zip(b) {
-        *v = bv / beta;
-    }
-    kr.g.iter_mut().for_each(|v| *v = 0.0);
-    kr.g[0] = beta;
-    let mut done = None;
-    for k in 0..GMRES_MAX {
-        // w = A M⁻¹ v_k.
-        kr.z.copy_from_slice(&kr.basis[k * dim..(k + 1) * dim]);
-        factor.solve(&mut kr.z);
-        let z = std::mem::take(&mut kr.z);
-        let mut w = std::mem::take(&mut kr.w);
-        apply(sys, grid, kr, &z, &mut w);
-        kr.z = z;
-        // Modified Gram–Schmidt.
-        let h = &mut kr.hess[k * k1..(k + 1) * k1];
-        for j in 0..=k {
-            let vj = &kr.basis[j * dim..(j + 1) * dim];
-            let d: f64 = w.iter().zip(vj).map(|(a, b)| a * b).sum();
-            h[j] = d;
-            for (wv, vv) in w.iter_mut().zip(vj) {
-                *wv -= d * vv;
-            }
-        }
-        let norm = w.iter().map(|v| v * v).sum::<f64>().sqrt();
-        h[k + 1] = norm;
-        if norm > 0.0 {
-            for (v, wv) in kr.basis[(k + 1) * dim..(k + 2) * dim].iter_mut().zip(&w) {
-                *v = wv / norm;
-            }
-        }
-        kr.w = w;
-        // Apply the previous rotations, then a new one to zero h[k+1].
-        for j in 0..k {
-            let (c, s) = (kr.cs[j], kr.sn[j]);
-            let (a, bb) = (h[j], h[j + 1]);
-            h[j] = c * a + s * bb;
-            h[j + 1] = -s * a + c * bb;
-        }
-        let r = h[k].hypot(h[k + 1]);
-        if r == 0.0 || !r.is_finite() {
-            return None;
-        }
-        let (c, s) = (h[k] / r, h[k + 1] / r);
-        kr.cs[k] = c;
-        kr.sn[k] = s;
-        h[k] = r;
-        h[k + 1] = 0.0;
-        kr.g[k + 1] = -s * kr.g[k];
-        kr.g[k] *= c;
-        if kr.g[k + 1].abs() <= tol * beta || norm == 0.0 {
-            done = Some(k + 1);
-            break;
-        }
-    }
-    let iters = done?;
-    // Back substitution H y = g (y stored in g), then x = M⁻¹ V y.
-    for i in (0..iters).rev() {
-        let mut s = kr.g[i];
-        for j in i + 1..iters {
-            s -= kr.hess[j * k1 + i] * kr.g[j];
-        }
-        kr.g[i] = s / kr.hess[i * k1 + i];
-    }
-    for j in 0..iters {
-        let y = kr.g[j];
-        for (xv, vv) in x.iter_mut().zip(&kr.basis[j * dim..(j + 1) * dim]) {
-            *xv += y * vv;
-        }
-    }
-    factor.solve(x);
-    Some(iters)
 }
 
 /// Solve the Newton system in `ws.sys` into `ws.sol`: GMRES with the kept factors when they
@@ -867,7 +568,7 @@ impl Engine {
             ));
         }
         let layout = layout.unwrap_or_else(|| Layout::for_film(h_est, dir, options.inlet, options.outlet, options.grading));
-        let rheology = Rheology::new(&lub, t);
+        let rheology = PressureRheology::new(&lub, t);
         let build = |grids: &mut GridCache, n: usize| {
             let grid = grids.get(n, layout);
             let q_old = match input.transient {
@@ -1234,7 +935,8 @@ fn finish(input: &EhlInput, options: &EhlOptions, prob: &Discretisation, p: &[f6
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::physics::lubricant::Lubricant;
+    use crate::physics::lubricant::{DensityModel, Lubricant, ViscosityModel};
+    use super::super::linear::apply;
 
     #[test]
     fn rheology_matches_the_lubricant() {
@@ -1242,7 +944,7 @@ mod tests {
             for dm in [DensityModel::DowsonHigginson, DensityModel::Incompressible] {
                 let lub = Lubricant { viscosity_model: vm, density_model: dm, ..Lubricant::SEED000 };
                 for t in [303.0, 353.0] {
-                    let r = Rheology::new(&lub, t);
+                    let r = PressureRheology::new(&lub, t);
                     for p in [-1e6, 0.0, 1e7, 3e8, 1.2e9, 3e9] {
                         let (l, dl, rho, drho) = r.at(p);
                         let want_l = lub.ln_viscosity_ratio(p, t) - lub.ln_viscosity_ratio(0.0, t);
@@ -1277,7 +979,7 @@ mod tests {
         let sc = scales(&input);
         let layout = Layout::for_film(sc.h_est, 1.0, None, None, true);
         let grid = Arc::new(Grid::new(80, layout));
-        let prob = Discretisation { grid: grid.clone(), lambda: sc.lambda, kappa: 0.0, q_old: Vec::new(), upwind: Upwind::Second, rheology: Rheology::new(&lub, input.temperature), ph: sc.ph };
+        let prob = Discretisation { grid: grid.clone(), lambda: sc.lambda, kappa: 0.0, q_old: Vec::new(), upwind: Upwind::Second, rheology: PressureRheology::new(&lub, input.temperature), ph: sc.ph };
         let (mut p, mut h0) = cold(&prob, sc.h_est, sc.h_est);
         let mut ws = Workspace::new();
         // Two Newton steps to get an active set with cavitated nodes, then inspect the system.
