@@ -75,7 +75,7 @@ pub struct AppState {
         (name = "kinds", description = "What the service can compute"),
         (name = "operations", description = "Health, readiness, metrics and this document"),
     ),
-    components(schemas(crate::problem::Problem, crate::problem::FieldError, crate::physics::Convergence, crate::physics::Termination)),
+    components(schemas(crate::problem::Problem, crate::problem::FieldError, crate::jobs::Convergence, crate::jobs::Termination)),
     modifiers(&BearerScheme),
 )]
 struct ApiDoc;

@@ -8,3 +8,6 @@ pub mod runner;
 pub mod table;
 
 pub use kind::{DynKind, Kind, Limits, OutputInfo, Prepared, Validation};
+/// The convergence report every result carries (defined by the solvers), for the API's schemas:
+/// the API sees physics only through the job layer.
+pub use crate::physics::{Convergence, Termination};
