@@ -326,7 +326,7 @@ pub fn store_error(e: crate::store::StoreError) -> ApiError {
     ApiError::new(ErrorCode::StorageUnavailable, "the job store could not be reached; try again")
 }
 
-fn not_found(id: Uuid) -> ApiError {
+pub(super) fn not_found(id: Uuid) -> ApiError {
     ApiError::new(ErrorCode::JobNotFound, format!("no job with id {id}"))
 }
 

@@ -2,6 +2,7 @@
 
 pub mod error;
 mod document;
+mod events;
 mod extract;
 pub mod jobs;
 pub mod meta;
@@ -104,6 +105,7 @@ fn routers() -> (OpenApiRouter<AppState>, OpenApiRouter<AppState>) {
         .routes(routes!(jobs::submit_job, jobs::list_jobs))
         .routes(routes!(jobs::get_job, jobs::delete_job))
         .routes(routes!(jobs::get_result))
+        .routes(routes!(events::job_events))
         .routes(routes!(meta::list_kinds));
     let open = OpenApiRouter::new()
         .routes(routes!(meta::healthz))

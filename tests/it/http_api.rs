@@ -18,6 +18,7 @@ on_both_backends!(
     operations_endpoints_and_kinds,
     graceful_shutdown_requeues_unfinished_jobs,
     cors_is_off_by_default_and_configurable,
+    events_follow_a_job_until_it_ends,
 );
 use serde_json::{json, Value};
 use std::time::Duration;
@@ -450,5 +451,71 @@ async fn cors_is_off_by_default_and_configurable() {
     assert_eq!(res.headers()["access-control-allow-origin"], "https://dash.example");
     let res = s.client.get(s.url("/v1/kinds")).header("origin", "https://evil.example").send().await.unwrap();
     assert!(res.headers().get("access-control-allow-origin").is_none());
+    s.stop().await;
+}
+
+/// Parse a Server-Sent Events body into `(event, data)` pairs (comments and keep-alives skipped).
+fn sse_events(text: &str) -> Vec<(String, String)> {
+    text.split("\n\n")
+        .filter_map(|block| {
+            let mut name = None;
+            let mut data = Vec::new();
+            for line in block.lines() {
+                if let Some(v) = line.strip_prefix("event:") {
+                    name = Some(v.trim().to_string());
+                } else if let Some(v) = line.strip_prefix("data:") {
+                    data.push(v.strip_prefix(' ').unwrap_or(v).to_string());
+                }
+            }
+            name.map(|n| (n, data.join("\n")))
+        })
+        .collect()
+}
+
+async fn events_follow_a_job_until_it_ends() {
+    let s = start_with(|c| c.queue.workers = 1).await;
+    // A job that runs about a second, reporting progress as it goes.
+    let job: Value = s.post_job(&sleep_job(1.0, 77)).await.json().await.unwrap();
+    let id = job["id"].as_str().unwrap().to_string();
+    let mut res = s
+        .client
+        .get(s.url(&format!("/v1/jobs/{id}/events")))
+        .header("accept", "text/event-stream")
+        .send()
+        .await
+        .unwrap();
+    assert_eq!(res.status(), 200);
+    assert_eq!(res.headers()["content-type"], "text/event-stream");
+    // The stream ends by itself when the job ends.
+    let mut body = String::new();
+    let read = tokio::time::timeout(LONG, async {
+        while let Some(chunk) = res.chunk().await.unwrap() {
+            body.push_str(&String::from_utf8_lossy(&chunk));
+        }
+    })
+    .await;
+    assert!(read.is_ok(), "the stream did not end with the job: {body}");
+    let events = sse_events(&body);
+    let names: Vec<&str> = events.iter().map(|(n, _)| n.as_str()).collect();
+    assert_eq!(names.first(), Some(&"status"), "{names:?}");
+    assert_eq!(names.last(), Some(&"done"), "{names:?}");
+    assert!(names.iter().filter(|n| **n == "done").count() == 1);
+    assert!(names.contains(&"progress"), "progress of a 1 s job is seen: {names:?}");
+    // Events come in order: statuses never go back, progress never decreases.
+    let jobs: Vec<Value> = events.iter().map(|(_, d)| serde_json::from_str(d).unwrap()).collect();
+    let rank = |s: &str| match s { "queued" => 0, "running" => 1, _ => 2 };
+    for w in jobs.windows(2) {
+        assert!(rank(w[0]["status"].as_str().unwrap()) <= rank(w[1]["status"].as_str().unwrap()), "{w:?}");
+        assert!(w[0]["progress"]["fraction"].as_f64() <= w[1]["progress"]["fraction"].as_f64(), "{w:?}");
+    }
+    assert_eq!(jobs.last().unwrap()["status"], "succeeded");
+    assert_eq!(jobs.last().unwrap()["id"], id.as_str());
+
+    // A finished job: one `done` event, then the end. An unknown job: 404 problem.
+    let text = s.client.get(s.url(&format!("/v1/jobs/{id}/events"))).send().await.unwrap().text().await.unwrap();
+    let names: Vec<String> = sse_events(&text).into_iter().map(|(n, _)| n).collect();
+    assert_eq!(names, ["done"]);
+    let res = s.client.get(s.url(&format!("/v1/jobs/{}/events", uuid::Uuid::now_v7()))).send().await.unwrap();
+    expect_problem(res, 404, "job_not_found").await;
     s.stop().await;
 }
