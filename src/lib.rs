@@ -7,6 +7,7 @@ pub mod api;
 pub mod jobs;
 pub mod metrics;
 pub mod physics;
+pub mod plots;
 pub mod problem;
 pub mod server;
 pub mod store;

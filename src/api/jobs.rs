@@ -346,6 +346,33 @@ pub async fn get_job(State(state): State<AppState>, JobIdPath(id): JobIdPath) ->
     Ok(Json(JobView::from_row(row, false)))
 }
 
+/// A job's stored result (JSON text) with its row; 404 for no job, 409 while it runs or when it
+/// has none.
+pub(super) async fn stored_result(state: &AppState, id: Uuid) -> ApiResult<(JobRow, String)> {
+    let store = state.queue.store();
+    let row = store.get(id).await.map_err(store_error)?.ok_or_else(|| not_found(id))?;
+    match row.status {
+        JobStatus::Queued | JobStatus::Running => {
+            return Err(ApiError::new(
+                ErrorCode::ResultNotReady,
+                format!("the job is {} ({:.0} % done); poll /v1/jobs/{id} or submit with Prefer: wait=N", row.status.as_str(), row.progress * 100.0),
+            ));
+        }
+        JobStatus::Failed => {
+            let why = row.error.and_then(|e| serde_json::from_str::<Problem>(&e).ok()).map(|p| p.to_string()).unwrap_or_default();
+            return Err(ApiError::new(ErrorCode::ResultUnavailable, format!("the job failed: {why}")));
+        }
+        JobStatus::Canceled => {
+            return Err(ApiError::new(ErrorCode::ResultUnavailable, "the job was canceled"));
+        }
+        JobStatus::Succeeded => {}
+    }
+    let text = store.result(id).await.map_err(store_error)?.ok_or_else(|| {
+        ApiError::new(ErrorCode::InternalError, "the job succeeded but its result is missing")
+    })?;
+    Ok((row, text))
+}
+
 /// Query of `GET /v1/jobs/{id}/result`.
 #[derive(Debug, Deserialize, IntoParams)]
 #[into_params(parameter_in = Query)]
@@ -381,27 +408,7 @@ pub async fn get_result(
     headers: HeaderMap,
     ApiQuery(q): ApiQuery<ResultQuery>,
 ) -> ApiResult<Response> {
-    let store = state.queue.store();
-    let row = store.get(id).await.map_err(store_error)?.ok_or_else(|| not_found(id))?;
-    match row.status {
-        JobStatus::Queued | JobStatus::Running => {
-            return Err(ApiError::new(
-                ErrorCode::ResultNotReady,
-                format!("the job is {} ({:.0} % done); poll /v1/jobs/{id} or submit with Prefer: wait=N", row.status.as_str(), row.progress * 100.0),
-            ));
-        }
-        JobStatus::Failed => {
-            let why = row.error.and_then(|e| serde_json::from_str::<Problem>(&e).ok()).map(|p| p.to_string()).unwrap_or_default();
-            return Err(ApiError::new(ErrorCode::ResultUnavailable, format!("the job failed: {why}")));
-        }
-        JobStatus::Canceled => {
-            return Err(ApiError::new(ErrorCode::ResultUnavailable, "the job was canceled"));
-        }
-        JobStatus::Succeeded => {}
-    }
-    let text = store.result(id).await.map_err(store_error)?.ok_or_else(|| {
-        ApiError::new(ErrorCode::InternalError, "the job succeeded but its result is missing")
-    })?;
+    let (row, text) = stored_result(&state, id).await?;
     let accept = headers.get(header::ACCEPT).and_then(|v| v.to_str().ok()).unwrap_or("");
     let wants_csv = match q.format.as_deref() {
         Some("csv") => true,

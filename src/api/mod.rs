@@ -3,6 +3,7 @@
 pub mod error;
 mod document;
 mod events;
+mod plots;
 mod extract;
 pub mod jobs;
 pub mod meta;
@@ -106,6 +107,8 @@ fn routers() -> (OpenApiRouter<AppState>, OpenApiRouter<AppState>) {
         .routes(routes!(jobs::get_job, jobs::delete_job))
         .routes(routes!(jobs::get_result))
         .routes(routes!(events::job_events))
+        .routes(routes!(plots::list_plots))
+        .routes(routes!(plots::get_plot))
         .routes(routes!(meta::list_kinds));
     let open = OpenApiRouter::new()
         .routes(routes!(meta::healthz))
