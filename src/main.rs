@@ -173,6 +173,9 @@ struct RunArgs {
     /// One-line JSON instead of pretty-printed.
     #[arg(long)]
     compact: bool,
+    /// Also write the kind's plots of the result into this directory, as `<name>.svg`.
+    #[arg(long)]
+    plots: Option<std::path::PathBuf>,
     #[command(flatten)]
     limits: LimitArgs,
 }
@@ -309,6 +312,18 @@ fn fail(problem: &Problem, code: u8) -> ExitCode {
     ExitCode::from(code)
 }
 
+/// Every plot of a result as `<dir>/<name>.svg`; the files written are listed on stderr.
+fn write_plots(dir: &std::path::Path, kind: &str, result: &serde_json::Value, label: &str) -> Result<(), String> {
+    std::fs::create_dir_all(dir).map_err(|e| e.to_string())?;
+    for def in tribod::plots::available(kind, result) {
+        let svg = tribod::plots::render(kind, result, def.name, label).map_err(|e| e.to_string())?;
+        let path = dir.join(format!("{}.svg", def.name));
+        std::fs::write(&path, svg).map_err(|e| format!("{}: {e}", path.display()))?;
+        eprintln!("{}", path.display());
+    }
+    Ok(())
+}
+
 fn run(args: RunArgs) -> ExitCode {
     let text = if args.spec == "-" {
         let mut s = String::new();
@@ -356,6 +371,12 @@ fn run(args: RunArgs) -> ExitCode {
             return fail(&Problem::new(ErrorCode::Interrupted, format!("{i:?}")), 1);
         }
     };
+    if let Some(dir) = &args.plots {
+        let label = request.label.clone().unwrap_or_else(|| args.spec.clone());
+        if let Err(e) = write_plots(dir, kind.name(), &value, &label) {
+            return fail(&Problem::new(ErrorCode::InternalError, format!("writing plots to {}: {e}", dir.display())), 1);
+        }
+    }
     if args.format == RunFormat::Csv {
         let tables = kind.tables();
         let name = args.table.as_deref().or(tables.first().copied());

@@ -78,3 +78,18 @@ async fn plots_are_listed_and_served_as_svg() {
     expect_problem(res, 409, "result_not_ready").await;
     s.stop().await;
 }
+
+#[test]
+fn tribod_run_writes_the_plots_of_a_result() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = std::process::Command::new(env!("CARGO_BIN_EXE_tribod"))
+        .args(["run", "examples/ehl_point_seed001_nose.json", "--compact", "--plots"])
+        .arg(dir.path())
+        .output()
+        .unwrap();
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    for name in ["pressure", "film"] {
+        let svg = std::fs::read_to_string(dir.path().join(format!("{name}.svg"))).unwrap();
+        assert!(svg.starts_with("<svg") && texts(&svg).iter().any(|t| t.contains("x, mm")), "{name}.svg");
+    }
+}
