@@ -316,7 +316,7 @@ fn fail(problem: &Problem, code: u8) -> ExitCode {
 fn write_plots(dir: &std::path::Path, kind: &str, result: &serde_json::Value, label: &str) -> Result<(), String> {
     std::fs::create_dir_all(dir).map_err(|e| e.to_string())?;
     for def in tribod::plots::available(kind, result) {
-        let svg = tribod::plots::render(kind, result, def.name, label).map_err(|e| e.to_string())?;
+        let svg = tribod::plots::render_plot(&def, label).map_err(|e| e.to_string())?;
         let path = dir.join(format!("{}.svg", def.name));
         std::fs::write(&path, svg).map_err(|e| format!("{}: {e}", path.display()))?;
         eprintln!("{}", path.display());

@@ -17,8 +17,8 @@ use uuid::Uuid;
 #[derive(Debug, Serialize, ToSchema)]
 pub struct PlotLink {
     /// Name in `/v1/jobs/{id}/plots/{name}`.
-    pub name: &'static str,
-    pub title: &'static str,
+    pub name: String,
+    pub title: String,
     /// Where the SVG is.
     pub href: String,
 }
@@ -51,7 +51,7 @@ pub async fn list_plots(State(state): State<AppState>, Path(id): Path<String>) -
         .map_err(|e| ApiError::new(ErrorCode::InternalError, format!("the stored result is not JSON: {e}")))?;
     let plots = crate::plots::available(&row.kind, &result)
         .into_iter()
-        .map(|d| PlotLink { name: d.name, title: d.title, href: format!("/v1/jobs/{id}/plots/{}", d.name) })
+        .map(|p| PlotLink { href: format!("/v1/jobs/{id}/plots/{}", p.name), name: p.name, title: p.title })
         .collect();
     Ok(Json(PlotList { plots }))
 }

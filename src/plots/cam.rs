@@ -1,0 +1,83 @@
+//! Plots of the cam kinds: the cycle, wear and the single contact point.
+
+use super::{col, column, line_plots, Chart, Column, LineDef, Plot, Series};
+use serde_json::Value;
+
+const ANGLE: Column = col("angle_deg", "cam angle, °", 1.0);
+
+static CAM_CYCLE: &[LineDef] = &[
+    LineDef { name: "lift", title: "Follower lift", table: "series", x: ANGLE, y_label: "lift, mm", series: &[col("lift", "lift", 1e3)] },
+    LineDef { name: "velocity", title: "Follower velocity", table: "series", x: ANGLE, y_label: "velocity, m/s", series: &[col("velocity", "velocity", 1.0)] },
+    LineDef { name: "acceleration", title: "Follower acceleration", table: "series", x: ANGLE, y_label: "acceleration, m/s²", series: &[col("acceleration", "acceleration", 1.0)] },
+    LineDef { name: "contact_load", title: "Contact load", table: "series", x: ANGLE, y_label: "load, N", series: &[col("contact_load", "contact load", 1.0)] },
+    LineDef { name: "hertz_pressure", title: "Maximum Hertz pressure", table: "series", x: ANGLE, y_label: "pressure, GPa", series: &[col("hertz_max_pressure", "p_h", 1e-9)] },
+    LineDef { name: "film", title: "Film thickness", table: "series", x: ANGLE, y_label: "film, µm", series: &[col("film_central", "central", 1e6), col("film_min", "minimum", 1e6)] },
+    LineDef { name: "lambda", title: "Film parameter λ", table: "series", x: ANGLE, y_label: "λ, –", series: &[col("lambda", "λ", 1.0)] },
+    LineDef { name: "friction", title: "Friction coefficient", table: "series", x: ANGLE, y_label: "μ, –", series: &[col("friction_coefficient", "μ", 1.0)] },
+    LineDef { name: "slide_roll_ratio", title: "Slide-to-roll ratio", table: "series", x: ANGLE, y_label: "SRR, –", series: &[col("slide_roll_ratio", "SRR", 1.0)] },
+    LineDef { name: "temperature", title: "Flash temperature rise", table: "series", x: ANGLE, y_label: "ΔT, K", series: &[col("flash_temperature", "flash temperature", 1.0)] },
+];
+
+/// Cam cycle: kinematics, load and pressure, films and λ, friction and SRR, flash temperature.
+pub(super) fn cam_cycle(result: &Value) -> Vec<Plot> {
+    line_plots(result, CAM_CYCLE)
+}
+
+static WEAR: &[LineDef] = &[
+    LineDef { name: "wear_depth", title: "Cam wear depth", table: "series", x: ANGLE, y_label: "wear depth, µm", series: &[col("wear_depth", "wear depth", 1e6)] },
+    LineDef { name: "lift", title: "Lift before and after wear", table: "series", x: ANGLE, y_label: "lift, mm", series: &[col("initial_lift", "initial", 1e3), col("final_lift", "worn", 1e3)] },
+    LineDef { name: "hertz_pressure", title: "Hertz pressure before and after wear", table: "series", x: ANGLE, y_label: "pressure, GPa", series: &[col("initial_hertz_pressure", "initial", 1e-9), col("final_hertz_pressure", "worn", 1e-9)] },
+    LineDef { name: "follower_wear", title: "Follower face wear", table: "follower_face", x: col("position", "position on the face, mm", 1e3), y_label: "wear depth, µm", series: &[col("wear_depth", "wear depth", 1e6)] },
+];
+
+/// Wear: final depth, the depth at the requested times, the worn lift and pressure, the face.
+pub(super) fn wear(result: &Value) -> Vec<Plot> {
+    let mut plots = line_plots(result, WEAR);
+    // The wear depth over the cam angle at several running times (`snapshots` in the spec).
+    let angles = result.get("series").and_then(|t| column(t, "angle_deg", 1.0));
+    if let (Some(angles), Some(snapshots)) = (angles, result.get("snapshots").and_then(Value::as_array)) {
+        let series: Vec<Series> = snapshots
+            .iter()
+            .filter_map(|s| {
+                let hours = s.get("hours")?.as_f64()?;
+                let depth = column(s, "wear_depth", 1e6)?;
+                (depth.len() == angles.len())
+                    .then(|| Series { label: format!("{} h", short(hours)), points: angles.iter().copied().zip(depth).collect() })
+            })
+            .collect();
+        if !series.is_empty() {
+            plots.insert(1, Plot {
+                name: "wear_history".into(),
+                title: "Cam wear depth over running time".into(),
+                x_label: ANGLE.label.into(),
+                y_label: "wear depth, µm".into(),
+                chart: Chart::Lines { series, marks: Vec::new(), markers: false },
+            });
+        }
+    }
+    plots
+}
+
+static CAM_POINT: &[LineDef] = &[
+    LineDef { name: "slide_roll_ratio", title: "Slide-to-roll ratio against pin friction", table: "rows", x: col("pin_friction", "pin friction coefficient, –", 1.0), y_label: "SRR, –", series: &[col("slide_roll_ratio", "SRR", 1.0)] },
+    LineDef {
+        name: "traction",
+        title: "Cam–roller traction against pin friction",
+        table: "rows",
+        x: col("pin_friction", "pin friction coefficient, –", 1.0),
+        y_label: "traction coefficient, –",
+        series: &[col("cam_roller_friction", "total", 1.0), col("viscous_traction", "viscous", 1.0), col("asperity_traction", "asperity", 1.0)],
+    },
+];
+
+/// Cam point: the roller's slip and the traction as the pin friction grows.
+pub(super) fn cam_point(result: &Value) -> Vec<Plot> {
+    line_plots(result, CAM_POINT)
+}
+
+/// A number printed short (3 significant digits, no trailing zeros).
+fn short(v: f64) -> String {
+    let s = format!("{v:.3}");
+    let s = s.trim_end_matches('0').trim_end_matches('.');
+    if v.abs() >= 1000.0 { format!("{v:.0}") } else { s.to_string() }
+}
