@@ -11,3 +11,4 @@ pub mod plots;
 pub mod problem;
 pub mod server;
 pub mod store;
+pub mod web;

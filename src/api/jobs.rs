@@ -330,8 +330,6 @@ pub(super) fn not_found(id: Uuid) -> ApiError {
     ApiError::new(ErrorCode::JobNotFound, format!("no job with id {id}"))
 }
 
-/// A job id from the path; anything that is not a UUID names no job (404 problem, not axum's
-/// plain-text 400).
 /// Get a job.
 ///
 /// Status, progress, timing, the canonical spec and, for a failed job, its problem.

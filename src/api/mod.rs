@@ -156,6 +156,7 @@ pub fn app(queue: Queue, config: &ApiConfig) -> axum::Router {
     let (v1, open) = routers();
     let (router, _) = OpenApiRouter::new().merge(v1).merge(open).split_for_parts();
     let mut router = router
+        .merge(crate::web::routes())
         .fallback(|| async { ApiError::new(ErrorCode::RouteNotFound, "no such route; see /openapi.json") })
         .method_not_allowed_fallback(|| async {
             ApiError::new(ErrorCode::MethodNotAllowed, "this route does not answer that method; see /openapi.json")
@@ -179,6 +180,11 @@ pub fn app(queue: Queue, config: &ApiConfig) -> axum::Router {
         router = router.layer(cors);
     }
     router
+}
+
+/// A `404 route_not_found` problem (for routes outside the API, e.g. a missing docs file).
+pub fn not_found_response(detail: &str) -> axum::response::Response {
+    ApiError::new(ErrorCode::RouteNotFound, detail.to_string()).into_response()
 }
 
 /// The operations routes alone (`/healthz`, `/readyz`, `/metrics`), for a `tribod worker`'s

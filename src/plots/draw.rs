@@ -197,7 +197,7 @@ fn bars(area: &Area, plot: &Plot, labels: &[String], values: &[f64], highlight: 
         .label_style(("sans-serif", 14))
         .draw()
         .map_err(fail)?;
-    let base = Palette99::pick(0).to_rgba();
+    let base = RGBColor(31, 95, 191).to_rgba();
     chart
         .draw_series(values.iter().enumerate().filter(|(_, v)| v.is_finite()).map(|(i, v)| {
             let color = if Some(i) == highlight { RED.to_rgba() } else { base };

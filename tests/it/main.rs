@@ -21,6 +21,7 @@ mod journal_stability;
 mod journal_validation;
 mod multi_instance;
 mod openapi_drift;
+mod browser;
 mod plots;
 mod reliability;
 mod restart_recovery;
