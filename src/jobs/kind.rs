@@ -67,6 +67,8 @@ pub struct Validation {
     errors: Vec<FieldError>,
     limit_errors: Vec<FieldError>,
     bounds: Vec<Bound>,
+    /// Prepended to every path (see `under`).
+    prefix: String,
 }
 
 /// A numeric rule a kind checked, with the value it checked: the OpenAPI document turns the rules
@@ -89,16 +91,30 @@ impl Validation {
         Self::default()
     }
 
+    /// Validate a nested part of the spec: inside `f`, every path is relative to `prefix` (e.g.
+    /// a wear spec validates its `cycle` as `cam_cycle` does, under `/cycle`).
+    pub fn under<R>(&mut self, prefix: &str, f: impl FnOnce(&mut Self) -> R) -> R {
+        let outer = self.prefix.len();
+        self.prefix.push_str(prefix);
+        let r = f(self);
+        self.prefix.truncate(outer);
+        r
+    }
+
+    fn at(&self, path: &str) -> String {
+        format!("{}{path}", self.prefix)
+    }
+
     /// Record an error at `path` unless `ok`.
     pub fn check(&mut self, ok: bool, path: &str, message: impl Into<String>) -> &mut Self {
         if !ok {
-            self.errors.push(FieldError::new(path, message));
+            self.errors.push(FieldError::new(self.at(path), message));
         }
         self
     }
 
     fn bound(&mut self, path: &str, value: f64, min: Option<f64>, min_exclusive: bool, max: Option<f64>, integer: bool) {
-        self.bounds.push(Bound { path: path.to_string(), value, min, min_exclusive, max, integer });
+        self.bounds.push(Bound { path: self.at(path), value, min, min_exclusive, max, integer });
     }
 
     /// The numeric rules checked so far.
@@ -138,7 +154,7 @@ impl Validation {
     pub fn limit(&mut self, path: &str, value: usize, max: usize, what: &str) -> &mut Self {
         if value > max {
             self.limit_errors.push(FieldError::new(
-                path,
+                self.at(path),
                 format!("{what} is {value}; this server accepts at most {max} (configurable)"),
             ));
         }
@@ -150,7 +166,7 @@ impl Validation {
         if !(bytes <= limits.max_job_memory as f64) {
             let mib = |b: f64| b / (1u64 << 20) as f64;
             self.limit_errors.push(FieldError::new(
-                path,
+                self.at(path),
                 format!(
                     "{what} would need about {:.0} MiB; this server accepts at most {:.0} MiB per job (configurable)",
                     mib(bytes),
@@ -165,7 +181,7 @@ impl Validation {
     pub fn work(&mut self, path: &str, seconds: f64, limits: &Limits, what: &str) -> &mut Self {
         if !(seconds <= limits.max_job_seconds) {
             self.limit_errors.push(FieldError::new(
-                path,
+                self.at(path),
                 format!(
                     "{what} would take about {seconds:.0} s of solver time; this server accepts at most {:.0} s per job (configurable)",
                     limits.max_job_seconds
@@ -177,13 +193,15 @@ impl Validation {
 
     /// Record an error unconditionally.
     pub fn error(&mut self, path: &str, message: impl Into<String>) -> &mut Self {
-        self.errors.push(FieldError::new(path, message));
+        self.errors.push(FieldError::new(self.at(path), message));
         self
     }
 
     /// Take over the field errors of a nested problem (e.g. a sweep case's own validation),
     /// each path rewritten by `map`. Limit problems stay limit errors.
     pub fn absorb(&mut self, problem: &Problem, map: impl Fn(&str) -> String) -> &mut Self {
+        let prefix = self.prefix.clone();
+        let map = |p: &str| format!("{prefix}{}", map(p));
         let target = if problem.code == ErrorCode::LimitExceeded.as_str() {
             &mut self.limit_errors
         } else {

@@ -252,3 +252,21 @@ macro_rules! on_both_backends {
         }
     };
 }
+
+/// A `wear` spec from a flat description: the pair's fields (those of a `cam_cycle` spec) go into
+/// `cycle`, the wear fields stay at the top.
+pub fn wear_spec(flat: Value) -> Value {
+    const PAIR: [&str; 12] =
+        ["cam", "follower", "operation", "load", "lubricant", "asperities", "traction", "film", "slip", "fidelity", "ehl", "angles"];
+    let mut cycle = serde_json::Map::new();
+    let mut spec = serde_json::Map::new();
+    for (k, v) in flat.as_object().expect("an object").clone() {
+        if PAIR.contains(&k.as_str()) {
+            cycle.insert(k, v);
+        } else {
+            spec.insert(k, v);
+        }
+    }
+    spec.insert("cycle".into(), Value::Object(cycle));
+    Value::Object(spec)
+}

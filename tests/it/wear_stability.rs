@@ -4,6 +4,7 @@
 //! auto (the numerical EHL film at every angle) on coarse grids: the same, or a typed solver error.
 //! Run: `cargo test --test wear_stability` (CI fixes `PROPTEST_RNG_SEED`).
 
+use crate::common::wear_spec;
 use proptest::prelude::*;
 use serde_json::{json, Value};
 use tribod::jobs::{registry, Limits};
@@ -22,7 +23,7 @@ fn spec(roller: bool, k: f64, preload: f64, stiffness: f64, mass: f64, rpm: f64,
     } else {
         json!({"type": "flat_faced", "roughness_rq": 2e-7})
     };
-    let mut s = json!({
+    let mut s = wear_spec(json!({
         "cam": {"profile": {"type": "rise_return", "base_radius": 0.018, "lift": 0.008, "rise_start_deg": 90.0,
                             "rise_deg": 100.0, "return_deg": 100.0, "law": "polynomial_345"},
                 "width": 0.012, "roughness_rq": 3e-7},
@@ -36,7 +37,7 @@ fn spec(roller: bool, k: f64, preload: f64, stiffness: f64, mass: f64, rpm: f64,
         "update_interval_hours": hours / updates,
         "angles": 180,
         "snapshots": 3
-    });
+    }));
     if let Some(l) = limit {
         s["wear_limit"] = json!(l);
     }
@@ -165,9 +166,9 @@ proptest! {
     ) {
         let hours = 10f64.powf(log_hours);
         let mut s = spec(roller, 10f64.powf(log_k), preload, 3e4, 0.1, rpm, hours, updates.floor(), full, limit);
-        s["fidelity"] = json!(if auto { "auto" } else { "accurate" });
-        s["ehl"] = json!({"nodes": nodes});
-        s["angles"] = json!(72);
+        s["cycle"]["fidelity"] = json!(if auto { "auto" } else { "accurate" });
+        s["cycle"]["ehl"] = json!({"nodes": nodes});
+        s["cycle"]["angles"] = json!(72);
         if let Some(out) = check(&s, hours, limit)? {
             let counted: u64 = out["summary"]["fidelity_used"].as_object().unwrap().values().map(|v| v.as_u64().unwrap()).sum();
             prop_assert_eq!(counted, 72 * (out["updates"].as_u64().unwrap() + 1));

@@ -9,6 +9,7 @@ use tribod::jobs::{registry, Limits};
 use tribod::physics::cam::seed004;
 use tribod::physics::wear::irgashev;
 
+use crate::common::wear_spec;
 use crate::in_process::{example, run, Failure};
 
 fn col(v: &Value) -> Vec<f64> {
@@ -24,7 +25,7 @@ fn with(spec: &Value, f: impl Fn(&mut Value)) -> Value {
 /// A base-circle cam (lift table of zeros) under a flat follower, dry, constant spring force.
 fn base_circle(hours: f64, update: f64) -> Value {
     let angles: Vec<f64> = (0..36).map(|i| 10.0 * i as f64).collect();
-    json!({
+    wear_spec(json!({
         "cam": {"profile": {"type": "table", "base_radius": 0.02, "angle_deg": angles, "lift": vec![0.0; 36]}, "width": 0.01},
         "follower": {"type": "flat_faced"},
         "operation": {"speed_rpm": 1500.0},
@@ -34,7 +35,7 @@ fn base_circle(hours: f64, update: f64) -> Value {
         "hours": hours,
         "update_interval_hours": update,
         "angles": 360
-    })
+    }))
 }
 
 /// Constant pressure and sliding: every cam point loses `k (v_s/u_c) ∫p dx = k F/L` per
@@ -79,10 +80,8 @@ fn worn_volume_is_k_times_load_times_sliding_distance() {
         s.as_object_mut().unwrap().remove("wear_limit");
     });
     let out = run("wear", &spec).unwrap();
-    let mut cycle = spec.clone();
-    for key in ["hours", "update_interval_hours", "wear_coefficient", "snapshots", "load_share"] {
-        cycle.as_object_mut().unwrap().remove(key);
-    }
+    // The cycle a wear run wears is its spec's `cycle`, run as a cam_cycle job.
+    let mut cycle = spec["cycle"].clone();
     cycle["outputs"] = json!(["kinematics", "loads", "contact", "film"]);
     let cyc = run("cam_cycle", &cycle).unwrap();
     let s = &cyc["series"];
@@ -113,11 +112,11 @@ fn worn_volume_is_k_times_load_times_sliding_distance() {
 #[test]
 fn wear_converges_as_the_update_interval_shrinks() {
     let spec = with(&example("seed003_flat_archard"), |s| {
-        s["load"]["spring_preload"] = json!(500.0);
+        s["cycle"]["load"]["spring_preload"] = json!(500.0);
         s["load_share"] = json!("full");
         s["wear_coefficient"] = json!({"dimensionless": 3e-9, "hardness": 7e9});
         s["hours"] = json!(1000.0);
-        s["angles"] = json!(360);
+        s["cycle"]["angles"] = json!(360);
         s["snapshots"] = json!(0);
         s.as_object_mut().unwrap().remove("wear_limit");
     });
@@ -279,11 +278,16 @@ fn invalid_specs_name_their_fields() {
     };
     let base = example("seed003_flat_archard");
     assert!(paths(&with(&base, |s| { s.as_object_mut().unwrap().remove("wear_coefficient"); })).contains(&"/wear_coefficient".to_string()));
-    assert!(paths(&with(&base, |s| s["operation"]["startup"] = json!({}))).contains(&"/operation/startup".to_string()));
+    assert!(paths(&with(&base, |s| s["cycle"]["operation"]["startup"] = json!({}))).contains(&"/cycle/operation/startup".to_string()));
+    // The nested cycle is validated as a cam_cycle spec, at its paths under /cycle; what its
+    // cycles compute is the wear model's choice.
+    assert!(paths(&with(&base, |s| s["cycle"]["operation"]["speed_rpm"] = json!(-1.0))).contains(&"/cycle/operation/speed_rpm".to_string()));
+    assert!(paths(&with(&base, |s| s["cycle"]["outputs"] = json!(["kinematics"]))).contains(&"/cycle/outputs".to_string()));
+    assert!(paths(&with(&base, |s| s["cycle"]["profile_angles_deg"] = json!([90.0]))).contains(&"/cycle/profile_angles_deg".to_string()));
     assert!(paths(&with(&base, |s| s["cycles"] = json!(1e6))).contains(&"/hours".to_string()));
     assert!(paths(&with(&base, |s| s["wear_coefficient"] = json!({"dimensionless": 1e-7}))).contains(&"/wear_coefficient".to_string()));
-    assert!(paths(&with(&base, |s| { s["cam"]["roughness_rq"] = json!(0.0); s["follower"]["roughness_rq"] = json!(0.0); })).contains(&"/load_share".to_string()));
-    assert!(paths(&with(&base, |s| { s.as_object_mut().unwrap().remove("lubricant"); })).contains(&"/load_share".to_string()));
+    assert!(paths(&with(&base, |s| { s["cycle"]["cam"]["roughness_rq"] = json!(0.0); s["cycle"]["follower"]["roughness_rq"] = json!(0.0); })).contains(&"/load_share".to_string()));
+    assert!(paths(&with(&base, |s| { s["cycle"].as_object_mut().unwrap().remove("lubricant"); })).contains(&"/load_share".to_string()));
     // Too many updates for the server's evaluation limit: limit_exceeded at the interval.
     match run("wear", &with(&base, |s| s["update_interval_hours"] = json!(0.01))) {
         Err(Failure::Spec(p)) => {
@@ -294,7 +298,7 @@ fn invalid_specs_name_their_fields() {
     }
     let ir = example("seed004_irgashev");
     assert!(paths(&with(&ir, |s| s["irgashev"]["slip"] = json!([0.1, 0.1]))).contains(&"/irgashev/slip".to_string()));
-    assert!(paths(&with(&ir, |s| s["follower"] = json!({"type": "flat_faced"}))).contains(&"/follower".to_string()));
+    assert!(paths(&with(&ir, |s| s["cycle"]["follower"] = json!({"type": "flat_faced"}))).contains(&"/cycle/follower".to_string()));
 }
 
 /// Smooth surfaces under a thick film do not wear in the asperity model; dry contact wears the
@@ -304,7 +308,7 @@ fn roller_wears_only_where_it_slides() {
     let out = run("wear", &with(&example("seed000_roller_archard"), |s| {
         s["hours"] = json!(100.0);
         s["update_interval_hours"] = json!(50.0);
-        s["angles"] = json!(360);
+        s["cycle"]["angles"] = json!(360);
     }))
     .unwrap();
     let depth = col(&out["series"]["wear_depth"]);
@@ -347,7 +351,7 @@ fn max(v: &[f64]) -> f64 {
 /// A gentle cam (no entrainment reversal under the flat face: r_b + s + 2s'' > 0) with a thick
 /// film: λ = h_min/σ ≈ 3.2 at both fidelities.
 fn gentle(fidelity: &str, share: &str) -> Value {
-    json!({
+    wear_spec(json!({
         "cam": {"profile": {"type": "rise_return", "base_radius": 0.02, "lift": 0.002, "rise_start_deg": 60.0,
                             "rise_deg": 120.0, "return_deg": 120.0, "law": "cycloidal"},
                 "width": 0.012, "roughness_rq": 2e-7},
@@ -363,7 +367,7 @@ fn gentle(fidelity: &str, share: &str) -> Value {
         "snapshots": 0,
         "fidelity": fidelity,
         "ehl": {"nodes": 128}
-    })
+    }))
 }
 
 /// Full film (λ ≈ 3.2): the asperity share, and with it the wear, is negligible at every fidelity
@@ -404,10 +408,10 @@ fn flat_mixed(fidelity: &str, nodes: usize) -> Value {
         s.as_object_mut().unwrap().remove("wear_limit");
         s["hours"] = json!(10.0);
         s["update_interval_hours"] = json!(10.0);
-        s["angles"] = json!(180);
+        s["cycle"]["angles"] = json!(180);
         s["snapshots"] = json!(0);
-        s["fidelity"] = json!(fidelity);
-        s["ehl"] = json!({"nodes": nodes});
+        s["cycle"]["fidelity"] = json!(fidelity);
+        s["cycle"]["ehl"] = json!({"nodes": nodes});
     })
 }
 
@@ -445,11 +449,7 @@ fn mixed_lubrication_accurate_against_fast_is_explained() {
     assert!(num(&fast["summary"]["max_wear_depth"]) > num(&acc["summary"]["max_wear_depth"]));
     // The decomposition, from cam_cycle at the same settings (angle 0: base circle).
     let cycle = |fid: &str| {
-        let mut s = flat_mixed(fid, 192);
-        let o = s.as_object_mut().unwrap();
-        for k in ["hours", "update_interval_hours", "wear_coefficient", "snapshots"] {
-            o.remove(k);
-        }
+        let mut s = flat_mixed(fid, 192)["cycle"].clone();
         s["outputs"] = json!(["kinematics", "loads", "contact", "film"]);
         run("cam_cycle", &s).unwrap()
     };
@@ -505,23 +505,23 @@ fn accurate_specs_are_checked_and_bounded() {
     };
     let base = flat_mixed("accurate", 128);
     assert!(paths(&with(&base, |s| {
-        s.as_object_mut().unwrap().remove("lubricant");
+        s["cycle"].as_object_mut().unwrap().remove("lubricant");
         s["load_share"] = json!("full");
     }))
-    .contains(&"/fidelity".to_string()));
-    assert!(paths(&with(&example("seed004_irgashev"), |s| s["fidelity"] = json!("auto"))).contains(&"/fidelity".to_string()));
-    assert!(paths(&with(&base, |s| s["ehl"]["nodes"] = json!(8))).contains(&"/ehl/nodes".to_string()));
+    .contains(&"/cycle/fidelity".to_string()));
+    assert!(paths(&with(&example("seed004_irgashev"), |s| s["cycle"]["fidelity"] = json!("auto"))).contains(&"/cycle/fidelity".to_string()));
+    assert!(paths(&with(&base, |s| s["cycle"]["ehl"]["nodes"] = json!(8))).contains(&"/cycle/ehl/nodes".to_string()));
     // 720 angles × (2 × 100 + 1) cycles × 192 nodes = 201 standard cycles: accepted by default,
     // refused by a server allowing 100 evaluations.
     let big = with(&base, |s| {
         s["hours"] = json!(1000.0);
-        s["angles"] = json!(720);
-        s["ehl"]["nodes"] = json!(192);
+        s["cycle"]["angles"] = json!(720);
+        s["cycle"]["ehl"]["nodes"] = json!(192);
     });
     let k = registry::find("wear").unwrap();
     assert!(k.prepare(&big, &Limits::default()).is_ok());
     let p = k.prepare(&big, &Limits { max_evaluations: 200, ..Limits::default() }).unwrap_err();
     assert_eq!(p.code, "limit_exceeded");
-    assert_eq!(p.errors[0].path, "/ehl/nodes", "{p:?}");
+    assert_eq!(p.errors[0].path, "/cycle/ehl/nodes", "{p:?}");
     assert!(p.errors[0].message.contains("is 201"), "{}", p.errors[0].message);
 }

@@ -394,7 +394,7 @@ pub enum CamOutput {
 fn default_angles() -> usize {
     720
 }
-fn default_outputs() -> Vec<CamOutput> {
+pub fn default_outputs() -> Vec<CamOutput> {
     vec![
         CamOutput::Kinematics,
         CamOutput::Loads,

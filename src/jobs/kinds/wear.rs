@@ -13,8 +13,8 @@
 //!   spherical tappet, reproduced as printed; its inconsistencies are documented in
 //!   `physics::wear::irgashev`. Physics: `physics::wear::irgashev`.
 
-use super::cam_cycle::{CamCycle, CamCycleSpec, CamOutput, CamSpec, FollowerSpec, LoadSpec, OperationSpec, ProfileSpec, SlipSpec, ThermalPair};
-use super::cam_common::{composite_sigma, AsperitySpec, EhlSpec, FilmSpec, LubricantSpec, TractionSpec};
+use super::cam_cycle::{CamCycle, CamCycleSpec, CamOutput, FollowerSpec, LoadSpec, ProfileSpec, ThermalPair};
+use super::cam_common::composite_sigma;
 use crate::jobs::kind::{Kind, Limits, Validation};
 use crate::physics::contact::{contact_modulus, Elastic};
 use crate::physics::film::{model_for, FilmFormula, FilmModelId, Fidelity};
@@ -151,9 +151,6 @@ pub struct IrgashevSpec {
     pub cycles_to_failure: f64,
 }
 
-fn default_angles() -> usize {
-    720
-}
 fn default_snapshots() -> usize {
     10
 }
@@ -163,40 +160,22 @@ fn default_snapshots() -> usize {
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize, ToSchema)]
 #[serde(deny_unknown_fields)]
 pub struct WearSpec {
-    pub cam: CamSpec,
-    pub follower: FollowerSpec,
-    /// Running speed (steady; `startup` is refused).
-    pub operation: OperationSpec,
-    pub load: LoadSpec,
-    /// Required for the asperity load share and for roller followers (slip); absent: dry contact.
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub lubricant: Option<LubricantSpec>,
-    #[serde(default)]
-    pub asperities: AsperitySpec,
-    #[serde(default)]
-    pub traction: TractionSpec,
-    #[serde(default)]
-    pub film: FilmSpec,
-    #[serde(default)]
-    pub slip: SlipSpec,
-    /// Film model of every cycle (archard), as in `cam_cycle`: `fast` (closed forms: Hertz
-    /// pressure, Greenwood–Tripp share at the central film; default), `accurate` (the numerical
-    /// line-contact EHL solver at every angle of every cycle: the wearing pressure is the EHL
-    /// pressure, or with `load_share: asperity` the Greenwood–Tripp asperity pressure at the local
-    /// film, which peaks at the exit constriction; spherical tappets keep the closed form), `auto`
-    /// (per angle the closed form where its estimated error is within `ehl.auto_tolerance`, the
-    /// numerical solver elsewhere; each angle wears with the model that ran there). `accurate`
-    /// and `auto` need a lubricant, and their work — angles × (2 × planned updates + 1) ×
-    /// `ehl.nodes` — counted in cycles of 720 angles × 192 nodes, must stay within the server's
-    /// evaluation limit; a run takes at most twice its planned updates (stability cuts included).
-    #[serde(default)]
-    pub fidelity: Fidelity,
-    /// Numerical EHL options (`accurate`, `auto`), as in `cam_cycle`.
-    #[serde(default)]
-    pub ehl: EhlSpec,
-    /// Cam angles per revolution (uniform); also the resolution of the wear profile. Default 720.
-    #[serde(default = "default_angles")]
-    pub angles: usize,
+    /// The cam–follower pair and its running, as a `cam_cycle` spec: steady running only; the
+    /// wear model decides what each cycle computes, so `outputs`, `profile_angles_deg` and
+    /// `thermal` stay out. Its `fidelity` is the film model of every cycle (archard): `fast`
+    /// (closed forms: Hertz pressure, Greenwood–Tripp share at the central film; default),
+    /// `accurate` (the numerical line-contact EHL solver at every angle of every cycle: the
+    /// wearing pressure is the EHL pressure, or with `load_share: asperity` the Greenwood–Tripp
+    /// asperity pressure at the local film, which peaks at the exit constriction; spherical
+    /// tappets keep the closed form), `auto` (per angle the closed form where its estimated error
+    /// is within `ehl.auto_tolerance`, the numerical solver elsewhere; each angle wears with the
+    /// model that ran there). `accurate` and `auto` need a lubricant, and their work — angles ×
+    /// (2 × planned updates + 1) × `ehl.nodes` — counted in cycles of 720 angles × 192 nodes, must
+    /// stay within the server's evaluation limit; a run takes at most twice its planned updates
+    /// (stability cuts included). Its `angles` are also the resolution of the wear profile. A
+    /// lubricant is required for the asperity load share and for roller followers (slip); without
+    /// one the contact is dry.
+    pub cycle: CamCycleSpec,
     /// `archard` (default) or `irgashev`.
     #[serde(default)]
     pub model: WearModel,
@@ -510,7 +489,7 @@ pub struct WearResult {
 
 impl WearSpec {
     fn is_roller(&self) -> bool {
-        matches!(self.follower, FollowerSpec::Roller { .. })
+        matches!(self.cycle.follower, FollowerSpec::Roller { .. })
     }
 
     /// The pair as a `cam_cycle` spec computing what the wear model needs.
@@ -521,42 +500,26 @@ impl WearSpec {
         };
         if self.model == WearModel::Archard {
             // Accurate/auto: the film's pressure wears, whatever the load share.
-            let film_pressure = self.fidelity != Fidelity::Fast;
-            if self.lubricant.is_some() && (self.load_share == LoadShareSpec::Asperity || self.is_roller() || film_pressure) {
+            let film_pressure = self.cycle.fidelity != Fidelity::Fast;
+            if self.cycle.lubricant.is_some() && (self.load_share == LoadShareSpec::Asperity || self.is_roller() || film_pressure) {
                 outputs.push(CamOutput::Film);
             }
             if self.is_roller() {
                 outputs.push(CamOutput::Slip);
             }
         }
-        CamCycleSpec {
-            cam: self.cam.clone(),
-            follower: self.follower.clone(),
-            operation: self.operation,
-            load: Some(self.load.clone()),
-            lubricant: self.lubricant.clone(),
-            asperities: self.asperities,
-            traction: self.traction,
-            film: self.film,
-            slip: self.slip,
-            thermal: ThermalPair::default(),
-            fidelity: self.fidelity,
-            ehl: self.ehl,
-            profile_angles_deg: Vec::new(),
-            angles: self.angles,
-            outputs,
-        }
+        CamCycleSpec { outputs, ..self.cycle.clone() }
     }
 
     fn omega(&self) -> f64 {
-        crate::physics::units::rpm_to_rad_per_s(self.operation.speed_rpm)
+        crate::physics::units::rpm_to_rad_per_s(self.cycle.operation.speed_rpm)
     }
 
     /// Running time, h.
     pub fn running_hours(&self) -> f64 {
         match (self.hours, self.cycles) {
             (Some(h), _) => h,
-            (None, Some(c)) => crate::physics::units::hours_for_revolutions(c, self.operation.speed_rpm),
+            (None, Some(c)) => crate::physics::units::hours_for_revolutions(c, self.cycle.operation.speed_rpm),
             _ => 0.0,
         }
     }
@@ -573,19 +536,19 @@ impl WearSpec {
 
     /// Most profile updates of a run (see [`NUMERICAL_UPDATE_FACTOR`]).
     fn max_updates(&self) -> usize {
-        match self.fidelity {
+        match self.cycle.fidelity {
             Fidelity::Fast => MAX_UPDATES,
             _ => self.planned_updates().max(1).saturating_mul(NUMERICAL_UPDATE_FACTOR),
         }
     }
 
     fn composite_sigma(&self) -> f64 {
-        let rq = match &self.follower {
+        let rq = match &self.cycle.follower {
             FollowerSpec::FlatFaced { roughness_rq, .. }
             | FollowerSpec::Roller { roughness_rq, .. }
             | FollowerSpec::Spherical { roughness_rq, .. } => *roughness_rq,
         };
-        composite_sigma(self.cam.roughness_rq, rq)
+        composite_sigma(self.cycle.cam.roughness_rq, rq)
     }
 }
 
@@ -621,19 +584,31 @@ fn extrapolate(depth: &[f64], rate: &[f64], limit: f64) -> Option<f64> {
     t.is_finite().then_some(t / 3600.0)
 }
 
+/// An input error about the pair names its field inside the wear spec's `cycle` (the cam cycle's
+/// conversion and the physics name the pair's fields as a `cam_cycle` spec does).
+fn in_cycle(e: SolveError) -> SolveError {
+    const PAIR: [&str; 5] = ["/cam", "/follower", "/load", "/operation", "/lubricant"];
+    match e {
+        SolveError::InvalidInput { path, message } if PAIR.iter().any(|p| path == *p || path.starts_with(&format!("{p}/"))) => {
+            SolveError::InvalidInput { path: format!("/cycle{path}"), message }
+        }
+        e => e,
+    }
+}
+
 fn solve_archard(spec: &WearSpec, observer: &dyn Observer) -> Result<WearResult, SolveError> {
     let cc = spec.cycle_spec();
-    let cycle = cc.cycle_spec()?;
+    let cycle = cc.cycle_spec().map_err(in_cycle)?;
     let needs = cc.needs();
-    let model = model_for(spec.fidelity, spec.film.to_physics(), spec.ehl.to_physics());
+    let model = model_for(spec.cycle.fidelity, spec.cycle.film.to_physics(), spec.cycle.ehl.to_physics());
     let mut cycle = cycle;
-    if spec.fidelity != Fidelity::Fast {
+    if spec.cycle.fidelity != Fidelity::Fast {
         // The wear model reads the numerical film's pressure at every angle where it ran.
         cycle.profile_angles = (0..cycle.angles).collect();
     }
     let k_cam = spec.wear_coefficient.map_or(0.0, |c| c.k());
     let k_follower = spec.follower_wear_coefficient.map_or(k_cam, |c| c.k());
-    let face_radius = match spec.follower {
+    let face_radius = match spec.cycle.follower {
         FollowerSpec::FlatFaced { face_radius, .. } => face_radius,
         _ => None,
     };
@@ -644,7 +619,7 @@ fn solve_archard(spec: &WearSpec, observer: &dyn Observer) -> Result<WearResult,
             cam_coefficient: k_cam,
             follower_coefficient: k_follower,
             load_share: match spec.load_share {
-                LoadShareSpec::Asperity if spec.lubricant.is_some() => LoadShare::Asperity,
+                LoadShareSpec::Asperity if spec.cycle.lubricant.is_some() => LoadShare::Asperity,
                 _ => LoadShare::Full,
             },
         },
@@ -653,7 +628,7 @@ fn solve_archard(spec: &WearSpec, observer: &dyn Observer) -> Result<WearResult,
         wear_limit: spec.wear_limit,
         snapshots: spec.snapshots,
         face_radius,
-        face_bins: spec.angles,
+        face_bins: spec.cycle.angles,
         max_updates: spec.max_updates(),
     };
     let ev = evolve(&run, model.as_ref(), observer)?;
@@ -709,11 +684,11 @@ fn solve_archard(spec: &WearSpec, observer: &dyn Observer) -> Result<WearResult,
         summary.max_follower_wear_depth = Some(m);
         summary.max_follower_wear_position = Some(pos[j]);
     }
-    if let FollowerSpec::Roller { radius, length, .. } = spec.follower {
-        let l = spec.cam.width.map_or(length, |w| w.min(length));
+    if let FollowerSpec::Roller { radius, length, .. } = spec.cycle.follower {
+        let l = spec.cycle.cam.width.map_or(length, |w| w.min(length));
         summary.roller_wear_depth = Some(last.follower_volume / (2.0 * std::f64::consts::PI * radius * l));
     }
-    let numerical = spec.fidelity != Fidelity::Fast;
+    let numerical = spec.cycle.fidelity != Fidelity::Fast;
     let film_model = if numerical {
         // The model that ran, when one model ran at every angle of every cycle.
         match ev.film_models.as_slice() {
@@ -721,7 +696,7 @@ fn solve_archard(spec: &WearSpec, observer: &dyn Observer) -> Result<WearResult,
             _ => None,
         }
     } else {
-        needs.film.then(|| match (&spec.follower, spec.film.formula) {
+        needs.film.then(|| match (&spec.cycle.follower, spec.cycle.film.formula) {
             (FollowerSpec::Spherical { .. }, _) => FilmModelId::HamrockDowson,
             (_, FilmFormula::PanHamrock) => FilmModelId::PanHamrock,
             (_, FilmFormula::DowsonHigginson) => FilmModelId::DowsonHigginson,
@@ -752,14 +727,14 @@ fn solve_archard(spec: &WearSpec, observer: &dyn Observer) -> Result<WearResult,
         .collect();
     Ok(WearResult {
         model: WearModel::Archard,
-        fidelity_used: spec.fidelity,
+        fidelity_used: spec.cycle.fidelity,
         film_model,
         wear_coefficient: Some(k_cam),
         termination,
         hours: ev.hours,
         cycles: ev.hours * 3600.0 / ev.period,
         updates: ev.updates,
-        angles: spec.angles,
+        angles: spec.cycle.angles,
         series: WearSeries {
             angle_deg: degs(&ev.angle),
             wear_depth: ev.depth.clone(),
@@ -789,24 +764,24 @@ fn solve_archard(spec: &WearSpec, observer: &dyn Observer) -> Result<WearResult,
 /// The seed 004 inputs of a spec (validated).
 pub fn irgashev_input(spec: &WearSpec) -> Result<IrgashevInput, SolveError> {
     let ir = spec.irgashev.as_ref().ok_or_else(|| SolveError::invalid("/irgashev", "is required by model irgashev"))?;
-    let ProfileSpec::MultiArc { arcs } = &spec.cam.profile else {
-        return Err(SolveError::invalid("/cam/profile", "model irgashev needs a multi_arc profile"));
+    let ProfileSpec::MultiArc { arcs } = &spec.cycle.cam.profile else {
+        return Err(SolveError::invalid("/cycle/cam/profile", "model irgashev needs a multi_arc profile"));
     };
-    let FollowerSpec::Spherical { radius, youngs_modulus, poisson_ratio, .. } = spec.follower else {
-        return Err(SolveError::invalid("/follower", "model irgashev needs a spherical follower"));
+    let FollowerSpec::Spherical { radius, youngs_modulus, poisson_ratio, .. } = spec.cycle.follower else {
+        return Err(SolveError::invalid("/cycle/follower", "model irgashev needs a spherical follower"));
     };
-    let LoadSpec::ValveTrain { spring_preload, spring_stiffness, .. } = spec.load else {
-        return Err(SolveError::invalid("/load", "model irgashev needs a valve_train load"));
+    let Some(LoadSpec::ValveTrain { spring_preload, spring_stiffness, .. }) = spec.cycle.load else {
+        return Err(SolveError::invalid("/cycle/load", "model irgashev needs a valve_train load"));
     };
     let es = contact_modulus(
-        Elastic { youngs_modulus: spec.cam.youngs_modulus, poisson_ratio: spec.cam.poisson_ratio },
+        Elastic { youngs_modulus: spec.cycle.cam.youngs_modulus, poisson_ratio: spec.cycle.cam.poisson_ratio },
         Elastic { youngs_modulus, poisson_ratio },
     );
     Ok(IrgashevInput {
         arcs: arcs.iter().map(|a| (a.radius * 1e3, a.angle_deg)).collect(),
         tappet_radius: radius * 1e3,
-        youngs: spec.cam.youngs_modulus * 1e-6,
-        poisson: spec.cam.poisson_ratio,
+        youngs: spec.cycle.cam.youngs_modulus * 1e-6,
+        poisson: spec.cycle.cam.poisson_ratio,
         preload: spring_preload,
         spring_rate: spring_stiffness * 1e-3,
         nose_lift: ir.nose_lift * 1e3,
@@ -816,7 +791,7 @@ pub fn irgashev_input(spec: &WearSpec) -> Result<IrgashevInput, SolveError> {
         yield_strength: ir.yield_strength * 1e-6,
         deformation_coefficient: ir.deformation_coefficient,
         cycles_to_failure: ir.cycles_to_failure,
-        speed: crate::physics::units::rpm_to_rev_per_s(spec.operation.speed_rpm),
+        speed: crate::physics::units::rpm_to_rev_per_s(spec.cycle.operation.speed_rpm),
         archard: spec.wear_coefficient.map(|c| (c.k(), es)),
     })
 }
@@ -824,10 +799,10 @@ pub fn irgashev_input(spec: &WearSpec) -> Result<IrgashevInput, SolveError> {
 fn solve_irgashev(spec: &WearSpec, observer: &dyn Observer) -> Result<WearResult, SolveError> {
     observer.check()?;
     let input = irgashev_input(spec)?;
-    let rows = irgashev::rows(&input)?;
+    let rows = irgashev::rows(&input).map_err(in_cycle)?;
     // mm/h → m/s.
     let to_si = 1e-3 / 3600.0;
-    let n = spec.angles;
+    let n = spec.cycle.angles;
     let mut angle_deg = Vec::with_capacity(n);
     let mut rate = Vec::with_capacity(n);
     for k in 0..n {
@@ -883,7 +858,7 @@ fn solve_irgashev(spec: &WearSpec, observer: &dyn Observer) -> Result<WearResult
         .collect();
     Ok(WearResult {
         model: WearModel::Irgashev,
-        fidelity_used: spec.fidelity,
+        fidelity_used: spec.cycle.fidelity,
         film_model: None,
         wear_coefficient: spec.wear_coefficient.map(|c| c.k()),
         termination,
@@ -912,56 +887,67 @@ impl Kind for Wear {
 
     fn example() -> Value {
         json!({
-            "cam": {
-                "profile": {"type": "rise_return", "base_radius": 0.018, "lift": 0.008, "rise_start_deg": 90.0,
-                            "rise_deg": 90.0, "return_deg": 90.0, "law": "cycloidal"},
-                "width": 0.012,
-                "roughness_rq": 2e-7
+            "cycle": {
+                "cam": {
+                    "profile": {"type": "rise_return", "base_radius": 0.018, "lift": 0.008, "rise_start_deg": 90.0,
+                                "rise_deg": 90.0, "return_deg": 90.0, "law": "cycloidal"},
+                    "width": 0.012,
+                    "roughness_rq": 2e-7
+                },
+                "follower": {"type": "flat_faced", "roughness_rq": 1e-7},
+                "operation": {"speed_rpm": 3000.0},
+                "load": {"type": "valve_train", "spring_preload": 450.0, "spring_stiffness": 38000.0, "moving_mass": 0.25},
+                "lubricant": {"viscosity": 0.01, "pressure_viscosity": 2.2e-8},
+                "angles": 720
             },
-            "follower": {"type": "flat_faced", "roughness_rq": 1e-7},
-            "operation": {"speed_rpm": 3000.0},
-            "load": {"type": "valve_train", "spring_preload": 450.0, "spring_stiffness": 38000.0, "moving_mass": 0.25},
-            "lubricant": {"viscosity": 0.01, "pressure_viscosity": 2.2e-8},
             "hours": 1000.0,
             "update_interval_hours": 100.0,
-            "wear_coefficient": {"dimensionless": 1e-7, "hardness": 7e9},
-            "angles": 720
+            "wear_coefficient": {"dimensionless": 1e-7, "hardness": 7e9}
         })
     }
 
     fn validate(spec: &WearSpec, limits: &Limits, v: &mut Validation) {
         // The pair, as cam_cycle validates it.
-        CamCycle::validate(&spec.cycle_spec(), limits, v);
-        if spec.fidelity != Fidelity::Fast {
+        v.under("/cycle", |v| {
+            CamCycle::validate(&spec.cycle_spec(), limits, v);
+            v.check(
+                spec.cycle.outputs == super::cam_cycle::default_outputs(),
+                "/outputs",
+                "the wear model chooses what its cycles compute: leave `outputs` out",
+            );
+            v.check(spec.cycle.profile_angles_deg.is_empty(), "/profile_angles_deg", "wear keeps no pressure profiles: leave it out");
+            v.check(spec.cycle.thermal == ThermalPair::default(), "/thermal", "wear computes no temperatures: leave `thermal` out");
+        });
+        if spec.cycle.fidelity != Fidelity::Fast {
             match spec.model {
                 WearModel::Irgashev => {
-                    v.error("/fidelity", "model irgashev is an empirical method without a film model: use fidelity fast");
+                    v.error("/cycle/fidelity", "model irgashev is an empirical method without a film model: use fidelity fast");
                 }
                 WearModel::Archard => {
                     v.check(
-                        spec.lubricant.is_some(),
-                        "/fidelity",
+                        spec.cycle.lubricant.is_some(),
+                        "/cycle/fidelity",
                         "accurate and auto solve the lubricant film: give a lubricant (without one the contact is dry: use fast)",
                     );
                     // Budget of numerical work: every angle of every cycle may run the EHL solver.
                     let cycles = spec.max_updates().saturating_add(1);
-                    let work = (spec.angles as f64) * (cycles as f64) * (spec.ehl.nodes as f64);
+                    let work = (spec.cycle.angles as f64) * (cycles as f64) * (spec.cycle.ehl.nodes as f64);
                     let units = (work / STANDARD_CYCLE_WORK as f64).ceil().min(1e15) as usize;
                     v.limit(
-                        "/ehl/nodes",
+                        "/cycle/ehl/nodes",
                         units,
                         limits.max_evaluations,
                         &format!(
                             "the numerical EHL work of this run — {} angles × {cycles} cycles (at most {NUMERICAL_UPDATE_FACTOR} × the planned \
                              updates, plus the unworn cycle) × {} nodes, counted in cycles of 720 angles × 192 nodes (fewer nodes, \
                              angles or updates reduce it)",
-                            spec.angles, spec.ehl.nodes
+                            spec.cycle.angles, spec.cycle.ehl.nodes
                         ),
                     );
                 }
             }
         }
-        v.check(spec.operation.startup.is_none(), "/operation/startup", "wear needs steady running (no startup)");
+        v.check(spec.cycle.operation.startup.is_none(), "/cycle/operation/startup", "wear needs steady running (no startup)");
         match (spec.hours, spec.cycles) {
             (Some(h), None) => {
                 v.in_range("/hours", h, 1e-6, 1e6);
@@ -992,18 +978,18 @@ impl Kind for Wear {
                 v.check(spec.irgashev.is_none(), "/irgashev", "belongs to model irgashev");
                 if spec.load_share == LoadShareSpec::Asperity {
                     v.check(
-                        spec.lubricant.is_some(),
+                        spec.cycle.lubricant.is_some(),
                         "/load_share",
                         "the asperity share needs a lubricant (without one the contact is dry: use `full`)",
                     );
                     v.check(
-                        spec.lubricant.is_none() || sigma > 0.0,
+                        spec.cycle.lubricant.is_none() || sigma > 0.0,
                         "/load_share",
                         "smooth surfaces carry no asperity load: give roughness_rq of cam or follower, or use `full`",
                     );
                 }
                 if spec.is_roller() {
-                    v.check(spec.lubricant.is_some(), "/lubricant", "is required with a roller follower (its slip)");
+                    v.check(spec.cycle.lubricant.is_some(), "/cycle/lubricant", "is required with a roller follower (its slip)");
                 }
                 if let Some(u) = spec.update_interval_hours {
                     v.check(u.is_finite() && u > 0.0, "/update_interval_hours", "must be a finite number > 0");
@@ -1012,7 +998,7 @@ impl Kind for Wear {
                 if updates > 0 {
                     v.limit("/update_interval_hours", updates, limits.max_evaluations, "the number of profile updates");
                 }
-                if let FollowerSpec::Spherical { .. } = spec.follower {
+                if let FollowerSpec::Spherical { .. } = spec.cycle.follower {
                     // fine: point contact, no follower-face table
                 }
             }
@@ -1035,28 +1021,28 @@ impl Kind for Wear {
                         for (i, s) in ir.slip.iter().enumerate() {
                             v.in_range(&format!("/irgashev/slip/{i}"), *s, 0.0, 10.0);
                         }
-                        if let ProfileSpec::MultiArc { arcs } = &spec.cam.profile {
+                        if let ProfileSpec::MultiArc { arcs } = &spec.cycle.cam.profile {
                             v.check(ir.slip.len() == arcs.len(), "/irgashev/slip", "needs one value per arc");
                         }
                     }
                 }
-                match &spec.cam.profile {
+                match &spec.cycle.cam.profile {
                     ProfileSpec::MultiArc { arcs } => {
-                        v.check(arcs.len() >= 6 && arcs.len() % 2 == 0, "/cam/profile/arcs", "the seed 004 method needs an even number (≥ 6) of arcs: base, flank(s), nose, nose, flank(s), base");
+                        v.check(arcs.len() >= 6 && arcs.len() % 2 == 0, "/cycle/cam/profile/arcs", "the seed 004 method needs an even number (≥ 6) of arcs: base, flank(s), nose, nose, flank(s), base");
                         let total: f64 = arcs.iter().map(|a| a.angle_deg).sum();
-                        v.check((total - 360.0).abs() < 1e-6, "/cam/profile/arcs", format!("the arc angles must add up to 360° (they add up to {total}°)"));
+                        v.check((total - 360.0).abs() < 1e-6, "/cycle/cam/profile/arcs", format!("the arc angles must add up to 360° (they add up to {total}°)"));
                     }
                     _ => {
-                        v.error("/cam/profile", "model irgashev needs a multi_arc profile (seed 004 Tables 1–2)");
+                        v.error("/cycle/cam/profile", "model irgashev needs a multi_arc profile (seed 004 Tables 1–2)");
                     }
                 }
-                v.check(matches!(spec.follower, FollowerSpec::Spherical { .. }), "/follower", "model irgashev needs a spherical follower (the tappet sphere)");
-                match spec.load {
-                    LoadSpec::ValveTrain { spring_stiffness, .. } => {
-                        v.check(spring_stiffness > 0.0, "/load/spring_stiffness", "must be > 0 for model irgashev");
+                v.check(matches!(spec.cycle.follower, FollowerSpec::Spherical { .. }), "/cycle/follower", "model irgashev needs a spherical follower (the tappet sphere)");
+                match spec.cycle.load {
+                    Some(LoadSpec::ValveTrain { spring_stiffness, .. }) => {
+                        v.check(spring_stiffness > 0.0, "/cycle/load/spring_stiffness", "must be > 0 for model irgashev");
                     }
                     _ => {
-                        v.error("/load", "model irgashev needs a valve_train load (spring preload and rate)");
+                        v.error("/cycle/load", "model irgashev needs a valve_train load (spring preload and rate)");
                     }
                 }
             }
