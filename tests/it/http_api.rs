@@ -213,7 +213,7 @@ async fn identical_specs_are_reused_unless_fresh() {
     // Same spec, keys reordered and defaults spelled out: the same job comes back.
     let same = json!({"spec": {
         "profile_points": 61, "outputs": [],
-        "body_2": {"poisson_ratio": 0.3, "shape": "flat", "youngs_modulus": 210e9},
+        "body_2": {"material": {"poisson_ratio": 0.3, "youngs_modulus": 210e9}, "shape": "flat"},
         "body_1": {"radius": 0.02, "shape": "cylinder"},
         "length": 0.01, "load": 500.0, "contact": "line"}, "kind": "hertz"});
     let res = s.post_job(&same).await;
@@ -255,10 +255,10 @@ async fn bad_inputs_are_4xx_problems_with_paths() {
     assert_eq!(p["errors"][0]["path"], "/spec/body_1/shape");
 
     let mut job = hertz_job(-5.0);
-    job["spec"]["body_2"]["poisson_ratio"] = json!(0.7);
+    job["spec"]["body_2"]["material"] = json!({"poisson_ratio": 0.7});
     let p = expect_problem(s.post_job(&job).await, 422, "invalid_spec").await;
     let paths: Vec<&str> = p["errors"].as_array().unwrap().iter().map(|e| e["path"].as_str().unwrap()).collect();
-    assert_eq!(paths, ["/spec/load", "/spec/body_2/poisson_ratio"], "{p}");
+    assert_eq!(paths, ["/spec/load", "/spec/body_2/material/poisson_ratio"], "{p}");
     assert!(p["errors"][0]["message"].as_str().unwrap().contains("> 0"));
 
     let mut job = hertz_job(1.0);

@@ -455,7 +455,7 @@ fn mixed_lubrication_accurate_against_fast_is_explained() {
     };
     let (cf, ca) = (cycle("fast"), cycle("accurate"));
     let sigma = (2e-7f64.powi(2) + 1e-7f64.powi(2)).sqrt();
-    let rough = tribod::jobs::kinds::cam_common::AsperitySpec::default().roughness(sigma);
+    let rough = tribod::jobs::kinds::common::AsperitySpec::default().roughness(sigma);
     let es = num(&ca["contact_modulus"]);
     let at0 = |o: &Value, key: &str| col(&o["series"][key])[0];
     let uniform = |o: &Value| rough.asperity_pressure(at0(o, "film_central"), es) * 2.0 * at0(o, "hertz_half_width") * 0.012 / at0(o, "contact_load");

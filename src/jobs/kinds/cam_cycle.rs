@@ -6,7 +6,7 @@
 //! Only what `outputs` asks for is computed (with its dependencies): a kinematics-only request
 //! runs no contact, film or slip.
 
-use super::cam_common::{composite_sigma, default_e, default_nu, AsperitySpec, EhlSpec, FilmSpec, LubricantSpec, TractionSpec};
+use super::common::{composite_sigma, AsperitySpec, Material, EhlSpec, FilmSpec, LubricantSpec, TractionSpec};
 use crate::jobs::kind::{Kind, Limits, OutputInfo, Validation};
 use crate::physics::cam::cycle::{run_cycle, CycleSpec, FollowerKind, Needs, SlipMode};
 use crate::physics::cam::{CamProfile, FollowerGeometry, FollowerShape, LiftLaw, LiftProgram, LoadModel, MultiArc, PeriodicSpline, PeriodicTable, SpeedSchedule};
@@ -102,12 +102,9 @@ pub struct CamSpec {
     /// `flat_faced`); limits a roller's contact length when smaller than the roller.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub width: Option<f64>,
-    /// Young's modulus, Pa. Default 210e9.
-    #[serde(default = "default_e")]
-    pub youngs_modulus: f64,
-    /// Poisson's ratio. Default 0.3.
-    #[serde(default = "default_nu")]
-    pub poisson_ratio: f64,
+    /// Elastic constants. Default: steel.
+    #[serde(default)]
+    pub material: Material,
     /// RMS surface roughness Rq, m. Default 0 (smooth).
     #[serde(default)]
     pub roughness_rq: f64,
@@ -159,10 +156,9 @@ pub enum FollowerSpec {
         /// Radius of the face, m: the contact must stay on it (`contact_off_face` otherwise).
         #[serde(default, skip_serializing_if = "Option::is_none")]
         face_radius: Option<f64>,
-        #[serde(default = "default_e")]
-        youngs_modulus: f64,
-        #[serde(default = "default_nu")]
-        poisson_ratio: f64,
+        /// Elastic constants. Default: steel.
+        #[serde(default)]
+        material: Material,
         #[serde(default)]
         roughness_rq: f64,
     },
@@ -190,10 +186,9 @@ pub enum FollowerSpec {
         /// Offset of the follower axis from the cam centre, m. Default 0.
         #[serde(default)]
         offset: f64,
-        #[serde(default = "default_e")]
-        youngs_modulus: f64,
-        #[serde(default = "default_nu")]
-        poisson_ratio: f64,
+        /// Elastic constants. Default: steel.
+        #[serde(default)]
+        material: Material,
         #[serde(default)]
         roughness_rq: f64,
     },
@@ -203,10 +198,9 @@ pub enum FollowerSpec {
         radius: f64,
         #[serde(default)]
         offset: f64,
-        #[serde(default = "default_e")]
-        youngs_modulus: f64,
-        #[serde(default = "default_nu")]
-        poisson_ratio: f64,
+        /// Elastic constants. Default: steel.
+        #[serde(default)]
+        material: Material,
         #[serde(default)]
         roughness_rq: f64,
     },
@@ -751,9 +745,9 @@ impl CamCycleSpec {
 
     fn follower_elastic(&self) -> (Elastic, f64) {
         let (e, nu, rq) = match self.follower {
-            FollowerSpec::FlatFaced { youngs_modulus, poisson_ratio, roughness_rq, .. }
-            | FollowerSpec::Roller { youngs_modulus, poisson_ratio, roughness_rq, .. }
-            | FollowerSpec::Spherical { youngs_modulus, poisson_ratio, roughness_rq, .. } => (youngs_modulus, poisson_ratio, roughness_rq),
+            FollowerSpec::FlatFaced { material, roughness_rq, .. }
+            | FollowerSpec::Roller { material, roughness_rq, .. }
+            | FollowerSpec::Spherical { material, roughness_rq, .. } => (material.youngs_modulus, material.poisson_ratio, roughness_rq),
         };
         (Elastic { youngs_modulus: e, poisson_ratio: nu }, rq)
     }
@@ -797,7 +791,7 @@ impl CamCycleSpec {
     pub fn cycle_spec(&self) -> Result<CycleSpec, SolveError> {
         let profile = self.profile()?;
         let (follower_elastic, follower_rq) = self.follower_elastic();
-        let cam_elastic = Elastic { youngs_modulus: self.cam.youngs_modulus, poisson_ratio: self.cam.poisson_ratio };
+        let cam_elastic = self.cam.material.elastic();
         let es = contact_modulus(cam_elastic, follower_elastic);
         let lub = self.lubricant.clone().unwrap_or(LubricantSpec {
             viscosity: 0.01,
@@ -864,7 +858,7 @@ impl CamCycleSpec {
             angles: self.angles,
             load,
             contact_modulus: es,
-            poisson_ratio: self.cam.poisson_ratio,
+            poisson_ratio: self.cam.material.poisson_ratio,
             lubricant,
             temperature,
             roughness: self.asperities.roughness(composite_sigma(self.cam.roughness_rq, follower_rq)),
@@ -1228,20 +1222,19 @@ impl Kind for CamCycle {
         if let Some(w) = spec.cam.width {
             v.positive("/cam/width", w);
         }
-        v.positive("/cam/youngs_modulus", spec.cam.youngs_modulus);
-        v.in_range("/cam/poisson_ratio", spec.cam.poisson_ratio, 0.0, 0.499);
+        spec.cam.material.validate("/cam/material", v);
         v.in_range("/cam/roughness_rq", spec.cam.roughness_rq, 0.0, 1e-4);
         // Follower.
-        let (e, nu, rq) = match &spec.follower {
-            FollowerSpec::FlatFaced { offset, face_radius, youngs_modulus, poisson_ratio, roughness_rq } => {
+        let (material, rq) = match &spec.follower {
+            FollowerSpec::FlatFaced { offset, face_radius, material, roughness_rq } => {
                 v.in_range("/follower/offset", *offset, -1.0, 1.0);
                 if let Some(r) = face_radius {
                     v.positive("/follower/face_radius", *r);
                 }
                 v.check(spec.cam.width.is_some(), "/cam/width", "is required with a flat-faced follower (it is the contact length)");
-                (*youngs_modulus, *poisson_ratio, *roughness_rq)
+                (*material, *roughness_rq)
             }
-            FollowerSpec::Roller { radius, length, pin_radius, clearance, inertia, density, pin, crown, offset, youngs_modulus, poisson_ratio, roughness_rq } => {
+            FollowerSpec::Roller { radius, length, pin_radius, clearance, inertia, density, pin, crown, offset, material, roughness_rq } => {
                 v.in_range("/follower/radius", *radius, 1e-4, 1.0);
                 v.positive("/follower/length", *length);
                 v.check(*pin_radius > 0.0 && pin_radius < radius, "/follower/pin_radius", "must be > 0 and smaller than the roller radius");
@@ -1270,19 +1263,18 @@ impl Kind for CamCycle {
                 if let Some(b) = base {
                     v.check(offset.abs() < b + radius, "/follower/offset", "must be smaller than base radius + roller radius");
                 }
-                (*youngs_modulus, *poisson_ratio, *roughness_rq)
+                (*material, *roughness_rq)
             }
-            FollowerSpec::Spherical { radius, offset, youngs_modulus, poisson_ratio, roughness_rq } => {
+            FollowerSpec::Spherical { radius, offset, material, roughness_rq } => {
                 v.in_range("/follower/radius", *radius, 1e-4, 10.0);
                 v.in_range("/follower/offset", *offset, -1.0, 1.0);
                 if let Some(b) = base {
                     v.check(offset.abs() < b + radius, "/follower/offset", "must be smaller than base radius + face radius");
                 }
-                (*youngs_modulus, *poisson_ratio, *roughness_rq)
+                (*material, *roughness_rq)
             }
         };
-        v.positive("/follower/youngs_modulus", e);
-        v.in_range("/follower/poisson_ratio", nu, 0.0, 0.499);
+        material.validate("/follower/material", v);
         v.in_range("/follower/roughness_rq", rq, 0.0, 1e-4);
         // Operation.
         v.in_range("/operation/speed_rpm", spec.operation.speed_rpm, 1e-3, 1e5);

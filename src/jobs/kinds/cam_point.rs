@@ -3,9 +3,9 @@
 //! gross-sliding threshold. A point analysis has no cycle, so it is its own kind rather than a
 //! `cam_cycle` option. Physics: `physics::roller::point`.
 
-use super::cam_common::{composite_sigma, default_e, default_nu, AsperitySpec, EhlSpec, FilmSpec, LubricantSpec, TractionSpec};
+use super::common::{composite_sigma, AsperitySpec, Material, EhlSpec, FilmSpec, LubricantSpec, TractionSpec};
 use crate::jobs::kind::{Kind, Limits, Validation};
-use crate::physics::contact::{contact_modulus, hertz_line, Elastic};
+use crate::physics::contact::{contact_modulus, hertz_line};
 use crate::physics::film::{model_for, ContactInput, ContactShape, Fidelity, FilmModelId};
 use crate::physics::roller::PointCase;
 use crate::physics::{ensure_finite, Convergence, Observer, SolveError};
@@ -19,12 +19,9 @@ pub struct CamPoint;
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, ToSchema)]
 #[serde(deny_unknown_fields)]
 pub struct PointBody {
-    /// Young's modulus, Pa. Default 210e9.
-    #[serde(default = "default_e")]
-    pub youngs_modulus: f64,
-    /// Poisson's ratio. Default 0.3.
-    #[serde(default = "default_nu")]
-    pub poisson_ratio: f64,
+    /// Elastic constants. Default: steel.
+    #[serde(default)]
+    pub material: Material,
     /// RMS roughness Rq, m. Default 0.
     #[serde(default)]
     pub roughness_rq: f64,
@@ -32,7 +29,7 @@ pub struct PointBody {
 
 impl Default for PointBody {
     fn default() -> Self {
-        PointBody { youngs_modulus: default_e(), poisson_ratio: default_nu(), roughness_rq: 0.0 }
+        PointBody { material: Material::default(), roughness_rq: 0.0 }
     }
 }
 
@@ -183,8 +180,8 @@ impl Kind for CamPoint {
             "load": 12500.0, "reduced_radius": 0.0105, "cam_surface_velocity": 3.98, "contact_length": 0.021,
             "roller": {"radius": 0.018, "pin_radius": 0.0091},
             "pin_friction": [0.002, 0.005, 0.01, 0.02],
-            "cam": {"youngs_modulus": 200e9, "roughness_rq": 0.169e-6},
-            "follower": {"youngs_modulus": 200e9, "roughness_rq": 0.119e-6},
+            "cam": {"material": {"youngs_modulus": 200e9}, "roughness_rq": 0.169e-6},
+            "follower": {"material": {"youngs_modulus": 200e9}, "roughness_rq": 0.119e-6},
             "lubricant": {"viscosity": 0.013, "pressure_viscosity": 1.84e-8},
             "asperities": {"boundary_friction": 0.12}
         })
@@ -205,8 +202,7 @@ impl Kind for CamPoint {
             v.in_range(&format!("/pin_friction/{i}"), *m, 0.0, 1.0);
         }
         for (name, b) in [("cam", spec.cam), ("follower", spec.follower)] {
-            v.positive(&format!("/{name}/youngs_modulus"), b.youngs_modulus);
-            v.in_range(&format!("/{name}/poisson_ratio"), b.poisson_ratio, 0.0, 0.499);
+            b.material.validate(&format!("/{name}/material"), v);
             v.in_range(&format!("/{name}/roughness_rq"), b.roughness_rq, 0.0, 1e-4);
         }
         spec.lubricant.validate("/lubricant", v);
@@ -219,8 +215,8 @@ impl Kind for CamPoint {
 
     fn solve(spec: &CamPointSpec, observer: &dyn Observer) -> Result<CamPointResult, SolveError> {
         let es = contact_modulus(
-            Elastic { youngs_modulus: spec.cam.youngs_modulus, poisson_ratio: spec.cam.poisson_ratio },
-            Elastic { youngs_modulus: spec.follower.youngs_modulus, poisson_ratio: spec.follower.poisson_ratio },
+            spec.cam.material.elastic(),
+            spec.follower.material.elastic(),
         );
         let model = model_for(spec.fidelity, spec.film.to_physics(), spec.ehl.to_physics());
         let lub = spec.lubricant.to_physics();

@@ -7,113 +7,13 @@ use crate::physics::ehl::formulas::{
     moes_central_film, pan_hamrock_central_film, pan_hamrock_minimum_film, Groups,
 };
 use crate::physics::ehl::{solve, EhlInput, EhlOptions, Rheology, Upwind};
-use crate::physics::lubricant::{DensityModel, Lubricant, ViscosityModel};
+use super::common::{LubricantSpec, Material};
 use crate::physics::{Convergence, Observer, SolveError};
 use serde::{Deserialize, Serialize};
 use serde_json::{json, Value};
 use utoipa::ToSchema;
 
 pub struct EhlPoint;
-
-/// Elastic constants of one body.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, ToSchema)]
-#[serde(deny_unknown_fields)]
-pub struct Material {
-    /// Young's modulus, Pa. Default 210e9 (steel).
-    #[serde(default = "default_e")]
-    pub youngs_modulus: f64,
-    /// Poisson's ratio. Default 0.3.
-    #[serde(default = "default_nu")]
-    pub poisson_ratio: f64,
-}
-
-impl Default for Material {
-    fn default() -> Self {
-        Material { youngs_modulus: default_e(), poisson_ratio: default_nu() }
-    }
-}
-
-fn default_e() -> f64 {
-    Elastic::STEEL.youngs_modulus
-}
-fn default_nu() -> f64 {
-    Elastic::STEEL.poisson_ratio
-}
-
-/// Lubricant rheology of `ehl_point` (its own schema: every field defaults to the seed 000 oil and
-/// the film temperature is the spec's `temperature`; the cam kinds' `LubricantSpec` requires the
-/// viscosities and carries the inlet temperature). Defaults: the seed 000 oil (η0 = 0.152 Pa·s, α = 2.2e-8 1/Pa,
-/// β = 0.042 1/K, T0 = 303 K, ρ0 = 870 kg/m³, Roelands, Dowson–Higginson).
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, ToSchema)]
-#[serde(deny_unknown_fields)]
-pub struct EhlLubricantSpec {
-    /// Viscosity at ambient pressure and the reference temperature, Pa·s.
-    #[serde(default = "d_eta")]
-    pub viscosity: f64,
-    /// Pressure–viscosity coefficient α, 1/Pa (Barus; the low-pressure slope for Roelands).
-    #[serde(default = "d_alpha")]
-    pub pressure_viscosity: f64,
-    /// Temperature–viscosity coefficient β, 1/K.
-    #[serde(default = "d_beta")]
-    pub temperature_viscosity: f64,
-    /// Reference temperature T0, K.
-    #[serde(default = "d_t0")]
-    pub reference_temperature: f64,
-    /// Density at ambient pressure and T0, kg/m³.
-    #[serde(default = "d_rho")]
-    pub density: f64,
-    /// `barus` or `roelands` (default).
-    #[serde(default)]
-    pub viscosity_model: ViscosityModel,
-    /// `incompressible` or `dowson_higginson` (default).
-    #[serde(default)]
-    pub density_model: DensityModel,
-}
-
-fn d_eta() -> f64 {
-    Lubricant::SEED000.viscosity
-}
-fn d_alpha() -> f64 {
-    Lubricant::SEED000.pressure_viscosity
-}
-fn d_beta() -> f64 {
-    Lubricant::SEED000.temperature_viscosity
-}
-fn d_t0() -> f64 {
-    Lubricant::SEED000.reference_temperature
-}
-fn d_rho() -> f64 {
-    Lubricant::SEED000.density
-}
-
-impl Default for EhlLubricantSpec {
-    fn default() -> Self {
-        let l = Lubricant::SEED000;
-        EhlLubricantSpec {
-            viscosity: l.viscosity,
-            pressure_viscosity: l.pressure_viscosity,
-            temperature_viscosity: l.temperature_viscosity,
-            reference_temperature: l.reference_temperature,
-            density: l.density,
-            viscosity_model: l.viscosity_model,
-            density_model: l.density_model,
-        }
-    }
-}
-
-impl EhlLubricantSpec {
-    fn lubricant(&self) -> Lubricant {
-        Lubricant {
-            viscosity: self.viscosity,
-            pressure_viscosity: self.pressure_viscosity,
-            temperature_viscosity: self.temperature_viscosity,
-            reference_temperature: self.reference_temperature,
-            density: self.density,
-            viscosity_model: self.viscosity_model,
-            density_model: self.density_model,
-        }
-    }
-}
 
 /// Shear law for the traction (the film itself is Newtonian and isothermal).
 #[derive(Debug, Clone, Copy, PartialEq, Default, Serialize, Deserialize, ToSchema)]
@@ -157,12 +57,11 @@ pub struct EhlPointSpec {
     pub body_1: Material,
     #[serde(default)]
     pub body_2: Material,
-    #[serde(default)]
-    pub lubricant: EhlLubricantSpec,
-    /// Film temperature, K (isothermal; thermal effects are not modelled). Default: the
-    /// lubricant's reference temperature.
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub temperature: Option<f64>,
+    /// The oil, as for the cam kinds; its `temperature` is the film temperature (isothermal:
+    /// thermal effects are not modelled). Absent: the seed 000 oil (η0 = 0.152 Pa·s,
+    /// α = 2.2e-8 1/Pa, β = 0.042 1/K, T0 = 303 K, ρ0 = 870 kg/m³, Roelands, Dowson–Higginson).
+    #[serde(default = "LubricantSpec::seed000")]
+    pub lubricant: LubricantSpec,
     #[serde(default)]
     pub rheology: EhlRheologySpec,
     /// Grid nodes across the domain (graded towards inlet and exit). Default 256; 512 resolves
@@ -306,20 +205,9 @@ impl Kind for EhlPoint {
         v.check(spec.entrainment_velocity.is_finite() && spec.entrainment_velocity != 0.0,
             "/entrainment_velocity", "must be a finite non-zero number (a steady film needs entrainment)");
         v.check(spec.sliding_velocity.is_finite(), "/sliding_velocity", "must be finite");
-        for (name, m) in [("/body_1", &spec.body_1), ("/body_2", &spec.body_2)] {
-            v.positive(&format!("{name}/youngs_modulus"), m.youngs_modulus);
-            v.check(m.poisson_ratio.is_finite() && (-1.0..0.5).contains(&m.poisson_ratio),
-                &format!("{name}/poisson_ratio"), "must be in [-1, 0.5)");
-        }
-        let l = &spec.lubricant;
-        v.positive("/lubricant/viscosity", l.viscosity);
-        v.in_range("/lubricant/pressure_viscosity", l.pressure_viscosity, 0.0, 1e-7);
-        v.in_range("/lubricant/temperature_viscosity", l.temperature_viscosity, 0.0, 1.0);
-        v.in_range("/lubricant/reference_temperature", l.reference_temperature, 200.0, 600.0);
-        v.positive("/lubricant/density", l.density);
-        if let Some(t) = spec.temperature {
-            v.in_range("/temperature", t, 200.0, 600.0);
-        }
+        spec.body_1.validate("/body_1", v);
+        spec.body_2.validate("/body_2", v);
+        spec.lubricant.validate("/lubricant", v);
         if let Some(t0) = spec.rheology.eyring_stress {
             v.positive("/rheology/eyring_stress", t0);
         }
@@ -338,8 +226,8 @@ impl Kind for EhlPoint {
         let e1 = Elastic { youngs_modulus: spec.body_1.youngs_modulus, poisson_ratio: spec.body_1.poisson_ratio };
         let e2 = Elastic { youngs_modulus: spec.body_2.youngs_modulus, poisson_ratio: spec.body_2.poisson_ratio };
         let ep = effective_modulus(e1, e2);
-        let lubricant = spec.lubricant.lubricant();
-        let temperature = spec.temperature.unwrap_or(lubricant.reference_temperature);
+        let lubricant = spec.lubricant.to_physics();
+        let temperature = spec.lubricant.inlet_temperature();
         let w = spec.load / spec.length;
         let input = EhlInput {
             load_per_length: w,

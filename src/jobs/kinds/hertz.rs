@@ -2,6 +2,7 @@
 //! stress maxima. Closed forms only (`physics::contact`).
 
 use crate::jobs::kind::{Kind, Limits, OutputInfo, Validation};
+use super::common::Material;
 use crate::physics::contact::{
     circular_axis_stress, circular_max_shear, contact_modulus, hertz_line, hertz_point,
     line_stress, line_stress_maxima, reduced_radius, Elastic, StressMaximum,
@@ -49,24 +50,14 @@ pub struct Body {
     /// Radius of curvature in the y direction, m (`ellipsoid` only). Positive convex, negative concave.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub transverse_radius: Option<f64>,
-    /// Young's modulus, Pa. Default 210e9 (steel).
-    #[serde(default = "default_e")]
-    pub youngs_modulus: f64,
-    /// Poisson's ratio. Default 0.3.
-    #[serde(default = "default_nu")]
-    pub poisson_ratio: f64,
-}
-
-fn default_e() -> f64 {
-    Elastic::STEEL.youngs_modulus
-}
-fn default_nu() -> f64 {
-    Elastic::STEEL.poisson_ratio
+    /// Elastic constants. Default: steel.
+    #[serde(default)]
+    pub material: Material,
 }
 
 impl Body {
     fn elastic(&self) -> Elastic {
-        Elastic { youngs_modulus: self.youngs_modulus, poisson_ratio: self.poisson_ratio }
+        self.material.elastic()
     }
     /// Signed radii `(x, y)`; `INFINITY` where flat.
     fn radii(&self) -> (f64, f64) {
@@ -226,13 +217,7 @@ impl Kind for Hertz {
         // (a load of 1e308 N used to end as an internal error instead of a 422).
         v.positive("/load", spec.load).check(spec.load <= 1e9, "/load", "must be at most 1e9 N");
         for (name, body) in [("/body_1", &spec.body_1), ("/body_2", &spec.body_2)] {
-            let e = body.youngs_modulus;
-            v.positive(&format!("{name}/youngs_modulus"), e).check(e <= 1e13, &format!("{name}/youngs_modulus"), "must be at most 1e13 Pa");
-            v.check(
-                body.poisson_ratio.is_finite() && (-1.0..0.5).contains(&body.poisson_ratio),
-                &format!("{name}/poisson_ratio"),
-                "must be in [-1, 0.5)",
-            );
+            body.material.validate(&format!("{name}/material"), v);
             let needs_radius = body.shape != Shape::Flat;
             match body.radius {
                 Some(r) => v.check(
@@ -295,7 +280,7 @@ impl Kind for Hertz {
 
     fn solve(spec: &HertzSpec, _observer: &dyn Observer) -> Result<HertzResult, SolveError> {
         let es = contact_modulus(spec.body_1.elastic(), spec.body_2.elastic());
-        let nu = spec.body_1.poisson_ratio;
+        let nu = spec.body_1.material.poisson_ratio;
         let (x1, y1) = spec.body_1.radii();
         let (x2, y2) = spec.body_2.radii();
         let rx = reduced_radius(x1, x2)

@@ -2,7 +2,7 @@
 
 pub mod bearing;
 pub mod bearing_optimisation;
-pub mod cam_common;
+pub mod common;
 pub mod cam_cycle;
 pub mod cam_point;
 pub mod ehl_point;

@@ -14,9 +14,9 @@
 //!   `physics::wear::irgashev`. Physics: `physics::wear::irgashev`.
 
 use super::cam_cycle::{CamCycle, CamCycleSpec, CamOutput, FollowerSpec, LoadSpec, ProfileSpec, ThermalPair};
-use super::cam_common::composite_sigma;
+use super::common::composite_sigma;
 use crate::jobs::kind::{Kind, Limits, Validation};
-use crate::physics::contact::{contact_modulus, Elastic};
+use crate::physics::contact::contact_modulus;
 use crate::physics::film::{model_for, FilmFormula, FilmModelId, Fidelity};
 use crate::physics::wear::irgashev::{self, ArcRole, IrgashevInput};
 use crate::physics::wear::{evolve, ArchardParams, LoadShare, Stop, WearRun};
@@ -767,21 +767,21 @@ pub fn irgashev_input(spec: &WearSpec) -> Result<IrgashevInput, SolveError> {
     let ProfileSpec::MultiArc { arcs } = &spec.cycle.cam.profile else {
         return Err(SolveError::invalid("/cycle/cam/profile", "model irgashev needs a multi_arc profile"));
     };
-    let FollowerSpec::Spherical { radius, youngs_modulus, poisson_ratio, .. } = spec.cycle.follower else {
+    let FollowerSpec::Spherical { radius, material, .. } = spec.cycle.follower else {
         return Err(SolveError::invalid("/cycle/follower", "model irgashev needs a spherical follower"));
     };
     let Some(LoadSpec::ValveTrain { spring_preload, spring_stiffness, .. }) = spec.cycle.load else {
         return Err(SolveError::invalid("/cycle/load", "model irgashev needs a valve_train load"));
     };
     let es = contact_modulus(
-        Elastic { youngs_modulus: spec.cycle.cam.youngs_modulus, poisson_ratio: spec.cycle.cam.poisson_ratio },
-        Elastic { youngs_modulus, poisson_ratio },
+        spec.cycle.cam.material.elastic(),
+        material.elastic(),
     );
     Ok(IrgashevInput {
         arcs: arcs.iter().map(|a| (a.radius * 1e3, a.angle_deg)).collect(),
         tappet_radius: radius * 1e3,
-        youngs: spec.cycle.cam.youngs_modulus * 1e-6,
-        poisson: spec.cycle.cam.poisson_ratio,
+        youngs: spec.cycle.cam.material.youngs_modulus * 1e-6,
+        poisson: spec.cycle.cam.material.poisson_ratio,
         preload: spring_preload,
         spring_rate: spring_stiffness * 1e-3,
         nose_lift: ir.nose_lift * 1e3,

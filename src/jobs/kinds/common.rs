@@ -1,7 +1,9 @@
-//! Spec pieces shared by the cam kinds (`cam_cycle`, `cam_point`): lubricant, surfaces, traction,
-//! film options, and their conversion to `physics` types.
+//! Spec pieces shared by the kinds — the one material type and the one lubricant type, with their
+//! defaults — and by the cam kinds (`cam_cycle`, `cam_point`, `wear`): surfaces, traction, film
+//! options; and their conversion to `physics` types.
 
 use crate::jobs::kind::{Limits, Validation};
+use crate::physics::contact::Elastic;
 use crate::physics::ehl::{EhlOptions, Extrapolation};
 use crate::physics::film::{AccurateSettings, ClosedForm, FilmFormula};
 use crate::physics::friction::{AsperityFriction, AsperityModel, Rheology, Roughness, TractionLaw};
@@ -9,11 +11,42 @@ use crate::physics::lubricant::{DensityModel, Lubricant, ViscosityModel};
 use serde::{Deserialize, Serialize};
 use utoipa::ToSchema;
 
-pub fn default_e() -> f64 {
-    210e9
+/// Elastic constants of one body (every kind: `hertz` bodies, `ehl_point` bodies, the cam and
+/// follower of the cam kinds). Default: steel.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, ToSchema)]
+#[serde(deny_unknown_fields)]
+pub struct Material {
+    /// Young's modulus, Pa. Default 210e9 (steel).
+    #[serde(default = "default_e")]
+    pub youngs_modulus: f64,
+    /// Poisson's ratio. Default 0.3.
+    #[serde(default = "default_nu")]
+    pub poisson_ratio: f64,
 }
-pub fn default_nu() -> f64 {
-    0.3
+
+fn default_e() -> f64 {
+    Elastic::STEEL.youngs_modulus
+}
+fn default_nu() -> f64 {
+    Elastic::STEEL.poisson_ratio
+}
+
+impl Default for Material {
+    fn default() -> Self {
+        Material { youngs_modulus: default_e(), poisson_ratio: default_nu() }
+    }
+}
+
+impl Material {
+    pub fn elastic(&self) -> Elastic {
+        Elastic { youngs_modulus: self.youngs_modulus, poisson_ratio: self.poisson_ratio }
+    }
+    /// E in (0, 1e13] Pa (far above any solid, low enough that nothing overflows); ν in [-1, 0.5).
+    pub fn validate(&self, path: &str, v: &mut Validation) {
+        let (e, e_path, nu_path) = (self.youngs_modulus, format!("{path}/youngs_modulus"), format!("{path}/poisson_ratio"));
+        v.positive(&e_path, e).check(e <= 1e13, &e_path, "must be at most 1e13 Pa");
+        v.check(self.poisson_ratio.is_finite() && (-1.0..0.5).contains(&self.poisson_ratio), &nu_path, "must be in [-1, 0.5)");
+    }
 }
 fn default_ref_temperature() -> f64 {
     313.0
@@ -39,7 +72,8 @@ pub struct LubricantSpec {
     /// Temperature at which `viscosity` is given, K. Default 313.
     #[serde(default = "default_ref_temperature")]
     pub reference_temperature: f64,
-    /// Oil inlet temperature, K. Default: `reference_temperature`.
+    /// Oil temperature at the contact inlet, K (the film temperature of the isothermal models).
+    /// Default: `reference_temperature`.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub temperature: Option<f64>,
     /// Density at ambient pressure, kg/m³. Default 870.
@@ -54,6 +88,22 @@ pub struct LubricantSpec {
 }
 
 impl LubricantSpec {
+    /// The seed 000 oil (η0 = 0.152 Pa·s, α = 2.2e-8 1/Pa, β = 0.042 1/K, T0 = 303 K,
+    /// ρ0 = 870 kg/m³, Roelands, Dowson–Higginson): `ehl_point`'s lubricant when none is given.
+    pub fn seed000() -> Self {
+        let l = Lubricant::SEED000;
+        LubricantSpec {
+            viscosity: l.viscosity,
+            pressure_viscosity: l.pressure_viscosity,
+            temperature_viscosity: l.temperature_viscosity,
+            reference_temperature: l.reference_temperature,
+            temperature: None,
+            density: l.density,
+            viscosity_model: l.viscosity_model,
+            density_model: l.density_model,
+        }
+    }
+
     pub fn to_physics(&self) -> Lubricant {
         Lubricant {
             viscosity: self.viscosity,
