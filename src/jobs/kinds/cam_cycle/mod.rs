@@ -1,0 +1,237 @@
+//! `cam_cycle`: a cam–follower pair over one revolution — kinematics, loads, Hertz contact and
+//! sub-surface shear, lubricant film, friction and power loss, roller slip (steady or startup),
+//! flash temperature. Physics in `physics::cam`, `physics::film`, `physics::friction`,
+//! `physics::roller`, `physics::thermal`.
+//!
+//! Only what `outputs` asks for is computed (with its dependencies): a kinematics-only request
+//! runs no contact, film or slip.
+//!
+//! Files: `spec.rs` (the request), `result.rs` (the answer), `solve.rs` (spec → physics → result);
+//! this file is the kind: example, validation, solve.
+
+mod result;
+mod solve;
+mod spec;
+
+pub use result::*;
+pub use spec::*;
+use solve::*;
+
+use crate::jobs::kind::{Kind, Limits, OutputInfo, Validation};
+use crate::physics::film::Fidelity;
+use crate::physics::{Observer, SolveError};
+use serde_json::{json, Value};
+
+pub struct CamCycle;
+
+impl Kind for CamCycle {
+    const NAME: &'static str = "cam_cycle";
+    const SOLVER_VERSION: &'static str = "cam_cycle-4";
+    const DESCRIPTION: &'static str = "Cam–follower pair over one revolution: kinematics, loads, Hertz contact, \
+        lubricant film, friction and power loss, roller slip (steady or startup) and flash temperature \
+        (fidelity fast: closed forms; accurate: numerical line-contact EHL with squeeze at every angle; auto: \
+        closed forms where their estimated error is within tolerance).";
+    const TABLES: &'static [&'static str] = &["series"];
+    type Spec = CamCycleSpec;
+    type Output = CamCycleResult;
+
+    fn example() -> Value {
+        json!({
+            "cam": {
+                "profile": {"type": "rise_return", "base_radius": 0.018, "lift": 0.008, "rise_start_deg": 90.0,
+                            "rise_deg": 90.0, "return_deg": 90.0, "law": "cycloidal"},
+                "width": 0.012
+            },
+            "follower": {"type": "flat_faced"},
+            "operation": {"speed_rpm": 3000.0},
+            "load": {"type": "valve_train", "spring_preload": 300.0, "spring_stiffness": 38000.0, "moving_mass": 0.25},
+            "lubricant": {"viscosity": 0.01, "pressure_viscosity": 2.2e-8},
+            "angles": 720
+        })
+    }
+
+    fn outputs() -> &'static [OutputInfo] {
+        &[
+            OutputInfo { name: "kinematics", description: "lift, velocity, acceleration, jerk, pressure angle, curvature, surface velocities (always computed)" },
+            OutputInfo { name: "loads", description: "axial and contact loads, follower separation" },
+            OutputInfo { name: "contact", description: "Hertz pressure and half-width, sub-surface shear maximum" },
+            OutputInfo { name: "film", description: "central and minimum film, lambda ratio, asperity load share" },
+            OutputInfo { name: "friction", description: "traction, friction coefficient, camshaft friction torque, power loss" },
+            OutputInfo { name: "slip", description: "roller speed, slide-to-roll ratio, pin torque (roller followers)" },
+            OutputInfo { name: "temperature", description: "flash temperature rise (Blok/Jaeger)" },
+            OutputInfo { name: "profiles", description: "pressure and film profiles at profile_angles_deg (accurate/auto; not in the default list)" },
+        ]
+    }
+
+    fn validate(spec: &CamCycleSpec, limits: &Limits, v: &mut Validation) {
+        v.count_in_range("/angles", spec.angles, 8, usize::MAX);
+        v.limit("/angles", spec.angles, limits.max_angles, "the number of cam angles");
+        spec.ehl.validate("/ehl", limits, v);
+        if spec.outputs.contains(&CamOutput::Profiles) {
+            v.check(spec.fidelity != Fidelity::Fast, "/outputs", "profiles need fidelity accurate or auto (the closed forms have none)");
+            v.check(!spec.profile_angles_deg.is_empty(), "/profile_angles_deg", "the profiles output needs at least one angle");
+            v.check(spec.profile_angles_deg.len() <= 64, "/profile_angles_deg", "at most 64 profile angles");
+            v.check(spec.profile_angles_deg.iter().all(|a| a.is_finite()), "/profile_angles_deg", "angles must be finite");
+        }
+        // Cam.
+        let base = match &spec.cam.profile {
+            ProfileSpec::RiseReturn { base_radius, lift, rise_start_deg, rise_deg, top_dwell_deg, return_deg, .. } => {
+                v.positive("/cam/profile/lift", *lift);
+                v.in_range("/cam/profile/rise_start_deg", *rise_start_deg, -360.0, 360.0);
+                v.in_range("/cam/profile/rise_deg", *rise_deg, 1e-3, 360.0);
+                v.in_range("/cam/profile/top_dwell_deg", *top_dwell_deg, 0.0, 360.0);
+                v.in_range("/cam/profile/return_deg", *return_deg, 1e-3, 360.0);
+                v.check(
+                    rise_deg + top_dwell_deg + return_deg <= 360.0 + 1e-9,
+                    "/cam/profile/return_deg",
+                    "rise + top dwell + return must fit in 360°",
+                );
+                Some(*base_radius)
+            }
+            ProfileSpec::MultiArc { arcs } => {
+                v.check(arcs.len() >= 2 && arcs.len() <= 1000, "/cam/profile/arcs", "needs 2 to 1000 arcs");
+                for (i, a) in arcs.iter().enumerate() {
+                    v.positive(&format!("/cam/profile/arcs/{i}/radius"), a.radius);
+                    v.in_range(&format!("/cam/profile/arcs/{i}/angle_deg"), a.angle_deg, 1e-9, 360.0);
+                }
+                arcs.first().map(|a| a.radius)
+            }
+            ProfileSpec::SymmetricArcs { base_radius, base_angle_deg, flanks } => {
+                v.in_range("/cam/profile/base_angle_deg", *base_angle_deg, 1e-9, 360.0);
+                v.check(flanks.len() <= 1000, "/cam/profile/flanks", "at most 1000 flank arcs");
+                for (i, a) in flanks.iter().enumerate() {
+                    v.positive(&format!("/cam/profile/flanks/{i}/radius"), a.radius);
+                    v.in_range(&format!("/cam/profile/flanks/{i}/angle_deg"), a.angle_deg, 1e-9, 360.0);
+                }
+                Some(*base_radius)
+            }
+            ProfileSpec::Table { base_radius, angle_deg, lift } => {
+                v.check(angle_deg.len() == lift.len(), "/cam/profile/lift", "must have as many entries as angle_deg");
+                v.check(angle_deg.len() >= 4, "/cam/profile/angle_deg", "needs at least 4 points");
+                v.limit("/cam/profile/angle_deg", angle_deg.len(), limits.max_angles, "the number of table points");
+                v.check(
+                    angle_deg.windows(2).all(|w| w[1] > w[0]) && angle_deg.last().zip(angle_deg.first()).is_none_or(|(l, f)| l - f < 360.0),
+                    "/cam/profile/angle_deg",
+                    "angles must increase strictly and span less than 360°",
+                );
+                v.check(lift.iter().all(|x| x.is_finite()), "/cam/profile/lift", "must be finite numbers");
+                Some(*base_radius)
+            }
+        };
+        if let Some(b) = base {
+            v.in_range("/cam/profile/base_radius", b, 1e-4, 10.0);
+        }
+        if let Some(w) = spec.cam.width {
+            v.positive("/cam/width", w);
+        }
+        spec.cam.material.validate("/cam/material", v);
+        v.in_range("/cam/roughness_rq", spec.cam.roughness_rq, 0.0, 1e-4);
+        // Follower.
+        let (material, rq) = match &spec.follower {
+            FollowerSpec::FlatFaced { offset, face_radius, material, roughness_rq } => {
+                v.in_range("/follower/offset", *offset, -1.0, 1.0);
+                if let Some(r) = face_radius {
+                    v.positive("/follower/face_radius", *r);
+                }
+                v.check(spec.cam.width.is_some(), "/cam/width", "is required with a flat-faced follower (it is the contact length)");
+                (*material, *roughness_rq)
+            }
+            FollowerSpec::Roller { radius, length, pin_radius, clearance, inertia, density, pin, crown, offset, material, roughness_rq } => {
+                v.in_range("/follower/radius", *radius, 1e-4, 1.0);
+                v.positive("/follower/length", *length);
+                v.check(*pin_radius > 0.0 && pin_radius < radius, "/follower/pin_radius", "must be > 0 and smaller than the roller radius");
+                v.in_range("/follower/clearance", *clearance, 1e-8, 1e-3);
+                if let Some(i) = inertia {
+                    v.non_negative("/follower/inertia", *i);
+                }
+                v.positive("/follower/density", *density);
+                match pin {
+                    PinSpec::Coefficient { coefficient } => {
+                        v.in_range("/follower/pin/coefficient", *coefficient, 0.0, 1.0);
+                    }
+                    PinSpec::Hydrodynamic { length: l } => {
+                        if let Some(l) = l {
+                            v.positive("/follower/pin/length", *l);
+                        }
+                        v.check(spec.lubricant.is_some(), "/lubricant", "is required by a hydrodynamic pin");
+                    }
+                }
+                if let Some(c) = crown {
+                    v.check(c.middle_length > 0.0 && c.middle_length <= *length, "/follower/crown/middle_length", "must be in (0, length]");
+                    v.in_range("/follower/crown/crown_height", c.crown_height, 0.0, 1e-3);
+                    v.positive("/follower/crown/end_radius", c.end_radius);
+                }
+                v.in_range("/follower/offset", *offset, -1.0, 1.0);
+                if let Some(b) = base {
+                    v.check(offset.abs() < b + radius, "/follower/offset", "must be smaller than base radius + roller radius");
+                }
+                (*material, *roughness_rq)
+            }
+            FollowerSpec::Spherical { radius, offset, material, roughness_rq } => {
+                v.in_range("/follower/radius", *radius, 1e-4, 10.0);
+                v.in_range("/follower/offset", *offset, -1.0, 1.0);
+                if let Some(b) = base {
+                    v.check(offset.abs() < b + radius, "/follower/offset", "must be smaller than base radius + face radius");
+                }
+                (*material, *roughness_rq)
+            }
+        };
+        material.validate("/follower/material", v);
+        v.in_range("/follower/roughness_rq", rq, 0.0, 1e-4);
+        // Operation.
+        v.in_range("/operation/speed_rpm", spec.operation.speed_rpm, 1e-3, 1e5);
+        if let Some(s) = spec.operation.startup {
+            v.in_range("/operation/startup/rated_angle_deg", s.rated_angle_deg, 1.0, 360.0);
+        }
+        // Needs.
+        let needs = spec.needs();
+        if needs.loads {
+            v.check(spec.load.is_some(), "/load", "is required unless only kinematics are requested");
+        }
+        if needs.film {
+            v.check(spec.lubricant.is_some(), "/lubricant", "is required for film, friction, slip or temperature outputs");
+        }
+        match &spec.load {
+            Some(LoadSpec::ValveTrain { spring_preload, spring_stiffness, moving_mass, external }) => {
+                v.in_range("/load/spring_preload", *spring_preload, -1e7, 1e7);
+                v.in_range("/load/spring_stiffness", *spring_stiffness, 0.0, 1e10);
+                v.in_range("/load/moving_mass", *moving_mass, 0.0, 1e4);
+                if let Some(t) = external {
+                    check_table(v, "/load/external", &t.angle_deg, &t.force, "force", limits);
+                }
+            }
+            Some(LoadSpec::Spectrum { angle_deg, load, offset }) => {
+                check_table(v, "/load", angle_deg, load, "load", limits);
+                v.in_range("/load/offset", *offset, -1e7, 1e7);
+            }
+            None => {}
+        }
+        if let Some(l) = &spec.lubricant {
+            l.validate("/lubricant", v);
+        }
+        spec.asperities.validate("/asperities", v);
+        spec.traction.validate("/traction", v);
+        spec.film.validate("/film", v);
+        v.in_range("/slip/tolerance", spec.slip.tolerance, 1e-14, 1e-1);
+        v.count_in_range("/slip/max_cycles", spec.slip.max_cycles, 1, 10_000);
+        for (name, t) in [("cam", spec.thermal.cam), ("follower", spec.thermal.follower)] {
+            v.positive(&format!("/thermal/{name}/conductivity"), t.conductivity);
+            v.positive(&format!("/thermal/{name}/density"), t.density);
+            v.positive(&format!("/thermal/{name}/specific_heat"), t.specific_heat);
+        }
+    }
+
+    fn solve(spec: &CamCycleSpec, observer: &dyn Observer) -> Result<CamCycleResult, SolveError> {
+        solve_spec(spec, observer)
+    }
+}
+
+fn check_table(v: &mut Validation, path: &str, angles: &[f64], values: &[f64], name: &str, limits: &Limits) {
+    v.check(!angles.is_empty() && angles.len() == values.len(), &format!("{path}/{name}"), "must be non-empty and as long as angle_deg");
+    v.limit(&format!("{path}/angle_deg"), angles.len(), limits.max_angles, "the number of table points");
+    v.check(angles.iter().chain(values).all(|x| x.is_finite()), &format!("{path}/angle_deg"), "entries must be finite numbers");
+    let mut wrapped: Vec<f64> = angles.iter().map(|a| a.rem_euclid(360.0)).collect();
+    wrapped.sort_by(|a, b| a.total_cmp(b));
+    v.check(wrapped.windows(2).all(|w| w[1] > w[0]), &format!("{path}/angle_deg"), "angles must be distinct within one revolution");
+}
+

@@ -1,0 +1,274 @@
+//! The `cam_cycle` result: per-angle series, summary, events, film profiles.
+
+use crate::physics::film::{Fidelity, FilmModelId};
+use std::collections::BTreeMap;
+use crate::physics::Convergence;
+use serde::Serialize;
+use utoipa::ToSchema;
+
+/// Per-angle results, columnar, SI units, angles in degrees. A column is absent when it was not
+/// requested or does not apply; velocities are tangential components relative to the moving
+/// contact point, positive in the direction of the cam surface's motion on the base circle.
+#[derive(Debug, Clone, PartialEq, Default, Serialize, ToSchema)]
+pub struct CamSeries {
+    /// Cam angle, degrees.
+    pub angle_deg: Vec<f64>,
+    /// Time since the start of the revolution, s.
+    pub time: Vec<f64>,
+    /// Camshaft angular speed, rad/s.
+    pub cam_speed: Vec<f64>,
+    /// Follower lift, m.
+    pub lift: Vec<f64>,
+    /// Follower velocity, m/s.
+    pub velocity: Vec<f64>,
+    /// Follower acceleration, m/s².
+    pub acceleration: Vec<f64>,
+    /// Follower jerk, m/s³.
+    pub jerk: Vec<f64>,
+    /// Pressure angle, degrees.
+    pub pressure_angle_deg: Vec<f64>,
+    /// Cam curvature at the contact, 1/m (convex positive; radius = 1/curvature).
+    pub cam_curvature: Vec<f64>,
+    /// Reduced radius of curvature in the plane of motion, m.
+    pub reduced_radius: Vec<f64>,
+    /// Contact point position relative to the follower axis, m.
+    pub contact_offset: Vec<f64>,
+    /// Cam surface velocity, m/s.
+    pub cam_surface_velocity: Vec<f64>,
+    /// Follower surface velocity, m/s (rollers: from the slip solution when computed, else pure
+    /// rolling).
+    pub follower_surface_velocity: Vec<f64>,
+    /// Mean entrainment velocity (u_c + u_f)/2, m/s.
+    pub entrainment_velocity: Vec<f64>,
+    /// Sliding velocity u_c − u_f, m/s.
+    pub sliding_velocity: Vec<f64>,
+    /// Force along the follower axis, N.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub axial_load: Option<Vec<f64>>,
+    /// Normal contact load, N.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub contact_load: Option<Vec<f64>>,
+    /// Peak load per unit length, N/m (line contacts).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub load_per_length: Option<Vec<f64>>,
+    /// Axially loaded length of a crowned roller, m.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub effective_length: Option<Vec<f64>>,
+    /// Hertz peak pressure p0, Pa.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub hertz_max_pressure: Option<Vec<f64>>,
+    /// Hertz semi-width along the rolling direction, m.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub hertz_half_width: Option<Vec<f64>>,
+    /// Maximum sub-surface principal shear stress (0.300 p0 for ν = 0.3), Pa (line contacts).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub max_shear_stress: Option<Vec<f64>>,
+    /// Its depth (0.786 b), m.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub max_shear_depth: Option<Vec<f64>>,
+    /// Central film thickness, m.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub film_central: Option<Vec<f64>>,
+    /// Minimum film thickness, m.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub film_min: Option<Vec<f64>>,
+    /// Film model that ran at each angle (`numerical` or the closed form's name).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub model: Option<Vec<FilmModelId>>,
+    /// Smallest film downstream of the contact centre (exit constriction), m; the closed forms'
+    /// minimum film at their angles.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub exit_film: Option<Vec<f64>>,
+    /// Height (peak pressure) of the exit pressure spike, Pa, resolved by the numerical model.
+    /// Present when any angle resolved one; `null` at angles where none was computed or found
+    /// (closed-form angles, and numerical solutions without a secondary exit maximum, e.g. light
+    /// loads). Empty cells in CSV.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub pressure_spike: Option<Vec<Option<f64>>>,
+    /// Position of the spike, m from the contact centre along the entrainment direction of
+    /// positive entrainment velocity; `null` where `pressure_spike` is.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub pressure_spike_position: Option<Vec<Option<f64>>>,
+    /// Newton steps of the numerical EHL solver at each angle (0 at closed-form angles). Present
+    /// when the numerical model ran.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub newton_steps: Option<Vec<f64>>,
+    /// λ = h_min/σ (rough surfaces).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub lambda: Option<Vec<f64>>,
+    /// Share of the load carried by asperities (Greenwood–Tripp).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub asperity_load_fraction: Option<Vec<f64>>,
+    /// Tangential (traction) force on the follower, N, positive when it drags the follower
+    /// surface forward.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub friction_force: Option<Vec<f64>>,
+    /// friction_force / contact_load.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub friction_coefficient: Option<Vec<f64>>,
+    /// Camshaft torque of the friction force, N·m.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub friction_torque: Option<Vec<f64>>,
+    /// Camshaft torque of all contact forces (normal + friction), N·m.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub camshaft_torque: Option<Vec<f64>>,
+    /// Dissipated power: contact sliding + roller–pin, W.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub power_loss: Option<Vec<f64>>,
+    /// Roller angular speed, rad/s.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub roller_speed: Option<Vec<f64>>,
+    /// Slide-to-roll ratio 2(u_c − u_r)/(u_c + u_r).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub slide_roll_ratio: Option<Vec<f64>>,
+    /// Roller–pin friction torque, N·m.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub pin_torque: Option<Vec<f64>>,
+    /// Maximum flash temperature rise (Blok/Jaeger), K.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub flash_temperature: Option<Vec<f64>>,
+}
+
+/// Cycle summary: flat numbers (what a sweep tabulates). Absent when not computed.
+#[derive(Debug, Clone, PartialEq, Default, Serialize, ToSchema)]
+pub struct CamSummary {
+    /// m.
+    pub max_lift: f64,
+    /// m/s.
+    pub max_velocity: f64,
+    /// m/s².
+    pub max_acceleration: f64,
+    /// m/s².
+    pub min_acceleration: f64,
+    /// m/s³.
+    pub max_abs_jerk: f64,
+    /// Degrees.
+    pub max_abs_pressure_angle_deg: f64,
+    /// Smallest convex cam radius of curvature, m.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub min_cam_radius_of_curvature: Option<f64>,
+    /// m.
+    pub min_reduced_radius: f64,
+    /// Number of entrainment reversals (zero-entrainment angles) in the cycle.
+    pub zero_entrainment_count: usize,
+    /// N.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub max_contact_load: Option<f64>,
+    /// N (negative: the follower separates).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub min_axial_load: Option<f64>,
+    /// Pa.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub max_hertz_pressure: Option<f64>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub max_hertz_pressure_angle_deg: Option<f64>,
+    /// Largest sub-surface principal shear stress over the cycle, Pa.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub max_subsurface_shear: Option<f64>,
+    /// m.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub min_film: Option<f64>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub min_film_angle_deg: Option<f64>,
+    /// m.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub min_central_film: Option<f64>,
+    /// Per-angle counts of the film models that ran (`numerical`, `pan_hamrock`, …).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub fidelity_used: Option<BTreeMap<String, usize>>,
+    /// Smallest exit-constriction film, m.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub min_exit_film: Option<f64>,
+    /// Highest exit pressure spike, Pa, and its angle (numerical model).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub max_pressure_spike: Option<f64>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub max_pressure_spike_angle_deg: Option<f64>,
+    /// Newton steps of the numerical EHL solver over the cycle (all solves, including the
+    /// roller's re-solves and extra cycles).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub newton_steps: Option<f64>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub min_lambda: Option<f64>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub min_lambda_angle_deg: Option<f64>,
+    /// Largest asperity load share.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub max_asperity_load_fraction: Option<f64>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub max_friction_coefficient: Option<f64>,
+    /// Time-averaged friction coefficient |F_t|/F.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub mean_friction_coefficient: Option<f64>,
+    /// Time-averaged camshaft friction torque, N·m.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub mean_friction_torque: Option<f64>,
+    /// Time-averaged dissipated power, W.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub mean_power_loss: Option<f64>,
+    /// Energy dissipated over the revolution, J.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub energy_loss: Option<f64>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub max_abs_slide_roll_ratio: Option<f64>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub max_abs_slide_roll_ratio_angle_deg: Option<f64>,
+    /// Time-averaged slide-to-roll ratio.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub mean_slide_roll_ratio: Option<f64>,
+    /// K.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub max_flash_temperature: Option<f64>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub max_flash_temperature_angle_deg: Option<f64>,
+}
+
+/// Events of the cycle.
+#[derive(Debug, Clone, PartialEq, Default, Serialize, ToSchema)]
+pub struct CamEvents {
+    /// Cam angles where the entrainment velocity changes sign, degrees.
+    pub zero_entrainment_angles_deg: Vec<f64>,
+    /// Angle ranges `[start, end]` (degrees) where the follower would leave the cam.
+    pub separation_ranges_deg: Vec<[f64; 2]>,
+}
+
+/// Pressure and film along the rolling direction at one cam angle.
+#[derive(Debug, Clone, PartialEq, Serialize, ToSchema)]
+pub struct FilmProfileAtAngle {
+    /// Cam angle, degrees.
+    pub angle_deg: f64,
+    /// Position from the contact centre, m (positive in the direction of positive entrainment).
+    pub x: Vec<f64>,
+    /// Pressure, Pa.
+    pub pressure: Vec<f64>,
+    /// Film thickness, m.
+    pub film: Vec<f64>,
+}
+
+/// Result of a `cam_cycle` job.
+#[derive(Debug, Clone, PartialEq, Serialize, ToSchema)]
+pub struct CamCycleResult {
+    /// Fidelity that ran.
+    pub fidelity_used: Fidelity,
+    /// Film model that ran, when one model ran at every angle (absent when `auto` mixed models:
+    /// see the series column `model` and `summary.fidelity_used`).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub film_model: Option<FilmModelId>,
+    /// E* = 1/Σ(1−ν²)/E, Pa (Hertz, Greenwood–Tripp).
+    pub contact_modulus: f64,
+    /// E' = 2E*, Pa (film formulas).
+    pub effective_modulus: f64,
+    /// Angles per revolution.
+    pub angles: usize,
+    /// Duration of the simulated revolution, s.
+    pub duration: f64,
+    pub series: CamSeries,
+    pub summary: CamSummary,
+    pub events: CamEvents,
+    /// Profiles at the requested angles where the numerical model ran (output `profiles`).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub profiles: Option<Vec<FilmProfileAtAngle>>,
+    /// Periodicity of the roller speed (steady torque balance) or closed form.
+    pub convergence: Convergence,
+}
+

@@ -1,0 +1,417 @@
+//! Solving a `cam_cycle` spec: the spec turned into the physics input (`CycleSpec`), the cycle run,
+//! and its output mapped to the result fields.
+
+use super::result::*;
+use super::spec::*;
+use crate::jobs::kinds::common::{composite_sigma, LubricantSpec};
+use crate::physics::cam::cycle::{run_cycle, CycleSpec, FollowerKind, Needs, SlipMode};
+use crate::physics::cam::{CamProfile, FollowerGeometry, FollowerShape, LiftProgram, LoadModel, MultiArc, PeriodicSpline, PeriodicTable, SpeedSchedule};
+use crate::physics::contact::{contact_modulus, Elastic};
+use crate::physics::film::model_for;
+use std::collections::BTreeMap;
+use crate::physics::roller::{Crown, PinFriction, RollerParams};
+use crate::physics::{Observer, SolveError};
+use std::f64::consts::PI;
+
+fn deg(x: f64) -> f64 {
+    x * PI / 180.0
+}
+
+impl CamCycleSpec {
+    /// What the spec's `outputs` ask the cycle to compute (dependencies included).
+    pub fn needs(&self) -> Needs {
+        let has = |o| self.outputs.contains(&o);
+        Needs {
+            loads: has(CamOutput::Loads),
+            contact: has(CamOutput::Contact),
+            film: has(CamOutput::Film) || has(CamOutput::Profiles),
+            friction: has(CamOutput::Friction),
+            slip: has(CamOutput::Slip),
+            temperature: has(CamOutput::Temperature),
+        }
+        .closed(self.is_roller())
+    }
+
+    fn is_roller(&self) -> bool {
+        matches!(self.follower, FollowerSpec::Roller { .. })
+    }
+
+    fn follower_elastic(&self) -> (Elastic, f64) {
+        let (e, nu, rq) = match self.follower {
+            FollowerSpec::FlatFaced { material, roughness_rq, .. }
+            | FollowerSpec::Roller { material, roughness_rq, .. }
+            | FollowerSpec::Spherical { material, roughness_rq, .. } => (material.youngs_modulus, material.poisson_ratio, roughness_rq),
+        };
+        (Elastic { youngs_modulus: e, poisson_ratio: nu }, rq)
+    }
+
+    fn profile(&self) -> Result<CamProfile, SolveError> {
+        Ok(match &self.cam.profile {
+            ProfileSpec::RiseReturn { base_radius, lift, rise_start_deg, rise_deg, top_dwell_deg, return_deg, law, return_law } => {
+                CamProfile::Program {
+                    base_radius: *base_radius,
+                    program: LiftProgram {
+                        lift: *lift,
+                        rise_start: deg(*rise_start_deg),
+                        rise: deg(*rise_deg),
+                        top_dwell: deg(*top_dwell_deg),
+                        fall: deg(*return_deg),
+                        rise_law: *law,
+                        return_law: return_law.unwrap_or(*law),
+                    },
+                }
+            }
+            ProfileSpec::MultiArc { arcs } => {
+                let a: Vec<(f64, f64)> = arcs.iter().map(|a| (a.radius, deg(a.angle_deg))).collect();
+                CamProfile::MultiArc(MultiArc::new(&a)?)
+            }
+            ProfileSpec::SymmetricArcs { base_radius, base_angle_deg, flanks } => {
+                let f: Vec<(f64, f64)> = flanks.iter().map(|a| (a.radius, deg(a.angle_deg))).collect();
+                CamProfile::MultiArc(MultiArc::symmetric(*base_radius, deg(*base_angle_deg), &f)?)
+            }
+            ProfileSpec::Table { base_radius, angle_deg, lift } => {
+                let x: Vec<f64> = angle_deg.iter().map(|a| deg(*a)).collect();
+                let spline = PeriodicSpline::new(&x, lift).map_err(|e| match e {
+                    SolveError::InvalidInput { message, .. } => SolveError::invalid("/cam/profile", message),
+                    other => other,
+                })?;
+                CamProfile::Tabulated { base_radius: *base_radius, spline }
+            }
+        })
+    }
+
+    /// The physics description of this spec.
+    pub fn cycle_spec(&self) -> Result<CycleSpec, SolveError> {
+        let profile = self.profile()?;
+        let (follower_elastic, follower_rq) = self.follower_elastic();
+        let cam_elastic = self.cam.material.elastic();
+        let es = contact_modulus(cam_elastic, follower_elastic);
+        let lub = self.lubricant.clone().unwrap_or(LubricantSpec {
+            viscosity: 0.01,
+            pressure_viscosity: 2e-8,
+            temperature_viscosity: 0.0,
+            reference_temperature: 313.0,
+            temperature: None,
+            density: 870.0,
+            viscosity_model: Default::default(),
+            density_model: Default::default(),
+        });
+        let lubricant = lub.to_physics();
+        let temperature = lub.inlet_temperature();
+        let (shape, follower) = match &self.follower {
+            FollowerSpec::FlatFaced { .. } => (FollowerShape::Flat, FollowerKind::Flat { contact_length: self.cam.width.unwrap_or(0.0) }),
+            FollowerSpec::Roller { radius, length, pin_radius, clearance, inertia, density, pin, crown, offset, .. } => {
+                let inertia = inertia.unwrap_or_else(|| 0.5 * density * PI * length * (radius.powi(4) - pin_radius.powi(4)));
+                let pin = match pin {
+                    PinSpec::Coefficient { coefficient } => PinFriction::Coefficient { coefficient: *coefficient, pin_radius: *pin_radius },
+                    PinSpec::Hydrodynamic { length: l } => PinFriction::ShortBearing {
+                        pin_radius: *pin_radius,
+                        clearance: *clearance,
+                        length: l.unwrap_or(*length),
+                        viscosity: lubricant.viscosity_at(0.0, temperature),
+                    },
+                };
+                let contact_length = self.cam.width.map_or(*length, |w| w.min(*length));
+                (
+                    FollowerShape::Curved { radius: *radius, offset: *offset },
+                    FollowerKind::Roller {
+                        roller: RollerParams { radius: *radius, inertia, pin },
+                        contact_length,
+                        crown: crown.map(|c| Crown { length: *length, middle_length: c.middle_length, crown_height: c.crown_height, end_radius: c.end_radius }),
+                    },
+                )
+            }
+            FollowerSpec::Spherical { radius, offset, .. } => {
+                (FollowerShape::Curved { radius: *radius, offset: *offset }, FollowerKind::Spherical { face_radius: *radius })
+            }
+        };
+        let omega = crate::physics::units::rpm_to_rad_per_s(self.operation.speed_rpm);
+        let schedule = match self.operation.startup {
+            None => SpeedSchedule::Steady { omega },
+            Some(s) => SpeedSchedule::Startup { omega, rated_angle: deg(s.rated_angle_deg) },
+        };
+        let load = match &self.load {
+            None => LoadModel::ValveTrain { preload: 0.0, stiffness: 0.0, mass: 0.0, external: None },
+            Some(LoadSpec::ValveTrain { spring_preload, spring_stiffness, moving_mass, external }) => LoadModel::ValveTrain {
+                preload: *spring_preload,
+                stiffness: *spring_stiffness,
+                mass: *moving_mass,
+                external: match external {
+                    Some(t) => Some(table(&t.angle_deg, &t.force, "/load/external")?),
+                    None => None,
+                },
+            },
+            Some(LoadSpec::Spectrum { angle_deg, load, offset }) => LoadModel::Spectrum { table: table(angle_deg, load, "/load")?, offset: *offset },
+        };
+        Ok(CycleSpec {
+            profile,
+            geometry: FollowerGeometry { shape, clockwise: self.operation.direction == Direction::Cw },
+            follower,
+            schedule,
+            angles: self.angles,
+            load,
+            contact_modulus: es,
+            poisson_ratio: self.cam.material.poisson_ratio,
+            lubricant,
+            temperature,
+            roughness: self.asperities.roughness(composite_sigma(self.cam.roughness_rq, follower_rq)),
+            traction_law: self.traction.to_physics(),
+            asperity_friction: self.asperities.friction(),
+            cam_thermal: self.thermal.cam.to_physics(),
+            follower_thermal: self.thermal.follower.to_physics(),
+            slip: match self.slip.mode {
+                SlipModeSpec::PureRolling => SlipMode::PureRolling,
+                SlipModeSpec::TorqueBalance => SlipMode::TorqueBalance { tolerance: self.slip.tolerance, max_cycles: self.slip.max_cycles },
+            },
+            profile_angles: if self.outputs.contains(&CamOutput::Profiles) {
+                let n = self.angles;
+                let mut v: Vec<usize> = self
+                    .profile_angles_deg
+                    .iter()
+                    .map(|a| ((a.rem_euclid(360.0) / 360.0 * n as f64).round() as usize) % n)
+                    .collect();
+                v.sort_unstable();
+                v.dedup();
+                v
+            } else {
+                Vec::new()
+            },
+        })
+    }
+}
+
+fn table(angles_deg: &[f64], values: &[f64], path: &str) -> Result<PeriodicTable, SolveError> {
+    let a: Vec<f64> = angles_deg.iter().map(|x| deg(*x)).collect();
+    PeriodicTable::new(&a, values).map_err(|e| match e {
+        SolveError::InvalidInput { message, .. } => SolveError::invalid(path, message),
+        other => other,
+    })
+}
+
+/// Index and value of the extreme of `v` by `better`.
+fn extreme(v: &[f64], better: impl Fn(f64, f64) -> bool) -> (usize, f64) {
+    let mut best = (0, v[0]);
+    for (i, &x) in v.iter().enumerate() {
+        if better(x, best.1) {
+            best = (i, x);
+        }
+    }
+    best
+}
+
+/// Time-average of `v` over the revolution: trapezoid in time with the wrap for steady running;
+/// for a startup, the value at the end of each step over that step (what the implicit step
+/// computes), so that the instant of rest at t = 0 carries no weight.
+fn time_mean(v: &[f64], time: &[f64], duration: f64, periodic: bool) -> f64 {
+    let n = v.len();
+    if n == 1 {
+        return v[0];
+    }
+    let mut integral = 0.0;
+    if periodic {
+        for i in 0..n - 1 {
+            integral += 0.5 * (v[i] + v[i + 1]) * (time[i + 1] - time[i]);
+        }
+        integral += 0.5 * (v[n - 1] + v[0]) * (duration - time[n - 1]);
+        integral / duration
+    } else {
+        for i in 1..n {
+            integral += v[i] * (time[i] - time[i - 1]);
+        }
+        integral / (time[n - 1] - time[0])
+    }
+}
+
+pub(super) fn solve_spec(spec: &CamCycleSpec, observer: &dyn Observer) -> Result<CamCycleResult, SolveError> {
+    let cycle = spec.cycle_spec()?;
+    let needs = spec.needs();
+    let model = needs.film.then(|| model_for(spec.fidelity, spec.film.to_physics(), spec.ehl.to_physics()));
+    let fast = crate::physics::film::ClosedForm { formula: spec.film.formula, squeeze: spec.film.squeeze };
+    let out = run_cycle(&cycle, needs, model.as_deref().unwrap_or(&fast), observer)?;
+    let s = out.series;
+    // Contact must stay on a flat face of finite radius.
+    if let FollowerSpec::FlatFaced { face_radius: Some(r), offset, .. } = spec.follower {
+        if let Some((i, x)) = s.contact_offset.iter().map(|x| x - offset).enumerate().find(|(_, x)| x.abs() > r) {
+            return Err(SolveError::physical(
+                crate::physics::PhysicalFailure::ContactOffFace,
+                format!(
+                    "the contact runs off the follower face at {:.2}° ({:.3} mm from its centre, face radius {:.3} mm)",
+                    s.angle[i].to_degrees(),
+                    x * 1e3,
+                    r * 1e3
+                ),
+            ));
+        }
+    }
+    let degs = |v: &[f64]| v.iter().map(|x| x.to_degrees()).collect::<Vec<_>>();
+    let angle_deg = degs(&s.angle);
+    let at = |i: usize| angle_deg[i];
+    let periodic = spec.operation.startup.is_none();
+    let mut summary = CamSummary {
+        max_lift: s.lift.iter().copied().fold(f64::NEG_INFINITY, f64::max),
+        max_velocity: s.velocity.iter().copied().fold(f64::NEG_INFINITY, f64::max),
+        max_acceleration: s.acceleration.iter().copied().fold(f64::NEG_INFINITY, f64::max),
+        min_acceleration: s.acceleration.iter().copied().fold(f64::INFINITY, f64::min),
+        max_abs_jerk: s.jerk.iter().map(|x| x.abs()).fold(0.0, f64::max),
+        max_abs_pressure_angle_deg: s.pressure_angle.iter().map(|x| x.abs().to_degrees()).fold(0.0, f64::max),
+        min_cam_radius_of_curvature: {
+            let k = s.cam_curvature.iter().copied().fold(0.0, f64::max);
+            (k > 0.0).then(|| 1.0 / k)
+        },
+        min_reduced_radius: s.reduced_radius.iter().copied().fold(f64::INFINITY, f64::min),
+        zero_entrainment_count: out.events.zero_entrainment.len(),
+        min_axial_load: out.events.min_axial_load,
+        ..Default::default()
+    };
+    if let Some(v) = &s.contact_load {
+        summary.max_contact_load = Some(v.iter().copied().fold(f64::NEG_INFINITY, f64::max));
+    }
+    if let Some(v) = &s.hertz_max_pressure {
+        let (i, p) = extreme(v, |a, b| a > b);
+        summary.max_hertz_pressure = Some(p);
+        summary.max_hertz_pressure_angle_deg = Some(at(i));
+    }
+    if let Some(v) = &s.max_shear_stress {
+        summary.max_subsurface_shear = Some(v.iter().copied().fold(0.0, f64::max));
+    }
+    if let Some(v) = &s.film_min {
+        let (i, h) = extreme(v, |a, b| a < b);
+        summary.min_film = Some(h);
+        summary.min_film_angle_deg = Some(at(i));
+    }
+    if let Some(v) = &s.film_central {
+        summary.min_central_film = Some(v.iter().copied().fold(f64::INFINITY, f64::min));
+    }
+    if let Some(v) = &s.lambda {
+        let (i, l) = extreme(v, |a, b| a < b);
+        summary.min_lambda = Some(l);
+        summary.min_lambda_angle_deg = Some(at(i));
+    }
+    if let Some(v) = &s.asperity_load_fraction {
+        summary.max_asperity_load_fraction = Some(v.iter().copied().fold(0.0, f64::max));
+    }
+    if let Some(v) = &s.friction_coefficient {
+        summary.max_friction_coefficient = Some(v.iter().map(|x| x.abs()).fold(0.0, f64::max));
+        let abs: Vec<f64> = v.iter().map(|x| x.abs()).collect();
+        summary.mean_friction_coefficient = Some(time_mean(&abs, &s.time, out.duration, periodic));
+    }
+    if let Some(v) = &s.friction_torque {
+        summary.mean_friction_torque = Some(time_mean(v, &s.time, out.duration, periodic));
+    }
+    if let Some(v) = &s.power_loss {
+        let mean = time_mean(v, &s.time, out.duration, periodic);
+        summary.mean_power_loss = Some(mean);
+        let span = if periodic { out.duration } else { s.time[s.time.len() - 1] - s.time[0] };
+        summary.energy_loss = Some(mean * span);
+    }
+    if let Some(v) = &s.slide_roll_ratio {
+        let (i, _) = extreme(v, |a, b| a.abs() > b.abs());
+        summary.max_abs_slide_roll_ratio = Some(v[i].abs());
+        summary.max_abs_slide_roll_ratio_angle_deg = Some(at(i));
+        summary.mean_slide_roll_ratio = Some(time_mean(v, &s.time, out.duration, periodic));
+    }
+    if let Some(v) = &s.flash_temperature {
+        let (i, t) = extreme(v, |a, b| a > b);
+        summary.max_flash_temperature = Some(t);
+        summary.max_flash_temperature_angle_deg = Some(at(i));
+    }
+    // The film model when one model ran at every angle (absent when `auto` mixed them).
+    let film_model = s.film_model.as_ref().and_then(|v| {
+        let first = *v.first()?;
+        v.iter().all(|m| *m == first).then_some(first)
+    });
+    if let Some(v) = &s.film_model {
+        let mut counts = BTreeMap::new();
+        for m in v {
+            *counts.entry(m.name().to_string()).or_insert(0) += 1;
+        }
+        summary.fidelity_used = Some(counts);
+    }
+    if let Some(v) = &s.exit_film {
+        summary.min_exit_film = Some(v.iter().copied().fold(f64::INFINITY, f64::min));
+    }
+    let (spike, spike_position) = match &s.pressure_spike {
+        Some(v) => {
+            if let Some((i, m)) = v
+                .iter()
+                .enumerate()
+                .filter_map(|(i, x)| x.map(|(p, _)| (i, p)))
+                .max_by(|a, b| a.1.total_cmp(&b.1))
+            {
+                summary.max_pressure_spike = Some(m);
+                summary.max_pressure_spike_angle_deg = Some(at(i));
+            }
+            (Some(v.iter().map(|x| x.map(|x| x.0)).collect()), Some(v.iter().map(|x| x.map(|x| x.1)).collect()))
+        }
+        None => (None, None),
+    };
+    if let Some(v) = &s.newton_steps {
+        summary.newton_steps = Some(v.iter().map(|&k| k as f64).sum());
+    }
+    let profiles = spec.outputs.contains(&CamOutput::Profiles).then(|| {
+        out.profiles
+            .iter()
+            .map(|(i, p)| FilmProfileAtAngle { angle_deg: at(*i), x: p.x.clone(), pressure: p.pressure.clone(), film: p.film.clone() })
+            .collect()
+    });
+    let es = cycle.contact_modulus;
+    Ok(CamCycleResult {
+        fidelity_used: spec.fidelity,
+        film_model,
+        contact_modulus: es,
+        effective_modulus: 2.0 * es,
+        angles: spec.angles,
+        duration: out.duration,
+        series: CamSeries {
+            angle_deg,
+            time: s.time,
+            cam_speed: s.cam_speed,
+            lift: s.lift,
+            velocity: s.velocity,
+            acceleration: s.acceleration,
+            jerk: s.jerk,
+            pressure_angle_deg: degs(&s.pressure_angle),
+            cam_curvature: s.cam_curvature,
+            reduced_radius: s.reduced_radius,
+            contact_offset: s.contact_offset,
+            cam_surface_velocity: s.cam_surface_velocity,
+            follower_surface_velocity: s.follower_surface_velocity,
+            entrainment_velocity: s.entrainment_velocity,
+            sliding_velocity: s.sliding_velocity,
+            axial_load: s.axial_load,
+            contact_load: s.contact_load,
+            load_per_length: s.load_per_length,
+            effective_length: s.effective_length,
+            hertz_max_pressure: s.hertz_max_pressure,
+            hertz_half_width: s.hertz_half_width,
+            max_shear_stress: s.max_shear_stress,
+            max_shear_depth: s.max_shear_depth,
+            film_central: s.film_central,
+            film_min: s.film_min,
+            model: s.film_model,
+            exit_film: s.exit_film,
+            pressure_spike: spike,
+            pressure_spike_position: spike_position,
+            newton_steps: s.newton_steps.map(|v| v.into_iter().map(f64::from).collect()),
+            lambda: s.lambda,
+            asperity_load_fraction: s.asperity_load_fraction,
+            friction_force: s.friction_force,
+            friction_coefficient: s.friction_coefficient,
+            friction_torque: s.friction_torque,
+            camshaft_torque: s.camshaft_torque,
+            power_loss: s.power_loss,
+            roller_speed: s.roller_speed,
+            slide_roll_ratio: s.slide_roll_ratio,
+            pin_torque: s.pin_torque,
+            flash_temperature: s.flash_temperature,
+        },
+        summary,
+        events: CamEvents {
+            zero_entrainment_angles_deg: degs(&out.events.zero_entrainment),
+            separation_ranges_deg: out.events.separation.iter().map(|(a, b)| [a.to_degrees(), b.to_degrees()]).collect(),
+        },
+        profiles,
+        convergence: out.convergence,
+    })
+}
+

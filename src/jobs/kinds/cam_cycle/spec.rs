@@ -1,0 +1,435 @@
+//! The `cam_cycle` request: the pair (cam, follower, operation, load, lubricant, surfaces),
+//! the film and slip options, and what to compute.
+
+use crate::jobs::kinds::common::{AsperitySpec, Material, EhlSpec, FilmSpec, LubricantSpec, TractionSpec};
+use crate::physics::cam::LiftLaw;
+use crate::physics::film::Fidelity;
+use crate::physics::thermal::ThermalSolid;
+use serde::{Deserialize, Serialize};
+use utoipa::ToSchema;
+
+/// One circular arc of a multi-arc cam.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, ToSchema)]
+#[serde(deny_unknown_fields)]
+pub struct ArcSpec {
+    /// Radius of curvature, m.
+    pub radius: f64,
+    /// Central angle of the arc (angle its normal turns), degrees.
+    pub angle_deg: f64,
+}
+
+/// Cam profile. Profiles are given in the order the follower meets them as the cam turns.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, ToSchema)]
+#[serde(tag = "type", rename_all = "snake_case", deny_unknown_fields)]
+pub enum ProfileSpec {
+    /// Rise – top dwell – return – base dwell with a lift law (the follower's motion).
+    RiseReturn {
+        /// Base circle radius, m.
+        base_radius: f64,
+        /// Total lift, m.
+        lift: f64,
+        /// Cam angle where the rise starts, degrees. Default 0.
+        #[serde(default)]
+        rise_start_deg: f64,
+        /// Rise angle, degrees.
+        rise_deg: f64,
+        /// Dwell at full lift, degrees. Default 0.
+        #[serde(default)]
+        top_dwell_deg: f64,
+        /// Return angle, degrees.
+        return_deg: f64,
+        /// Lift law of the rise (and of the return unless `return_law` is given).
+        law: LiftLaw,
+        #[serde(default, skip_serializing_if = "Option::is_none")]
+        return_law: Option<LiftLaw>,
+    },
+    /// Tangent circular arcs `(radius, angle)`; the first is the base circle (centred on the
+    /// rotation axis, centred on cam angle 0). They must close (angles sum to 360°, the chain of
+    /// centres returns to the axis).
+    MultiArc { arcs: Vec<ArcSpec> },
+    /// A cam symmetric about its nose (at 180°): base circle over `base_angle_deg`, then `flanks`
+    /// from the base circle towards the nose; the nose radius is computed to close the cam.
+    SymmetricArcs {
+        /// Base circle radius, m.
+        base_radius: f64,
+        /// Angle of the base circle arc, degrees.
+        base_angle_deg: f64,
+        flanks: Vec<ArcSpec>,
+    },
+    /// A measured follower lift table, interpolated by a periodic cubic spline.
+    Table {
+        /// Base circle radius, m.
+        base_radius: f64,
+        /// Cam angles, degrees, increasing, within one revolution.
+        angle_deg: Vec<f64>,
+        /// Follower lift at each angle, m.
+        lift: Vec<f64>,
+    },
+}
+
+/// Direction the cam turns (matters only with an offset follower).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize, ToSchema)]
+#[serde(rename_all = "snake_case")]
+pub enum Direction {
+    #[default]
+    Ccw,
+    Cw,
+}
+
+/// The cam lobe.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, ToSchema)]
+#[serde(deny_unknown_fields)]
+pub struct CamSpec {
+    pub profile: ProfileSpec,
+    /// Axial width of the lobe, m: the line-contact length of a flat follower (required for
+    /// `flat_faced`); limits a roller's contact length when smaller than the roller.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub width: Option<f64>,
+    /// Elastic constants. Default: steel.
+    #[serde(default)]
+    pub material: Material,
+    /// RMS surface roughness Rq, m. Default 0 (smooth).
+    #[serde(default)]
+    pub roughness_rq: f64,
+}
+
+/// Roller–pin friction.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, ToSchema)]
+#[serde(tag = "model", rename_all = "snake_case", deny_unknown_fields)]
+pub enum PinSpec {
+    /// Constant friction coefficient on the pin radius (seed 001).
+    Coefficient { coefficient: f64 },
+    /// Short hydrodynamic journal bearing (Ocvirk) with the spec's lubricant at its inlet
+    /// temperature. `length` defaults to the roller length.
+    Hydrodynamic {
+        #[serde(default, skip_serializing_if = "Option::is_none")]
+        length: Option<f64>,
+    },
+}
+
+/// Crowned roller profile (seed 000 Table 1). See `physics::roller::crown`.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, ToSchema)]
+#[serde(deny_unknown_fields)]
+pub struct CrownSpec {
+    /// Middle length L1, m.
+    pub middle_length: f64,
+    /// Crown height h_td at the ends of the middle section, m.
+    pub crown_height: f64,
+    /// End profile radius R_d, m.
+    pub end_radius: f64,
+}
+
+fn default_clearance() -> f64 {
+    10e-6
+}
+fn default_roller_density() -> f64 {
+    7850.0
+}
+
+/// The follower.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, ToSchema)]
+#[serde(tag = "type", rename_all = "snake_case", deny_unknown_fields)]
+pub enum FollowerSpec {
+    /// Translating flat-faced tappet (seed 003).
+    FlatFaced {
+        /// Offset of the follower axis from the cam centre, m (does not change a flat face's
+        /// kinematics). Default 0.
+        #[serde(default)]
+        offset: f64,
+        /// Radius of the face, m: the contact must stay on it (`contact_off_face` otherwise).
+        #[serde(default, skip_serializing_if = "Option::is_none")]
+        face_radius: Option<f64>,
+        /// Elastic constants. Default: steel.
+        #[serde(default)]
+        material: Material,
+        #[serde(default)]
+        roughness_rq: f64,
+    },
+    /// Translating roller follower (seeds 000, 001).
+    Roller {
+        /// Outer radius R_f, m.
+        radius: f64,
+        /// Roller length, m.
+        length: f64,
+        /// Pin radius, m.
+        pin_radius: f64,
+        /// Radial roller–pin clearance, m. Default 10e-6.
+        #[serde(default = "default_clearance")]
+        clearance: f64,
+        /// Moment of inertia about the pin, kg·m². Default: a steel ring of the given radii
+        /// and length.
+        #[serde(default, skip_serializing_if = "Option::is_none")]
+        inertia: Option<f64>,
+        /// Density used for the default inertia, kg/m³. Default 7850.
+        #[serde(default = "default_roller_density")]
+        density: f64,
+        pin: PinSpec,
+        #[serde(default, skip_serializing_if = "Option::is_none")]
+        crown: Option<CrownSpec>,
+        /// Offset of the follower axis from the cam centre, m. Default 0.
+        #[serde(default)]
+        offset: f64,
+        /// Elastic constants. Default: steel.
+        #[serde(default)]
+        material: Material,
+        #[serde(default)]
+        roughness_rq: f64,
+    },
+    /// Translating tappet with a spherical face (seed 004): point contact, no tappet spin.
+    Spherical {
+        /// Radius of the spherical face, m.
+        radius: f64,
+        #[serde(default)]
+        offset: f64,
+        /// Elastic constants. Default: steel.
+        #[serde(default)]
+        material: Material,
+        #[serde(default)]
+        roughness_rq: f64,
+    },
+}
+
+fn default_rated_angle() -> f64 {
+    180.0
+}
+
+/// Startup from rest (seed 000 §4.2): constant cam acceleration reaching the rated speed at
+/// `rated_angle_deg`; the roller starts at rest; one revolution is simulated.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, ToSchema)]
+#[serde(deny_unknown_fields)]
+pub struct StartupSpec {
+    /// Cam angle at which the rated speed is reached, degrees. Default 180.
+    #[serde(default = "default_rated_angle")]
+    pub rated_angle_deg: f64,
+}
+
+/// Running condition.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, ToSchema)]
+#[serde(deny_unknown_fields)]
+pub struct OperationSpec {
+    /// Camshaft speed (rated speed for a startup), rev/min.
+    #[schema(example = 950.0)]
+    pub speed_rpm: f64,
+    /// `ccw` (default) or `cw`.
+    #[serde(default)]
+    pub direction: Direction,
+    /// Present: simulate a startup instead of steady running.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub startup: Option<StartupSpec>,
+}
+
+/// A periodic force table versus cam angle (linear interpolation).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, ToSchema)]
+#[serde(deny_unknown_fields)]
+pub struct ForceTable {
+    /// Cam angles, degrees.
+    pub angle_deg: Vec<f64>,
+    /// Force, N.
+    pub force: Vec<f64>,
+}
+
+/// How the follower is loaded.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, ToSchema)]
+#[serde(tag = "type", rename_all = "snake_case", deny_unknown_fields)]
+pub enum LoadSpec {
+    /// Spring preload + rate × lift + moving mass × acceleration (+ external force table),
+    /// along the follower axis; the contact force is that over cos(pressure angle).
+    ValveTrain {
+        /// Spring force at zero lift, N.
+        spring_preload: f64,
+        /// Spring rate, N/m.
+        spring_stiffness: f64,
+        /// Moving mass reduced to the follower, kg.
+        moving_mass: f64,
+        /// External force along the follower axis pushing it onto the cam (e.g. gas force), N.
+        #[serde(default, skip_serializing_if = "Option::is_none")]
+        external: Option<ForceTable>,
+    },
+    /// A measured contact-load spectrum (seed 000 Fig. 4).
+    Spectrum {
+        /// Cam angles, degrees.
+        angle_deg: Vec<f64>,
+        /// Normal contact load, N.
+        load: Vec<f64>,
+        /// Constant added to the table (seed 000's modified load w1), N. Default 0.
+        #[serde(default)]
+        offset: f64,
+    },
+}
+
+/// Roller speed model.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize, ToSchema)]
+#[serde(rename_all = "snake_case")]
+pub enum SlipModeSpec {
+    /// Torque balance: traction drives the roller against pin friction and inertia.
+    #[default]
+    TorqueBalance,
+    /// The roller rolls without slip (no traction): seed 000's comparison case.
+    PureRolling,
+}
+
+fn default_slip_tol() -> f64 {
+    1e-8
+}
+fn default_max_cycles() -> usize {
+    50
+}
+
+/// Roller slip options.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, ToSchema)]
+#[serde(deny_unknown_fields)]
+pub struct SlipSpec {
+    #[serde(default)]
+    pub mode: SlipModeSpec,
+    /// Steady running: change of the roller speed between cycles, relative to the rolling
+    /// speed, that ends the periodic iteration — at the angle where the march starts (the end of
+    /// the longest stretch of constant conditions, usually the base-circle dwell; 0° if there is
+    /// none) and where a later cycle rejoins the previous one. Default 1e-8.
+    #[serde(default = "default_slip_tol")]
+    pub tolerance: f64,
+    /// Most cycles of the periodic iteration. Default 50.
+    #[serde(default = "default_max_cycles")]
+    pub max_cycles: usize,
+}
+
+impl Default for SlipSpec {
+    fn default() -> Self {
+        SlipSpec { mode: SlipModeSpec::TorqueBalance, tolerance: default_slip_tol(), max_cycles: default_max_cycles() }
+    }
+}
+
+fn default_k() -> f64 {
+    46.0
+}
+fn default_rho_s() -> f64 {
+    7850.0
+}
+fn default_c() -> f64 {
+    470.0
+}
+
+/// Thermal properties of a solid (defaults: steel of seed 000 Table 1).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, ToSchema)]
+#[serde(deny_unknown_fields)]
+pub struct ThermalSpec {
+    /// W/(m·K). Default 46.
+    #[serde(default = "default_k")]
+    pub conductivity: f64,
+    /// kg/m³. Default 7850.
+    #[serde(default = "default_rho_s")]
+    pub density: f64,
+    /// J/(kg·K). Default 470.
+    #[serde(default = "default_c")]
+    pub specific_heat: f64,
+}
+
+impl Default for ThermalSpec {
+    fn default() -> Self {
+        ThermalSpec { conductivity: default_k(), density: default_rho_s(), specific_heat: default_c() }
+    }
+}
+
+impl ThermalSpec {
+    pub(super) fn to_physics(self) -> ThermalSolid {
+        ThermalSolid { conductivity: self.conductivity, density: self.density, specific_heat: self.specific_heat }
+    }
+}
+
+/// Thermal properties of cam and follower (flash temperature).
+#[derive(Debug, Clone, Copy, PartialEq, Default, Serialize, Deserialize, ToSchema)]
+#[serde(deny_unknown_fields)]
+pub struct ThermalPair {
+    #[serde(default)]
+    pub cam: ThermalSpec,
+    #[serde(default)]
+    pub follower: ThermalSpec,
+}
+
+/// Optional outputs (with what they need). Default: all.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, ToSchema)]
+#[serde(rename_all = "snake_case")]
+pub enum CamOutput {
+    /// Lift, velocity, acceleration, jerk, pressure angle, curvature, surface velocities.
+    Kinematics,
+    /// Axial and contact loads, separation.
+    Loads,
+    /// Hertz pressure and width, sub-surface shear.
+    Contact,
+    /// Central and minimum film, λ, asperity load share.
+    Film,
+    /// Friction force and coefficient, torques, power loss (rollers: needs slip).
+    Friction,
+    /// Roller speed, slide-to-roll ratio, pin torque (roller followers).
+    Slip,
+    /// Flash temperature.
+    Temperature,
+    /// Pressure and film profiles at `profile_angles_deg` (numerical film model only; not in the
+    /// default list).
+    Profiles,
+}
+
+fn default_angles() -> usize {
+    720
+}
+pub fn default_outputs() -> Vec<CamOutput> {
+    vec![
+        CamOutput::Kinematics,
+        CamOutput::Loads,
+        CamOutput::Contact,
+        CamOutput::Film,
+        CamOutput::Friction,
+        CamOutput::Slip,
+        CamOutput::Temperature,
+    ]
+}
+
+/// Spec of a `cam_cycle` job. SI units; angles in degrees where the name says so.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, ToSchema)]
+#[serde(deny_unknown_fields)]
+pub struct CamCycleSpec {
+    pub cam: CamSpec,
+    pub follower: FollowerSpec,
+    pub operation: OperationSpec,
+    /// Required unless only `kinematics` is requested.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub load: Option<LoadSpec>,
+    /// Required when `film`, `friction`, `slip` or `temperature` is requested.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub lubricant: Option<LubricantSpec>,
+    /// Greenwood–Tripp statistics and boundary friction (used when a surface is rough).
+    #[serde(default)]
+    pub asperities: AsperitySpec,
+    #[serde(default)]
+    pub traction: TractionSpec,
+    #[serde(default)]
+    pub film: FilmSpec,
+    #[serde(default)]
+    pub slip: SlipSpec,
+    #[serde(default)]
+    pub thermal: ThermalPair,
+    /// Film model: `fast` (closed forms, default), `accurate` (the numerical line-contact EHL
+    /// solver at every angle, with squeeze between consecutive angles; point contacts of a
+    /// spherical tappet keep the closed form), `auto` (the closed form where its estimated error
+    /// is within `ehl.auto_tolerance`, the numerical solver elsewhere: near zero entrainment,
+    /// outside the closed form's load range, strong squeeze, closed-form traction off at light
+    /// loads; rules in `physics::film::auto`). The series column `model` says which ran at each
+    /// angle. The instant of rest at the start of a startup (no entrainment, no film history) has
+    /// no lubricated solution and reports the closed form there. Thermal effects are not modelled
+    /// by either model.
+    #[serde(default)]
+    pub fidelity: Fidelity,
+    /// Numerical EHL options (`accurate`, `auto`).
+    #[serde(default)]
+    pub ehl: EhlSpec,
+    /// Cam angles (degrees) of the pressure and film profiles (output `profiles`); each is taken
+    /// at the nearest computed angle.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub profile_angles_deg: Vec<f64>,
+    /// Cam angles per revolution (uniform). Default 720.
+    #[serde(default = "default_angles")]
+    pub angles: usize,
+    /// What to compute (with dependencies). Default: everything.
+    #[serde(default = "default_outputs")]
+    pub outputs: Vec<CamOutput>,
+}
+
