@@ -174,11 +174,21 @@ impl Problem {
     /// The problem a failed solve stores with its job.
     pub fn from_solve_error(err: &SolveError) -> Self {
         match err {
-            SolveError::InvalidInput { path, message } => Problem::new(
+            // A spec path (the kind mapped the solver's field) becomes the field error's path;
+            // an unmapped solver field is named in the detail.
+            SolveError::InvalidInput { field, message } if field.starts_with('/') => Problem::new(
                 ErrorCode::InvalidSpec,
                 format!("the solver rejected the spec: {message}"),
             )
-            .with_errors(vec![FieldError::new(path.clone(), message.clone())]),
+            .with_errors(vec![FieldError::new(field.clone(), message.clone())]),
+            SolveError::InvalidInput { field, message } => Problem::new(
+                ErrorCode::InvalidSpec,
+                if field.is_empty() {
+                    format!("the solver rejected the spec: {message}")
+                } else {
+                    format!("the solver rejected the spec (its input {field}): {message}")
+                },
+            ),
             SolveError::NotConverged { .. } => Problem::new(ErrorCode::NotConverged, err.to_string()),
             SolveError::Physical { code, message } => {
                 let (status, title) = ErrorCode::NonPhysical.describe();

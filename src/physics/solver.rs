@@ -135,9 +135,11 @@ impl std::fmt::Display for PhysicalFailure {
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum SolveError {
     /// An input the validator could not rule out is unusable for this solver (for example a
-    /// combination of fields). `path` is a JSON pointer into the job spec when known.
-    #[error("invalid input at {path}: {message}")]
-    InvalidInput { path: String, message: String },
+    /// combination of fields). `field` names the solver input's field (`EhlOptions.nodes`,
+    /// `MultiArc.arcs[2]`); the job layer replaces it by the spec's JSON pointer
+    /// (`SolveError::in_spec`), which starts with `/`.
+    #[error("invalid input {field}: {message}")]
+    InvalidInput { field: String, message: String },
     /// The iteration cap was reached before the tolerance.
     #[error("{solver} did not converge: residual {residual:.3e} > tolerance {tolerance:.3e} after {iterations} iterations")]
     NotConverged {
@@ -168,8 +170,18 @@ impl From<Interrupt> for SolveError {
 
 impl SolveError {
     /// Shorthand for [`SolveError::InvalidInput`].
-    pub fn invalid(path: impl Into<String>, message: impl Into<String>) -> Self {
-        SolveError::InvalidInput { path: path.into(), message: message.into() }
+    pub fn invalid(field: impl Into<String>, message: impl Into<String>) -> Self {
+        SolveError::InvalidInput { field: field.into(), message: message.into() }
+    }
+    /// An input error named in the job spec's terms: `spec_path` maps a solver input field to
+    /// the spec's JSON pointer (`None`: the field keeps its solver name). Other errors pass.
+    pub fn in_spec(self, spec_path: impl Fn(&str) -> Option<String>) -> Self {
+        match self {
+            SolveError::InvalidInput { field, message } if !field.starts_with('/') => {
+                SolveError::InvalidInput { field: spec_path(&field).unwrap_or(field), message }
+            }
+            other => other,
+        }
     }
     /// Shorthand for [`SolveError::Physical`].
     pub fn physical(code: PhysicalFailure, message: impl Into<String>) -> Self {

@@ -14,6 +14,7 @@ mod cam_validation;
 mod ehl_stability;
 mod ehl_validation;
 mod examples_run;
+mod house;
 mod http_api;
 mod journal_examples;
 mod journal_kinds;

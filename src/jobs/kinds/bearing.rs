@@ -693,11 +693,28 @@ impl Kind for BearingKind {
     }
 
     fn solve(spec: &BearingSpec, observer: &dyn Observer) -> Result<BearingResult, SolveError> {
-        observer.progress(0.0, "load");
-        let load = resolve_load(spec, observer)?;
-        observer.progress(0.3, "analysis");
-        let (_, r) = solve_spec(spec, load, None, observer)?;
-        observer.progress(1.0, "done");
-        Ok(r)
+        let solved = || {
+            observer.progress(0.0, "load");
+            let load = resolve_load(spec, observer)?;
+            observer.progress(0.3, "analysis");
+            let (_, r) = solve_spec(spec, load, None, observer)?;
+            observer.progress(1.0, "done");
+            Ok(r)
+        };
+        solved().map_err(|e: SolveError| e.in_spec(bearing_spec_path))
     }
+}
+
+/// The spec path of a journal-bearing solver input field (`physics::journal`).
+pub fn bearing_spec_path(field: &str) -> Option<String> {
+    let path = match field {
+        "Bearing.length_to_diameter" => "/geometry/length_to_diameter",
+        "Bearing.profile" => "/profile",
+        "Settings.grid" => "/grid",
+        "Settings.tolerances" => "/solver",
+        "Operating.eccentricity" => "/load/eccentricity_ratio",
+        "Operating.load" => "/load",
+        _ => return None,
+    };
+    Some(path.to_string())
 }

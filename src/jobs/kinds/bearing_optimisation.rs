@@ -350,6 +350,18 @@ impl Kind for BearingOptimisation {
     }
 
     fn solve(spec: &OptimisationSpec, observer: &dyn Observer) -> Result<OptimisationResult, SolveError> {
+        // The base bearing's fields sit under /base; a candidate's profile comes from /factors.
+        optimise(spec, observer).map_err(|e| {
+            e.in_spec(|field| match field {
+                "Bearing.profile" => Some("/factors".into()),
+                _ => super::bearing::bearing_spec_path(field).map(|p| format!("/base{p}")),
+            })
+        })
+    }
+}
+
+fn optimise(spec: &OptimisationSpec, observer: &dyn Observer) -> Result<OptimisationResult, SolveError> {
+    {
         let base = &spec.base;
         observer.progress(0.0, "reference load");
         let (op, guess, target) = resolve_load(base, observer)?;

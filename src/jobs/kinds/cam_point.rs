@@ -214,6 +214,12 @@ impl Kind for CamPoint {
     }
 
     fn solve(spec: &CamPointSpec, observer: &dyn Observer) -> Result<CamPointResult, SolveError> {
+        solve_point(spec, observer).map_err(|e| e.in_spec(super::common::cam_spec_path))
+    }
+}
+
+fn solve_point(spec: &CamPointSpec, observer: &dyn Observer) -> Result<CamPointResult, SolveError> {
+    {
         let es = contact_modulus(
             spec.cam.material.elastic(),
             spec.follower.material.elastic(),

@@ -380,3 +380,27 @@ impl EhlSpec {
         v.in_range(&format!("{path}/auto_tolerance"), self.auto_tolerance, 0.0, 10.0);
     }
 }
+
+/// `[2]` → `/2`: an index of a solver field as a JSON-pointer segment.
+fn index_segment(rest: &str) -> String {
+    rest.strip_prefix('[').and_then(|r| r.strip_suffix(']')).map_or_else(String::new, |i| format!("/{i}"))
+}
+
+/// The spec path (in a `cam_cycle`-shaped spec) of a solver input field the cam kinds fill in
+/// from the spec; `None` for derived inputs (they have no field of their own in the spec).
+pub fn cam_spec_path(field: &str) -> Option<String> {
+    for solver_field in ["MultiArc.arcs", "IrgashevInput.arcs"] {
+        if let Some(rest) = field.strip_prefix(solver_field) {
+            return Some(format!("/cam/profile/arcs{}", index_segment(rest)));
+        }
+    }
+    let path = match field {
+        "EhlOptions.nodes" => "/ehl/nodes",
+        "EhlOptions.tolerance" => "/ehl/tolerance",
+        "EhlInput.lubricant.viscosity" => "/lubricant/viscosity",
+        "EhlInput.lubricant.pressure_viscosity" => "/lubricant/pressure_viscosity",
+        "EhlInput.lubricant.density" => "/lubricant/density",
+        _ => return None,
+    };
+    Some(path.to_string())
+}

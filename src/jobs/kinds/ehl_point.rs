@@ -223,6 +223,25 @@ impl Kind for EhlPoint {
     }
 
     fn solve(spec: &EhlPointSpec, observer: &dyn Observer) -> Result<EhlPointResult, SolveError> {
+        solve_point(spec, observer).map_err(|e| e.in_spec(spec_path))
+    }
+}
+
+/// The spec path of an EHL solver input field.
+fn spec_path(field: &str) -> Option<String> {
+    let path = match field {
+        "EhlOptions.nodes" => "/nodes",
+        "EhlOptions.tolerance" => "/tolerance",
+        "EhlInput.entrainment_velocity" => "/entrainment_velocity",
+        "EhlInput.sliding_velocity" => "/sliding_velocity",
+        "EhlInput.temperature" => "/lubricant/temperature",
+        _ => return field.strip_prefix("EhlInput.lubricant.").map(|f| format!("/lubricant/{f}")),
+    };
+    Some(path.to_string())
+}
+
+fn solve_point(spec: &EhlPointSpec, observer: &dyn Observer) -> Result<EhlPointResult, SolveError> {
+    {
         let e1 = Elastic { youngs_modulus: spec.body_1.youngs_modulus, poisson_ratio: spec.body_1.poisson_ratio };
         let e2 = Elastic { youngs_modulus: spec.body_2.youngs_modulus, poisson_ratio: spec.body_2.poisson_ratio };
         let ep = effective_modulus(e1, e2);

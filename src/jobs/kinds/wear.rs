@@ -14,7 +14,7 @@
 //!   `physics::wear::irgashev`. Physics: `physics::wear::irgashev`.
 
 use super::cam_cycle::{CamCycle, CamCycleSpec, CamOutput, FollowerSpec, LoadSpec, ProfileSpec, ThermalPair};
-use super::common::composite_sigma;
+use super::common::{cam_spec_path, composite_sigma};
 use crate::jobs::kind::{Kind, Limits, Validation};
 use crate::physics::contact::contact_modulus;
 use crate::physics::film::{model_for, FilmFormula, FilmModelId, Fidelity};
@@ -584,13 +584,22 @@ fn extrapolate(depth: &[f64], rate: &[f64], limit: f64) -> Option<f64> {
     t.is_finite().then_some(t / 3600.0)
 }
 
+/// The spec path of a solver input field of a wear run.
+fn wear_spec_path(field: &str) -> Option<String> {
+    match field {
+        "IrgashevInput.slip" => Some("/irgashev/slip".into()),
+        "WearRun.hours" => Some("/hours".into()),
+        _ => cam_spec_path(field),
+    }
+}
+
 /// An input error about the pair names its field inside the wear spec's `cycle` (the cam cycle's
-/// conversion and the physics name the pair's fields as a `cam_cycle` spec does).
+/// conversion names the pair's fields as a `cam_cycle` spec does).
 fn in_cycle(e: SolveError) -> SolveError {
     const PAIR: [&str; 5] = ["/cam", "/follower", "/load", "/operation", "/lubricant"];
     match e {
-        SolveError::InvalidInput { path, message } if PAIR.iter().any(|p| path == *p || path.starts_with(&format!("{p}/"))) => {
-            SolveError::InvalidInput { path: format!("/cycle{path}"), message }
+        SolveError::InvalidInput { field, message } if PAIR.iter().any(|p| field == *p || field.starts_with(&format!("{p}/"))) => {
+            SolveError::InvalidInput { field: format!("/cycle{field}"), message }
         }
         e => e,
     }
@@ -598,7 +607,7 @@ fn in_cycle(e: SolveError) -> SolveError {
 
 fn solve_archard(spec: &WearSpec, observer: &dyn Observer) -> Result<WearResult, SolveError> {
     let cc = spec.cycle_spec();
-    let cycle = cc.cycle_spec().map_err(in_cycle)?;
+    let cycle = cc.cycle_spec()?;
     let needs = cc.needs();
     let model = model_for(spec.cycle.fidelity, spec.cycle.film.to_physics(), spec.cycle.ehl.to_physics());
     let mut cycle = cycle;
@@ -799,7 +808,7 @@ pub fn irgashev_input(spec: &WearSpec) -> Result<IrgashevInput, SolveError> {
 fn solve_irgashev(spec: &WearSpec, observer: &dyn Observer) -> Result<WearResult, SolveError> {
     observer.check()?;
     let input = irgashev_input(spec)?;
-    let rows = irgashev::rows(&input).map_err(in_cycle)?;
+    let rows = irgashev::rows(&input)?;
     // mm/h → m/s.
     let to_si = 1e-3 / 3600.0;
     let n = spec.cycle.angles;
@@ -1050,9 +1059,10 @@ impl Kind for Wear {
     }
 
     fn solve(spec: &WearSpec, observer: &dyn Observer) -> Result<WearResult, SolveError> {
-        match spec.model {
+        let solved = match spec.model {
             WearModel::Archard => solve_archard(spec, observer),
             WearModel::Irgashev => solve_irgashev(spec, observer),
-        }
+        };
+        solved.map_err(|e| in_cycle(e.in_spec(wear_spec_path)))
     }
 }

@@ -69,12 +69,12 @@ impl MultiArc {
     /// 1e-6 of the base radius), otherwise `cam_not_closed` with the gap.
     pub fn new(arcs: &[(f64, f64)]) -> Result<Self, SolveError> {
         if arcs.len() < 2 {
-            return Err(SolveError::invalid("/cam/profile/arcs", "a multi-arc cam needs at least 2 arcs"));
+            return Err(SolveError::invalid("MultiArc.arcs", "a multi-arc cam needs at least 2 arcs"));
         }
         for (i, &(r, a)) in arcs.iter().enumerate() {
             if !(r > 0.0 && r.is_finite() && a > 0.0 && a.is_finite()) {
                 return Err(SolveError::invalid(
-                    format!("/cam/profile/arcs/{i}"),
+                    format!("MultiArc.arcs[{i}]"),
                     "radius and angle must be finite and > 0",
                 ));
             }

@@ -766,34 +766,34 @@ fn validate(input: &EhlInput, options: &EhlOptions) -> Result<(), SolveError> {
     let pos = |v: f64, path: &str| {
         if v.is_finite() && v > 0.0 { Ok(()) } else { Err(SolveError::invalid(path, "must be a finite number > 0")) }
     };
-    pos(input.load_per_length, "/load_per_length")?;
-    pos(input.reduced_radius, "/reduced_radius")?;
-    pos(input.effective_modulus, "/effective_modulus")?;
-    pos(input.temperature, "/temperature")?;
-    pos(input.lubricant.viscosity, "/lubricant/viscosity")?;
-    pos(input.lubricant.density, "/lubricant/density")?;
+    pos(input.load_per_length, "EhlInput.load_per_length")?;
+    pos(input.reduced_radius, "EhlInput.reduced_radius")?;
+    pos(input.effective_modulus, "EhlInput.effective_modulus")?;
+    pos(input.temperature, "EhlInput.temperature")?;
+    pos(input.lubricant.viscosity, "EhlInput.lubricant.viscosity")?;
+    pos(input.lubricant.density, "EhlInput.lubricant.density")?;
     if !(input.lubricant.pressure_viscosity.is_finite() && input.lubricant.pressure_viscosity >= 0.0) {
-        return Err(SolveError::invalid("/lubricant/pressure_viscosity", "must be a finite number >= 0"));
+        return Err(SolveError::invalid("EhlInput.lubricant.pressure_viscosity", "must be a finite number >= 0"));
     }
     if !input.entrainment_velocity.is_finite() {
-        return Err(SolveError::invalid("/entrainment_velocity", "must be finite"));
+        return Err(SolveError::invalid("EhlInput.entrainment_velocity", "must be finite"));
     }
     if !input.sliding_velocity.is_finite() {
-        return Err(SolveError::invalid("/sliding_velocity", "must be finite"));
+        return Err(SolveError::invalid("EhlInput.sliding_velocity", "must be finite"));
     }
     if let Some(s) = input.transient {
-        pos(s.time_step, "/time_step")?;
+        pos(s.time_step, "EhlInput.transient.time_step")?;
         if s.previous.x.len() < 2 {
-            return Err(SolveError::invalid("/previous", "a previous state needs at least two nodes"));
+            return Err(SolveError::invalid("EhlInput.transient.previous", "a previous state needs at least two nodes"));
         }
     }
     if options.nodes < 16 {
-        return Err(SolveError::invalid("/nodes", "at least 16 nodes"));
+        return Err(SolveError::invalid("EhlOptions.nodes", "at least 16 nodes"));
     }
     if !(options.tolerance.is_finite() && options.tolerance > 0.0) {
-        return Err(SolveError::invalid("/tolerance", "must be a finite number > 0"));
+        return Err(SolveError::invalid("EhlOptions.tolerance", "must be a finite number > 0"));
     }
-    for (v, path) in [(options.inlet, "/inlet"), (options.outlet, "/outlet")] {
+    for (v, path) in [(options.inlet, "EhlOptions.inlet"), (options.outlet, "EhlOptions.outlet")] {
         if let Some(v) = v {
             if !(v.is_finite() && v > 1.0) {
                 return Err(SolveError::invalid(path, "must exceed one Hertzian half-width"));

@@ -204,11 +204,11 @@ impl TransientSolver {
     /// step, or after [`reset`](Self::reset)) the step is a steady cold solve.
     pub fn step(&mut self, input: &EhlInput, time_step: Option<f64>, observer: &dyn Observer) -> Result<EhlSolution, SolveError> {
         if self.coarse.is_some() && self.fine.options.nodes < 31 {
-            return Err(SolveError::invalid("/nodes", "Richardson extrapolation needs at least 31 nodes (16 on the coarse grid)"));
+            return Err(SolveError::invalid("EhlOptions.nodes", "Richardson extrapolation needs at least 31 nodes (16 on the coarse grid)"));
         }
         if let Some(dt) = time_step {
             if !(dt.is_finite() && dt > 0.0) {
-                return Err(SolveError::invalid("/time_step", "must be a finite number > 0"));
+                return Err(SolveError::invalid("TransientSolver.time_step", "must be a finite number > 0"));
             }
         }
         let layout = self.layout_for(input, time_step);
@@ -353,7 +353,7 @@ impl ReusableSolver {
         observer: &dyn Observer,
     ) -> Result<RichardsonSolution, SolveError> {
         if options.nodes < 31 {
-            return Err(SolveError::invalid("/nodes", "Richardson extrapolation needs at least 31 nodes (16 on the coarse grid)"));
+            return Err(SolveError::invalid("EhlOptions.nodes", "Richardson extrapolation needs at least 31 nodes (16 on the coarse grid)"));
         }
         let layout = self.layout_for(input, options);
         let coarse_options = EhlOptions { nodes: (options.nodes - 1) / 2 + 1, profiles: false, ..*options };

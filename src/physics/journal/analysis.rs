@@ -1016,34 +1016,34 @@ fn striated_couette(l: &super::multigrid::Level, film: &Film) -> f64 {
 fn validate(bearing: &Bearing, operating: &Operating, s: &Settings) -> Result<(), SolveError> {
     let bad = |p: &str, m: &str| Err(SolveError::invalid(p, m));
     if !(bearing.length_to_diameter.is_finite() && bearing.length_to_diameter > 0.0) {
-        return bad("/geometry/length_to_diameter", "must be > 0");
+        return bad("Bearing.length_to_diameter", "must be > 0");
     }
     if s.circumferential < 9 || s.axial < 5 {
-        return bad("/grid", "at least 9 circumferential and 5 axial nodes");
+        return bad("Settings.grid", "at least 9 circumferential and 5 axial nodes");
     }
     if !(s.pressure_tolerance > 0.0 && s.load_tolerance > 0.0) {
-        return bad("/solver", "tolerances must be > 0");
+        return bad("Settings.tolerances", "tolerances must be > 0");
     }
     match *operating {
         Operating::Position { eccentricity, attitude } => {
             if !(eccentricity.is_finite() && (0.0..1.0).contains(&eccentricity) && attitude.is_finite()) {
-                return bad("/load/eccentricity_ratio", "must be in [0, 1)");
+                return bad("Operating.eccentricity", "must be in [0, 1)");
             }
         }
         Operating::Eccentricity(e) => {
             if !(e.is_finite() && (0.0..1.0).contains(&e)) {
-                return bad("/load/eccentricity_ratio", "must be in [0, 1)");
+                return bad("Operating.eccentricity", "must be in [0, 1)");
             }
         }
         Operating::Load(w) => {
             if !(w.is_finite() && w > 0.0) {
-                return bad("/load", "the load must be > 0");
+                return bad("Operating.load", "the load must be > 0");
             }
         }
     }
     if let Some(p) = bearing.profile {
         if !(1..=3).contains(&p.order) || !(p.height >= 0.0) || !(p.length_fraction > 0.0 && p.length_fraction <= 0.5) {
-            return bad("/profile", "order 1-3, height >= 0, length_fraction in (0, 0.5]");
+            return bad("Bearing.profile", "order 1-3, height >= 0, length_fraction in (0, 0.5]");
         }
     }
     Ok(())

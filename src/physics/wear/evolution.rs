@@ -239,7 +239,7 @@ fn point(hours: f64, period: f64, depth: &[f64], angle: &[f64], e: &Evaluated, v
 /// errors; errors after a profile update end the run (see [`Stop::Failed`]).
 pub fn evolve(run: &WearRun, model: &dyn FilmModel, observer: &dyn Observer) -> Result<WearEvolution, SolveError> {
     if !(run.hours > 0.0 && run.update_hours > 0.0) {
-        return Err(SolveError::invalid("/hours", "running time and update interval must be > 0"));
+        return Err(SolveError::invalid("WearRun.hours", "running time and update interval must be > 0"));
     }
     let n = run.cycle.angles;
     observer.progress(0.0, "unworn cycle");

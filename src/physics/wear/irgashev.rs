@@ -164,10 +164,10 @@ pub fn role(k: usize, n: usize) -> ArcRole {
 pub fn rows(i: &IrgashevInput) -> Result<Vec<IrgashevRow>, SolveError> {
     let n = i.arcs.len();
     if n < 6 || n % 2 == 1 {
-        return Err(SolveError::invalid("/cam/profile/arcs", "the seed 004 method needs an even number (≥ 6) of arcs"));
+        return Err(SolveError::invalid("IrgashevInput.arcs", "the seed 004 method needs an even number (≥ 6) of arcs"));
     }
     if i.slip.len() != n {
-        return Err(SolveError::invalid("/irgashev/slip", "needs one slip value per arc"));
+        return Err(SolveError::invalid("IrgashevInput.slip", "needs one slip value per arc"));
     }
     let m = i.flank_steps.max(1);
     let flanks_per_side = n / 2 - 2;

@@ -18,6 +18,7 @@ pub use spec::*;
 use solve::*;
 
 use crate::jobs::kind::{Kind, Limits, OutputInfo, Validation};
+use crate::jobs::kinds::common::cam_spec_path;
 use crate::physics::film::Fidelity;
 use crate::physics::{Observer, SolveError};
 use serde_json::{json, Value};
@@ -222,7 +223,7 @@ impl Kind for CamCycle {
     }
 
     fn solve(spec: &CamCycleSpec, observer: &dyn Observer) -> Result<CamCycleResult, SolveError> {
-        solve_spec(spec, observer)
+        solve_spec(spec, observer).map_err(|e| e.in_spec(cam_spec_path))
     }
 }
 

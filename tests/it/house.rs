@@ -1,0 +1,66 @@
+//! The house rules (issue 11), checked on the source: who may import whom, and the typed
+//! boundary between the solvers and the job layer.
+
+use std::path::{Path, PathBuf};
+use tribod::physics::SolveError;
+
+fn files(dir: &str) -> Vec<PathBuf> {
+    let mut out = Vec::new();
+    let mut stack = vec![Path::new(env!("CARGO_MANIFEST_DIR")).join(dir)];
+    while let Some(d) = stack.pop() {
+        for entry in std::fs::read_dir(&d).unwrap() {
+            let p = entry.unwrap().path();
+            if p.is_dir() {
+                stack.push(p);
+            } else if p.extension().is_some_and(|e| e == "rs") {
+                out.push(p);
+            }
+        }
+    }
+    assert!(!out.is_empty(), "no sources under {dir}");
+    out
+}
+
+/// `room` imports none of `forbidden` (as `crate::<name>` paths).
+fn imports_none(room: &str, forbidden: &[&str]) {
+    for file in files(room) {
+        let text = std::fs::read_to_string(&file).unwrap();
+        // Code only: comments may name other rooms.
+        let code: Vec<&str> = text.lines().filter(|l| !l.trim_start().starts_with("//")).collect();
+        for name in forbidden {
+            let used = code.iter().any(|l| l.contains(&format!("crate::{name}::")) || l.contains(&format!("crate::{name};")) || l.contains(&format!("crate::{name}{{")));
+            assert!(!used, "{} imports crate::{name}", file.display());
+        }
+    }
+}
+
+#[test]
+fn rooms_import_only_what_they_may() {
+    // Physics is pure: no service code.
+    imports_none("src/physics", &["jobs", "api", "store", "server", "plots", "web", "problem", "metrics"]);
+    // The API reaches solvers only through jobs.
+    imports_none("src/api", &["physics"]);
+    // Plots read result JSON; the store keeps rows; the web pages talk to the public API.
+    imports_none("src/plots", &["physics", "jobs", "api", "store", "server"]);
+    imports_none("src/store", &["physics", "jobs", "api", "server", "plots", "web"]);
+    imports_none("src/web", &["physics", "jobs", "store", "server", "plots"]);
+}
+
+/// A solver names its own input's field; the kind turns it into the spec's path; an error
+/// nobody mapped still says which solver input it was about.
+#[test]
+fn solver_input_errors_name_solver_fields_and_kinds_map_them() {
+    let e = tribod::physics::cam::MultiArc::new(&[(0.02, 1.0), (-1.0, 5.28)]).unwrap_err();
+    assert_eq!(e, SolveError::invalid("MultiArc.arcs[1]", "radius and angle must be finite and > 0"));
+    let mapped = e.clone().in_spec(tribod::jobs::kinds::common::cam_spec_path);
+    assert_eq!(mapped, SolveError::invalid("/cam/profile/arcs/1", "radius and angle must be finite and > 0"));
+    let p = tribod::problem::Problem::from_solve_error(&mapped);
+    assert_eq!(p.errors[0].path, "/cam/profile/arcs/1");
+    // Unmapped: no field error with a made-up path, the solver field in the detail.
+    let p = tribod::problem::Problem::from_solve_error(&SolveError::invalid("EhlInput.reduced_radius", "must be a finite number > 0"));
+    assert!(p.errors.is_empty());
+    assert!(p.detail.contains("EhlInput.reduced_radius"), "{}", p.detail);
+    // Already a spec path: kept.
+    let kept = SolveError::invalid("/load", "x").in_spec(|_| Some("/elsewhere".into()));
+    assert_eq!(kept, SolveError::invalid("/load", "x"));
+}
