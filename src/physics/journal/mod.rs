@@ -14,6 +14,8 @@
 pub mod film;
 pub mod multigrid;
 pub mod analysis;
+mod balance;
+mod figures;
 pub mod taguchi;
 
 pub use analysis::{analyse, Analysis, Bearing, Fields, Guess, Operating, Settings, Supply, Workspace};
