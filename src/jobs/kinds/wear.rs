@@ -16,6 +16,7 @@
 use super::cam_cycle::{CamCycle, CamCycleSpec, CamOutput, FollowerSpec, LoadSpec, ProfileSpec, ThermalPair};
 use super::common::{cam_spec_path, composite_sigma};
 use crate::jobs::kind::{Kind, Limits, Validation};
+use crate::physics::cam::summary::FlatFace;
 use crate::physics::contact::contact_modulus;
 use crate::physics::film::{model_for, FilmFormula, FilmModelId, Fidelity};
 use crate::physics::wear::irgashev::{self, ArcRole, IrgashevInput};
@@ -617,8 +618,9 @@ fn solve_archard(spec: &WearSpec, observer: &dyn Observer) -> Result<WearResult,
     }
     let k_cam = spec.wear_coefficient.map_or(0.0, |c| c.k());
     let k_follower = spec.follower_wear_coefficient.map_or(k_cam, |c| c.k());
-    let face_radius = match spec.cycle.follower {
-        FollowerSpec::FlatFaced { face_radius, .. } => face_radius,
+    // A flat face is centred on the follower axis, `offset` from the cam centre line.
+    let face = match spec.cycle.follower {
+        FollowerSpec::FlatFaced { face_radius: Some(radius), offset, .. } => Some(FlatFace { centre: offset, radius }),
         _ => None,
     };
     let run = WearRun {
@@ -636,7 +638,7 @@ fn solve_archard(spec: &WearSpec, observer: &dyn Observer) -> Result<WearResult,
         update_hours: spec.update_hours(),
         wear_limit: spec.wear_limit,
         snapshots: spec.snapshots,
-        face_radius,
+        face,
         face_bins: spec.cycle.angles,
         max_updates: spec.max_updates(),
     };

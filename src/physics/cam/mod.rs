@@ -12,6 +12,7 @@ pub mod loads;
 pub mod profile;
 pub mod seed004;
 pub mod spline;
+pub mod summary;
 
 pub use jet::Jet;
 pub use kinematics::{kinematics, CamSpeed, FollowerGeometry, KinematicState, SpeedSchedule};

@@ -36,6 +36,12 @@ pub struct RollerParams {
     pub pin: PinFriction,
 }
 
+/// Moment of inertia of a solid ring (a roller on its pin bore) about its axis, kg·m²:
+/// `J = ½ ρ π L (R⁴ − r⁴)` (thick-walled cylinder).
+pub fn ring_inertia(density: f64, radius: f64, bore_radius: f64, length: f64) -> f64 {
+    0.5 * density * std::f64::consts::PI * length * (radius.powi(4) - bore_radius.powi(4))
+}
+
 /// Root of a monotone non-decreasing function `f(x, side)` that may jump at the points `jumps`
 /// (`side` −1/+1 asks for the left/right limit there, 0 elsewhere). Returns a jump point when
 /// zero lies within its jump. `f` returns `(value, slope)`; `scale` is a typical |x|.

@@ -18,6 +18,7 @@
 //!   the cycle's typed errors (`cam_undercut`, `follower_separation`, `contact_off_face`, …) end
 //!   the run and the history up to the last valid profile is returned with the reason.
 
+use crate::physics::cam::summary::{check_contact_on_face, FlatFace};
 use super::archard::{face_bins, revolution_wear, ArchardParams, RevolutionWear};
 use super::deposit::Bins;
 use crate::physics::cam::cycle::{run_cycle, CycleOutput, CycleSpec, Needs};
@@ -44,8 +45,8 @@ pub struct WearRun {
     /// Number of wear-depth snapshots to keep, evenly spaced in time (the final state is always
     /// reported separately).
     pub snapshots: usize,
-    /// A flat face's radius, m: the contact must stay on it.
-    pub face_radius: Option<f64>,
+    /// A flat face of finite radius: the contact must stay on it.
+    pub face: Option<FlatFace>,
     /// Bins over a flat follower's face.
     pub face_bins: usize,
     /// Most profile updates, those added by the stability cut included (the update interval is
@@ -158,18 +159,8 @@ fn evaluate(
 }
 
 fn wear_of(run: &WearRun, cycle: &CycleSpec, out: CycleOutput, bins: Option<Bins>) -> Result<Evaluated, SolveError> {
-    if let Some(r) = run.face_radius {
-        if let Some((i, x)) = out.series.contact_offset.iter().enumerate().find(|(_, x)| x.abs() > r) {
-            return Err(SolveError::physical(
-                crate::physics::PhysicalFailure::ContactOffFace,
-                format!(
-                    "the contact runs off the follower face at {:.2}° ({:.3} mm from its centre, face radius {:.3} mm)",
-                    out.series.angle[i].to_degrees(),
-                    x * 1e3,
-                    r * 1e3
-                ),
-            ));
-        }
+    if let Some(face) = run.face {
+        check_contact_on_face(&out.series, face)?;
     }
     let wear = revolution_wear(cycle, &out, &run.archard, bins)?;
     let max_film_pressure =

@@ -4,6 +4,7 @@
 use super::result::*;
 use super::spec::*;
 use crate::jobs::kinds::common::{composite_sigma, LubricantSpec};
+use crate::physics::cam::summary::{check_contact_on_face, summarise, CycleSummary, FlatFace};
 use crate::physics::cam::cycle::{run_cycle, CycleSpec, FollowerKind, Needs, SlipMode};
 use crate::physics::cam::{CamProfile, FollowerGeometry, FollowerShape, LiftProgram, LoadModel, MultiArc, PeriodicSpline, PeriodicTable, SpeedSchedule};
 use crate::physics::contact::{contact_modulus, Elastic};
@@ -101,7 +102,7 @@ impl CamCycleSpec {
         let (shape, follower) = match &self.follower {
             FollowerSpec::FlatFaced { .. } => (FollowerShape::Flat, FollowerKind::Flat { contact_length: self.cam.width.unwrap_or(0.0) }),
             FollowerSpec::Roller { radius, length, pin_radius, clearance, inertia, density, pin, crown, offset, .. } => {
-                let inertia = inertia.unwrap_or_else(|| 0.5 * density * PI * length * (radius.powi(4) - pin_radius.powi(4)));
+                let inertia = inertia.unwrap_or_else(|| crate::physics::roller::ring_inertia(*density, *radius, *pin_radius, *length));
                 let pin = match pin {
                     PinSpec::Coefficient { coefficient } => PinFriction::Coefficient { coefficient: *coefficient, pin_radius: *pin_radius },
                     PinSpec::Hydrodynamic { length: l } => PinFriction::ShortBearing {
@@ -188,133 +189,22 @@ fn table(angles_deg: &[f64], values: &[f64], path: &str) -> Result<PeriodicTable
     })
 }
 
-/// Index and value of the extreme of `v` by `better`.
-fn extreme(v: &[f64], better: impl Fn(f64, f64) -> bool) -> (usize, f64) {
-    let mut best = (0, v[0]);
-    for (i, &x) in v.iter().enumerate() {
-        if better(x, best.1) {
-            best = (i, x);
-        }
-    }
-    best
-}
-
-/// Time-average of `v` over the revolution: trapezoid in time with the wrap for steady running;
-/// for a startup, the value at the end of each step over that step (what the implicit step
-/// computes), so that the instant of rest at t = 0 carries no weight.
-fn time_mean(v: &[f64], time: &[f64], duration: f64, periodic: bool) -> f64 {
-    let n = v.len();
-    if n == 1 {
-        return v[0];
-    }
-    let mut integral = 0.0;
-    if periodic {
-        for i in 0..n - 1 {
-            integral += 0.5 * (v[i] + v[i + 1]) * (time[i + 1] - time[i]);
-        }
-        integral += 0.5 * (v[n - 1] + v[0]) * (duration - time[n - 1]);
-        integral / duration
-    } else {
-        for i in 1..n {
-            integral += v[i] * (time[i] - time[i - 1]);
-        }
-        integral / (time[n - 1] - time[0])
-    }
-}
-
 pub(super) fn solve_spec(spec: &CamCycleSpec, observer: &dyn Observer) -> Result<CamCycleResult, SolveError> {
     let cycle = spec.cycle_spec()?;
     let needs = spec.needs();
     let model = needs.film.then(|| model_for(spec.fidelity, spec.film.to_physics(), spec.ehl.to_physics()));
     let fast = crate::physics::film::ClosedForm { formula: spec.film.formula, squeeze: spec.film.squeeze };
     let out = run_cycle(&cycle, needs, model.as_deref().unwrap_or(&fast), observer)?;
+    let figures = summarise(&out, spec.operation.startup.is_none());
     let s = out.series;
-    // Contact must stay on a flat face of finite radius.
-    if let FollowerSpec::FlatFaced { face_radius: Some(r), offset, .. } = spec.follower {
-        if let Some((i, x)) = s.contact_offset.iter().map(|x| x - offset).enumerate().find(|(_, x)| x.abs() > r) {
-            return Err(SolveError::physical(
-                crate::physics::PhysicalFailure::ContactOffFace,
-                format!(
-                    "the contact runs off the follower face at {:.2}° ({:.3} mm from its centre, face radius {:.3} mm)",
-                    s.angle[i].to_degrees(),
-                    x * 1e3,
-                    r * 1e3
-                ),
-            ));
-        }
+    // Contact must stay on a flat face of finite radius (centred on the follower axis).
+    if let FollowerSpec::FlatFaced { face_radius: Some(radius), offset, .. } = spec.follower {
+        check_contact_on_face(&s, FlatFace { centre: offset, radius })?;
     }
     let degs = |v: &[f64]| v.iter().map(|x| x.to_degrees()).collect::<Vec<_>>();
     let angle_deg = degs(&s.angle);
     let at = |i: usize| angle_deg[i];
-    let periodic = spec.operation.startup.is_none();
-    let mut summary = CamSummary {
-        max_lift: s.lift.iter().copied().fold(f64::NEG_INFINITY, f64::max),
-        max_velocity: s.velocity.iter().copied().fold(f64::NEG_INFINITY, f64::max),
-        max_acceleration: s.acceleration.iter().copied().fold(f64::NEG_INFINITY, f64::max),
-        min_acceleration: s.acceleration.iter().copied().fold(f64::INFINITY, f64::min),
-        max_abs_jerk: s.jerk.iter().map(|x| x.abs()).fold(0.0, f64::max),
-        max_abs_pressure_angle_deg: s.pressure_angle.iter().map(|x| x.abs().to_degrees()).fold(0.0, f64::max),
-        min_cam_radius_of_curvature: {
-            let k = s.cam_curvature.iter().copied().fold(0.0, f64::max);
-            (k > 0.0).then(|| 1.0 / k)
-        },
-        min_reduced_radius: s.reduced_radius.iter().copied().fold(f64::INFINITY, f64::min),
-        zero_entrainment_count: out.events.zero_entrainment.len(),
-        min_axial_load: out.events.min_axial_load,
-        ..Default::default()
-    };
-    if let Some(v) = &s.contact_load {
-        summary.max_contact_load = Some(v.iter().copied().fold(f64::NEG_INFINITY, f64::max));
-    }
-    if let Some(v) = &s.hertz_max_pressure {
-        let (i, p) = extreme(v, |a, b| a > b);
-        summary.max_hertz_pressure = Some(p);
-        summary.max_hertz_pressure_angle_deg = Some(at(i));
-    }
-    if let Some(v) = &s.max_shear_stress {
-        summary.max_subsurface_shear = Some(v.iter().copied().fold(0.0, f64::max));
-    }
-    if let Some(v) = &s.film_min {
-        let (i, h) = extreme(v, |a, b| a < b);
-        summary.min_film = Some(h);
-        summary.min_film_angle_deg = Some(at(i));
-    }
-    if let Some(v) = &s.film_central {
-        summary.min_central_film = Some(v.iter().copied().fold(f64::INFINITY, f64::min));
-    }
-    if let Some(v) = &s.lambda {
-        let (i, l) = extreme(v, |a, b| a < b);
-        summary.min_lambda = Some(l);
-        summary.min_lambda_angle_deg = Some(at(i));
-    }
-    if let Some(v) = &s.asperity_load_fraction {
-        summary.max_asperity_load_fraction = Some(v.iter().copied().fold(0.0, f64::max));
-    }
-    if let Some(v) = &s.friction_coefficient {
-        summary.max_friction_coefficient = Some(v.iter().map(|x| x.abs()).fold(0.0, f64::max));
-        let abs: Vec<f64> = v.iter().map(|x| x.abs()).collect();
-        summary.mean_friction_coefficient = Some(time_mean(&abs, &s.time, out.duration, periodic));
-    }
-    if let Some(v) = &s.friction_torque {
-        summary.mean_friction_torque = Some(time_mean(v, &s.time, out.duration, periodic));
-    }
-    if let Some(v) = &s.power_loss {
-        let mean = time_mean(v, &s.time, out.duration, periodic);
-        summary.mean_power_loss = Some(mean);
-        let span = if periodic { out.duration } else { s.time[s.time.len() - 1] - s.time[0] };
-        summary.energy_loss = Some(mean * span);
-    }
-    if let Some(v) = &s.slide_roll_ratio {
-        let (i, _) = extreme(v, |a, b| a.abs() > b.abs());
-        summary.max_abs_slide_roll_ratio = Some(v[i].abs());
-        summary.max_abs_slide_roll_ratio_angle_deg = Some(at(i));
-        summary.mean_slide_roll_ratio = Some(time_mean(v, &s.time, out.duration, periodic));
-    }
-    if let Some(v) = &s.flash_temperature {
-        let (i, t) = extreme(v, |a, b| a > b);
-        summary.max_flash_temperature = Some(t);
-        summary.max_flash_temperature_angle_deg = Some(at(i));
-    }
+    let mut summary = summary_of(&figures);
     // The film model when one model ran at every angle (absent when `auto` mixed them).
     let film_model = s.film_model.as_ref().and_then(|v| {
         let first = *v.first()?;
@@ -327,27 +217,10 @@ pub(super) fn solve_spec(spec: &CamCycleSpec, observer: &dyn Observer) -> Result
         }
         summary.fidelity_used = Some(counts);
     }
-    if let Some(v) = &s.exit_film {
-        summary.min_exit_film = Some(v.iter().copied().fold(f64::INFINITY, f64::min));
-    }
     let (spike, spike_position) = match &s.pressure_spike {
-        Some(v) => {
-            if let Some((i, m)) = v
-                .iter()
-                .enumerate()
-                .filter_map(|(i, x)| x.map(|(p, _)| (i, p)))
-                .max_by(|a, b| a.1.total_cmp(&b.1))
-            {
-                summary.max_pressure_spike = Some(m);
-                summary.max_pressure_spike_angle_deg = Some(at(i));
-            }
-            (Some(v.iter().map(|x| x.map(|x| x.0)).collect()), Some(v.iter().map(|x| x.map(|x| x.1)).collect()))
-        }
+        Some(v) => (Some(v.iter().map(|x| x.map(|x| x.0)).collect()), Some(v.iter().map(|x| x.map(|x| x.1)).collect())),
         None => (None, None),
     };
-    if let Some(v) = &s.newton_steps {
-        summary.newton_steps = Some(v.iter().map(|&k| k as f64).sum());
-    }
     let profiles = spec.outputs.contains(&CamOutput::Profiles).then(|| {
         out.profiles
             .iter()
@@ -415,3 +288,46 @@ pub(super) fn solve_spec(spec: &CamCycleSpec, observer: &dyn Observer) -> Result
     })
 }
 
+
+/// The physics summary in the result's terms (angles in degrees).
+fn summary_of(p: &CycleSummary) -> CamSummary {
+    let value = |x: Option<(f64, f64)>| x.map(|(v, _)| v);
+    let angle = |x: Option<(f64, f64)>| x.map(|(_, a)| a.to_degrees());
+    CamSummary {
+        max_lift: p.max_lift,
+        max_velocity: p.max_velocity,
+        max_acceleration: p.max_acceleration,
+        min_acceleration: p.min_acceleration,
+        max_abs_jerk: p.max_abs_jerk,
+        max_abs_pressure_angle_deg: p.max_abs_pressure_angle.to_degrees(),
+        min_cam_radius_of_curvature: p.min_cam_radius_of_curvature,
+        min_reduced_radius: p.min_reduced_radius,
+        zero_entrainment_count: p.zero_entrainment_count,
+        max_contact_load: p.max_contact_load,
+        min_axial_load: p.min_axial_load,
+        max_hertz_pressure: value(p.max_hertz_pressure),
+        max_hertz_pressure_angle_deg: angle(p.max_hertz_pressure),
+        max_subsurface_shear: p.max_subsurface_shear,
+        min_film: value(p.min_film),
+        min_film_angle_deg: angle(p.min_film),
+        min_central_film: p.min_central_film,
+        fidelity_used: None,
+        min_exit_film: p.min_exit_film,
+        max_pressure_spike: value(p.max_pressure_spike),
+        max_pressure_spike_angle_deg: angle(p.max_pressure_spike),
+        newton_steps: p.newton_steps,
+        min_lambda: value(p.min_lambda),
+        min_lambda_angle_deg: angle(p.min_lambda),
+        max_asperity_load_fraction: p.max_asperity_load_fraction,
+        max_friction_coefficient: p.max_friction_coefficient,
+        mean_friction_coefficient: p.mean_friction_coefficient,
+        mean_friction_torque: p.mean_friction_torque,
+        mean_power_loss: p.mean_power_loss,
+        energy_loss: p.energy_loss,
+        max_abs_slide_roll_ratio: value(p.max_abs_slide_roll_ratio),
+        max_abs_slide_roll_ratio_angle_deg: angle(p.max_abs_slide_roll_ratio),
+        mean_slide_roll_ratio: p.mean_slide_roll_ratio,
+        max_flash_temperature: value(p.max_flash_temperature),
+        max_flash_temperature_angle_deg: angle(p.max_flash_temperature),
+    }
+}
