@@ -29,3 +29,8 @@ mod tests {
         assert_eq!(hours_for_revolutions(180_000.0, 3000.0), 1.0);
     }
 }
+
+/// Seconds to hours.
+pub fn seconds_to_hours(seconds: f64) -> f64 {
+    seconds / 3600.0
+}

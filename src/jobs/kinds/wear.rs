@@ -19,7 +19,7 @@ use crate::jobs::kind::{Kind, Limits, Validation};
 use crate::physics::cam::summary::FlatFace;
 use crate::physics::contact::contact_modulus;
 use crate::physics::film::{model_for, FilmFormula, FilmModelId, Fidelity};
-use crate::physics::wear::irgashev::{self, ArcRole, IrgashevInput};
+use crate::physics::wear::irgashev::{self, ArcRole, IrgashevSi};
 use crate::physics::wear::{evolve, ArchardParams, LoadShare, Stop, WearRun};
 use crate::physics::{ensure_finite, Convergence, Observer, SolveError};
 use serde::{Deserialize, Serialize};
@@ -574,17 +574,6 @@ fn max_of(v: &[f64]) -> f64 {
     v.iter().copied().fold(f64::NEG_INFINITY, f64::max)
 }
 
-/// Time for the wear `depth` (m) growing at `rate` (m/s) to reach `limit` somewhere, h.
-fn extrapolate(depth: &[f64], rate: &[f64], limit: f64) -> Option<f64> {
-    let t = depth
-        .iter()
-        .zip(rate)
-        .filter(|(_, r)| **r > 0.0)
-        .map(|(d, r)| (limit - d).max(0.0) / r)
-        .fold(f64::INFINITY, f64::min);
-    t.is_finite().then_some(t / 3600.0)
-}
-
 /// The spec path of a solver input field of a wear run.
 fn wear_spec_path(field: &str) -> Option<String> {
     match field {
@@ -688,7 +677,7 @@ fn solve_archard(spec: &WearSpec, observer: &dyn Observer) -> Result<WearResult,
         ..Default::default()
     };
     if let (Some(limit), None) = (spec.wear_limit, ev.hours_to_limit) {
-        summary.hours_to_limit_extrapolated = extrapolate(&ev.depth, &ev.rate, limit).map(|t| ev.hours + t);
+        summary.hours_to_limit_extrapolated = crate::physics::wear::evolution::time_to_limit(&ev.depth, &ev.rate, limit).map(|t| ev.hours + crate::physics::units::seconds_to_hours(t));
     }
     if let Some((pos, d)) = &ev.face {
         let (j, m) = max_at(d);
@@ -772,8 +761,8 @@ fn solve_archard(spec: &WearSpec, observer: &dyn Observer) -> Result<WearResult,
     })
 }
 
-/// The seed 004 inputs of a spec (validated).
-pub fn irgashev_input(spec: &WearSpec) -> Result<IrgashevInput, SolveError> {
+/// The seed 004 inputs of a spec (validated), in SI.
+fn irgashev_input(spec: &WearSpec) -> Result<IrgashevSi, SolveError> {
     let ir = spec.irgashev.as_ref().ok_or_else(|| SolveError::invalid("/irgashev", "is required by model irgashev"))?;
     let ProfileSpec::MultiArc { arcs } = &spec.cycle.cam.profile else {
         return Err(SolveError::invalid("/cycle/cam/profile", "model irgashev needs a multi_arc profile"));
@@ -784,22 +773,18 @@ pub fn irgashev_input(spec: &WearSpec) -> Result<IrgashevInput, SolveError> {
     let Some(LoadSpec::ValveTrain { spring_preload, spring_stiffness, .. }) = spec.cycle.load else {
         return Err(SolveError::invalid("/cycle/load", "model irgashev needs a valve_train load"));
     };
-    let es = contact_modulus(
-        spec.cycle.cam.material.elastic(),
-        material.elastic(),
-    );
-    Ok(IrgashevInput {
-        arcs: arcs.iter().map(|a| (a.radius * 1e3, a.angle_deg)).collect(),
-        tappet_radius: radius * 1e3,
-        youngs: spec.cycle.cam.material.youngs_modulus * 1e-6,
-        poisson: spec.cycle.cam.material.poisson_ratio,
+    let es = contact_modulus(spec.cycle.cam.material.elastic(), material.elastic());
+    Ok(IrgashevSi {
+        arcs: arcs.iter().map(|a| (a.radius, a.angle_deg)).collect(),
+        tappet_radius: radius,
+        cam: spec.cycle.cam.material.elastic(),
         preload: spring_preload,
-        spring_rate: spring_stiffness * 1e-3,
-        nose_lift: ir.nose_lift * 1e3,
+        spring_rate: spring_stiffness,
+        nose_lift: ir.nose_lift,
         slip: ir.slip.clone(),
         flank_steps: ir.flank_steps,
-        elasticity_constant: ir.elasticity_constant * 1e6,
-        yield_strength: ir.yield_strength * 1e-6,
+        elasticity_constant: ir.elasticity_constant,
+        yield_strength: ir.yield_strength,
         deformation_coefficient: ir.deformation_coefficient,
         cycles_to_failure: ir.cycles_to_failure,
         speed: crate::physics::units::rpm_to_rev_per_s(spec.cycle.operation.speed_rpm),
@@ -810,33 +795,19 @@ pub fn irgashev_input(spec: &WearSpec) -> Result<IrgashevInput, SolveError> {
 fn solve_irgashev(spec: &WearSpec, observer: &dyn Observer) -> Result<WearResult, SolveError> {
     observer.check()?;
     let input = irgashev_input(spec)?;
-    let rows = irgashev::rows(&input)?;
-    // mm/h → m/s.
-    let to_si = 1e-3 / 3600.0;
+    let rows = irgashev::rows(&input.paper_units())?;
     let n = spec.cycle.angles;
-    let mut angle_deg = Vec::with_capacity(n);
-    let mut rate = Vec::with_capacity(n);
-    for k in 0..n {
-        let a = 360.0 * k as f64 / n as f64;
-        let row = rows.iter().find(|r| a >= r.position_start_deg && a < r.position_end_deg).unwrap_or(rows.last().unwrap());
-        angle_deg.push(a);
-        rate.push(row.wear_rate * to_si);
-    }
-    let mut hours = spec.running_hours();
+    let wear = irgashev::cam_wear(&rows, n, spec.running_hours(), spec.wear_limit);
+    let (angle_deg, rate, depth, hours) = (wear.angle_deg, wear.rate, wear.depth, wear.hours);
     let max_rate = max_of(&rate);
     let mut termination = WearTermination { reason: WearStopReason::Completed, code: None, message: None, at_hours: None };
     let mut summary = WearSummary::default();
-    if let Some(limit) = spec.wear_limit {
-        let t = limit / max_rate / 3600.0;
-        if t <= hours {
-            hours = t;
-            summary.hours_to_limit = Some(t);
-            termination.reason = WearStopReason::WearLimit;
-        } else {
-            summary.hours_to_limit_extrapolated = Some(t);
-        }
+    if wear.reached_limit {
+        summary.hours_to_limit = wear.hours_to_limit;
+        termination.reason = WearStopReason::WearLimit;
+    } else {
+        summary.hours_to_limit_extrapolated = wear.hours_to_limit;
     }
-    let depth: Vec<f64> = rate.iter().map(|r| r * hours * 3600.0).collect();
     let (i, d) = max_at(&depth);
     summary.max_wear_depth = d;
     summary.max_wear_angle_deg = angle_deg[i];

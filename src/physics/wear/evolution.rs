@@ -384,3 +384,15 @@ pub fn cycles_in(hours: f64, omega: f64) -> f64 {
 pub fn convergence(updates: usize) -> Convergence {
     Convergence { iterations: updates as u32, ..Convergence::closed_form() }
 }
+
+/// Time for the wear `depth` (m) growing at `rate` (m/s) at each point to reach `limit` (m)
+/// somewhere, s (linear extrapolation of the current rates); `None` where nothing grows.
+pub fn time_to_limit(depth: &[f64], rate: &[f64], limit: f64) -> Option<f64> {
+    let t = depth
+        .iter()
+        .zip(rate)
+        .filter(|(_, r)| **r > 0.0)
+        .map(|(d, r)| (limit - d).max(0.0) / r)
+        .fold(f64::INFINITY, f64::min);
+    t.is_finite().then_some(t)
+}

@@ -293,3 +293,93 @@ mod tests {
         }
     }
 }
+
+/// Seed 004's inputs in SI (what the job layer holds): converted to the paper's units by
+/// [`IrgashevSi::paper_units`].
+#[derive(Debug, Clone, PartialEq)]
+pub struct IrgashevSi {
+    /// Arcs `(radius m, central angle °)` in profile order.
+    pub arcs: Vec<(f64, f64)>,
+    /// Tappet sphere radius, m.
+    pub tappet_radius: f64,
+    /// The cam's elastic constants.
+    pub cam: crate::physics::contact::Elastic,
+    /// Spring force at zero lift, N, and spring rate, N/m.
+    pub preload: f64,
+    pub spring_rate: f64,
+    /// Lift at the nose, m.
+    pub nose_lift: f64,
+    pub slip: Vec<f64>,
+    pub flank_steps: usize,
+    /// Elasticity constant θ, 1/Pa.
+    pub elasticity_constant: f64,
+    /// Yield strength σ_t, Pa.
+    pub yield_strength: f64,
+    pub deformation_coefficient: f64,
+    pub cycles_to_failure: f64,
+    /// Cam speed, rev/s.
+    pub speed: f64,
+    /// Wear coefficient k (1/Pa) and contact modulus E* (Pa) for the Archard column.
+    pub archard: Option<(f64, f64)>,
+}
+
+impl IrgashevSi {
+    /// The same inputs in the paper's units (mm, MPa, N/mm, 1/MPa).
+    pub fn paper_units(&self) -> IrgashevInput {
+        IrgashevInput {
+            arcs: self.arcs.iter().map(|(r, a)| (r * 1e3, *a)).collect(),
+            tappet_radius: self.tappet_radius * 1e3,
+            youngs: self.cam.youngs_modulus * 1e-6,
+            poisson: self.cam.poisson_ratio,
+            preload: self.preload,
+            spring_rate: self.spring_rate * 1e-3,
+            nose_lift: self.nose_lift * 1e3,
+            slip: self.slip.clone(),
+            flank_steps: self.flank_steps,
+            elasticity_constant: self.elasticity_constant * 1e6,
+            yield_strength: self.yield_strength * 1e-6,
+            deformation_coefficient: self.deformation_coefficient,
+            cycles_to_failure: self.cycles_to_failure,
+            speed: self.speed,
+            archard: self.archard,
+        }
+    }
+}
+
+/// The cam's wear over running time from the rows' eq. 15 rates (SI).
+#[derive(Debug, Clone, PartialEq)]
+pub struct CamWear {
+    /// Cam angle of each point (uniform over the revolution), °.
+    pub angle_deg: Vec<f64>,
+    /// Wear rate, m/s, and depth after `hours`, m.
+    pub rate: Vec<f64>,
+    pub depth: Vec<f64>,
+    /// Running time reached, h (the limit's time when it comes first).
+    pub hours: f64,
+    /// The wear limit was reached within the requested time.
+    pub reached_limit: bool,
+    /// Time at which the deepest point reaches the limit, h (with a limit).
+    pub hours_to_limit: Option<f64>,
+}
+
+/// Spreads the rows' rates (mm/h) over `angles` uniform cam angles and integrates them over
+/// `hours`, stopping at `limit` (m) when the deepest point reaches it first. Each angle takes the
+/// rate of the row whose profile position it falls in (rates are constant in time: eq. 15 does
+/// not change with wear).
+pub fn cam_wear(rows: &[IrgashevRow], angles: usize, hours: f64, limit: Option<f64>) -> CamWear {
+    const MM_PER_H_TO_M_PER_S: f64 = 1e-3 / 3600.0;
+    let mut angle_deg = Vec::with_capacity(angles);
+    let mut rate = Vec::with_capacity(angles);
+    for k in 0..angles {
+        let a = 360.0 * k as f64 / angles as f64;
+        let row = rows.iter().find(|r| a >= r.position_start_deg && a < r.position_end_deg).or(rows.last());
+        angle_deg.push(a);
+        rate.push(row.map_or(0.0, |r| r.wear_rate * MM_PER_H_TO_M_PER_S));
+    }
+    let max_rate = rate.iter().copied().fold(0.0, f64::max);
+    let hours_to_limit = limit.filter(|_| max_rate > 0.0).map(|l| l / max_rate / 3600.0);
+    let reached_limit = hours_to_limit.is_some_and(|t| t <= hours);
+    let hours = if reached_limit { hours_to_limit.unwrap_or(hours) } else { hours };
+    let depth = rate.iter().map(|r| r * hours * 3600.0).collect();
+    CamWear { angle_deg, rate, depth, hours, reached_limit, hours_to_limit }
+}
