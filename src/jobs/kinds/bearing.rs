@@ -354,27 +354,7 @@ pub struct BearingResult {
     pub field: Option<FieldTable>,
 }
 
-/// Dimensions for SI outputs.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Dimensions {
-    pub radius: f64,
-    pub length: f64,
-    pub clearance: f64,
-    /// rad/s
-    pub omega: f64,
-    pub viscosity: f64,
-}
-
-impl Dimensions {
-    /// Pressure scale `6ηω(R/c)²`, Pa.
-    pub fn pressure_scale(&self) -> f64 {
-        6.0 * self.viscosity * self.omega * (self.radius / self.clearance).powi(2)
-    }
-    /// Load scale `6ηωRL(R/c)²`, N.
-    pub fn load_scale(&self) -> f64 {
-        self.pressure_scale() * self.radius * self.length
-    }
-}
+pub use crate::physics::journal::Dimensions;
 
 impl BearingSpec {
     /// L/D from the geometry.
@@ -604,7 +584,6 @@ pub fn to_result(spec: &BearingSpec, a: &Analysis, target: Option<f64>) -> Beari
         }
         t
     });
-    let fscale = d.map(|d| d.viscosity * d.omega * d.radius * d.radius * d.length / d.clearance);
     BearingResult {
         eccentricity_ratio: a.eccentricity,
         attitude_angle_deg: a.attitude.to_degrees(),
@@ -621,17 +600,17 @@ pub fn to_result(spec: &BearingSpec, a: &Analysis, target: Option<f64>) -> Beari
         max_pressure: d.map(|d| a.max_pressure * d.pressure_scale()),
         min_film_dimensionless: a.min_film,
         min_film_location: Location { angle_deg: a.min_film_theta.to_degrees(), z: a.min_film_z },
-        min_film: d.map(|d| a.min_film * d.clearance),
+        min_film: d.map(|d| d.film(a.min_film)),
         friction_variable: a.friction_variable,
         friction_variable_seed002: a.friction_variable_seed002,
-        friction_coefficient: d.and_then(|d| a.friction_variable.map(|f| f * d.clearance / d.radius)),
+        friction_coefficient: d.and_then(|d| a.friction_variable.map(|f| d.friction_coefficient(f))),
         flow_variable: a.flow_variable,
         side_flow_variable: a.side_flow_variable,
         side_flow_ratio: a.side_flow_ratio,
-        flow: d.map(|d| a.flow_variable * d.radius * d.clearance * d.omega / (2.0 * PI) * d.length),
-        side_flow: d.map(|d| a.side_flow_variable * d.radius * d.clearance * d.omega / (2.0 * PI) * d.length),
+        flow: d.map(|d| d.flow(a.flow_variable)),
+        side_flow: d.map(|d| d.flow(a.side_flow_variable)),
         power_loss_dimensionless: a.friction_force,
-        power_loss: fscale.zip(d).map(|(s, d)| a.friction_force * s * d.radius * d.omega),
+        power_loss: d.map(|d| d.power(a.friction_force)),
         convergence: a.convergence.clone(),
         pressure_convergence: PressureConvergence {
             active_set_steps: a.pressure_solve.steps,

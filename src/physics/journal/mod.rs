@@ -9,8 +9,12 @@
 //!   film, friction by two definitions, flows, power loss).
 //! - [`taguchi`]: orthogonal arrays, the weighted-sum score of eq. (19), S/N ratios, Nelder–Mead.
 //!
-//! Everything is dimensionless here; the job kinds add SI values.
+//! - [`dimensions`]: the SI scales of the dimensionless groups for a bearing of given size, speed
+//!   and viscosity.
+//!
+//! The analysis is dimensionless; [`Dimensions`] turns its figures into SI.
 
+pub mod dimensions;
 pub mod film;
 pub mod multigrid;
 pub mod analysis;
@@ -19,6 +23,7 @@ mod figures;
 pub mod taguchi;
 
 pub use analysis::{analyse, Analysis, Bearing, Fields, Guess, Operating, Settings, Supply, Workspace};
+pub use dimensions::Dimensions;
 pub use film::{Film, Misalignment, Profile};
 
 /// Work model of one load-balanced bearing analysis on `nodes` grid nodes, seconds of one core:
