@@ -67,7 +67,7 @@ fn main() {
             let s = with(spec, |s| {
                 s["hours"] = json!(1000.0);
                 s["update_interval_hours"] = json!(10.0);
-                s["angles"] = json!(angles);
+                s["cycle"]["angles"] = json!(angles);
             });
             let (ms, out) = job(&s, reps);
             let max = out["summary"]["max_wear_depth"].as_f64().unwrap() * 1e6;
@@ -87,7 +87,7 @@ fn main() {
         ("seed 003 flat, full load share, K = 3e-9, preload 500 N", with(&flat, |s| {
             s["load_share"] = json!("full");
             s["wear_coefficient"] = json!({"dimensionless": 3e-9, "hardness": 7e9});
-            s["load"]["spring_preload"] = json!(500.0);
+            s["cycle"]["load"]["spring_preload"] = json!(500.0);
         })),
         ("seed 003 flat, asperity share, K = 1e-7", flat.clone()),
         ("seed 000 roller, asperity share, K = 1e-6", roller.clone()),
@@ -95,7 +95,7 @@ fn main() {
     for (name, base) in cases {
         let base = with(&base, |s| {
             s["hours"] = json!(1000.0);
-            s["angles"] = json!(360);
+            s["cycle"]["angles"] = json!(360);
             s["snapshots"] = json!(0);
         });
         let (_, reference) = job(&with(&base, |s| s["update_interval_hours"] = json!(1000.0 / 3200.0)), 1);
@@ -127,13 +127,13 @@ fn fidelity(flat: &Value, roller: &Value) {
         let base = with(base, |s| {
             s["hours"] = json!(100.0);
             s["update_interval_hours"] = json!(25.0);
-            s["angles"] = json!(360);
+            s["cycle"]["angles"] = json!(360);
             s["snapshots"] = json!(0);
         });
         let at = |fid: &str, nodes: usize| {
             with(&base, |s| {
-                s["fidelity"] = json!(fid);
-                s["ehl"] = json!({"nodes": nodes});
+                s["cycle"]["fidelity"] = json!(fid);
+                s["cycle"]["ehl"] = json!({"nodes": nodes});
             })
         };
         let (ms_fast, fast) = job(&base, 5);
@@ -161,7 +161,7 @@ fn fidelity(flat: &Value, roller: &Value) {
         }
         let (ms, out) = job(&at("auto", 192), reps);
         row("auto", "192", ms, &out);
-        let (ms, out) = job(&with(&at("auto", 192), |s| s["ehl"]["auto_tolerance"] = json!(0.25)), reps);
+        let (ms, out) = job(&with(&at("auto", 192), |s| s["cycle"]["ehl"]["auto_tolerance"] = json!(0.25)), reps);
         row("auto, tol 0.25", "192", ms, &out);
         row("accurate (reference)", "384", f64::NAN, &reference);
     }
