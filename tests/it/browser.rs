@@ -295,8 +295,21 @@ async fn the_dashboard_runs_the_seed002_l9_example_in_a_real_browser() {
     // The list shows it, filtered by kind and status.
     page.eval("location.hash = '#/?kind=bearing_optimisation&status=succeeded'").await;
     page.wait_for(&format!("document.querySelector('#jobs tr[data-id={}]')", js(&id)), wait).await;
+    // Everything fits on one page: no "older jobs" button.
+    assert_eq!(page.eval("document.getElementById('more').hidden").await, true);
+    // Past 50 jobs the list offers the older ones.
+    for i in 0..60 {
+        let res = s.client.post(s.url("/v1/jobs")).bearer_auth(TOKEN).json(&hertz_job(100.0 + i as f64)).send().await.unwrap();
+        assert!(res.status().is_success(), "{}", res.status());
+    }
+    page.eval("location.hash = '#/?kind=hertz'").await;
+    page.wait_for("document.querySelectorAll('#jobs tr.job').length === 50 && !document.getElementById('more').hidden", wait).await;
+    page.eval("document.getElementById('more').click()").await;
+    page.wait_for("document.querySelectorAll('#jobs tr.job').length === 60 && document.getElementById('more').hidden", wait).await;
 
-    // Keyboard: Tab reaches the navigation and Enter on a job row opens it.
+    page.eval("location.hash = '#/?kind=bearing_optimisation'").await;
+    page.wait_for(&format!("document.querySelector('#jobs tr[data-id={}]')", js(&id)), wait).await;
+    // Keyboard: Enter on a focused job row opens it.
     page.eval(&format!("document.querySelector('#jobs tr[data-id={}]').focus()", js(&id))).await;
     for kind in ["keyDown", "keyUp"] {
         page.call("Input.dispatchKeyEvent", json!({"type": kind, "key": "Enter", "code": "Enter", "windowsVirtualKeyCode": 13})).await;

@@ -140,6 +140,10 @@ async function listView(params) {
   kindSelect.value = params.get("kind") || "";
   statusSelect.value = params.get("status") || "";
   const body = h("tbody", { id: "jobs" });
+  // The newest `shown` jobs (the API pages by 500 at most; filters narrow further).
+  let shown = 50;
+  const more = h("button", { class: "secondary", type: "button", id: "more", hidden: true,
+    onclick: () => { shown = Math.min(500, shown + 100); load(); } }, "Show older jobs");
   const refresh = h("button", { class: "secondary", type: "button", onclick: () => load() }, "Refresh");
   const onFilter = () => {
     const q = new URLSearchParams();
@@ -156,13 +160,14 @@ async function listView(params) {
       h("a", { href: "#/new" }, "Submit a job…")),
     h("table", {},
       h("thead", {}, h("tr", {}, ["Job", "Kind", "Status", "Created", "Finished"].map((c) => h("th", { scope: "col" }, c)))),
-      body));
+      body),
+    h("div", { class: "actions" }, more));
 
   let timer = null;
   let stopped = false;
   async function load() {
     clearTimeout(timer);
-    const q = new URLSearchParams({ limit: "100" });
+    const q = new URLSearchParams({ limit: String(shown) });
     if (kindSelect.value) q.set("kind", kindSelect.value);
     if (statusSelect.value) q.set("status", statusSelect.value);
     const { res, body: page } = await json("/v1/jobs?" + q);
@@ -184,6 +189,7 @@ async function listView(params) {
           h("td", {}, when(j.finished_at)));
       }));
     }
+    more.hidden = !page.next || shown >= 500;
     // Progress of the list: refreshed while something on it is moving (a job's own page
     // follows it live over its event stream).
     if (page.jobs.some((j) => ACTIVE.has(j.status))) timer = setTimeout(load, 1500);
