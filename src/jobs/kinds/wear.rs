@@ -373,7 +373,8 @@ pub struct WearHistoryRow {
 /// Flat follower face wear, columnar.
 #[derive(Debug, Clone, PartialEq, Serialize, ToSchema)]
 pub struct FaceWear {
-    /// Position on the face from the follower axis, m.
+    /// Position on the face, m, measured like the cycle's `contact_offset`: from the cam centre
+    /// line (the follower axis when `offset` is 0).
     pub position: Vec<f64>,
     /// Face wear depth, m.
     pub wear_depth: Vec<f64>,

@@ -31,7 +31,9 @@ pub struct CamSeries {
     pub cam_curvature: Vec<f64>,
     /// Reduced radius of curvature in the plane of motion, m.
     pub reduced_radius: Vec<f64>,
-    /// Contact point position relative to the follower axis, m.
+    /// Contact point position across the follower, m: from the follower axis for roller and
+    /// spherical followers; from the cam centre line for a flat face (dh/dθ, whatever the
+    /// offset: subtract `offset` for the position relative to the follower axis).
     pub contact_offset: Vec<f64>,
     /// Cam surface velocity, m/s.
     pub cam_surface_velocity: Vec<f64>,
