@@ -361,171 +361,169 @@ impl Kind for BearingOptimisation {
 }
 
 fn optimise(spec: &OptimisationSpec, observer: &dyn Observer) -> Result<OptimisationResult, SolveError> {
-    {
-        let base = &spec.base;
-        observer.progress(0.0, "reference load");
-        let (op, guess, target) = resolve_load(base, observer)?;
-        let mut evaluations = if base.load.aligned_eccentricity_ratio.is_some() { 1 } else { 0 };
-        let load = target.unwrap_or(0.0);
-        let ev = Evaluator { friction: spec.friction, op, guess };
-        observer.progress(0.1, "orthogonal array");
-        let array = spec.method.array();
-        let rows = array.rows();
-        let f = &spec.factors;
-        let profile = |r: &[usize; 3]| BearingProfileSpec { order: f.order[r[0]], height: f.height[r[1]], length_fraction: f.length_fraction[r[2]] };
-        // the unprofiled base and the runs in parallel; each worker keeps a workspace (grids)
-        // between its cases, and every case starts from the reference position
-        let cases: Vec<Option<BearingProfileSpec>> = std::iter::once(None).chain(rows.iter().map(|r| Some(profile(r)))).collect();
-        let mut all: Vec<Design> = cases
+    let base = &spec.base;
+    observer.progress(0.0, "reference load");
+    let (op, guess, target) = resolve_load(base, observer)?;
+    let mut evaluations = if base.load.aligned_eccentricity_ratio.is_some() { 1 } else { 0 };
+    let load = target.unwrap_or(0.0);
+    let ev = Evaluator { friction: spec.friction, op, guess };
+    observer.progress(0.1, "orthogonal array");
+    let array = spec.method.array();
+    let rows = array.rows();
+    let f = &spec.factors;
+    let profile = |r: &[usize; 3]| BearingProfileSpec { order: f.order[r[0]], height: f.height[r[1]], length_fraction: f.length_fraction[r[2]] };
+    // the unprofiled base and the runs in parallel; each worker keeps a workspace (grids)
+    // between its cases, and every case starts from the reference position
+    let cases: Vec<Option<BearingProfileSpec>> = std::iter::once(None).chain(rows.iter().map(|r| Some(profile(r)))).collect();
+    let mut all: Vec<Design> = cases
+        .par_iter()
+        .map_init(|| None::<Workspace>, |ws, p| {
+            observer.check()?;
+            let w = ws.get_or_insert_with(|| Workspace::new(&base.bearing(), &base.settings()));
+            ev.design(base, *p, Some(w), observer).map(|d| d.0)
+        })
+        .collect::<Result<_, _>>()?;
+    evaluations += all.len();
+    let mut baseline = all.remove(0);
+    let designs = all;
+    let crit: Vec<Criteria> = designs.iter().map(criteria).collect();
+    let reference = Reference::of(&crit);
+    let weights = Weights { film: spec.weights.film, pressure: spec.weights.pressure, friction: spec.weights.friction };
+    let score = |d: &Design| reference.score(&criteria(d), &weights);
+    let runs: Vec<Run> = designs
+        .iter()
+        .enumerate()
+        .map(|(i, d)| {
+            let (h, p, fr) = reference.normalise(&criteria(d));
+            let s = score(d);
+            Run {
+                run: i + 1,
+                order: d.order,
+                height: d.height,
+                length_fraction: d.length_fraction,
+                max_pressure_dimensionless: d.max_pressure_dimensionless,
+                min_film_dimensionless: d.min_film_dimensionless,
+                friction_variable: d.friction_variable,
+                pressure_normalised: p,
+                film_normalised: h,
+                friction_normalised: fr,
+                score: s,
+                sn_ratio_db: sn_larger_better(s),
+                eccentricity_ratio: d.eccentricity_ratio,
+            }
+        })
+        .collect();
+    let best_run = runs.iter().max_by(|a, b| a.score.total_cmp(&b.score)).map_or(1, |r| r.run);
+    let scores: Vec<f64> = runs.iter().map(|r| r.score).collect();
+    let sn: Vec<f64> = runs.iter().map(|r| r.sn_ratio_db).collect();
+    let levels = array.levels();
+    let mut main_effects = Vec::new();
+    let mut best = [0usize; 3];
+    for (fi, name) in ["order", "height", "length_fraction"].iter().enumerate() {
+        let ms = level_means(&rows, fi, levels, &scores);
+        let mn = level_means(&rows, fi, levels, &sn);
+        for l in 0..levels {
+            let value = match fi {
+                0 => f.order[l] as f64,
+                1 => f.height[l],
+                _ => f.length_fraction[l],
+            };
+            main_effects.push(Effect { factor: name.to_string(), level: l + 1, value, mean_score: ms[l], mean_sn_ratio_db: mn[l] });
+        }
+        best[fi] = (0..levels).max_by(|a, b| mn[*a].total_cmp(&mn[*b])).unwrap_or(0);
+    }
+    let best_combo = match rows.iter().position(|r| *r == best) {
+        Some(i) => designs[i],
+        None => {
+            evaluations += 1;
+            ev.design(base, Some(profile(&best)), None, observer)?.0
+        }
+    };
+    let mut best_design = best_combo;
+    best_design.score = score(&best_combo);
+    let taguchi_best = best_design.score.max(runs[best_run - 1].score);
+    baseline.score = score(&baseline);
+
+    let continuous = if spec.continuous.enabled {
+        observer.progress(0.5, "continuous search");
+        let c = &spec.continuous;
+        let hb = c.height.unwrap_or([f.height.iter().cloned().fold(f64::INFINITY, f64::min), f.height.iter().cloned().fold(0.0, f64::max)]);
+        let pb = c.length_fraction.unwrap_or([
+            f.length_fraction.iter().cloned().fold(f64::INFINITY, f64::min),
+            f.length_fraction.iter().cloned().fold(0.0, f64::max),
+        ]);
+        let lo = [hb[0], pb[0].max(1e-3)];
+        let hi = [hb[1].max(hb[0] + 1e-6), pb[1].max(pb[0].max(1e-3) + 1e-6)];
+        let mut orders = f.order.clone();
+        orders.sort();
+        orders.dedup();
+        let coarse = if c.coarse_search {
+            let mut s = base.clone();
+            s.grid.circumferential = (base.grid.circumferential / 2).max(17) | 1;
+            s.grid.axial = (base.grid.axial / 2).max(9) | 1;
+            s
+        } else {
+            base.clone()
+        };
+        let per: Vec<(Design, usize)> = orders
             .par_iter()
-            .map_init(|| None::<Workspace>, |ws, p| {
-                observer.check()?;
-                let w = ws.get_or_insert_with(|| Workspace::new(&base.bearing(), &base.settings()));
-                ev.design(base, *p, Some(w), observer).map(|d| d.0)
+            .map(|&n| -> Result<(Design, usize), SolveError> {
+                // start from the best run of this order
+                let start = designs
+                    .iter()
+                    .filter(|d| d.order == n)
+                    .max_by(|a, b| score(a).total_cmp(&score(b)))
+                    .map_or([0.5 * (lo[0] + hi[0]), 0.5 * (lo[1] + hi[1])], |d| [d.height, d.length_fraction]);
+                let mut used = 0;
+                let objective = |spec_: &BearingSpec, ws: &mut Workspace, x: &[f64], used: &mut usize| -> Result<f64, SolveError> {
+                    observer.check()?;
+                    *used += 1;
+                    let p = BearingProfileSpec { order: n, height: x[0], length_fraction: x[1] };
+                    match ev.design(spec_, Some(p), Some(ws), observer) {
+                        Ok((d, _)) => Ok(-score(&d)),
+                        Err(SolveError::Interrupted(i)) => Err(SolveError::Interrupted(i)),
+                        Err(_) => Ok(f64::INFINITY),
+                    }
+                };
+                let step = [0.15 * (hi[0] - lo[0]), 0.15 * (hi[1] - lo[1])];
+                let mut ws = Workspace::new(&coarse.bearing(), &coarse.settings());
+                let m = nelder_mead(|x| objective(&coarse, &mut ws, x, &mut used), &start, &step, &lo, &hi, c.evaluations_per_order, 1e-7)?;
+                let mut x = m.x.clone();
+                if c.coarse_search {
+                    let mut ws = Workspace::new(&base.bearing(), &base.settings());
+                    let small = [0.03 * (hi[0] - lo[0]), 0.03 * (hi[1] - lo[1])];
+                    let m2 = nelder_mead(|x| objective(base, &mut ws, x, &mut used), &x, &small, &lo, &hi, 15, 1e-8)?;
+                    x = m2.x;
+                }
+                let (mut d, _) = ev.design(base, Some(BearingProfileSpec { order: n, height: x[0], length_fraction: x[1] }), None, observer)?;
+                used += 1;
+                d.score = score(&d);
+                Ok((d, used))
             })
             .collect::<Result<_, _>>()?;
-        evaluations += all.len();
-        let mut baseline = all.remove(0);
-        let designs = all;
-        let crit: Vec<Criteria> = designs.iter().map(criteria).collect();
-        let reference = Reference::of(&crit);
-        let weights = Weights { film: spec.weights.film, pressure: spec.weights.pressure, friction: spec.weights.friction };
-        let score = |d: &Design| reference.score(&criteria(d), &weights);
-        let runs: Vec<Run> = designs
-            .iter()
-            .enumerate()
-            .map(|(i, d)| {
-                let (h, p, fr) = reference.normalise(&criteria(d));
-                let s = score(d);
-                Run {
-                    run: i + 1,
-                    order: d.order,
-                    height: d.height,
-                    length_fraction: d.length_fraction,
-                    max_pressure_dimensionless: d.max_pressure_dimensionless,
-                    min_film_dimensionless: d.min_film_dimensionless,
-                    friction_variable: d.friction_variable,
-                    pressure_normalised: p,
-                    film_normalised: h,
-                    friction_normalised: fr,
-                    score: s,
-                    sn_ratio_db: sn_larger_better(s),
-                    eccentricity_ratio: d.eccentricity_ratio,
-                }
-            })
-            .collect();
-        let best_run = runs.iter().max_by(|a, b| a.score.total_cmp(&b.score)).map_or(1, |r| r.run);
-        let scores: Vec<f64> = runs.iter().map(|r| r.score).collect();
-        let sn: Vec<f64> = runs.iter().map(|r| r.sn_ratio_db).collect();
-        let levels = array.levels();
-        let mut main_effects = Vec::new();
-        let mut best = [0usize; 3];
-        for (fi, name) in ["order", "height", "length_fraction"].iter().enumerate() {
-            let ms = level_means(&rows, fi, levels, &scores);
-            let mn = level_means(&rows, fi, levels, &sn);
-            for l in 0..levels {
-                let value = match fi {
-                    0 => f.order[l] as f64,
-                    1 => f.height[l],
-                    _ => f.length_fraction[l],
-                };
-                main_effects.push(Effect { factor: name.to_string(), level: l + 1, value, mean_score: ms[l], mean_sn_ratio_db: mn[l] });
-            }
-            best[fi] = (0..levels).max_by(|a, b| mn[*a].total_cmp(&mn[*b])).unwrap_or(0);
-        }
-        let best_combo = match rows.iter().position(|r| *r == best) {
-            Some(i) => designs[i],
-            None => {
-                evaluations += 1;
-                ev.design(base, Some(profile(&best)), None, observer)?.0
-            }
-        };
-        let mut best_design = best_combo;
-        best_design.score = score(&best_combo);
-        let taguchi_best = best_design.score.max(runs[best_run - 1].score);
-        baseline.score = score(&baseline);
-
-        let continuous = if spec.continuous.enabled {
-            observer.progress(0.5, "continuous search");
-            let c = &spec.continuous;
-            let hb = c.height.unwrap_or([f.height.iter().cloned().fold(f64::INFINITY, f64::min), f.height.iter().cloned().fold(0.0, f64::max)]);
-            let pb = c.length_fraction.unwrap_or([
-                f.length_fraction.iter().cloned().fold(f64::INFINITY, f64::min),
-                f.length_fraction.iter().cloned().fold(0.0, f64::max),
-            ]);
-            let lo = [hb[0], pb[0].max(1e-3)];
-            let hi = [hb[1].max(hb[0] + 1e-6), pb[1].max(pb[0].max(1e-3) + 1e-6)];
-            let mut orders = f.order.clone();
-            orders.sort();
-            orders.dedup();
-            let coarse = if c.coarse_search {
-                let mut s = base.clone();
-                s.grid.circumferential = (base.grid.circumferential / 2).max(17) | 1;
-                s.grid.axial = (base.grid.axial / 2).max(9) | 1;
-                s
-            } else {
-                base.clone()
-            };
-            let per: Vec<(Design, usize)> = orders
-                .par_iter()
-                .map(|&n| -> Result<(Design, usize), SolveError> {
-                    // start from the best run of this order
-                    let start = designs
-                        .iter()
-                        .filter(|d| d.order == n)
-                        .max_by(|a, b| score(a).total_cmp(&score(b)))
-                        .map_or([0.5 * (lo[0] + hi[0]), 0.5 * (lo[1] + hi[1])], |d| [d.height, d.length_fraction]);
-                    let mut used = 0;
-                    let objective = |spec_: &BearingSpec, ws: &mut Workspace, x: &[f64], used: &mut usize| -> Result<f64, SolveError> {
-                        observer.check()?;
-                        *used += 1;
-                        let p = BearingProfileSpec { order: n, height: x[0], length_fraction: x[1] };
-                        match ev.design(spec_, Some(p), Some(ws), observer) {
-                            Ok((d, _)) => Ok(-score(&d)),
-                            Err(SolveError::Interrupted(i)) => Err(SolveError::Interrupted(i)),
-                            Err(_) => Ok(f64::INFINITY),
-                        }
-                    };
-                    let step = [0.15 * (hi[0] - lo[0]), 0.15 * (hi[1] - lo[1])];
-                    let mut ws = Workspace::new(&coarse.bearing(), &coarse.settings());
-                    let m = nelder_mead(|x| objective(&coarse, &mut ws, x, &mut used), &start, &step, &lo, &hi, c.evaluations_per_order, 1e-7)?;
-                    let mut x = m.x.clone();
-                    if c.coarse_search {
-                        let mut ws = Workspace::new(&base.bearing(), &base.settings());
-                        let small = [0.03 * (hi[0] - lo[0]), 0.03 * (hi[1] - lo[1])];
-                        let m2 = nelder_mead(|x| objective(base, &mut ws, x, &mut used), &x, &small, &lo, &hi, 15, 1e-8)?;
-                        x = m2.x;
-                    }
-                    let (mut d, _) = ev.design(base, Some(BearingProfileSpec { order: n, height: x[0], length_fraction: x[1] }), None, observer)?;
-                    used += 1;
-                    d.score = score(&d);
-                    Ok((d, used))
-                })
-                .collect::<Result<_, _>>()?;
-            let used: usize = per.iter().map(|p| p.1).sum();
-            evaluations += used;
-            let per_order: Vec<Design> = per.into_iter().map(|p| p.0).collect();
-            let design = *per_order.iter().max_by(|a, b| a.score.total_cmp(&b.score)).unwrap();
-            Some(Continuous { design, per_order, improves_on_taguchi: design.score > taguchi_best, evaluations: used })
-        } else {
-            None
-        };
-        observer.progress(1.0, "done");
-        Ok(OptimisationResult {
-            runs,
-            best_run,
-            best_levels: BestLevels {
-                order_level: best[0] + 1,
-                height_level: best[1] + 1,
-                length_fraction_level: best[2] + 1,
-                design: best_design,
-            },
-            main_effects,
-            baseline,
-            load_dimensionless: load,
-            continuous,
-            evaluations,
-            convergence: Convergence { iterations: evaluations as u32, residual: 0.0, tolerance: 0.0, termination: Termination::Converged },
-        })
-    }
+        let used: usize = per.iter().map(|p| p.1).sum();
+        evaluations += used;
+        let per_order: Vec<Design> = per.into_iter().map(|p| p.0).collect();
+        let design = *per_order.iter().max_by(|a, b| a.score.total_cmp(&b.score)).unwrap();
+        Some(Continuous { design, per_order, improves_on_taguchi: design.score > taguchi_best, evaluations: used })
+    } else {
+        None
+    };
+    observer.progress(1.0, "done");
+    Ok(OptimisationResult {
+        runs,
+        best_run,
+        best_levels: BestLevels {
+            order_level: best[0] + 1,
+            height_level: best[1] + 1,
+            length_fraction_level: best[2] + 1,
+            design: best_design,
+        },
+        main_effects,
+        baseline,
+        load_dimensionless: load,
+        continuous,
+        evaluations,
+        convergence: Convergence { iterations: evaluations as u32, residual: 0.0, tolerance: 0.0, termination: Termination::Converged },
+    })
 }

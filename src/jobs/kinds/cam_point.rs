@@ -219,88 +219,86 @@ impl Kind for CamPoint {
 }
 
 fn solve_point(spec: &CamPointSpec, observer: &dyn Observer) -> Result<CamPointResult, SolveError> {
-    {
-        let es = contact_modulus(
-            spec.cam.material.elastic(),
-            spec.follower.material.elastic(),
-        );
-        let model = model_for(spec.fidelity, spec.film.to_physics(), spec.ehl.to_physics());
-        let lub = spec.lubricant.to_physics();
-        let rough = spec.asperities.roughness(composite_sigma(spec.cam.roughness_rq, spec.follower.roughness_rq));
-        let law = spec.traction.to_physics();
-        let asp = spec.asperities.friction();
-        let input = ContactInput {
-            load: spec.load,
-            shape: ContactShape::Line { reduced_radius: spec.reduced_radius, length: spec.contact_length },
-            entrainment_velocity: spec.cam_surface_velocity,
-            sliding_velocity: 0.0,
-            time: 0.0,
-            time_step: 0.0,
-            contact_modulus: es,
-            temperature: spec.lubricant.inlet_temperature(),
-            lubricant: &lub,
-            roughness: &rough,
-            traction_law: &law,
-            asperity_friction: &asp,
-        };
-        let case = PointCase {
-            model: model.as_ref(),
-            input,
-            cam_surface_velocity: spec.cam_surface_velocity,
-            roller_radius: spec.roller.radius,
-            pin_radius: spec.roller.pin_radius,
-            inertia_torque: spec.roller.inertia * spec.roller.angular_acceleration,
-        };
-        let rolling = model.solve(&input, None)?;
-        let mut rows = Vec::with_capacity(spec.pin_friction.len());
-        let mut first = None;
-        for (i, &mu) in spec.pin_friction.iter().enumerate() {
-            observer.check()?;
-            observer.progress(i as f64 / spec.pin_friction.len() as f64, "torque balance");
-            let b = case.balance(mu)?;
-            let asperity = b.traction.force - b.traction.viscous;
-            if first.is_none() && b.slide_roll_ratio > 0.0 {
-                first = Some((mu, b.cam_roller_friction));
-            }
-            rows.push(PointRow {
-                pin_friction: mu,
-                slide_roll_ratio: b.slide_roll_ratio,
-                sliding_velocity: b.sliding_velocity,
-                roller_surface_velocity: spec.cam_surface_velocity - b.sliding_velocity,
-                cam_roller_friction: b.cam_roller_friction,
-                viscous_traction: b.traction.viscous,
-                asperity_traction: asperity,
-                film_central: b.film.central_film,
-                film_min: b.film.min_film,
-                sticking: if b.sticking { 1.0 } else { 0.0 },
-                model: b.film.model,
-            });
+    let es = contact_modulus(
+        spec.cam.material.elastic(),
+        spec.follower.material.elastic(),
+    );
+    let model = model_for(spec.fidelity, spec.film.to_physics(), spec.ehl.to_physics());
+    let lub = spec.lubricant.to_physics();
+    let rough = spec.asperities.roughness(composite_sigma(spec.cam.roughness_rq, spec.follower.roughness_rq));
+    let law = spec.traction.to_physics();
+    let asp = spec.asperities.friction();
+    let input = ContactInput {
+        load: spec.load,
+        shape: ContactShape::Line { reduced_radius: spec.reduced_radius, length: spec.contact_length },
+        entrainment_velocity: spec.cam_surface_velocity,
+        sliding_velocity: 0.0,
+        time: 0.0,
+        time_step: 0.0,
+        contact_modulus: es,
+        temperature: spec.lubricant.inlet_temperature(),
+        lubricant: &lub,
+        roughness: &rough,
+        traction_law: &law,
+        asperity_friction: &asp,
+    };
+    let case = PointCase {
+        model: model.as_ref(),
+        input,
+        cam_surface_velocity: spec.cam_surface_velocity,
+        roller_radius: spec.roller.radius,
+        pin_radius: spec.roller.pin_radius,
+        inertia_torque: spec.roller.inertia * spec.roller.angular_acceleration,
+    };
+    let rolling = model.solve(&input, None)?;
+    let mut rows = Vec::with_capacity(spec.pin_friction.len());
+    let mut first = None;
+    for (i, &mu) in spec.pin_friction.iter().enumerate() {
+        observer.check()?;
+        observer.progress(i as f64 / spec.pin_friction.len() as f64, "torque balance");
+        let b = case.balance(mu)?;
+        let asperity = b.traction.force - b.traction.viscous;
+        if first.is_none() && b.slide_roll_ratio > 0.0 {
+            first = Some((mu, b.cam_roller_friction));
         }
-        let hz = hertz_line(spec.load / spec.contact_length, spec.reduced_radius, es);
-        let summary = PointSummary {
-            hertz_max_pressure: hz.max_pressure,
-            hertz_half_width: hz.half_width,
-            film_central: rolling.central_film,
-            film_min: rolling.min_film,
-            exit_film: rolling.exit_film.unwrap_or(rolling.min_film),
-            pressure_spike: rolling.pressure_spike,
-            pressure_spike_position: rolling.pressure_spike_position,
-            max_pressure: rolling.max_pressure,
-            lambda: rolling.lambda,
-            asperity_load_fraction: rolling.asperity.load / spec.load,
-            min_cam_roller_friction: case.min_cam_roller_friction()?,
-            gross_sliding_pin_friction: case.gross_sliding_pin_friction()?,
-            first_sliding_pin_friction: first.map(|f| f.0),
-            first_sliding_cam_roller_friction: first.map(|f| f.1),
-        };
-        ensure_finite("cam point rows", rows.iter().flat_map(|r| [&r.slide_roll_ratio, &r.cam_roller_friction, &r.film_central]))?;
-        Ok(CamPointResult {
-            fidelity_used: spec.fidelity,
-            film_model: rolling.model,
-            contact_modulus: es,
-            rows,
-            summary,
-            convergence: Convergence::closed_form(),
-        })
+        rows.push(PointRow {
+            pin_friction: mu,
+            slide_roll_ratio: b.slide_roll_ratio,
+            sliding_velocity: b.sliding_velocity,
+            roller_surface_velocity: spec.cam_surface_velocity - b.sliding_velocity,
+            cam_roller_friction: b.cam_roller_friction,
+            viscous_traction: b.traction.viscous,
+            asperity_traction: asperity,
+            film_central: b.film.central_film,
+            film_min: b.film.min_film,
+            sticking: if b.sticking { 1.0 } else { 0.0 },
+            model: b.film.model,
+        });
     }
+    let hz = hertz_line(spec.load / spec.contact_length, spec.reduced_radius, es);
+    let summary = PointSummary {
+        hertz_max_pressure: hz.max_pressure,
+        hertz_half_width: hz.half_width,
+        film_central: rolling.central_film,
+        film_min: rolling.min_film,
+        exit_film: rolling.exit_film.unwrap_or(rolling.min_film),
+        pressure_spike: rolling.pressure_spike,
+        pressure_spike_position: rolling.pressure_spike_position,
+        max_pressure: rolling.max_pressure,
+        lambda: rolling.lambda,
+        asperity_load_fraction: rolling.asperity.load / spec.load,
+        min_cam_roller_friction: case.min_cam_roller_friction()?,
+        gross_sliding_pin_friction: case.gross_sliding_pin_friction()?,
+        first_sliding_pin_friction: first.map(|f| f.0),
+        first_sliding_cam_roller_friction: first.map(|f| f.1),
+    };
+    ensure_finite("cam point rows", rows.iter().flat_map(|r| [&r.slide_roll_ratio, &r.cam_roller_friction, &r.film_central]))?;
+    Ok(CamPointResult {
+        fidelity_used: spec.fidelity,
+        film_model: rolling.model,
+        contact_modulus: es,
+        rows,
+        summary,
+        convergence: Convergence::closed_form(),
+    })
 }

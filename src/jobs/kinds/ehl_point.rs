@@ -2,7 +2,7 @@
 //! spike, traction, and on request the pressure and film profiles.
 
 use crate::jobs::kind::{Kind, Limits, OutputInfo, Validation};
-use crate::physics::contact::{effective_modulus, Elastic};
+use crate::physics::contact::effective_modulus;
 use crate::physics::ehl::formulas::{
     moes_central_film, pan_hamrock_central_film, pan_hamrock_minimum_film, Groups,
 };
@@ -241,68 +241,64 @@ fn spec_path(field: &str) -> Option<String> {
 }
 
 fn solve_point(spec: &EhlPointSpec, observer: &dyn Observer) -> Result<EhlPointResult, SolveError> {
-    {
-        let e1 = Elastic { youngs_modulus: spec.body_1.youngs_modulus, poisson_ratio: spec.body_1.poisson_ratio };
-        let e2 = Elastic { youngs_modulus: spec.body_2.youngs_modulus, poisson_ratio: spec.body_2.poisson_ratio };
-        let ep = effective_modulus(e1, e2);
-        let lubricant = spec.lubricant.to_physics();
-        let temperature = spec.lubricant.inlet_temperature();
-        let w = spec.load / spec.length;
-        let input = EhlInput {
-            load_per_length: w,
-            reduced_radius: spec.reduced_radius,
-            effective_modulus: ep,
-            entrainment_velocity: spec.entrainment_velocity,
-            sliding_velocity: spec.sliding_velocity,
-            lubricant,
-            temperature,
-            rheology: Rheology {
-                eyring_stress: spec.rheology.eyring_stress,
-                limiting_shear_coefficient: spec.rheology.limiting_shear_coefficient,
-                limiting_shear_stress: spec.rheology.limiting_shear_stress,
-            },
-            transient: None,
-            warm_start: None,
-        };
-        let options = EhlOptions {
-            nodes: spec.nodes,
-            tolerance: spec.tolerance,
-            max_iterations: spec.max_iterations,
-            upwind: Upwind::Second,
-            profiles: spec.outputs.contains(&EhlPointOutput::Profile),
-            ..EhlOptions::default()
-        };
-        let s = solve(&input, &options, observer)?;
-        let g = Groups::of(w, spec.reduced_radius, ep, spec.entrainment_velocity, &lubricant, temperature);
-        let r = spec.reduced_radius;
-        Ok(EhlPointResult {
-            effective_modulus: ep,
-            load_per_length: w,
-            hertz_half_width: s.hertz_half_width,
-            hertz_pressure: s.hertz_pressure,
-            moes_m: s.moes_m,
-            moes_l: s.moes_l,
-            central_film: s.central_film,
-            min_film: s.min_film,
-            min_film_position: s.min_film_position,
-            exit_film: s.exit_film,
-            max_pressure: s.max_pressure,
-            max_pressure_position: s.max_pressure_position,
-            pressure_spike: s.pressure_spike.map(|p| SpikeResult { pressure: p.pressure, position: p.position }),
-            friction_coefficient: s.traction.friction_coefficient,
-            traction_body_1: s.traction.force_body_1,
-            traction_body_2: s.traction.force_body_2,
-            rolling_force: s.traction.rolling_force,
-            closed_forms: ClosedForms {
-                moes_central_film: moes_central_film(&g, r),
-                pan_hamrock_central_film: pan_hamrock_central_film(&g, r),
-                pan_hamrock_min_film: pan_hamrock_minimum_film(&g, r),
-            },
-            nodes: s.nodes,
-            convergence: s.convergence,
-            profile: s.profiles.map(|p| ProfileTable { x: p.x, pressure: p.pressure, film: p.film }),
-        })
-    }
+    let ep = effective_modulus(spec.body_1.elastic(), spec.body_2.elastic());
+    let lubricant = spec.lubricant.to_physics();
+    let temperature = spec.lubricant.inlet_temperature();
+    let w = spec.load / spec.length;
+    let input = EhlInput {
+        load_per_length: w,
+        reduced_radius: spec.reduced_radius,
+        effective_modulus: ep,
+        entrainment_velocity: spec.entrainment_velocity,
+        sliding_velocity: spec.sliding_velocity,
+        lubricant,
+        temperature,
+        rheology: Rheology {
+            eyring_stress: spec.rheology.eyring_stress,
+            limiting_shear_coefficient: spec.rheology.limiting_shear_coefficient,
+            limiting_shear_stress: spec.rheology.limiting_shear_stress,
+        },
+        transient: None,
+        warm_start: None,
+    };
+    let options = EhlOptions {
+        nodes: spec.nodes,
+        tolerance: spec.tolerance,
+        max_iterations: spec.max_iterations,
+        upwind: Upwind::Second,
+        profiles: spec.outputs.contains(&EhlPointOutput::Profile),
+        ..EhlOptions::default()
+    };
+    let s = solve(&input, &options, observer)?;
+    let g = Groups::of(w, spec.reduced_radius, ep, spec.entrainment_velocity, &lubricant, temperature);
+    let r = spec.reduced_radius;
+    Ok(EhlPointResult {
+        effective_modulus: ep,
+        load_per_length: w,
+        hertz_half_width: s.hertz_half_width,
+        hertz_pressure: s.hertz_pressure,
+        moes_m: s.moes_m,
+        moes_l: s.moes_l,
+        central_film: s.central_film,
+        min_film: s.min_film,
+        min_film_position: s.min_film_position,
+        exit_film: s.exit_film,
+        max_pressure: s.max_pressure,
+        max_pressure_position: s.max_pressure_position,
+        pressure_spike: s.pressure_spike.map(|p| SpikeResult { pressure: p.pressure, position: p.position }),
+        friction_coefficient: s.traction.friction_coefficient,
+        traction_body_1: s.traction.force_body_1,
+        traction_body_2: s.traction.force_body_2,
+        rolling_force: s.traction.rolling_force,
+        closed_forms: ClosedForms {
+            moes_central_film: moes_central_film(&g, r),
+            pan_hamrock_central_film: pan_hamrock_central_film(&g, r),
+            pan_hamrock_min_film: pan_hamrock_minimum_film(&g, r),
+        },
+        nodes: s.nodes,
+        convergence: s.convergence,
+        profile: s.profiles.map(|p| ProfileTable { x: p.x, pressure: p.pressure, film: p.film }),
+    })
 }
 
 #[cfg(test)]
