@@ -172,6 +172,20 @@ impl Lubricant {
         }
     }
 
+    /// `∂ ln η / ∂T` at `(p, t)`, 1/K (≤ 0): Barus `−β`; Roelands
+    /// `−(ln(η/η0) + A1) S0/(T − 138)` (seed 000 eq. 4 differentiated).
+    pub fn ln_viscosity_temperature_slope(&self, p: f64, t: f64) -> f64 {
+        match self.viscosity_model {
+            ViscosityModel::Barus => -self.temperature_viscosity,
+            ViscosityModel::Roelands => {
+                let a1 = self.roelands_a1();
+                let t0 = self.reference_temperature;
+                let s0 = self.temperature_viscosity * (t0 - 138.0) / a1;
+                -(self.ln_viscosity_ratio(p, t) + a1) * s0 / (t - 138.0).max(1.0)
+            }
+        }
+    }
+
     /// `∂(ρ/ρ0)/∂p` at `(p, t)`, 1/Pa (0 below ambient pressure, where `p` is clamped).
     pub fn density_ratio_pressure_slope(&self, p: f64, _t: f64) -> f64 {
         match self.density_model {

@@ -28,5 +28,6 @@ mod reliability;
 mod restart_recovery;
 mod storage_faults;
 mod sweep_api;
+mod thermal_ehl;
 mod wear_stability;
 mod wear_validation;

@@ -36,8 +36,9 @@
 //! 0.5 % of the grid-converged cycle. Use it rather than calling [`solve`] per angle.
 //!
 //! # Not modelled
-//! Thermal effects (seed 000 eq. 7–8) are not modelled: the film is isothermal at
-//! [`EhlInput::temperature`]. The Reynolds equation is Newtonian (seed 001 makes the same
+//! The solver itself is isothermal at [`EhlInput::temperature`]; [`thermal`] couples it to the
+//! film and solid energy equations (seed 000 eq. 2, 7–8) through the generalized Reynolds
+//! equation's effective coefficients. The Reynolds equation is Newtonian (seed 001 makes the same
 //! choice); non-Newtonian behaviour enters only the traction ([`traction`]). Surfaces are smooth.
 
 pub mod elastic;
@@ -46,6 +47,7 @@ pub mod grid;
 mod linear;
 pub mod newton;
 mod rheology;
+pub mod thermal;
 pub mod traction;
 pub mod transient;
 

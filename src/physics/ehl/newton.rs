@@ -51,6 +51,28 @@ struct Discretisation {
     rheology: PressureRheology,
     /// Hertzian pressure, Pa.
     ph: f64,
+    /// Thermal corrections at the nodes (generalized Reynolds equation, seed 000 eq. 2), held
+    /// fixed during a Newton solve; `None`: isothermal.
+    thermal: Option<NodeFactors>,
+}
+
+/// [`super::thermal::ThermalFactors`] on the nodes of one grid: multipliers of the isothermal
+/// Poiseuille coefficient `ρ̄H³/η̄`, of the wedge density `ρ̄` and of the squeeze density.
+struct NodeFactors {
+    poiseuille: Vec<f64>,
+    wedge: Vec<f64>,
+    mass: Vec<f64>,
+}
+
+impl NodeFactors {
+    fn on(grid_x: &[f64], b: f64, f: &super::thermal::ThermalFactors) -> Self {
+        let at = |v: &[f64], x: f64| interpolate(&f.x, v, x * b);
+        NodeFactors {
+            poiseuille: grid_x.iter().map(|&x| at(&f.poiseuille, x)).collect(),
+            wedge: grid_x.iter().map(|&x| at(&f.wedge, x)).collect(),
+            mass: grid_x.iter().map(|&x| at(&f.mass, x)).collect(),
+        }
+    }
 }
 
 /// Fields at one iterate.
@@ -120,9 +142,10 @@ impl Discretisation {
             v.h[i] = h;
             let (ln_eta, dln, rho, drho) = self.rheology.at(p[i] * self.ph);
             let ln_eta = ln_eta.min(LN_ETA_CAP);
+            let ce = self.thermal.as_ref().map_or(1.0, |t| t.poiseuille[i]);
             v.rho[i] = rho;
             v.drho[i] = drho * self.ph;
-            v.e[i] = rho * h * h * h * (-ln_eta).exp();
+            v.e[i] = ce * rho * h * h * h * (-ln_eta).exp();
             v.ep[i] = v.e[i] * (v.drho[i] / rho - dln * self.ph);
             v.eh[i] = 3.0 * v.e[i] / h;
         }
@@ -137,12 +160,12 @@ impl Discretisation {
                 let mut d = 0.0;
                 for (off, w) in self.wedge(i) {
                     let m = (i as isize + off) as usize;
-                    d += w * v.rho[m] * v.h[m];
+                    d += w * v.rho[m] * self.wedge_factor(m) * v.h[m];
                 }
                 f -= self.lambda * d;
             }
             if self.kappa != 0.0 {
-                f -= self.kappa * (v.rho[i] * v.h[i] - self.q_old[i]);
+                f -= self.kappa * (self.mass_density(v, i) * v.h[i] - self.q_old[i]);
             }
             v.f[i] = f;
         }
@@ -174,15 +197,33 @@ impl Discretisation {
             for (off, w) in self.wedge(i) {
                 let m = (i as isize + off) as usize;
                 let k = (off + 2) as usize;
-                a[k] -= self.lambda * w * v.drho[m] * v.h[m];
-                g[k] -= self.lambda * w * v.rho[m];
+                let cw = self.wedge_factor(m);
+                a[k] -= self.lambda * w * v.drho[m] * cw * v.h[m];
+                g[k] -= self.lambda * w * v.rho[m] * cw;
             }
         }
         if self.kappa != 0.0 {
-            a[2] -= self.kappa * v.drho[i] * v.h[i];
-            g[2] -= self.kappa * v.rho[i];
+            let cm = self.mass_factor(i);
+            a[2] -= self.kappa * v.drho[i] * cm * v.h[i];
+            g[2] -= self.kappa * v.rho[i] * cm;
         }
         (a, g)
+    }
+
+    /// Multiplier of `ρ̄` in the wedge term: 1, or the thermal `(u1 ρ*_1 + u2 ρ*_2)/(2 u_m ρ)`
+    /// (seed 000 eq. 2).
+    fn wedge_factor(&self, i: usize) -> f64 {
+        self.thermal.as_ref().map_or(1.0, |t| t.wedge[i])
+    }
+
+    /// Multiplier of `ρ̄` in the squeeze term: 1, or the thermal `ρ_e/ρ` (seed 000 eq. 2).
+    fn mass_factor(&self, i: usize) -> f64 {
+        self.thermal.as_ref().map_or(1.0, |t| t.mass[i])
+    }
+
+    /// The density of the squeeze term `∂(ρ̄H)/∂t` at node `i`.
+    fn mass_density(&self, v: &Fields, i: usize) -> f64 {
+        v.rho[i] * self.mass_factor(i)
     }
 }
 
@@ -552,6 +593,20 @@ impl Engine {
         prediction: Option<Prediction>,
         observer: &dyn Observer,
     ) -> Result<EhlSolution, SolveError> {
+        self.solve_with(input, options, layout, prediction, None, observer)
+    }
+
+    /// [`Self::solve`] with the generalized Reynolds equation's thermal corrections `thermal`
+    /// (held fixed; [`super::thermal`] iterates them with the energy equation).
+    pub(crate) fn solve_with(
+        &mut self,
+        input: &EhlInput,
+        options: &EhlOptions,
+        layout: Option<Layout>,
+        prediction: Option<Prediction>,
+        thermal: Option<&super::thermal::ThermalFactors>,
+        observer: &dyn Observer,
+    ) -> Result<EhlSolution, SolveError> {
         validate(input, options)?;
         let r = input.reduced_radius;
         let t = input.temperature;
@@ -575,7 +630,8 @@ impl Engine {
                 Some(s) => grid.x.iter().map(|&xi| s.previous.mass_per_area(xi * b, r) * r / (b * b)).collect(),
                 None => Vec::new(),
             };
-            Discretisation { grid, lambda: sc.lambda, kappa: sc.kappa, q_old, upwind: options.upwind, rheology, ph }
+            let thermal = thermal.map(|f| NodeFactors::on(&grid.x, b, f));
+            Discretisation { grid, lambda: sc.lambda, kappa: sc.kappa, q_old, upwind: options.upwind, rheology, ph, thermal }
         };
         // Nested iteration: from the previous state straight on the target grid; from a cold
         // start (or when the warm start fails), solve on grids of n/2^k ≥ 64 nodes first and
@@ -910,7 +966,8 @@ fn finish(input: &EhlInput, options: &EhlOptions, prob: &Discretisation, p: &[f6
         [&traction.force_body_1, &traction.force_body_2, &traction.friction_coefficient, &traction.rolling_force],
     )?;
     ensure_finite("ehl films", [&central_film, &min_film, &exit_film, &max_pressure])?;
-    let state = EhlState { x: x.clone(), pressure: pressure.clone(), film: film.clone(), density_ratio: v.rho.clone() };
+    let density_ratio = (0..n).map(|i| prob.mass_density(&v, i)).collect();
+    let state = EhlState { x: x.clone(), pressure: pressure.clone(), film: film.clone(), density_ratio };
     let profiles = options.profiles.then(|| Profiles { x, pressure, film });
     Ok(EhlSolution {
         hertz_half_width: b,
@@ -979,7 +1036,7 @@ mod tests {
         let sc = scales(&input);
         let layout = Layout::for_film(sc.h_est, 1.0, None, None, true);
         let grid = Arc::new(Grid::new(80, layout));
-        let prob = Discretisation { grid: grid.clone(), lambda: sc.lambda, kappa: 0.0, q_old: Vec::new(), upwind: Upwind::Second, rheology: PressureRheology::new(&lub, input.temperature), ph: sc.ph };
+        let prob = Discretisation { grid: grid.clone(), lambda: sc.lambda, kappa: 0.0, q_old: Vec::new(), upwind: Upwind::Second, rheology: PressureRheology::new(&lub, input.temperature), ph: sc.ph, thermal: None };
         let (mut p, mut h0) = cold(&prob, sc.h_est, sc.h_est);
         let mut ws = Workspace::new();
         // Two Newton steps to get an active set with cavitated nodes, then inspect the system.
