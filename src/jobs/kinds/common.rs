@@ -6,6 +6,7 @@ use crate::jobs::kind::{Limits, Validation};
 use crate::physics::contact::Elastic;
 use crate::physics::ehl::{EhlOptions, Extrapolation};
 use crate::physics::film::{AccurateSettings, ClosedForm, FilmFormula};
+use crate::physics::thermal::ThermalSolid;
 use crate::physics::friction::{AsperityFriction, AsperityModel, Rheology, Roughness, TractionLaw};
 use crate::physics::lubricant::{DensityModel, Lubricant, ViscosityModel};
 use serde::{Deserialize, Serialize};
@@ -403,4 +404,41 @@ pub fn cam_spec_path(field: &str) -> Option<String> {
         _ => return None,
     };
     Some(path.to_string())
+}
+
+fn default_k() -> f64 {
+    46.0
+}
+fn default_rho_s() -> f64 {
+    7850.0
+}
+fn default_c() -> f64 {
+    470.0
+}
+
+/// Thermal properties of a solid (defaults: steel of seed 000 Table 1).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, ToSchema)]
+#[serde(deny_unknown_fields)]
+pub struct ThermalSpec {
+    /// W/(m·K). Default 46.
+    #[serde(default = "default_k")]
+    pub conductivity: f64,
+    /// kg/m³. Default 7850.
+    #[serde(default = "default_rho_s")]
+    pub density: f64,
+    /// J/(kg·K). Default 470.
+    #[serde(default = "default_c")]
+    pub specific_heat: f64,
+}
+
+impl Default for ThermalSpec {
+    fn default() -> Self {
+        ThermalSpec { conductivity: default_k(), density: default_rho_s(), specific_heat: default_c() }
+    }
+}
+
+impl ThermalSpec {
+    pub fn to_physics(self) -> ThermalSolid {
+        ThermalSolid { conductivity: self.conductivity, density: self.density, specific_heat: self.specific_heat }
+    }
 }

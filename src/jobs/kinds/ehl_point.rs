@@ -6,8 +6,9 @@ use crate::physics::contact::effective_modulus;
 use crate::physics::ehl::formulas::{
     moes_central_film, pan_hamrock_central_film, pan_hamrock_minimum_film, Groups,
 };
+use crate::physics::ehl::thermal::{self, FilmHeat, ThermalBodies, ThermalInput, ThermalOptions};
 use crate::physics::ehl::{solve, EhlInput, EhlOptions, Rheology, Upwind};
-use super::common::{LubricantSpec, Material};
+use super::common::{LubricantSpec, Material, ThermalSpec};
 use crate::physics::{Convergence, Observer, SolveError};
 use serde::{Deserialize, Serialize};
 use serde_json::{json, Value};
@@ -38,7 +39,8 @@ pub enum EhlPointOutput {
     Profile,
 }
 
-/// Spec of an `ehl_point` job: a smooth, isothermal, fully flooded line contact in steady state.
+/// Spec of an `ehl_point` job: a smooth, fully flooded line contact in steady state, isothermal
+/// or thermal (`thermal`).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize, ToSchema)]
 #[serde(deny_unknown_fields)]
 pub struct EhlPointSpec {
@@ -57,8 +59,8 @@ pub struct EhlPointSpec {
     pub body_1: Material,
     #[serde(default)]
     pub body_2: Material,
-    /// The oil, as for the cam kinds; its `temperature` is the film temperature (isothermal:
-    /// thermal effects are not modelled). Absent: the seed 000 oil (η0 = 0.152 Pa·s,
+    /// The oil, as for the cam kinds; its `temperature` is the film temperature of the isothermal
+    /// model and the inlet temperature of the thermal one. Absent: the seed 000 oil (η0 = 0.152 Pa·s,
     /// α = 2.2e-8 1/Pa, β = 0.042 1/K, T0 = 303 K, ρ0 = 870 kg/m³, Roelands, Dowson–Higginson).
     #[serde(default = "LubricantSpec::seed000")]
     pub lubricant: LubricantSpec,
@@ -77,6 +79,73 @@ pub struct EhlPointSpec {
     /// Optional outputs: `profile`.
     #[serde(default)]
     pub outputs: Vec<EhlPointOutput>,
+    /// The thermal model (seed 000 eq. 2, 4–5, 7–9: generalized Reynolds, film and solid energy
+    /// equations, traction from the sheared film). Absent: isothermal at the lubricant's
+    /// `temperature`; present, that temperature is the inlet (ambient) temperature `T0`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub thermal: Option<EhlThermalSpec>,
+}
+
+/// Thermal model of an `ehl_point` (see `physics::ehl::thermal`).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, ToSchema)]
+#[serde(deny_unknown_fields)]
+pub struct EhlThermalSpec {
+    /// Oil conductivity k_f, W/(m·K). Default 0.14 (seed 000 Table 1).
+    #[serde(default = "d_kf")]
+    pub oil_conductivity: f64,
+    /// Oil specific heat c_f, J/(kg·K). Default 1700 (seed 000 Table 1).
+    #[serde(default = "d_cf")]
+    pub oil_specific_heat: f64,
+    /// Body 1 (surface z = 0, moving at `u_m + u_s/2`). Default: steel.
+    #[serde(default)]
+    pub body_1: ThermalSpec,
+    /// Body 2 (surface z = h, moving at `u_m − u_s/2`). Default: steel.
+    #[serde(default)]
+    pub body_2: ThermalSpec,
+    /// Temperature levels across the film, 3–41. Default 7 (traction within 1.5 % of 11 levels).
+    #[serde(default = "d_film_points")]
+    pub film_points: usize,
+    /// Nodes in each solid from the surface to the depth 3.15 b, 4–81. Default 16.
+    #[serde(default = "d_solid_points")]
+    pub solid_points: usize,
+}
+
+fn d_kf() -> f64 {
+    0.14
+}
+fn d_cf() -> f64 {
+    1700.0
+}
+fn d_film_points() -> usize {
+    7
+}
+fn d_solid_points() -> usize {
+    16
+}
+
+/// Temperatures and heat flows of a thermal solution.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, ToSchema)]
+pub struct ThermalResult {
+    /// Largest film temperature, K.
+    pub film_temperature_max: f64,
+    /// Largest surface temperature of body 1 and body 2, K.
+    pub surface_temperature_max_1: f64,
+    pub surface_temperature_max_2: f64,
+    /// Film temperature averaged across the film and weighted by pressure along it, K.
+    pub film_temperature_mean: f64,
+    /// Heat generated in the film (shear and compression) per unit length, W/m.
+    pub heat_generated: f64,
+    /// Heat into body 1, body 2 and carried away by the oil, W/m.
+    pub heat_to_body_1: f64,
+    pub heat_to_body_2: f64,
+    pub heat_convected: f64,
+    /// |generated − removed| / generated.
+    pub energy_balance_error: f64,
+    /// Central film of the isothermal solution at the inlet temperature, m (for the thermal
+    /// reduction `central_film / isothermal_central_film`).
+    pub isothermal_central_film: f64,
+    /// Coupling iterations (energy ↔ Reynolds) and the last relative change.
+    pub convergence: Convergence,
 }
 
 fn d_nodes() -> usize {
@@ -165,14 +234,19 @@ pub struct EhlPointResult {
     pub convergence: Convergence,
     #[serde(skip_serializing_if = "Option::is_none")]
     pub profile: Option<ProfileTable>,
+    /// The thermal solution's temperatures and heat flows, when `thermal` was requested (the
+    /// films, pressures and traction above are then the thermal ones).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub thermal: Option<ThermalResult>,
 }
 
 impl Kind for EhlPoint {
     const NAME: &'static str = "ehl_point";
     const SOLVER_VERSION: &'static str = "ehl_point-2";
-    const DESCRIPTION: &'static str = "Numerical elastohydrodynamic line contact (isothermal, \
-        compressible Reynolds, elastic half-space, cavitation): central and minimum film, pressure \
-        spike, traction, optional pressure/film profile.";
+    const DESCRIPTION: &'static str = "Numerical elastohydrodynamic line contact (compressible \
+        Reynolds, elastic half-space, cavitation; isothermal or, with `thermal`, the thermal model \
+        of seed 000): central and minimum film, pressure spike, traction, temperatures, optional \
+        pressure/film profile.";
     const TABLES: &'static [&'static str] = &["profile"];
     type Spec = EhlPointSpec;
     type Output = EhlPointResult;
@@ -220,6 +294,17 @@ impl Kind for EhlPoint {
         v.memory("/nodes", crate::physics::ehl::dense_memory_bytes(spec.nodes), limits, "the dense EHL solver");
         v.in_range("/tolerance", spec.tolerance, 1e-14, 1e-2);
         v.count_in_range("/max_iterations", spec.max_iterations as usize, 1, 1000);
+        if let Some(t) = &spec.thermal {
+            v.positive("/thermal/oil_conductivity", t.oil_conductivity);
+            v.positive("/thermal/oil_specific_heat", t.oil_specific_heat);
+            for (path, b) in [("/thermal/body_1", &t.body_1), ("/thermal/body_2", &t.body_2)] {
+                v.positive(&format!("{path}/conductivity"), b.conductivity);
+                v.positive(&format!("{path}/density"), b.density);
+                v.positive(&format!("{path}/specific_heat"), b.specific_heat);
+            }
+            v.count_in_range("/thermal/film_points", t.film_points, 3, 41);
+            v.count_in_range("/thermal/solid_points", t.solid_points, 4, 81);
+        }
     }
 
     fn solve(spec: &EhlPointSpec, observer: &dyn Observer) -> Result<EhlPointResult, SolveError> {
@@ -269,7 +354,34 @@ fn solve_point(spec: &EhlPointSpec, observer: &dyn Observer) -> Result<EhlPointR
         profiles: spec.outputs.contains(&EhlPointOutput::Profile),
         ..EhlOptions::default()
     };
-    let s = solve(&input, &options, observer)?;
+    let (s, thermal) = match &spec.thermal {
+        None => (solve(&input, &options, observer)?, None),
+        Some(t) => {
+            let iso = solve(&input, &options, observer)?;
+            let bodies = ThermalBodies {
+                film: FilmHeat { conductivity: t.oil_conductivity, specific_heat: t.oil_specific_heat },
+                body_1: t.body_1.to_physics(),
+                body_2: t.body_2.to_physics(),
+            };
+            let topts = ThermalOptions { film_points: t.film_points, solid_points: t.solid_points, ..ThermalOptions::default() };
+            let th = thermal::solve(&ThermalInput { ehl: input, bodies, previous_temperature: None }, &options, &topts, observer)?;
+            let m = th.summary;
+            let result = ThermalResult {
+                film_temperature_max: m.film_temperature_max,
+                surface_temperature_max_1: m.surface_temperature_max_1,
+                surface_temperature_max_2: m.surface_temperature_max_2,
+                film_temperature_mean: m.film_temperature_mean,
+                heat_generated: m.heat_generated,
+                heat_to_body_1: m.heat_to_body_1,
+                heat_to_body_2: m.heat_to_body_2,
+                heat_convected: m.heat_convected,
+                energy_balance_error: m.energy_balance_error,
+                isothermal_central_film: iso.central_film,
+                convergence: th.convergence,
+            };
+            (th.ehl, Some(result))
+        }
+    };
     let g = Groups::of(w, spec.reduced_radius, ep, spec.entrainment_velocity, &lubricant, temperature);
     let r = spec.reduced_radius;
     Ok(EhlPointResult {
@@ -298,6 +410,7 @@ fn solve_point(spec: &EhlPointSpec, observer: &dyn Observer) -> Result<EhlPointR
         nodes: s.nodes,
         convergence: s.convergence,
         profile: s.profiles.map(|p| ProfileTable { x: p.x, pressure: p.pressure, film: p.film }),
+        thermal,
     })
 }
 
@@ -319,6 +432,26 @@ mod tests {
         spec["outputs"] = json!([]);
         let out = kind.prepare(&spec, &Limits::default()).unwrap().run(&Silent).unwrap();
         assert!(out.get("profile").is_none());
+    }
+
+    #[test]
+    fn thermal_option_reports_temperatures_and_thins_the_film() {
+        let kind = registry::find("ehl_point").unwrap();
+        // Seed 000 base circle: 600 N over 12 mm, R = 14 mm, u_m = 3 m/s, 30 % slide-to-roll.
+        let spec = json!({"load": 600.0, "length": 0.012, "reduced_radius": 0.014, "entrainment_velocity": 3.0,
+            "sliding_velocity": 0.9, "nodes": 192, "thermal": {}});
+        let out = kind.prepare(&spec, &Limits::default()).unwrap().run(&Silent).unwrap();
+        let t = &out["thermal"];
+        let hc = out["central_film"].as_f64().unwrap();
+        let iso = t["isothermal_central_film"].as_f64().unwrap();
+        assert!(hc < 0.97 * iso && hc > 0.8 * iso, "{hc} vs {iso}");
+        assert!(t["film_temperature_max"].as_f64().unwrap() > 313.0 + 1.0);
+        assert!(t["energy_balance_error"].as_f64().unwrap() < 0.01);
+        let mut bad = spec.clone();
+        bad["thermal"] = json!({"film_points": 2, "body_1": {"conductivity": -1.0}});
+        let err = kind.prepare(&bad, &Limits::default()).unwrap_err();
+        let text = format!("{err:?}");
+        assert!(text.contains("/thermal/film_points") && text.contains("/thermal/body_1/conductivity"), "{text}");
     }
 
     #[test]

@@ -1,10 +1,9 @@
 //! The `cam_cycle` request: the pair (cam, follower, operation, load, lubricant, surfaces),
 //! the film and slip options, and what to compute.
 
-use crate::jobs::kinds::common::{AsperitySpec, Material, EhlSpec, FilmSpec, LubricantSpec, TractionSpec};
+use crate::jobs::kinds::common::{AsperitySpec, Material, EhlSpec, FilmSpec, LubricantSpec, ThermalSpec, TractionSpec};
 use crate::physics::cam::LiftLaw;
 use crate::physics::film::Fidelity;
-use crate::physics::thermal::ThermalSolid;
 use serde::{Deserialize, Serialize};
 use utoipa::ToSchema;
 
@@ -295,43 +294,6 @@ pub struct SlipSpec {
 impl Default for SlipSpec {
     fn default() -> Self {
         SlipSpec { mode: SlipModeSpec::TorqueBalance, tolerance: default_slip_tol(), max_cycles: default_max_cycles() }
-    }
-}
-
-fn default_k() -> f64 {
-    46.0
-}
-fn default_rho_s() -> f64 {
-    7850.0
-}
-fn default_c() -> f64 {
-    470.0
-}
-
-/// Thermal properties of a solid (defaults: steel of seed 000 Table 1).
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, ToSchema)]
-#[serde(deny_unknown_fields)]
-pub struct ThermalSpec {
-    /// W/(m·K). Default 46.
-    #[serde(default = "default_k")]
-    pub conductivity: f64,
-    /// kg/m³. Default 7850.
-    #[serde(default = "default_rho_s")]
-    pub density: f64,
-    /// J/(kg·K). Default 470.
-    #[serde(default = "default_c")]
-    pub specific_heat: f64,
-}
-
-impl Default for ThermalSpec {
-    fn default() -> Self {
-        ThermalSpec { conductivity: default_k(), density: default_rho_s(), specific_heat: default_c() }
-    }
-}
-
-impl ThermalSpec {
-    pub(super) fn to_physics(self) -> ThermalSolid {
-        ThermalSolid { conductivity: self.conductivity, density: self.density, specific_heat: self.specific_heat }
     }
 }
 
