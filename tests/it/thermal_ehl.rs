@@ -145,3 +145,37 @@ fn grid_convergence_in_x_and_z() {
     let c9 = run(512, 9);
     assert!(rel(c9.2, fine.2) < 0.01 && rel(c512.2, fine.2) < 0.02, "traction: 512 × 9 {c9:?}, 512 × 7 {c512:?} vs {fine:?}");
 }
+
+mod stability {
+    //! Stability of the thermal model over seed 000/001 conditions: converged, or a typed error;
+    //! never a NaN; temperatures above the inlet temperature (less a compressive-cooling margin)
+    //! and bounded.
+    use super::*;
+    use proptest::prelude::*;
+    use tribod::physics::SolveError;
+
+    proptest! {
+        #![proptest_config(ProptestConfig { cases: 12, failure_persistence: None, ..ProptestConfig::default() })]
+        #[test]
+        fn converges_or_fails_cleanly(p0 in 0.2e9f64..1.2e9, um in 0.5f64..8.0, srr in 0.0f64..1.0, r in 0.008f64..0.02) {
+            // Load per length for Hertz pressure p0: w' = π p0² R / E'.
+            let w = std::f64::consts::PI * p0 * p0 * r / E_PRIME;
+            let ehl = input(w, r, um, srr, Lubricant::SEED000);
+            let tin = ThermalInput { ehl, bodies: ThermalBodies::SEED000, previous_temperature: None };
+            match thermal::solve(&tin, &EhlOptions { nodes: 128, ..Default::default() }, &ThermalOptions::default(), &Silent) {
+                Ok(s) => {
+                    let t0 = 313.0;
+                    let f = &s.temperature;
+                    for v in f.film.iter().chain(&f.body_1).chain(&f.body_2) {
+                        prop_assert!(v.is_finite() && *v > t0 - 5.0 && *v < t0 + 1500.0, "temperature {v}");
+                    }
+                    prop_assert!(s.ehl.central_film.is_finite() && s.ehl.central_film > 0.0);
+                    prop_assert!(s.ehl.traction.friction_coefficient.is_finite());
+                    prop_assert!(s.summary.energy_balance_error < 0.05, "balance {}", s.summary.energy_balance_error);
+                }
+                Err(SolveError::NotConverged { residual, .. }) => prop_assert!(!residual.is_nan()),
+                Err(e) => prop_assert!(matches!(e, SolveError::Physical { .. }), "unexpected error {e:?}"),
+            }
+        }
+    }
+}
