@@ -53,8 +53,12 @@
 //! so only η changes with `T_e`: each call solves one scalar equation `G(T_e) = 0` (bracketed
 //! Newton, warm-started from the last temperature), and the slope dT/dΩ includes `dT_e/dΩ` by
 //! implicit differentiation of `G`. Not built: temperature variation across or along the film,
-//! the viscosity's pressure dependence, transient heating of the roller (the balance is
-//! quasi-static at each call).
+//! the viscosity's pressure dependence, and the roller's heat capacity — the balance is
+//! quasi-static at each call, so within a cam cycle the temperature follows the instantaneous
+//! power, whereas a real roller (seed 000's: ~0.14 kg of steel, `m c_s/(k_r A)` of minutes)
+//! would settle at the cycle-mean power's temperature. With strong heating the torque can fall
+//! as Ω rises (thermal thinning: `dT/dΩ < 0`, found only far above the oil's range in the
+//! tests, e.g. T_e ≈ 600 K); the slope returned is then the true, negative one.
 
 use crate::physics::journal::{analyse, Bearing, Guess, Operating, Settings, Workspace};
 use crate::physics::lubricant::{Lubricant, ViscosityModel, ROELANDS_LN_ETA_INF};

@@ -112,9 +112,10 @@ pub enum PinSpec {
     /// bearing's energy balance: the power loss leaves with the side-leakage oil
     /// (`oil_specific_heat` and the lubricant's `density`) and by convection from the roller's
     /// outer surfaces (cylinder and end faces) at `convection_coefficient` to ambient at the
-    /// lubricant's inlet temperature; without it the film is at the inlet temperature. Not the
-    /// full 3-D energy equation of seed 000 eq. 12. L/D = length/(2 pin_radius) must lie in
-    /// [0.05, 4].
+    /// lubricant's inlet temperature; without it the film is at the inlet temperature. The
+    /// balance is quasi-static at each cam angle (the roller's heat capacity is not modelled),
+    /// and it is not the full 3-D energy equation of seed 000 eq. 12. L/D = length/(2
+    /// pin_radius) must lie in [0.05, 4].
     Finite {
         /// Bearing length, m. Default: the roller length.
         #[serde(default, skip_serializing_if = "Option::is_none")]
