@@ -22,6 +22,7 @@ mod journal_stability;
 mod journal_validation;
 mod multi_instance;
 mod openapi_drift;
+mod pin_finite;
 mod browser;
 mod plots;
 mod reliability;

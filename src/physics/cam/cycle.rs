@@ -531,7 +531,7 @@ impl<'a> Context<'a> {
     fn march_fixed(&self, friction: bool, observer: &dyn Observer) -> Result<Vec<PointState>, SolveError> {
         let n = self.kin.len();
         let roller = match &self.spec.follower {
-            FollowerKind::Roller { roller, .. } => Some(*roller),
+            FollowerKind::Roller { roller, .. } => Some(roller),
             _ => None,
         };
         let surface = |i: usize| -> (f64, f64) {

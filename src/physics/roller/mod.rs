@@ -17,17 +17,19 @@
 
 pub mod crown;
 pub mod pin;
+pub mod pin_finite;
 pub mod point;
 
 pub use crown::{Crown, CrownedContact};
-pub use pin::{pin_torque, pin_torque_warm, PinFriction};
+pub use pin::{pin_film_temperature, pin_film_temperature_warm, pin_torque, pin_torque_warm, PinFriction};
+pub use pin_finite::{FinitePin, FinitePinState, PinTable, PinThermal};
 pub use point::{PointBalance, PointCase};
 
 use crate::physics::film::{ContactInput, FilmModel, FilmSolution, Traction};
 use crate::physics::SolveError;
 
 /// The roller, as far as its own rotation is concerned.
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, PartialEq)]
 pub struct RollerParams {
     /// Outer radius R_f, m.
     pub radius: f64,
@@ -171,6 +173,9 @@ pub struct SlipSolution {
     pub traction: Traction,
     /// Roller–pin friction torque, N·m.
     pub pin_torque: f64,
+    /// Effective film temperature of a finite hydrodynamic pin, K ([`pin_film_temperature`];
+    /// `None` for the other pin models).
+    pub pin_temperature: Option<f64>,
 }
 
 impl SlipStep<'_> {
@@ -246,7 +251,8 @@ impl SlipStep<'_> {
             return Err(x1);
         }
         let traction = Traction { force: t.force + t.slope * du, viscous: t.viscous + t.slope * du, ..t };
-        Ok(SlipSolution { omega: x1, sliding: self.sliding(x1), traction, pin_torque: tp1 })
+        let pin_temperature = pin_film_temperature_warm(&self.roller.pin, x1, self.pin_load, &self.pin_warm);
+        Ok(SlipSolution { omega: x1, sliding: self.sliding(x1), traction, pin_torque: tp1, pin_temperature })
     }
 
     /// Speeds where the balance jumps (NaN: none): the rolling speed when asperities can stick,
@@ -306,7 +312,8 @@ impl SlipStep<'_> {
         } else {
             tp
         };
-        Ok(SlipSolution { omega, sliding: us, traction, pin_torque: pin })
+        let pin_temperature = pin_film_temperature_warm(&self.roller.pin, omega, self.pin_load, &self.pin_warm);
+        Ok(SlipSolution { omega, sliding: us, traction, pin_torque: pin, pin_temperature })
     }
 }
 
@@ -342,7 +349,26 @@ mod tests {
         }
     }
 
-    /// Seed 001-like nose contact with an Eyring film, rough surfaces and the two pin models.
+    /// Seed 001's pin as a finite bearing with the energy balance (L/D = 21/18.2).
+    fn finite_seed001_pin() -> PinFriction {
+        let (r, l) = (0.0091, 0.021);
+        PinFriction::FiniteBearing(FinitePin {
+            pin_radius: r,
+            clearance: 10e-6,
+            length: l,
+            lubricant: crate::physics::lubricant::Lubricant { viscosity: 0.013, ..crate::physics::lubricant::Lubricant::SEED000 },
+            ambient_temperature: 313.0,
+            thermal: Some(PinThermal {
+                oil_specific_heat: 1700.0,
+                oil_density: 870.0,
+                convection_coefficient: 80.0,
+                cooled_area: pin_finite::roller_cooled_area(0.0125, r, l),
+            }),
+            table: pin_finite::tests::table(l / (2.0 * r)),
+        })
+    }
+
+    /// Seed 001-like nose contact with an Eyring film, rough surfaces and the three pin models.
     #[test]
     fn one_newton_step_agrees_with_the_bracketed_search() {
         let lub = oil();
@@ -352,13 +378,19 @@ mod tests {
         let pins = [
             PinFriction::ShortBearing { pin_radius: 0.0091, clearance: 10e-6, length: 0.021, viscosity: 0.013 },
             PinFriction::Coefficient { coefficient: 0.005, pin_radius: 0.0091 },
+            finite_seed001_pin(),
         ];
         let mut fast = 0;
         for (asp_model, pin, inertia, load) in [
-            (AsperityModel::Coulomb, pins[0], 0.0, 12_500.0),
-            (AsperityModel::Carter, pins[0], 2e-5, 12_500.0),
-            (AsperityModel::Coulomb, pins[1], 2e-5, 3_000.0),
-            (AsperityModel::Carter, pins[1], 0.0, 800.0),
+            (AsperityModel::Coulomb, pins[0].clone(), 0.0, 12_500.0),
+            (AsperityModel::Carter, pins[0].clone(), 2e-5, 12_500.0),
+            (AsperityModel::Coulomb, pins[1].clone(), 2e-5, 3_000.0),
+            (AsperityModel::Carter, pins[1].clone(), 0.0, 800.0),
+            // The finite (thermal) pin without inertia: with 2e-5 kg·m² the 1e-9 traction check
+            // below reads the inertia term's 2·tol freedom in Ω (ΔF = I/Δt · ΔΩ/R_f ≈ 1e-8
+            // relative), not the pin.
+            (AsperityModel::Coulomb, pins[2].clone(), 0.0, 12_500.0),
+            (AsperityModel::Carter, pins[2].clone(), 0.0, 3_000.0),
         ] {
             let asp = AsperityFriction { coefficient: 0.12, model: asp_model };
             let input = ContactInput { load, ..seed001_nose(&lub, &rough, &law, &asp) };
@@ -375,9 +407,13 @@ mod tests {
                     let guess = reference.omega * (1.0 + rel);
                     let got = p.solve(guess).unwrap();
                     let scale = reference.omega.abs();
-                    assert!((got.omega - reference.omega).abs() <= 2.0 * tol, "{asp_model:?} {pin:?}: {} vs {}", got.omega, reference.omega);
-                    assert!((got.traction.force - reference.traction.force).abs() <= 1e-9 * reference.traction.force.abs().max(1e-9));
+                    assert!((got.omega - reference.omega).abs() <= 2.0 * tol, "{asp_model:?} {:?}: {} vs {}", roller.pin, got.omega, reference.omega);
+                    assert!((got.traction.force - reference.traction.force).abs() <= 1e-9 * reference.traction.force.abs().max(1e-9), "{asp_model:?} prev {previous} rel {rel}: F {} vs {}, Ω {} vs {}, pin {} vs {}", got.traction.force, reference.traction.force, got.omega, reference.omega, got.pin_torque, reference.pin_torque);
                     assert!((got.pin_torque - reference.pin_torque).abs() <= 1e-9 * reference.pin_torque.abs().max(1e-12));
+                    assert_eq!(got.pin_temperature.is_some(), matches!(roller.pin, PinFriction::FiniteBearing(_)));
+                    if let (Some(a), Some(b)) = (got.pin_temperature, reference.pin_temperature) {
+                        assert!(a > 313.0 && (a - b).abs() <= 1e-9 * b, "pin temperature {a} vs {b}");
+                    }
                     if p.one_newton_step(guess, &jumps, 1e-12 * scale).is_ok() {
                         fast += 1;
                     }

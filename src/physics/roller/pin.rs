@@ -13,9 +13,16 @@
 //!   mixed friction, which this model does not include. Rotating bush and rotating journal have
 //!   the same pressure field (the film shape is fixed by the load direction); the driven member
 //!   carries the `+` sign of the load-moment term in both cases.
+//! * [`PinFriction::FiniteBearing`]: seed 000's finite-length bearing (eq. 10–13) from the
+//!   journal solver's Reynolds solutions (Reynolds cavitation) tabulated over ε once per run,
+//!   with an effective film temperature from the bearing's energy balance; see
+//!   [`super::pin_finite`]. The torque on the roller is again the rotating member's (Couette
+//!   shear plus the pressure-gradient term).
+
+use super::pin_finite::FinitePin;
 
 /// Roller–pin friction model.
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, PartialEq)]
 pub enum PinFriction {
     /// Constant coefficient μ_rp on the pin radius.
     Coefficient { coefficient: f64, pin_radius: f64 },
@@ -30,6 +37,9 @@ pub enum PinFriction {
         /// Oil viscosity in the bearing, Pa·s.
         viscosity: f64,
     },
+    /// Finite-length hydrodynamic bearing (journal solver table) with an effective film
+    /// temperature.
+    FiniteBearing(FinitePin),
 }
 
 /// Torque (N·m, opposing the roller's rotation: same sign as Ω) and dT/dΩ (N·m·s) at roller
@@ -41,9 +51,15 @@ pub fn pin_torque(pin: &PinFriction, omega: f64, load: f64, side: i8) -> (f64, f
 
 /// [`pin_torque`] with a warm start for the short bearing's eccentricity solve: `warm` holds the
 /// last eccentricity ε (NaN: none) and is updated. Inside one torque-balance solve the load is
-/// fixed and Ω barely changes, so Newton then needs one or two steps.
+/// fixed and Ω barely changes, so Newton then needs one or two steps. For the finite bearing
+/// `warm` holds the last effective film temperature (K) of its energy balance instead (the
+/// eccentricity is a table look-up); the slope then includes the temperature's response to Ω.
 pub fn pin_torque_warm(pin: &PinFriction, omega: f64, load: f64, side: i8, warm: &std::cell::Cell<f64>) -> (f64, f64) {
     match *pin {
+        PinFriction::FiniteBearing(ref p) => {
+            let s = p.state(omega, load, warm);
+            (s.torque, s.torque_slope)
+        }
         PinFriction::Coefficient { coefficient, pin_radius } => {
             let t = coefficient * pin_radius * load.abs();
             let sign = if omega > 0.0 { 1.0 } else if omega < 0.0 { -1.0 } else { side as f64 };
@@ -57,6 +73,26 @@ pub fn pin_torque_warm(pin: &PinFriction, omega: f64, load: f64, side: i8, warm:
             // T is odd in Ω, so dT/dΩ is even.
             (t * omega.signum(), dt)
         }
+    }
+}
+
+/// Effective film temperature of the pin bearing (K) at roller speed `omega` (rad/s) and pin
+/// load `load` (N): the finite bearing's energy-balance temperature (its ambient temperature when
+/// isothermal or at Ω = 0); `None` for the models without a film temperature.
+pub fn pin_film_temperature(pin: &PinFriction, omega: f64, load: f64) -> Option<f64> {
+    pin_film_temperature_warm(pin, omega, load, &std::cell::Cell::new(f64::NAN))
+}
+
+/// [`pin_film_temperature`] warm-started like [`pin_torque_warm`] (the same cell may be shared).
+pub fn pin_film_temperature_warm(pin: &PinFriction, omega: f64, load: f64, warm: &std::cell::Cell<f64>) -> Option<f64> {
+    match pin {
+        PinFriction::FiniteBearing(p) => {
+            if p.thermal.is_none() {
+                return Some(p.ambient_temperature);
+            }
+            Some(p.state(omega, load, warm).film_temperature)
+        }
+        _ => None,
     }
 }
 

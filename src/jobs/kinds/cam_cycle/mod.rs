@@ -156,6 +156,25 @@ impl Kind for CamCycle {
                         }
                         v.check(spec.lubricant.is_some(), "/lubricant", "is required by a hydrodynamic pin");
                     }
+                    PinSpec::Finite { length: l, thermal, oil_specific_heat, convection_coefficient } => {
+                        if let Some(l) = l {
+                            v.positive("/follower/pin/length", *l);
+                        }
+                        let l = l.unwrap_or(*length);
+                        if l.is_finite() && l > 0.0 && *pin_radius > 0.0 {
+                            let ld = l / (2.0 * pin_radius);
+                            v.check(
+                                (0.05..=4.0).contains(&ld),
+                                "/follower/pin/length",
+                                format!("L/D = length/(2 pin_radius) = {ld:.3} must be in [0.05, 4] (length defaults to the roller length)"),
+                            );
+                        }
+                        if *thermal {
+                            v.in_range("/follower/pin/oil_specific_heat", *oil_specific_heat, 100.0, 1e4);
+                            v.in_range("/follower/pin/convection_coefficient", *convection_coefficient, 1e-3, 1e6);
+                        }
+                        v.check(spec.lubricant.is_some(), "/lubricant", "is required by a hydrodynamic pin");
+                    }
                 }
                 if let Some(c) = crown {
                     v.check(c.middle_length > 0.0 && c.middle_length <= *length, "/follower/crown/middle_length", "must be in (0, length]");

@@ -10,7 +10,8 @@ use crate::physics::cam::{CamProfile, FollowerGeometry, FollowerShape, LiftProgr
 use crate::physics::contact::{contact_modulus, Elastic};
 use crate::physics::film::model_for;
 use std::collections::BTreeMap;
-use crate::physics::roller::{Crown, PinFriction, RollerParams};
+use crate::physics::roller::pin_finite::roller_cooled_area;
+use crate::physics::roller::{Crown, FinitePin, PinFriction, PinTable, PinThermal, RollerParams};
 use crate::physics::{Observer, SolveError};
 use std::f64::consts::PI;
 
@@ -111,6 +112,26 @@ impl CamCycleSpec {
                         length: l.unwrap_or(*length),
                         viscosity: lubricant.viscosity_at(0.0, temperature),
                     },
+                    PinSpec::Finite { length: l, thermal, oil_specific_heat, convection_coefficient } => {
+                        let l = l.unwrap_or(*length);
+                        // The dimensionless table (one run of the journal solver per node) is
+                        // built once per run.
+                        let table = PinTable::build(l / (2.0 * pin_radius), &crate::physics::Silent)?;
+                        PinFriction::FiniteBearing(FinitePin {
+                            pin_radius: *pin_radius,
+                            clearance: *clearance,
+                            length: l,
+                            lubricant,
+                            ambient_temperature: temperature,
+                            thermal: thermal.then(|| PinThermal {
+                                oil_specific_heat: *oil_specific_heat,
+                                oil_density: lubricant.density,
+                                convection_coefficient: *convection_coefficient,
+                                cooled_area: roller_cooled_area(*radius, *pin_radius, *length),
+                            }),
+                            table: std::sync::Arc::new(table),
+                        })
+                    }
                 };
                 let contact_length = self.cam.width.map_or(*length, |w| w.min(*length));
                 (

@@ -104,6 +104,42 @@ pub enum PinSpec {
         #[serde(default, skip_serializing_if = "Option::is_none")]
         length: Option<f64>,
     },
+    /// Finite-length hydrodynamic journal bearing (seed 000 eq. 10–13): the journal solver's
+    /// Reynolds solutions with Reynolds cavitation (as the `bearing` kind), tabulated over the
+    /// eccentricity ratio once per run at the pin's L/D, the roller turning on a stationary pin.
+    /// With `thermal` (default) the film is isoviscous at an effective temperature from the
+    /// bearing's energy balance: the power loss leaves with the side-leakage oil
+    /// (`oil_specific_heat` and the lubricant's `density`) and by convection from the roller's
+    /// outer surfaces (cylinder and end faces) at `convection_coefficient` to ambient at the
+    /// lubricant's inlet temperature; without it the film is at the inlet temperature. The
+    /// balance is quasi-static at each cam angle (the roller's heat capacity is not modelled),
+    /// and it is not the full 3-D energy equation of seed 000 eq. 12. L/D = length/(2
+    /// pin_radius) must lie in [0.05, 4].
+    Finite {
+        /// Bearing length, m. Default: the roller length.
+        #[serde(default, skip_serializing_if = "Option::is_none")]
+        length: Option<f64>,
+        /// Effective film temperature from the energy balance. Default true.
+        #[serde(default = "default_true")]
+        thermal: bool,
+        /// Oil specific heat c_f, J/(kg·K). Default 1700 (seed 000 Table 1).
+        #[serde(default = "default_oil_specific_heat")]
+        oil_specific_heat: f64,
+        /// Convective heat-transfer coefficient k_r from the roller to ambient, W/(m²·K).
+        /// Default 80 (seed 000 Table 1).
+        #[serde(default = "default_convection_coefficient")]
+        convection_coefficient: f64,
+    },
+}
+
+fn default_true() -> bool {
+    true
+}
+fn default_oil_specific_heat() -> f64 {
+    1700.0
+}
+fn default_convection_coefficient() -> f64 {
+    80.0
 }
 
 /// Crowned roller profile (seed 000 Table 1). See `physics::roller::crown`.
