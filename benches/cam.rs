@@ -83,7 +83,13 @@ fn main() {
         auto_tables();
         return;
     }
+    // `cargo bench --bench cam -- pin` runs only the roller–pin table.
+    if args.iter().any(|a| a == "pin") {
+        pin_table(&roller);
+        return;
+    }
     let all = ["kinematics", "loads", "contact", "film", "friction", "slip", "temperature"];
+    let roller_finite = with(&roller, |s| s["follower"]["pin"] = serde_json::json!({"model": "finite"}));
     println!("## Cam cycle: run time at 3600 angles (release, best of 20)\n");
     println!("| case | outputs | physics (ms) | job incl. JSON (ms) |");
     println!("| --- | --- | ---: | ---: |");
@@ -94,6 +100,7 @@ fn main() {
         ("seed 000 roller, steady", &roller, &["kinematics", "loads", "contact", "film"][..]),
         ("seed 000 roller, steady", &roller, &all[..]),
         ("seed 000 roller, startup", &startup, &all[..]),
+        ("seed 000 roller, steady, finite thermal pin", &roller_finite, &all[..]),
     ] {
         let s = with(spec, |s| {
             s["angles"] = 3600.into();
@@ -308,5 +315,82 @@ fn auto_tables() {
             println!("{row}");
         }
         println!();
+    }
+}
+
+/// The finite roller–pin bearing (issue 14 item 2): table build, one torque call, and the seed
+/// 000 steady cycle with the three hydrodynamic pins.
+fn pin_table(roller: &Value) {
+    use std::cell::Cell;
+    use std::sync::Arc;
+    use tribod::physics::lubricant::Lubricant;
+    use tribod::physics::roller::pin_finite::roller_cooled_area;
+    use tribod::physics::roller::{pin_torque_warm, FinitePin, PinFriction, PinTable, PinThermal};
+    let ld = 14.0 / 32.0;
+    let mut build = f64::INFINITY;
+    let mut table = None;
+    for _ in 0..5 {
+        let t = Instant::now();
+        table = Some(PinTable::build(ld, &Silent).unwrap());
+        build = build.min(t.elapsed().as_secs_f64() * 1e3);
+    }
+    let table = Arc::new(table.unwrap());
+    println!("## Roller–pin bearing (release)\n");
+    println!("Table at L/D = 14/32: {} journal analyses (361 × 41 nodes) in {build:.1} ms (best of 5).\n", table.len());
+    let finite = |thermal: bool| {
+        PinFriction::FiniteBearing(FinitePin {
+            pin_radius: 0.016,
+            clearance: 10e-6,
+            length: 0.014,
+            lubricant: Lubricant::SEED000,
+            ambient_temperature: 313.0,
+            thermal: thermal.then(|| PinThermal {
+                oil_specific_heat: 1700.0,
+                oil_density: 870.0,
+                convection_coefficient: 80.0,
+                cooled_area: roller_cooled_area(0.0255, 0.016, 0.014),
+            }),
+            table: table.clone(),
+        })
+    };
+    let short = PinFriction::ShortBearing { pin_radius: 0.016, clearance: 10e-6, length: 0.014, viscosity: 0.152 };
+    println!("| pin | ns per call, warm (Ω varying by 1e-3) | ns per call, cold (Ω 1–1000 rad/s) |");
+    println!("| --- | ---: | ---: |");
+    for (name, pin) in [("short bearing (Ocvirk)", short), ("finite, isothermal", finite(false)), ("finite, thermal", finite(true))] {
+        let n = 1_000_000;
+        let mut acc = 0.0;
+        let warm = Cell::new(f64::NAN);
+        let t = Instant::now();
+        for k in 0..n {
+            let omega = 125.0 * (1.0 + 1e-3 * ((k % 1000) as f64 * 1e-3).sin());
+            acc += pin_torque_warm(&pin, omega, 600.0 + (k % 7) as f64, 0, &warm).0;
+        }
+        let warm_ns = t.elapsed().as_secs_f64() / n as f64 * 1e9;
+        let t = Instant::now();
+        for k in 0..n {
+            acc += pin_torque_warm(&pin, 1.0 + (k % 1000) as f64, 600.0, 0, &Cell::new(f64::NAN)).0;
+        }
+        let cold_ns = t.elapsed().as_secs_f64() / n as f64 * 1e9;
+        std::hint::black_box(acc);
+        println!("| {name} | {warm_ns:.0} | {cold_ns:.0} |");
+    }
+    println!("\nSeed 000 steady cycle, all outputs, 3600 angles (best of 10; the job time includes the table build):\n");
+    println!("| pin | physics (ms) | job incl. JSON (ms) | mean pin torque (N·m) | SRR at 0° |");
+    println!("| --- | ---: | ---: | ---: | ---: |");
+    for (name, pin) in [
+        ("hydrodynamic (short)", serde_json::json!({"model": "hydrodynamic"})),
+        ("finite, isothermal", serde_json::json!({"model": "finite", "thermal": false})),
+        ("finite, thermal", serde_json::json!({"model": "finite"})),
+    ] {
+        let s = with(roller, |s| {
+            s["angles"] = 3600.into();
+            s["follower"]["pin"] = pin.clone();
+        });
+        let p = physics_ms(&s, 10);
+        let (j, out) = job(&s, 10);
+        let tp: Vec<f64> = out["series"]["pin_torque"].as_array().unwrap().iter().map(|v| v.as_f64().unwrap()).collect();
+        let mean = tp.iter().map(|x| x.abs()).sum::<f64>() / tp.len() as f64;
+        let srr0 = out["series"]["slide_roll_ratio"][0].as_f64().unwrap();
+        println!("| {name} | {p:.3} | {j:.3} | {mean:.4} | {srr0:.4} |");
     }
 }
