@@ -211,6 +211,7 @@ impl Kind for CamPoint {
         spec.film.validate("/film", v);
         v.check(!spec.film.squeeze, "/film/squeeze", "a point analysis is steady: no squeeze");
         spec.ehl.validate("/ehl", limits, v);
+        v.check(spec.ehl.thermal.is_none() || spec.fidelity == Fidelity::Accurate, "/ehl/thermal", "the thermal model runs with fidelity accurate");
     }
 
     fn solve(spec: &CamPointSpec, observer: &dyn Observer) -> Result<CamPointResult, SolveError> {
@@ -223,7 +224,11 @@ fn solve_point(spec: &CamPointSpec, observer: &dyn Observer) -> Result<CamPointR
         spec.cam.material.elastic(),
         spec.follower.material.elastic(),
     );
-    let model = model_for(spec.fidelity, spec.film.to_physics(), spec.ehl.to_physics());
+    let mut settings = spec.ehl.to_physics();
+    // A point analysis has no heat properties of its own: steel cam and follower (seed 000).
+    let steel = crate::physics::thermal::ThermalSolid::STEEL;
+    settings.thermal = spec.ehl.thermal.map(|t| t.settings(steel, steel));
+    let model = model_for(spec.fidelity, spec.film.to_physics(), settings);
     let lub = spec.lubricant.to_physics();
     let rough = spec.asperities.roughness(composite_sigma(spec.cam.roughness_rq, spec.follower.roughness_rq));
     let law = spec.traction.to_physics();

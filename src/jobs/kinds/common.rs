@@ -6,6 +6,8 @@ use crate::jobs::kind::{Limits, Validation};
 use crate::physics::contact::Elastic;
 use crate::physics::ehl::{EhlOptions, Extrapolation};
 use crate::physics::film::{AccurateSettings, ClosedForm, FilmFormula};
+use crate::physics::ehl::thermal::{FilmHeat, ThermalBodies, ThermalOptions};
+use crate::physics::film::ThermalFilmSettings;
 use crate::physics::thermal::ThermalSolid;
 use crate::physics::friction::{AsperityFriction, AsperityModel, Rheology, Roughness, TractionLaw};
 use crate::physics::lubricant::{DensityModel, Lubricant, ViscosityModel};
@@ -331,6 +333,63 @@ pub struct EhlSpec {
     /// the central, minimum and exit films and the traction; `none`: one grid of `nodes`.
     #[serde(default)]
     pub extrapolation: ExtrapolationSpec,
+    /// The thermal model of the `accurate` fidelity (seed 000 eq. 2, 4–5, 7–9): generalized
+    /// Reynolds equation, film and cam/follower energy equations (their heat properties from the
+    /// spec's `thermal`), traction of the sheared film. Absent: isothermal at the lubricant's
+    /// temperature. Only with `fidelity: accurate` (and roller or flat-faced followers: line
+    /// contacts). Experimental (issue 14): one coupled solve and a 13-point traction table per
+    /// angle cost ≈ 0.3 s per angle at 128 nodes, and on the seed 000 cycle the energy sweeps
+    /// still stall at some angles (a typed `not_converged` error). `cam_point` uses steel bodies.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub thermal: Option<EhlThermalSpec>,
+}
+
+/// The thermal EHL model's oil properties and resolution.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, ToSchema)]
+#[serde(deny_unknown_fields)]
+pub struct EhlThermalSpec {
+    /// Oil conductivity k_f, W/(m·K). Default 0.14 (seed 000 Table 1).
+    #[serde(default = "default_oil_conductivity")]
+    pub oil_conductivity: f64,
+    /// Oil specific heat c_f, J/(kg·K). Default 1700 (seed 000 Table 1).
+    #[serde(default = "default_oil_specific_heat")]
+    pub oil_specific_heat: f64,
+    /// Temperature levels across the film, 3–41. Default 7.
+    #[serde(default = "default_film_points")]
+    pub film_points: usize,
+    /// Nodes in each solid from the surface to the depth 3.15 b, 4–81. Default 16.
+    #[serde(default = "default_solid_points")]
+    pub solid_points: usize,
+}
+
+fn default_oil_conductivity() -> f64 {
+    0.14
+}
+fn default_oil_specific_heat() -> f64 {
+    1700.0
+}
+fn default_film_points() -> usize {
+    7
+}
+fn default_solid_points() -> usize {
+    16
+}
+
+impl EhlThermalSpec {
+    /// The model's settings with the heat properties of body 1 (the cam, `z = 0`) and body 2.
+    pub fn settings(&self, body_1: ThermalSolid, body_2: ThermalSolid) -> ThermalFilmSettings {
+        ThermalFilmSettings {
+            options: ThermalOptions { film_points: self.film_points, solid_points: self.solid_points, ..ThermalOptions::default() },
+            bodies: ThermalBodies { film: FilmHeat { conductivity: self.oil_conductivity, specific_heat: self.oil_specific_heat }, body_1, body_2 },
+        }
+    }
+
+    pub fn validate(&self, path: &str, v: &mut Validation) {
+        v.positive(&format!("{path}/oil_conductivity"), self.oil_conductivity);
+        v.positive(&format!("{path}/oil_specific_heat"), self.oil_specific_heat);
+        v.count_in_range(&format!("{path}/film_points"), self.film_points, 3, 41);
+        v.count_in_range(&format!("{path}/solid_points"), self.solid_points, 4, 81);
+    }
 }
 
 /// Grid extrapolation of the numerical EHL solver.
@@ -352,6 +411,7 @@ impl Default for EhlSpec {
             max_iterations: default_ehl_iterations(),
             auto_tolerance: default_auto_tolerance(),
             extrapolation: ExtrapolationSpec::default(),
+            thermal: None,
         }
     }
 }
@@ -370,6 +430,7 @@ impl EhlSpec {
                 ExtrapolationSpec::Richardson => Extrapolation::Richardson,
                 ExtrapolationSpec::None => Extrapolation::None,
             },
+            thermal: None,
         }
     }
     pub fn validate(&self, path: &str, limits: &Limits, v: &mut Validation) {
@@ -379,6 +440,9 @@ impl EhlSpec {
         v.in_range(&format!("{path}/tolerance"), self.tolerance, 1e-13, 1e-2);
         v.check(self.max_iterations >= 1 && self.max_iterations <= 1000, &format!("{path}/max_iterations"), "must be in [1, 1000]");
         v.in_range(&format!("{path}/auto_tolerance"), self.auto_tolerance, 0.0, 10.0);
+        if let Some(t) = &self.thermal {
+            t.validate(&format!("{path}/thermal"), v);
+        }
     }
 }
 

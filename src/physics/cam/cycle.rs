@@ -157,7 +157,14 @@ pub struct CycleSeries {
     pub roller_speed: Option<Vec<f64>>,
     pub slide_roll_ratio: Option<Vec<f64>>,
     pub pin_torque: Option<Vec<f64>>,
+    /// Effective film temperature of a thermal roller–pin bearing, K.
+    pub pin_temperature: Option<Vec<f64>>,
     pub flash_temperature: Option<Vec<f64>>,
+    /// Thermal EHL model: largest film temperature and largest surface temperatures of cam and
+    /// follower at each angle, K (the inlet temperature where a closed form answered).
+    pub film_temperature_max: Option<Vec<f64>>,
+    pub surface_temperature_cam: Option<Vec<f64>>,
+    pub surface_temperature_follower: Option<Vec<f64>>,
 }
 
 /// What happened over the cycle besides the series.
@@ -376,6 +383,15 @@ pub fn run_cycle(spec: &CycleSpec, needs: Needs, model: &dyn FilmModel, observer
             states.iter().map(|s| s.film.pressure_spike.zip(s.film.pressure_spike_position)).collect(),
         );
     }
+    if states.iter().any(|s| s.film.thermal.is_some()) {
+        let pick = |f: fn(&crate::physics::ehl::thermal::ThermalSummary) -> f64| -> Vec<f64> {
+            // A closed form (a contact at rest without history) is isothermal at the inlet.
+            states.iter().map(|s| s.film.thermal.as_deref().map_or(spec.temperature, |t| f(&t.summary))).collect()
+        };
+        series.film_temperature_max = Some(pick(|t| t.film_temperature_max));
+        series.surface_temperature_cam = Some(pick(|t| t.surface_temperature_max_1));
+        series.surface_temperature_follower = Some(pick(|t| t.surface_temperature_max_2));
+    }
     if states.iter().any(|s| s.film.iterations.is_some()) {
         series.newton_steps = Some(states.iter().map(|s| s.film.iterations.unwrap_or(0)).collect());
     }
@@ -406,6 +422,9 @@ pub fn run_cycle(spec: &CycleSpec, needs: Needs, model: &dyn FilmModel, observer
             series.roller_speed = Some(speed);
             series.slide_roll_ratio = Some(srr);
             series.pin_torque = Some(pins);
+            if states.iter().any(|s| s.pin_temperature.is_some()) {
+                series.pin_temperature = Some(states.iter().map(|s| s.pin_temperature.unwrap_or(spec.temperature)).collect());
+            }
         }
     }
     if needs.friction {
@@ -472,6 +491,7 @@ struct PointState {
     /// Roller speed (rad/s), 0 for non-rotating followers.
     omega: f64,
     pin_torque: f64,
+    pin_temperature: Option<f64>,
 }
 
 /// The roller's part of [`PointState`] while the cycle is marched.
@@ -480,6 +500,7 @@ struct Slip {
     traction: Traction,
     omega: f64,
     pin_torque: f64,
+    pin_temperature: Option<f64>,
 }
 
 struct Context<'a> {
@@ -567,7 +588,7 @@ impl<'a> Context<'a> {
                 _ => 0.0,
             };
             prev = Some(film.clone());
-            out.push(PointState { film, traction, omega, pin_torque: pin });
+            out.push(PointState { film, traction, omega, pin_torque: pin, pin_temperature: None });
         }
         Ok(out)
     }
@@ -579,7 +600,7 @@ impl<'a> Context<'a> {
             .zip(cache)
             .map(|(s, c)| {
                 let (s, (_, film)) = (s.expect("every angle stepped"), c.expect("every angle has a film"));
-                PointState { film, traction: s.traction, omega: s.omega, pin_torque: s.pin_torque }
+                PointState { film, traction: s.traction, omega: s.omega, pin_torque: s.pin_torque, pin_temperature: s.pin_temperature }
             })
             .collect()
     }
@@ -713,7 +734,7 @@ impl<'a> Context<'a> {
                 let ue_sol = entrainment(sol.omega);
                 let done = close(ue_sol, film_ue) || pass == 5;
                 if done {
-                    last = Some(Slip { traction: sol.traction, omega: sol.omega, pin_torque: sol.pin_torque });
+                    last = Some(Slip { traction: sol.traction, omega: sol.omega, pin_torque: sol.pin_torque, pin_temperature: sol.pin_temperature });
                     break;
                 }
                 let input = self.input(i, ue_sol, k.cam_surface_velocity - (rf * sol.omega + k.follower_surface_base), t, dt);
@@ -747,7 +768,7 @@ impl<'a> Context<'a> {
             let ue = 0.5 * self.kin[0].cam_surface_velocity;
             let input = self.input(0, ue, self.kin[0].cam_surface_velocity, 0.0, 0.0);
             cache[0] = Some((ue, self.model.solve(&input, None)?));
-            Slip { traction: Traction { force: 0.0, slope: 0.0, stick_limit: 0.0, viscous: 0.0 }, omega: 0.0, pin_torque: 0.0 }
+            Slip { traction: Traction { force: 0.0, slope: 0.0, stick_limit: 0.0, viscous: 0.0 }, omega: 0.0, pin_torque: 0.0, pin_temperature: None }
         };
         hist.push((first.omega, time(0)));
         // Slip ω − ω_roll of the steps in `hist` (for the predictor).

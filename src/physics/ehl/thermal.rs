@@ -45,7 +45,7 @@
 //! temperature stop changing ([`ThermalOptions::tolerance`]).
 
 use super::newton::{Engine, Prediction};
-use super::{EhlInput, EhlOptions, EhlSolution, EhlState, Rheology, TractionResult};
+use super::{EhlInput, EhlOptions, EhlSolution, Rheology, TractionResult};
 use crate::physics::lubricant::{DensityModel, Lubricant, DH_C3};
 use crate::physics::thermal::ThermalSolid;
 use crate::physics::{Convergence, Observer, SolveError, Termination};
@@ -198,7 +198,7 @@ pub struct ThermalSummary {
     /// Gauss–Seidel sweeps of the last energy solve.
     pub sweeps: u32,
     /// The last sweep's largest temperature change relative to the largest rise (below
-    /// `sweep_tolerance` when converged; up to 100× that when the sweeps stalled).
+    /// `sweep_tolerance` when converged; up to 500× that when the sweeps stalled).
     pub sweep_change: f64,
 }
 
@@ -487,8 +487,9 @@ pub fn energy(x: &[f64], p: &[f64], h: &[f64], input: &EnergyInput, options: &Th
                     let rho = lub.density * col.rho[k];
                     let eta = col.eta[k] * eta_ref[i];
                     let shear = col.tau[k] * col.tau[k] / eta;
-                    let comp = if compressive { temps[j] * lub.density * DH_C3 / rho * col.u[k] * dpdx[i] } else { 0.0 };
-                    (kf, rho * cf, shear + comp, -col.beta[k].max(0.0) * shear)
+                    // Compressive heating a·T: cooling (a < 0) implicit, heating lagged.
+                    let a_comp = if compressive { lub.density * DH_C3 / rho * col.u[k] * dpdx[i] } else { 0.0 };
+                    (kf, rho * cf, shear + a_comp * temps[j], -col.beta[k].max(0.0) * shear + a_comp.min(0.0))
                 }
             };
             for j in 0..nn {
@@ -555,7 +556,15 @@ pub fn energy(x: &[f64], p: &[f64], h: &[f64], input: &EnergyInput, options: &Th
             for j in 0..nn {
                 let v = zr[j];
                 if !v.is_finite() {
-                    return Err(SolveError::NonFinite { quantity: "thermal ehl temperature".into() });
+                    // Runaway shear heating (a Newtonian film sheared far beyond its traction
+                    // maximum): a typed failure, not a NaN.
+                    return Err(SolveError::NotConverged {
+                        solver: "thermal ehl energy equation (temperature runaway)",
+                        iterations: sweeps,
+                        residual: f64::INFINITY,
+                        tolerance: options.sweep_tolerance,
+                        history: Vec::new(),
+                    });
                 }
                 change = change.max((v - temps[j]).abs() / rise);
             }
@@ -585,10 +594,10 @@ pub fn energy(x: &[f64], p: &[f64], h: &[f64], input: &EnergyInput, options: &Th
             break;
         }
     }
-    // A stall within 100× the tolerance is accepted (reported in the summary): the inlet's
+    // A stall within 500× the tolerance is accepted (reported in the summary): the inlet's
     // recirculating backflow can keep a sweep-to-sweep wobble of a fraction of a kelvin far
     // upstream, where it does not move the films.
-    let stalled = !converged && last_change < 100.0 * options.sweep_tolerance;
+    let stalled = !converged && last_change < 500.0 * options.sweep_tolerance;
     if !converged && !stalled {
         return Err(SolveError::NotConverged {
             solver: "thermal ehl energy equation (Gauss–Seidel)",
@@ -787,6 +796,27 @@ pub struct ThermalSolution {
     pub convergence: Convergence,
 }
 
+/// `old` (on its positions) blended towards `new` by `w`: the Poiseuille factor geometrically,
+/// the densities linearly, on `new`'s positions.
+fn blend(old: &ThermalFactors, new: &ThermalFactors, w: f64) -> ThermalFactors {
+    if w >= 1.0 {
+        return new.clone();
+    }
+    let at = |v: &[f64], x: f64| {
+        let m = old.x.len();
+        let i = old.x.partition_point(|&a| a <= x).clamp(1, m - 1);
+        let t = ((x - old.x[i - 1]) / (old.x[i] - old.x[i - 1])).clamp(0.0, 1.0);
+        v[i - 1] * (1.0 - t) + v[i] * t
+    };
+    let mut out = new.clone();
+    for (k, &x) in new.x.iter().enumerate() {
+        out.poiseuille[k] = (at(&old.poiseuille, x).max(1e-300).ln() * (1.0 - w) + new.poiseuille[k].ln() * w).exp();
+        out.wedge[k] = at(&old.wedge, x) * (1.0 - w) + new.wedge[k] * w;
+        out.mass[k] = at(&old.mass, x) * (1.0 - w) + new.mass[k] * w;
+    }
+    out
+}
+
 /// Surface velocities `(u1, u2)` of an input: `u_m ± u_s/2`.
 fn surface_velocities(input: &EhlInput) -> (f64, f64) {
     let (um, us) = (input.entrainment_velocity, input.sliding_velocity);
@@ -795,7 +825,7 @@ fn surface_velocities(input: &EhlInput) -> (f64, f64) {
 
 /// Solve one thermal line-contact EHL problem.
 pub fn solve(input: &ThermalInput, options: &EhlOptions, thermal: &ThermalOptions, observer: &dyn Observer) -> Result<ThermalSolution, SolveError> {
-    ThermalEngine::new().solve(input, options, thermal, None, observer)
+    ThermalEngine::new().solve(input, options, thermal, None, None, observer)
 }
 
 /// A reusable thermal solver (grids, factorisations and the last temperature field survive between
@@ -821,14 +851,17 @@ impl ThermalEngine {
         ThermalEngine { engine: Engine::new() }
     }
 
-    /// Solve one problem; `warm` (a temperature field of a nearby problem) starts the energy
-    /// sweeps, `input.ehl.warm_start`/`transient` the Newton solver.
+    /// Solve one problem. `warm_field` (a temperature field of a nearby problem, any grid) starts
+    /// the energy sweeps; `warm_factors` (that problem's generalized Reynolds factors) the first
+    /// pressure solve, which is otherwise isothermal; `input.ehl.warm_start`/`transient` the
+    /// Newton solver.
     pub fn solve(
         &mut self,
         input: &ThermalInput,
         options: &EhlOptions,
         thermal: &ThermalOptions,
-        warm: Option<&TemperatureField>,
+        warm_field: Option<&TemperatureField>,
+        warm_factors: Option<&ThermalFactors>,
         observer: &dyn Observer,
     ) -> Result<ThermalSolution, SolveError> {
         if !(thermal.film_points >= 3 && thermal.solid_points >= 4 && thermal.solid_depth > 0.0 && thermal.tolerance > 0.0) {
@@ -838,15 +871,11 @@ impl ThermalEngine {
         let (u1, u2) = surface_velocities(ehl);
         let (h_est, dir) = super::newton::film_estimate(ehl);
         let layout = super::grid::Layout::for_film(h_est, dir, options.inlet, options.outlet, options.grading);
-        let mut sol = self.engine.solve_with(ehl, options, Some(layout), None, None, observer)?;
-        let mut field: Option<TemperatureField> = warm.cloned();
-        let time_step = ehl.transient.map(|t| t.time_step);
-        let mut iterations = 0;
-        let mut history = Vec::new();
-        let mut last: Option<EnergySolution> = None;
-        loop {
-            observer.check()?;
-            let state = &sol.state;
+        let previous = match (input.previous_temperature, ehl.transient) {
+            (Some(f), Some(t)) => Some((f, t.time_step)),
+            _ => None,
+        };
+        let energy_at = |sol: &EhlSolution, warm: Option<&TemperatureField>| {
             let ein = EnergyInput {
                 velocity_1: u1,
                 velocity_2: u2,
@@ -856,26 +885,45 @@ impl ThermalEngine {
                 half_width: sol.hertz_half_width,
                 load_per_length: ehl.load_per_length,
                 rheology: &ehl.rheology,
-                previous: match (input.previous_temperature, time_step) {
-                    (Some(f), Some(dt)) => Some((f, dt)),
-                    _ => None,
-                },
-                warm: field.as_ref(),
+                previous,
+                warm,
             };
-            let en = energy(&state.x, &state.pressure, &state.film, &ein, thermal)?;
+            energy(&sol.state.x, &sol.state.pressure, &sol.state.film, &ein, thermal)
+        };
+        let mut sol = self.engine.solve_with(ehl, options, Some(layout), None, warm_factors, observer)?;
+        let mut field: Option<TemperatureField> = warm_field.cloned();
+        let mut iterations = 0;
+        let mut history = Vec::new();
+        let mut last: Option<EnergySolution> = None;
+        let mut used: Option<ThermalFactors> = warm_factors.cloned();
+        let mut relax: f64 = 1.0;
+        loop {
+            observer.check()?;
+            let mut en = energy_at(&sol, field.as_ref())?;
             iterations += 1;
+            // Under-relaxed factors (the last ones used, interpolated onto this grid, blended
+            // with the new): the energy ↔ Reynolds fixed point can oscillate where the heating
+            // is strong; the step shrinks when the change grows.
+            if let Some(old) = &used {
+                en.factors = blend(old, &en.factors, relax);
+            }
             let ph = sol.hertz_pressure;
-            let pred: Vec<f64> = state.pressure.iter().map(|p| p / ph).collect();
+            let pred: Vec<f64> = sol.state.pressure.iter().map(|p| p / ph).collect();
             let prediction = Prediction { pressure: &pred, centre_film: sol.central_film };
             let next = self.engine.solve_with(ehl, options, Some(layout), Some(prediction), Some(&en.factors), observer)?;
+            used = Some(en.factors.clone());
             let rel = |a: f64, b: f64| ((a - b) / b.abs().max(1e-30)).abs();
             // Change of the largest temperature rise, relative to the rise (at least 0.1 K).
             let rise = en.summary.film_temperature_max - ehl.temperature;
-            let t_change = match &last {
-                Some(l) => (rise - (l.summary.film_temperature_max - ehl.temperature)).abs() / rise.abs().max(0.1),
-                None => f64::INFINITY,
+            let t_change = match (&last, warm_field) {
+                (Some(l), _) => (rise - (l.summary.film_temperature_max - ehl.temperature)).abs() / rise.abs().max(0.1),
+                (None, Some(w)) => (rise - (w.film_max() - ehl.temperature)).abs() / rise.abs().max(0.1),
+                (None, None) => f64::INFINITY,
             };
             let change = rel(next.central_film, sol.central_film).max(rel(next.min_film, sol.min_film)).max(t_change);
+            if let Some(&before) = history.last() {
+                relax = if change > before { (relax * 0.6).max(0.15) } else { (relax * 1.2).min(1.0) };
+            }
             history.push(change);
             sol = next;
             field = Some(en.field.clone());
@@ -895,23 +943,7 @@ impl ThermalEngine {
         }
         let en = last.expect("one iteration ran");
         // The final temperatures on the final pressure and film.
-        let state: &EhlState = &sol.state;
-        let ein = EnergyInput {
-            velocity_1: u1,
-            velocity_2: u2,
-            lubricant: &ehl.lubricant,
-            inlet_temperature: ehl.temperature,
-            bodies: &input.bodies,
-            half_width: sol.hertz_half_width,
-            load_per_length: ehl.load_per_length,
-            rheology: &ehl.rheology,
-            previous: match (input.previous_temperature, time_step) {
-                (Some(f), Some(dt)) => Some((f, dt)),
-                _ => None,
-            },
-            warm: Some(&en.field),
-        };
-        let fin = energy(&state.x, &state.pressure, &state.film, &ein, thermal)?;
+        let fin = energy_at(&sol, Some(&en.field))?;
         sol.traction = fin.traction;
         let residual = history.last().copied().unwrap_or(0.0);
         Ok(ThermalSolution {

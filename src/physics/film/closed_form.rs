@@ -181,6 +181,7 @@ impl FilmModel for ClosedForm {
             viscosity_law: Some(law),
             profile: None,
             iterations: None,
+            thermal: None,
         })
     }
 }

@@ -38,10 +38,12 @@ pub mod auto;
 pub mod closed_form;
 pub mod formulas;
 pub mod numerical;
+pub mod thermal;
 
 pub use auto::{closed_form_error, Auto, ClosedFormError, ErrorRule};
 pub use closed_form::{ClosedForm, FilmFormula};
 pub use numerical::Numerical;
+pub use thermal::{FilmThermal, ThermalFilmSettings, ThermalNumerical};
 
 use crate::physics::friction::{
     viscous_traction_local, AsperityContact, AsperityFriction, Roughness, TractionLaw, TractionNode,
@@ -96,6 +98,8 @@ pub enum FilmModelId {
     HamrockDowson,
     /// The numerical line-contact EHL solver (`physics::ehl`).
     Numerical,
+    /// The thermal numerical line-contact EHL model (`physics::ehl::thermal`).
+    Thermal,
 }
 
 impl FilmModelId {
@@ -107,6 +111,7 @@ impl FilmModelId {
             FilmModelId::Seed003 => "seed003",
             FilmModelId::HamrockDowson => "hamrock_dowson",
             FilmModelId::Numerical => "numerical",
+            FilmModelId::Thermal => "thermal",
         }
     }
 }
@@ -171,8 +176,11 @@ pub struct FilmSolution {
     pub viscosity_law: Option<ViscosityLaw>,
     /// Pressure and film profiles (numerical models only).
     pub profile: Option<Box<FilmProfile>>,
-    /// Newton steps of a numerical model (absent for closed forms).
+    /// Newton steps of a numerical model (absent for closed forms); coupling iterations of the
+    /// thermal model.
     pub iterations: Option<u32>,
+    /// Temperatures, factors and the traction table of the thermal model.
+    pub thermal: Option<Box<FilmThermal>>,
 }
 
 /// Traction at one contact point for one sliding velocity.
@@ -268,6 +276,8 @@ pub struct AccurateSettings {
     pub auto_tolerance: f64,
     /// Grid extrapolation of the numerical solver.
     pub extrapolation: crate::physics::ehl::Extrapolation,
+    /// The thermal model (`accurate` only): `None` is isothermal.
+    pub thermal: Option<ThermalFilmSettings>,
 }
 
 /// The film model for a fidelity: `fast` the closed form; `accurate` the numerical EHL solver on
@@ -278,7 +288,10 @@ pub fn model_for(fidelity: Fidelity, fast: ClosedForm, settings: AccurateSetting
     let numerical = Numerical::new(settings.options, fast).with_extrapolation(settings.extrapolation);
     match fidelity {
         Fidelity::Fast => Box::new(fast),
-        Fidelity::Accurate => Box::new(numerical),
+        Fidelity::Accurate => match settings.thermal {
+            Some(t) => Box::new(ThermalNumerical::new(settings.options, t, fast)),
+            None => Box::new(numerical),
+        },
         Fidelity::Auto => Box::new(Auto { fast, numerical, tolerance: settings.auto_tolerance }),
     }
 }

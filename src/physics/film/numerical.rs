@@ -183,6 +183,7 @@ impl FilmModel for Numerical {
                 coarse,
             })),
             iterations: Some(s.convergence.iterations),
+            thermal: None,
         })
     }
 }

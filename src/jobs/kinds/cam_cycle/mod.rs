@@ -68,6 +68,10 @@ impl Kind for CamCycle {
         v.count_in_range("/angles", spec.angles, 8, usize::MAX);
         v.limit("/angles", spec.angles, limits.max_angles, "the number of cam angles");
         spec.ehl.validate("/ehl", limits, v);
+        if spec.ehl.thermal.is_some() {
+            v.check(spec.fidelity == Fidelity::Accurate, "/ehl/thermal", "the thermal model runs with fidelity accurate");
+            v.check(!matches!(spec.follower, FollowerSpec::Spherical { .. }), "/ehl/thermal", "the thermal model is a line-contact model: not for a spherical follower");
+        }
         if spec.outputs.contains(&CamOutput::Profiles) {
             v.check(spec.fidelity != Fidelity::Fast, "/outputs", "profiles need fidelity accurate or auto (the closed forms have none)");
             v.check(!spec.profile_angles_deg.is_empty(), "/profile_angles_deg", "the profiles output needs at least one angle");
@@ -255,3 +259,31 @@ fn check_table(v: &mut Validation, path: &str, angles: &[f64], values: &[f64], n
     v.check(wrapped.windows(2).all(|w| w[1] > w[0]), &format!("{path}/angle_deg"), "angles must be distinct within one revolution");
 }
 
+
+#[cfg(test)]
+mod tests {
+    use crate::jobs::kind::Limits;
+    use crate::jobs::registry;
+    use serde_json::json;
+
+    #[test]
+    fn thermal_ehl_needs_the_accurate_fidelity_and_valid_settings() {
+        let kind = registry::find("cam_cycle").unwrap();
+        let mut spec = kind.example();
+        spec["fidelity"] = json!("fast");
+        spec["ehl"] = json!({"thermal": {"film_points": 2, "oil_conductivity": 0.0}});
+        let text = format!("{:?}", kind.prepare(&spec, &Limits::default()).unwrap_err());
+        for path in ["/ehl/thermal", "/ehl/thermal/film_points", "/ehl/thermal/oil_conductivity"] {
+            assert!(text.contains(path), "{path}: {text}");
+        }
+        spec["fidelity"] = json!("accurate");
+        spec["ehl"] = json!({"thermal": {}});
+        assert!(kind.prepare(&spec, &Limits::default()).is_ok());
+        let wear = registry::find("wear").unwrap();
+        let mut w = wear.example();
+        w["cycle"]["fidelity"] = json!("accurate");
+        w["cycle"]["ehl"] = json!({"thermal": {}});
+        let text = format!("{:?}", wear.prepare(&w, &Limits::default()).unwrap_err());
+        assert!(text.contains("/cycle/ehl/thermal"), "{text}");
+    }
+}

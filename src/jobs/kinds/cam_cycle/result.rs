@@ -129,6 +129,17 @@ pub struct CamSeries {
     /// Maximum flash temperature rise (Blok/Jaeger), K.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub flash_temperature: Option<Vec<f64>>,
+    /// Thermal EHL (`ehl.thermal`): largest film temperature, K.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub film_temperature_max: Option<Vec<f64>>,
+    /// Thermal EHL: largest surface temperature of the cam and of the follower, K.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub surface_temperature_cam: Option<Vec<f64>>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub surface_temperature_follower: Option<Vec<f64>>,
+    /// Effective film temperature of a thermal finite roller–pin bearing, K.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub pin_temperature: Option<Vec<f64>>,
 }
 
 /// Cycle summary: flat numbers (what a sweep tabulates). Absent when not computed.

@@ -213,7 +213,9 @@ fn table(angles_deg: &[f64], values: &[f64], path: &str) -> Result<PeriodicTable
 pub(super) fn solve_spec(spec: &CamCycleSpec, observer: &dyn Observer) -> Result<CamCycleResult, SolveError> {
     let cycle = spec.cycle_spec()?;
     let needs = spec.needs();
-    let model = needs.film.then(|| model_for(spec.fidelity, spec.film.to_physics(), spec.ehl.to_physics()));
+    let mut settings = spec.ehl.to_physics();
+    settings.thermal = spec.ehl.thermal.map(|t| t.settings(spec.thermal.cam.to_physics(), spec.thermal.follower.to_physics()));
+    let model = needs.film.then(|| model_for(spec.fidelity, spec.film.to_physics(), settings));
     let fast = crate::physics::film::ClosedForm { formula: spec.film.formula, squeeze: spec.film.squeeze };
     let out = run_cycle(&cycle, needs, model.as_deref().unwrap_or(&fast), observer)?;
     let figures = summarise(&out, spec.operation.startup.is_none());
@@ -298,6 +300,10 @@ pub(super) fn solve_spec(spec: &CamCycleSpec, observer: &dyn Observer) -> Result
             slide_roll_ratio: s.slide_roll_ratio,
             pin_torque: s.pin_torque,
             flash_temperature: s.flash_temperature,
+            film_temperature_max: s.film_temperature_max,
+            surface_temperature_cam: s.surface_temperature_cam,
+            surface_temperature_follower: s.surface_temperature_follower,
+            pin_temperature: s.pin_temperature,
         },
         summary,
         events: CamEvents {
