@@ -337,9 +337,10 @@ pub struct EhlSpec {
     /// Reynolds equation, film and cam/follower energy equations (their heat properties from the
     /// spec's `thermal`), traction of the sheared film. Absent: isothermal at the lubricant's
     /// temperature. Only with `fidelity: accurate` (and roller or flat-faced followers: line
-    /// contacts). Experimental (issue 14): one coupled solve and a 13-point traction table per
-    /// angle cost ≈ 0.3 s per angle at 128 nodes, and on the seed 000 cycle the energy sweeps
-    /// still stall at some angles (a typed `not_converged` error). `cam_point` uses steel bodies.
+    /// contacts). Costly: one coupled solve and a 13-point traction table per angle and periodic
+    /// iteration — the seed 000 cycle at 36 angles and 96 nodes takes ≈ 30 s
+    /// (`examples/seed000_thermal_steady.json`); see BENCHMARKS.md, "Thermal EHL". A contact
+    /// the model cannot settle fails with a typed `not_converged`. `cam_point` uses steel bodies.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub thermal: Option<EhlThermalSpec>,
 }

@@ -87,8 +87,8 @@ pub struct ThermalOptions {
     pub solid_points: usize,
     /// Depth `d` of the solids' thermal layer in Hertzian half-widths (seed 000: 3.15).
     pub solid_depth: f64,
-    /// Relative change of the films and of the largest temperature rise between two coupling
-    /// iterations at which the coupled solve stops.
+    /// Relative change of the films (and 100× it of the largest temperature rise) between two
+    /// coupling iterations at which the coupled solve stops.
     pub tolerance: f64,
     /// Most coupling iterations (energy ↔ Reynolds).
     pub max_iterations: u32,
@@ -97,11 +97,16 @@ pub struct ThermalOptions {
     /// Largest temperature change of a sweep, relative to the largest temperature rise, at which
     /// an energy solve stops.
     pub sweep_tolerance: f64,
+    /// The energy equation is solved where the film is at most this multiple of the minimum film
+    /// (the contact and the near inlet and outlet); beyond, the oil and the solids are at the inlet
+    /// temperature. The far inlet of a thick film (the Newton domain reaches 40 half-widths
+    /// upstream) only recirculates heat: measured effect on the films below 0.1 % at 10.
+    pub film_extent: f64,
 }
 
 impl Default for ThermalOptions {
     fn default() -> Self {
-        ThermalOptions { film_points: 7, solid_points: 16, solid_depth: 3.15, tolerance: 1e-4, max_iterations: 40, max_sweeps: 200, sweep_tolerance: 1e-4 }
+        ThermalOptions { film_points: 7, solid_points: 16, solid_depth: 3.15, tolerance: 1e-3, max_iterations: 40, max_sweeps: 200, sweep_tolerance: 1e-4, film_extent: 30.0 }
     }
 }
 
@@ -267,6 +272,9 @@ fn solid_depths(d: f64, ns: usize, penetration: f64) -> Vec<f64> {
     let g = lo;
     (0..ns).map(|k| if (g - 1.0).abs() < 1e-12 { d * k as f64 / m as f64 } else { d * (g.powi(k as i32) - 1.0) / (g.powi(m) - 1.0) }).collect()
 }
+
+/// Sweeps after which an energy solve freezes the film's properties (see [`energy`]).
+const FREEZE_AFTER: u32 = 40;
 
 /// Thomas algorithm for `a_i x_{i−1} + b_i x_i + c_i x_{i+1} = r_i` (in place into `r`).
 fn thomas(a: &[f64], b: &mut [f64], c: &[f64], r: &mut [f64]) {
@@ -460,7 +468,12 @@ pub fn energy(x: &[f64], p: &[f64], h: &[f64], input: &EnergyInput, options: &Th
             for k in 0..nz {
                 temps[i_film0 + k] = field.film[i * nz + k];
             }
-            update_column(i, &temps[i_film0..i_film0 + nz], &mut columns[i], &mut eta_ref[i]);
+            // After FREEZE_AFTER sweeps the film's properties and velocities stay as they are:
+            // the remaining problem is linear and the sweeps converge (a limit cycle of the
+            // upwind directions in the inlet's recirculation can otherwise persist).
+            if sweeps <= FREEZE_AFTER {
+                update_column(i, &temps[i_film0..i_film0 + nz], &mut columns[i], &mut eta_ref[i]);
+            }
             let col = &columns[i];
             let hi = h[i];
             let dz = hi / (nz - 1) as f64;
@@ -796,6 +809,31 @@ pub struct ThermalSolution {
     pub convergence: Convergence,
 }
 
+/// The contiguous columns around the minimum film where the film is at most `extent` times it
+/// (at least three).
+fn thermal_range(film: &[f64], extent: f64) -> (usize, usize) {
+    let n = film.len();
+    let imin = (0..n).fold(0, |j, i| if film[i] < film[j] { i } else { j });
+    let limit = extent * film[imin];
+    let mut a = imin;
+    while a > 0 && film[a - 1] <= limit {
+        a -= 1;
+    }
+    let mut e = imin;
+    while e + 1 < n && film[e + 1] <= limit {
+        e += 1;
+    }
+    while e - a < 2 {
+        if a > 0 {
+            a -= 1;
+        }
+        if e - a < 2 && e + 1 < n {
+            e += 1;
+        }
+    }
+    (a, e)
+}
+
 /// `old` (on its positions) blended towards `new` by `w`: the Poiseuille factor geometrically,
 /// the densities linearly, on `new`'s positions.
 fn blend(old: &ThermalFactors, new: &ThermalFactors, w: f64) -> ThermalFactors {
@@ -888,7 +926,9 @@ impl ThermalEngine {
                 previous,
                 warm,
             };
-            energy(&sol.state.x, &sol.state.pressure, &sol.state.film, &ein, thermal)
+            let (a, e) = thermal_range(&sol.state.film, thermal.film_extent);
+            let st = &sol.state;
+            energy(&st.x[a..=e], &st.pressure[a..=e], &st.film[a..=e], &ein, thermal)
         };
         let mut sol = self.engine.solve_with(ehl, options, Some(layout), None, warm_factors, observer)?;
         let mut field: Option<TemperatureField> = warm_field.cloned();
@@ -920,7 +960,9 @@ impl ThermalEngine {
                 (None, Some(w)) => (rise - (w.film_max() - ehl.temperature)).abs() / rise.abs().max(0.1),
                 (None, None) => f64::INFINITY,
             };
-            let change = rel(next.central_film, sol.central_film).max(rel(next.min_film, sol.min_film)).max(t_change);
+            // Films to the tolerance; the temperature rise to 100× it (the energy sweeps themselves
+            // stop at `sweep_tolerance`, or stall above it, so the rise carries that noise).
+            let change = rel(next.central_film, sol.central_film).max(rel(next.min_film, sol.min_film)).max(0.01 * t_change);
             if let Some(&before) = history.last() {
                 relax = if change > before { (relax * 0.6).max(0.15) } else { (relax * 1.2).min(1.0) };
             }
