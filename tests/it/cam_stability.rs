@@ -274,7 +274,7 @@ proptest! {
         let asp = AsperityFriction { coefficient: 0.1, model: AsperityModel::Coulomb };
         let fast = ClosedForm { formula: FilmFormula::PanHamrock, squeeze: false };
         let numerical = Numerical::new(EhlOptions { nodes: 64, tolerance: 1e-6, ..EhlOptions::default() }, fast);
-        let model: Box<dyn FilmModel> = if auto { Box::new(Auto { fast, numerical, tolerance: 0.05 }) } else { Box::new(numerical) };
+        let model: Box<dyn FilmModel> = if auto { Box::new(Auto { fast, numerical, tolerance: 0.05, thermal: None }) } else { Box::new(numerical) };
         let mut prev: Option<FilmSolution> = None;
         for k in 0..4 {
             // Entrainment sweeps linearly from u0 to u0 + du: crosses zero for many cases.

@@ -211,7 +211,7 @@ impl Kind for CamPoint {
         spec.film.validate("/film", v);
         v.check(!spec.film.squeeze, "/film/squeeze", "a point analysis is steady: no squeeze");
         spec.ehl.validate("/ehl", limits, v);
-        v.check(spec.ehl.thermal.is_none() || spec.fidelity == Fidelity::Accurate, "/ehl/thermal", "the thermal model runs with fidelity accurate");
+        v.check(spec.ehl.thermal.is_none() || spec.fidelity != Fidelity::Fast, "/ehl/thermal", "the thermal model runs with fidelity accurate or auto");
     }
 
     fn solve(spec: &CamPointSpec, observer: &dyn Observer) -> Result<CamPointResult, SolveError> {

@@ -336,8 +336,11 @@ pub struct EhlSpec {
     /// The thermal model of the `accurate` fidelity (seed 000 eq. 2, 4–5, 7–9): generalized
     /// Reynolds equation, film and cam/follower energy equations (their heat properties from the
     /// spec's `thermal`), traction of the sheared film. Absent: isothermal at the lubricant's
-    /// temperature. Only with `fidelity: accurate` (and roller or flat-faced followers: line
-    /// contacts). Costly: one coupled solve and a 13-point traction table per angle and periodic
+    /// temperature. With `fidelity: accurate` at every angle; with `auto` where the closed form is
+    /// not accurate enough and the estimated thermal error of the isothermal solution (film
+    /// reduction and traction, `physics::film::auto::thermal_error`) exceeds `auto_tolerance`
+    /// (`summary.fidelity_used` counts the angles of each model). Line contacts only (roller
+    /// and flat-faced followers). Costly: one coupled solve and a 13-point traction table per angle and periodic
     /// iteration — the seed 000 cycle at 36 angles and 96 nodes takes ≈ 30 s
     /// (`examples/seed000_thermal_steady.json`); see BENCHMARKS.md, "Thermal EHL". A contact
     /// the model cannot settle fails with a typed `not_converged`. `cam_point` uses steel bodies.

@@ -234,6 +234,44 @@ pub fn closed_form_error(
     }
 }
 
+/// Estimated relative error of the isothermal numerical model against the thermal one at a
+/// point (`ehl.thermal` with `auto`): the larger of
+/// * the **thermal film reduction** `0.11 L^0.64 (1 + 0.6 S^0.8)`, `L = β η0 u_m²/k_f`, `S` the
+///   slide-to-roll ratio — fitted to this project's thermal model (`tests/it/thermal_ehl.rs`:
+///   1 − φ = 0.0145, 0.033, 0.064 at L = 0.046, 0.18, 0.41 in rolling, 0.077 at S = 0.3;
+///   the fit is within 0.004 of each);
+/// * the **traction**: the isothermal film's viscosity drop `1 − exp(−β_p ΔT)` over the shear
+///   heating's temperature rise, `ΔT = q h/(8 k_f)` in the film plus the surfaces' Blok flash
+///   temperature, with the heat flux `q = τ u_s` of the isothermal nodes at the peak pressure and
+///   `β_p = −∂ ln η/∂T` there.
+pub fn thermal_error(input: &ContactInput, iso: &FilmSolution, film_heat: &crate::physics::ehl::thermal::FilmHeat, bodies: (&crate::physics::thermal::ThermalSolid, &crate::physics::thermal::ThermalSolid)) -> f64 {
+    let lub = input.lubricant;
+    let t = input.temperature;
+    let um = input.entrainment_velocity.abs();
+    let us = input.sliding_velocity.abs();
+    let eta0 = lub.viscosity_at(0.0, t);
+    let beta0 = -lub.ln_viscosity_temperature_slope(0.0, t);
+    let l = beta0 * eta0 * um * um / film_heat.conductivity;
+    let srr = if um > 0.0 { us / um } else { 2.0 };
+    let film = 0.11 * l.powf(0.64) * (1.0 + 0.6 * srr.powf(0.8));
+    // Traction: the node carrying the peak pressure.
+    let Some(node) = iso.nodes.iter().max_by(|a, b| a.pressure.total_cmp(&b.pressure)) else {
+        return film;
+    };
+    let tau = match input.traction_law.rheology {
+        crate::physics::friction::Rheology::Eyring { tau0 } => tau0 * (node.viscosity * us / (node.film * tau0)).asinh(),
+        crate::physics::friction::Rheology::Newtonian => node.viscosity * us / node.film,
+    };
+    let q = tau * us;
+    let film_rise = q * node.film / (8.0 * film_heat.conductivity);
+    let (v1, v2) = (input.entrainment_velocity + 0.5 * input.sliding_velocity, input.entrainment_velocity - 0.5 * input.sliding_velocity);
+    let power = q * iso.contact_area;
+    let flash = crate::physics::thermal::flash_temperature(power, iso.half_width, iso.contact_area, v1, v2, bodies.0, bodies.1);
+    let beta_p = -lub.ln_viscosity_temperature_slope(node.pressure, t);
+    let traction = 1.0 - (-beta_p * (film_rise + flash)).exp();
+    film.max(traction)
+}
+
 /// The `auto` film model.
 #[derive(Debug)]
 pub struct Auto {
@@ -241,6 +279,9 @@ pub struct Auto {
     pub numerical: Numerical,
     /// Largest estimated relative error of the closed form accepted.
     pub tolerance: f64,
+    /// With `ehl.thermal`: the thermal model, run where [`thermal_error`] of the isothermal
+    /// numerical solution exceeds the tolerance.
+    pub thermal: Option<super::thermal::ThermalNumerical>,
 }
 
 impl FilmModel for Auto {
@@ -253,9 +294,28 @@ impl FilmModel for Auto {
         let closed = self.fast.solve(input, previous)?;
         let err = closed_form_error(input, previous, &closed);
         if err.estimate <= self.tolerance {
-            Ok(closed)
-        } else {
-            self.numerical.solve(input, previous)
+            return Ok(closed);
+        }
+        let iso = self.numerical.solve(input, previous)?;
+        match &self.thermal {
+            Some(th) if iso.thermal.is_none() && matches!(input.shape, ContactShape::Line { .. }) => {
+                let b = &th.settings.bodies;
+                if thermal_error(input, &iso, &b.film, (&b.body_1, &b.body_2)) <= self.tolerance {
+                    Ok(iso)
+                } else {
+                    th.solve(input, previous)
+                }
+            }
+            _ => Ok(iso),
+        }
+    }
+
+    /// A thermal point's traction comes from its table (the thermal model), any other from its
+    /// nodes.
+    fn traction_local(&self, film: &FilmSolution, input: &ContactInput, sliding: f64) -> (super::Traction, (f64, f64)) {
+        match (&self.thermal, film.thermal.is_some()) {
+            (Some(th), true) => th.traction_local(film, input, sliding),
+            _ => self.numerical.traction_local(film, input, sliding),
         }
     }
 }
@@ -275,6 +335,38 @@ mod tests {
         let v = cell_max(&TRACTION_M, &TRACTION_L, 1.5, 15.0, |l, m| TRACTION_TABLE[l][m]);
         assert_eq!(v, 201.0);
         assert_eq!(cell_max(&TRACTION_M, &TRACTION_L, 1000.0, 30.0, |l, m| TRACTION_TABLE[l][m]), 45.0);
+    }
+
+    /// The thermal estimate: small in near-rolling at the seed 001 nose (low-viscosity oil with
+    /// an Eyring law), large when the seed 000 oil slides.
+    #[test]
+    fn thermal_error_grows_with_sliding_and_viscosity() {
+        use crate::physics::ehl::thermal::ThermalBodies;
+        use crate::physics::film::closed_form::test_inputs::{oil, seed001_nose};
+        use crate::physics::film::FilmFormula;
+        use crate::physics::friction::{AsperityFriction, AsperityModel, Roughness, TractionLaw};
+        use crate::physics::lubricant::Lubricant;
+        let b = ThermalBodies::SEED000;
+        let est = |lub: &Lubricant, slide: f64, eyring: Option<f64>| {
+            let rough = Roughness { sigma: 0.0, eta_beta_sigma: 0.04, sigma_over_beta: 0.001 };
+            let rheology = match eyring {
+                Some(tau0) => Rheology::Eyring { tau0 },
+                None => Rheology::Newtonian,
+            };
+            let law = TractionLaw { rheology, limiting_shear_coefficient: None };
+            let asp = AsperityFriction { coefficient: 0.1, model: AsperityModel::Coulomb };
+            let mut input = seed001_nose(lub, &rough, &law, &asp);
+            input.sliding_velocity = slide;
+            let cf = ClosedForm { formula: FilmFormula::PanHamrock, squeeze: false };
+            let iso = cf.solve(&input, None).unwrap();
+            thermal_error(&input, &iso, &b.film, (&b.body_1, &b.body_2))
+        };
+        let light = Lubricant { temperature_viscosity: 0.03, ..oil() };
+        let rolling = est(&light, 0.004, Some(5e6));
+        let sliding = est(&Lubricant::SEED000, 0.8, None);
+        println!("rolling {rolling:.4}, sliding {sliding:.4}");
+        assert!(rolling < 0.05, "{rolling}");
+        assert!(sliding > 0.5, "{sliding}");
     }
 
     /// One entry of the steady table re-measured (M = 10, L = 10 at 384 nodes: −6.0 % / −3.6 %).

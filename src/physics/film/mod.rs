@@ -292,6 +292,11 @@ pub fn model_for(fidelity: Fidelity, fast: ClosedForm, settings: AccurateSetting
             Some(t) => Box::new(ThermalNumerical::new(settings.options, t, fast)),
             None => Box::new(numerical),
         },
-        Fidelity::Auto => Box::new(Auto { fast, numerical, tolerance: settings.auto_tolerance }),
+        Fidelity::Auto => Box::new(Auto {
+            fast,
+            numerical,
+            tolerance: settings.auto_tolerance,
+            thermal: settings.thermal.map(|t| ThermalNumerical::new(settings.options, t, fast)),
+        }),
     }
 }

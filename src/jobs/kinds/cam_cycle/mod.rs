@@ -69,7 +69,7 @@ impl Kind for CamCycle {
         v.limit("/angles", spec.angles, limits.max_angles, "the number of cam angles");
         spec.ehl.validate("/ehl", limits, v);
         if spec.ehl.thermal.is_some() {
-            v.check(spec.fidelity == Fidelity::Accurate, "/ehl/thermal", "the thermal model runs with fidelity accurate");
+            v.check(spec.fidelity != Fidelity::Fast, "/ehl/thermal", "the thermal model runs with fidelity accurate or auto");
             v.check(!matches!(spec.follower, FollowerSpec::Spherical { .. }), "/ehl/thermal", "the thermal model is a line-contact model: not for a spherical follower");
         }
         if spec.outputs.contains(&CamOutput::Profiles) {
