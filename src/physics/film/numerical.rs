@@ -76,22 +76,10 @@ impl FilmModel for Numerical {
     }
 
     fn solve(&self, input: &ContactInput, previous: Option<&FilmSolution>) -> Result<FilmSolution, SolveError> {
-        let (r, length) = match input.shape {
-            ContactShape::Line { reduced_radius, length } => (reduced_radius, length),
-            ContactShape::Point { .. } => return self.fallback.solve(input, previous),
-        };
-        let load = input.load;
-        if !(load > 0.0 && load.is_finite()) {
-            return Err(SolveError::physical(crate::physics::PhysicalFailure::NoContactLoad, format!("contact load {load} N is not positive")));
-        }
-        let state: Option<EhlState> = previous.and_then(|p| p.profile.as_deref()).map(FilmProfile::to_ehl_state);
-        let transient = match &state {
-            Some(s) if input.time_step > 0.0 => Some(Transient { previous: s, time_step: input.time_step }),
-            _ => None,
-        };
-        if input.entrainment_velocity == 0.0 && transient.is_none() {
+        let Some(LineContact { r, length, load, state }) = line_contact(input, previous)? else {
             return self.fallback.solve(input, previous);
-        }
+        };
+        let transient = state.as_ref().filter(|_| input.time_step > 0.0).map(|s| Transient { previous: s, time_step: input.time_step });
         let w = load / length;
         let es = input.contact_modulus;
         let ehl_input = EhlInput {
@@ -128,31 +116,10 @@ impl FilmModel for Numerical {
         let steady = self.fallback.solve(input, None)?.steady_central_film;
         let st = &s.state;
         let cell = cells(&st.x);
-        // Greenwood–Tripp load sharing with the local film.
         let sigma = input.roughness.sigma;
-        let w_a = if sigma > 0.0 {
-            let per_length: f64 = st.film.iter().zip(&cell).map(|(h, dx)| input.roughness.asperity_pressure(*h, es) * dx).sum();
-            (per_length * length).min(load)
-        } else {
-            0.0
-        };
-        let fluid_share = 1.0 - w_a / load;
+        let w_a = asperity_load(input, st, &cell, length, load);
         let t = input.temperature;
-        let nodes: Vec<TractionNode> = st
-            .x
-            .iter()
-            .enumerate()
-            .filter(|&(i, _)| st.pressure[i] > 0.0)
-            .map(|(i, _)| {
-                let p = fluid_share * st.pressure[i];
-                TractionNode {
-                    area: cell[i] * length,
-                    pressure: p,
-                    viscosity: input.lubricant.viscosity_at(st.pressure[i], t).min(VISCOSITY_CAP),
-                    film: st.film[i].max(FILM_FLOOR),
-                }
-            })
-            .collect();
+        let nodes = traction_nodes(input, st, &cell, length, 1.0 - w_a / load, t);
         let hz = hertz_line(w, r, es);
         let eta0 = input.lubricant.viscosity_at(0.0, t);
         let g = LineGroups::new(w, r, input.entrainment_velocity, eta0, input.lubricant.pressure_viscosity, 2.0 * es);
@@ -186,6 +153,57 @@ impl FilmModel for Numerical {
             thermal: None,
         })
     }
+}
+
+/// A line contact the numerical models solve: reduced radius and length (m), load (N) and the
+/// previous point's converged state.
+pub(super) struct LineContact {
+    pub r: f64,
+    pub length: f64,
+    pub load: f64,
+    pub state: Option<EhlState>,
+}
+
+/// The line contact of `input`, or `None` where the closed form answers: a point contact, or no
+/// entrainment without a transient history. A non-positive load is an error.
+pub(super) fn line_contact(input: &ContactInput, previous: Option<&FilmSolution>) -> Result<Option<LineContact>, SolveError> {
+    let (r, length) = match input.shape {
+        ContactShape::Line { reduced_radius, length } => (reduced_radius, length),
+        ContactShape::Point { .. } => return Ok(None),
+    };
+    let load = input.load;
+    if !(load > 0.0 && load.is_finite()) {
+        return Err(SolveError::physical(crate::physics::PhysicalFailure::NoContactLoad, format!("contact load {load} N is not positive")));
+    }
+    let state: Option<EhlState> = previous.and_then(|p| p.profile.as_deref()).map(FilmProfile::to_ehl_state);
+    if input.entrainment_velocity == 0.0 && !(state.is_some() && input.time_step > 0.0) {
+        return Ok(None);
+    }
+    Ok(Some(LineContact { r, length, load, state }))
+}
+
+/// Greenwood–Tripp load sharing with the local film: `W_a = L Σ p_a(h_i) Δx_i`, capped at the load.
+pub(super) fn asperity_load(input: &ContactInput, st: &EhlState, cell: &[f64], length: f64, load: f64) -> f64 {
+    if input.roughness.sigma <= 0.0 {
+        return 0.0;
+    }
+    let es = input.contact_modulus;
+    let per_length: f64 = st.film.iter().zip(cell).map(|(h, dx)| input.roughness.asperity_pressure(*h, es) * dx).sum();
+    (per_length * length).min(load)
+}
+
+/// Traction nodes of a converged film: every node with positive pressure, its cell times the
+/// contact length, the fluid's share of its pressure, its viscosity at temperature `t`, its film.
+pub(super) fn traction_nodes(input: &ContactInput, st: &EhlState, cell: &[f64], length: f64, fluid_share: f64, t: f64) -> Vec<TractionNode> {
+    (0..st.x.len())
+        .filter(|&i| st.pressure[i] > 0.0)
+        .map(|i| TractionNode {
+            area: cell[i] * length,
+            pressure: fluid_share * st.pressure[i],
+            viscosity: input.lubricant.viscosity_at(st.pressure[i], t).min(VISCOSITY_CAP),
+            film: st.film[i].max(FILM_FLOOR),
+        })
+        .collect()
 }
 
 #[cfg(test)]

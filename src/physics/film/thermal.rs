@@ -21,13 +21,14 @@
 //! Cost: one coupled solve (a few Newton and energy solves) and [`SLIDE_TO_ROLL_TABLE`]`.len()`
 //! energy solves per point — see BENCHMARKS.md, "Thermal EHL".
 
-use super::closed_form::{ClosedForm, FILM_FLOOR, VISCOSITY_CAP};
+use super::closed_form::ClosedForm;
+use super::numerical::{asperity_load, line_contact, traction_nodes, LineContact};
 use super::{ContactInput, ContactShape, FilmModel, FilmModelId, FilmProfile, FilmSolution, Traction};
 use crate::physics::contact::hertz_line;
 use crate::physics::ehl::grid::cells;
 use crate::physics::ehl::thermal::{energy, EnergyInput, TemperatureField, ThermalBodies, ThermalEngine, ThermalFactors, ThermalInput, ThermalOptions, ThermalSummary};
-use crate::physics::ehl::{EhlInput, EhlOptions, EhlState, Rheology, Transient};
-use crate::physics::friction::{AsperityContact, Rheology as Shear, TractionNode};
+use crate::physics::ehl::{EhlInput, EhlOptions, Rheology, Transient};
+use crate::physics::friction::{AsperityContact, Rheology as Shear};
 use crate::physics::{ensure_finite, Silent, SolveError};
 use std::sync::Mutex;
 
@@ -112,23 +113,11 @@ impl FilmModel for ThermalNumerical {
     }
 
     fn solve(&self, input: &ContactInput, previous: Option<&FilmSolution>) -> Result<FilmSolution, SolveError> {
-        let (r, length) = match input.shape {
-            ContactShape::Line { reduced_radius, length } => (reduced_radius, length),
-            ContactShape::Point { .. } => return self.fallback.solve(input, previous),
-        };
-        let load = input.load;
-        if !(load > 0.0 && load.is_finite()) {
-            return Err(SolveError::physical(crate::physics::PhysicalFailure::NoContactLoad, format!("contact load {load} N is not positive")));
-        }
-        let state: Option<EhlState> = previous.and_then(|p| p.profile.as_deref()).map(FilmProfile::to_ehl_state);
-        let prev_thermal = previous.and_then(|p| p.thermal.as_deref());
-        let transient = match &state {
-            Some(s) if input.time_step > 0.0 => Some(Transient { previous: s, time_step: input.time_step }),
-            _ => None,
-        };
-        if input.entrainment_velocity == 0.0 && transient.is_none() {
+        let Some(LineContact { r, length, load, state }) = line_contact(input, previous)? else {
             return self.fallback.solve(input, previous);
-        }
+        };
+        let prev_thermal = previous.and_then(|p| p.thermal.as_deref());
+        let transient = state.as_ref().filter(|_| input.time_step > 0.0).map(|s| Transient { previous: s, time_step: input.time_step });
         let w = load / length;
         let es = input.contact_modulus;
         let eyring = match input.traction_law.rheology {
@@ -166,12 +155,7 @@ impl FilmModel for ThermalNumerical {
         let st = &s.state;
         let cell = cells(&st.x);
         let sigma = input.roughness.sigma;
-        let w_a = if sigma > 0.0 {
-            let per_length: f64 = st.film.iter().zip(&cell).map(|(h, dx)| input.roughness.asperity_pressure(*h, es) * dx).sum();
-            (per_length * length).min(load)
-        } else {
-            0.0
-        };
+        let w_a = asperity_load(input, st, &cell, length, load);
         // Traction table over the pressurised zone at the point's pressure and film.
         let hz = hertz_line(w, r, es);
         let um = input.entrainment_velocity;
@@ -212,18 +196,7 @@ impl FilmModel for ThermalNumerical {
         ensure_finite("thermal film", [&s.central_film, &s.min_film, &s.exit_film, &s.max_pressure, &w_a])?;
         // Nodes (for consumers that read them; the traction comes from the table).
         let t = th.summary.film_temperature_mean;
-        let nodes: Vec<TractionNode> = st
-            .x
-            .iter()
-            .enumerate()
-            .filter(|&(i, _)| st.pressure[i] > 0.0)
-            .map(|(i, _)| TractionNode {
-                area: cell[i] * length,
-                pressure: (1.0 - w_a / load) * st.pressure[i],
-                viscosity: input.lubricant.viscosity_at(st.pressure[i], t).min(VISCOSITY_CAP),
-                film: st.film[i].max(FILM_FLOOR),
-            })
-            .collect();
+        let nodes = traction_nodes(input, st, &cell, length, 1.0 - w_a / load, t);
         let steady = self.fallback.solve(input, None)?.steady_central_film;
         Ok(FilmSolution {
             model: FilmModelId::Thermal,
