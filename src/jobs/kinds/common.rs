@@ -186,7 +186,7 @@ impl Default for AsperitySpec {
 
 impl AsperitySpec {
     pub fn roughness(&self, sigma: f64) -> Roughness {
-        Roughness { sigma, eta_beta_sigma: self.eta_beta_sigma, sigma_over_beta: self.sigma_over_beta }
+        Roughness { sigma, eta_beta_sigma: self.eta_beta_sigma, sigma_over_beta: self.sigma_over_beta, plastic_limit: f64::INFINITY }
     }
     pub fn friction(&self) -> AsperityFriction {
         AsperityFriction {

@@ -703,6 +703,7 @@ fn solve_archard(spec: &WearSpec, observer: &dyn Observer) -> Result<WearResult,
             (_, FilmFormula::DowsonHigginson) => FilmModelId::DowsonHigginson,
             (_, FilmFormula::Seed003) => FilmModelId::Seed003,
         })
+        .map(|m| if spec.composite_sigma() > 0.0 { m.mixed() } else { m })
     };
     if numerical {
         summary.fidelity_used = Some(ev.film_models.iter().map(|(m, c)| (m.name().to_string(), *c)).collect());
