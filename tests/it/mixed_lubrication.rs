@@ -2,7 +2,7 @@
 //! numerical EHL solution and in the fast closed form.
 
 use tribod::physics::ehl::*;
-use tribod::physics::film::mixed::GreenwoodTrippLaw;
+use tribod::physics::film::mixed::LoadSharingLaw;
 use tribod::physics::friction::Roughness;
 use tribod::physics::lubricant::Lubricant;
 use tribod::physics::film::{ClosedForm, ContactInput, ContactShape, FilmFormula, FilmModel, FilmModelId, Numerical};
@@ -36,9 +36,9 @@ fn nose<'a>(u: f64, asperity: Option<&'a dyn AsperityPressure>) -> EhlInput<'a> 
     }
 }
 
-fn law(sigma: f64) -> GreenwoodTrippLaw {
-    GreenwoodTrippLaw {
-        roughness: Roughness { sigma, eta_beta_sigma: 0.04, sigma_over_beta: 0.001, plastic_limit: 6e9 },
+fn law(sigma: f64) -> LoadSharingLaw {
+    LoadSharingLaw {
+        roughness: Roughness { sigma, eta_beta_sigma: 0.04, sigma_over_beta: 0.001, plastic_limit: 6e9, curve: None },
         contact_modulus: E_STAR,
     }
 }
@@ -154,7 +154,7 @@ fn fast_load_sharing_matches_the_numerical_one() {
     let fast = ClosedForm { formula: FilmFormula::PanHamrock, squeeze: false };
     let num = Numerical::new(EhlOptions { nodes: 256, ..Default::default() }, fast);
     for sigma in [0.1e-6, 0.207e-6, 0.5e-6, 1.0e-6] {
-        let rough = Roughness { sigma, eta_beta_sigma: 0.04, sigma_over_beta: 0.001, plastic_limit: 6e9 };
+        let rough = Roughness { sigma, eta_beta_sigma: 0.04, sigma_over_beta: 0.001, plastic_limit: 6e9, curve: None };
         for u in [3.98, 0.4, 0.04] {
             let c = contact(u, &lub, &rough, &law, &asp);
             let f = fast.solve(&c, None).unwrap();
@@ -199,4 +199,23 @@ proptest! {
             Err(e) => prop_assert!(e.to_string().len() > 0),
         }
     }
+}
+
+/// A tabulated pressure–gap curve (seed 001 eq. 12) stands in for the law it was tabulated from:
+/// the Greenwood–Tripp law at 40 films from 0.02 to 4 σ, interpolated monotonically in `ln p`,
+/// gives the same mixed solution to 1e-4 in the asperity share and 1e-6 in the films.
+#[test]
+fn tabulated_curve_reproduces_the_law_it_was_taken_from() {
+    let gt = law(0.3e-6);
+    let films: Vec<f64> = (0..40).map(|k| 0.3e-6 * 0.02 * (200f64).powf(k as f64 / 39.0)).collect();
+    let pressures: Vec<f64> = films.iter().map(|h| gt.pressure(*h).0).collect();
+    let curve = tribod::physics::friction::PressureGapCurve::new(&films, &pressures).unwrap();
+    let tab = LoadSharingLaw { roughness: Roughness { curve: Some(std::sync::Arc::new(curve)), ..gt.roughness.clone() }, contact_modulus: E_STAR };
+    let a = solve(&nose(0.4, Some(&gt)), &opts(256), &Silent).unwrap();
+    let b = solve(&nose(0.4, Some(&tab)), &opts(256), &Silent).unwrap();
+    let (fa, fb) = (a.asperity_load_per_length / W, b.asperity_load_per_length / W);
+    println!("share GT {fa:.6} curve {fb:.6}; hc {:.6e} {:.6e}", a.central_film, b.central_film);
+    assert!((fa / fb - 1.0).abs() < 1e-4, "{fa} vs {fb}");
+    assert!((a.central_film / b.central_film - 1.0).abs() < 1e-6);
+    assert!((a.min_film / b.min_film - 1.0).abs() < 1e-6);
 }

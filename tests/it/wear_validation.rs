@@ -391,7 +391,7 @@ fn full_film_wears_nothing_at_any_fidelity_and_full_share_volume_is_model_indepe
         assert!(share < 1e-3, "{fid}: share {share}");
         assert!(depth < 1e-3 * full_depth, "{fid}: {depth} vs {full_depth}");
         if fid != "fast" {
-            assert_eq!(out["summary"]["fidelity_used"]["numerical"], json!(2 * 180), "{fid}: {}", out["summary"]["fidelity_used"]);
+            assert_eq!(out["summary"]["fidelity_used"]["numerical_mixed"], json!(2 * 180), "{fid}: {}", out["summary"]["fidelity_used"]);
             let full = run("wear", &gentle(fid, "full")).unwrap();
             let v = num(&full["summary"]["worn_volume"]);
             assert!((v / full_volume - 1.0).abs() < 1e-9, "{fid}: {v} vs {full_volume}");

@@ -348,7 +348,7 @@ mod tests {
         use crate::physics::lubricant::Lubricant;
         let b = ThermalBodies::SEED000;
         let est = |lub: &Lubricant, slide: f64, eyring: Option<f64>| {
-            let rough = Roughness { sigma: 0.0, eta_beta_sigma: 0.04, sigma_over_beta: 0.001, plastic_limit: f64::INFINITY };
+            let rough = Roughness { sigma: 0.0, eta_beta_sigma: 0.04, sigma_over_beta: 0.001, plastic_limit: f64::INFINITY, curve: None };
             let rheology = match eyring {
                 Some(tau0) => Rheology::Eyring { tau0 },
                 None => Rheology::Newtonian,

@@ -269,7 +269,7 @@ mod tests {
     #[test]
     fn nodes_integrate_the_hertz_load_and_area() {
         let lub = oil();
-        let rough = Roughness { sigma: 0.0, eta_beta_sigma: 0.04, sigma_over_beta: 0.001, plastic_limit: f64::INFINITY };
+        let rough = Roughness { sigma: 0.0, eta_beta_sigma: 0.04, sigma_over_beta: 0.001, plastic_limit: f64::INFINITY, curve: None };
         let law = TractionLaw { rheology: Rheology::Newtonian, limiting_shear_coefficient: None };
         let asp = AsperityFriction { coefficient: 0.12, model: AsperityModel::Coulomb };
         let input = seed001_nose(&lub, &rough, &law, &asp);
@@ -292,7 +292,7 @@ mod tests {
     #[test]
     fn rough_surfaces_share_the_load_and_add_asperity_friction() {
         let lub = oil();
-        let rough = Roughness { sigma: 0.3e-6, eta_beta_sigma: 0.05, sigma_over_beta: 0.001, plastic_limit: f64::INFINITY };
+        let rough = Roughness { sigma: 0.3e-6, eta_beta_sigma: 0.05, sigma_over_beta: 0.001, plastic_limit: f64::INFINITY, curve: None };
         let law = TractionLaw { rheology: Rheology::Eyring { tau0: 5e6 }, limiting_shear_coefficient: None };
         let asp = AsperityFriction { coefficient: 0.12, model: AsperityModel::Coulomb };
         let input = seed001_nose(&lub, &rough, &law, &asp);
@@ -309,7 +309,7 @@ mod tests {
     #[test]
     fn seed003_squeeze_thickens_an_approaching_film() {
         let lub = oil();
-        let rough = Roughness { sigma: 0.0, eta_beta_sigma: 0.04, sigma_over_beta: 0.001, plastic_limit: f64::INFINITY };
+        let rough = Roughness { sigma: 0.0, eta_beta_sigma: 0.04, sigma_over_beta: 0.001, plastic_limit: f64::INFINITY, curve: None };
         let law = TractionLaw { rheology: Rheology::Newtonian, limiting_shear_coefficient: None };
         let asp = AsperityFriction { coefficient: 0.1, model: AsperityModel::Coulomb };
         let mut input = seed001_nose(&lub, &rough, &law, &asp);

@@ -4,8 +4,8 @@
 //! * `accurate` ([`super::Numerical`]): the numerical EHL solver adds the mean asperity pressure
 //!   of the local film, `p_a(h(x))`, to the fluid pressure in the load balance and in the elastic
 //!   deflection ([`crate::physics::ehl::EhlInput::asperity`]); the relation `p_a(h)` is
-//!   [`GreenwoodTrippLaw`] (Greenwood–Tripp with the plastic cap of
-//!   [`Roughness::load_sharing_pressure`]).
+//!   [`LoadSharingLaw`] ([`Roughness::load_sharing_pressure`]: Greenwood–Tripp at the
+//!   separation that conserves the film's volume, or a tabulated curve, with the plastic cap).
 //! * `fast` ([`super::ClosedForm`]): the load-sharing closed form of Johnson, Greenwood & Poon
 //!   (Wear 19, 1972) in the form of Gelinck & Schipper (Tribol. Int. 33, 2000): the fluid carries
 //!   `W_h = (1 − f_a) W` as a smooth EHL contact whose modulus is scaled alike (`E'(1 − f_a)`, so
@@ -17,16 +17,16 @@ use crate::physics::ehl::AsperityPressure;
 use crate::physics::friction::Roughness;
 use crate::physics::SolveError;
 
-/// Greenwood–Tripp mean asperity pressure (with the plastic cap) as the EHL solver's load-sharing
-/// law. `contact_modulus` is Johnson's `E*` (Greenwood's convention, see
+/// The mean asperity pressure of [`Roughness::load_sharing_pressure`] as the EHL solver's
+/// load-sharing law. `contact_modulus` is Johnson's `E*` (Greenwood's convention, see
 /// [`crate::physics::friction::greenwood_tripp`]).
-#[derive(Debug, Clone, Copy)]
-pub struct GreenwoodTrippLaw {
+#[derive(Debug, Clone)]
+pub struct LoadSharingLaw {
     pub roughness: Roughness,
     pub contact_modulus: f64,
 }
 
-impl AsperityPressure for GreenwoodTrippLaw {
+impl AsperityPressure for LoadSharingLaw {
     fn pressure(&self, film: f64) -> (f64, f64) {
         self.roughness.load_sharing_pressure(film, self.contact_modulus)
     }

@@ -26,7 +26,7 @@ use super::formulas::LineGroups;
 use super::{ContactInput, ContactShape, FilmModel, FilmModelId, FilmProfile, FilmSolution, Regime};
 use crate::physics::contact::hertz_line;
 use crate::physics::ehl::grid::cells;
-use super::mixed::GreenwoodTrippLaw;
+use super::mixed::LoadSharingLaw;
 use crate::physics::ehl::{AsperityPressure, EhlInput, EhlOptions, EhlState, Extrapolation, ReusableSolver, Rheology, Transient};
 use crate::physics::friction::{AsperityContact, TractionNode};
 use crate::physics::{ensure_finite, Silent, SolveError};
@@ -85,7 +85,7 @@ impl FilmModel for Numerical {
         let es = input.contact_modulus;
         let sigma = input.roughness.sigma;
         // Mixed lubrication: the asperities share the load inside the solution.
-        let law = GreenwoodTrippLaw { roughness: *input.roughness, contact_modulus: es };
+        let law = LoadSharingLaw { roughness: input.roughness.clone(), contact_modulus: es };
         let ehl_input = EhlInput {
             load_per_length: w,
             reduced_radius: r,
@@ -229,7 +229,7 @@ mod tests {
     #[test]
     fn nodes_carry_the_load_and_a_reversal_keeps_a_squeeze_film() {
         let lub = Lubricant { viscosity: 0.013, pressure_viscosity: 1.84e-8, ..Lubricant::SEED000 };
-        let rough = Roughness { sigma: 0.0, eta_beta_sigma: 0.04, sigma_over_beta: 0.001, plastic_limit: f64::INFINITY };
+        let rough = Roughness { sigma: 0.0, eta_beta_sigma: 0.04, sigma_over_beta: 0.001, plastic_limit: f64::INFINITY, curve: None };
         let law = TractionLaw { rheology: Shear::Eyring { tau0: 5e6 }, limiting_shear_coefficient: None };
         let asp = AsperityFriction { coefficient: 0.1, model: AsperityModel::Coulomb };
         // Seed 001 nose (12.5 kN over 21 mm, R = 10.5 mm, 3.98 m/s).

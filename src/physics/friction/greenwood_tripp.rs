@@ -98,7 +98,7 @@ pub fn f52_power_law_fit(lambda: f64) -> f64 {
 }
 
 /// Statistical description of the two rough surfaces.
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, PartialEq)]
 pub struct Roughness {
     /// Composite RMS roughness `σ = sqrt(σ1² + σ2²)`, m.
     pub sigma: f64,
@@ -110,6 +110,9 @@ pub struct Roughness {
     /// Plastic limit of the asperity contact pressure `p_a,lim`, Pa (seed 001 eq. 10, Table 1:
     /// 6 GPa); `f64::INFINITY`: purely elastic asperities.
     pub plastic_limit: f64,
+    /// A tabulated pressure–gap relation (seed 001 eq. 12) that replaces Greenwood–Tripp in the
+    /// load-sharing models; `None`: Greenwood–Tripp with `eta_beta_sigma`, `sigma_over_beta`.
+    pub curve: Option<std::sync::Arc<super::curve::PressureGapCurve>>,
 }
 
 impl Roughness {
@@ -146,6 +149,10 @@ impl Roughness {
         if !(self.sigma > 0.0) {
             return (0.0, 0.0);
         }
+        if let Some(c) = &self.curve {
+            let (p, dp) = c.pressure(h);
+            return self.plastic_cap(p, dp);
+        }
         let k = self.gt_constant() * contact_modulus;
         let lh = (h / self.sigma).max(0.0);
         let tables = general_tables();
@@ -158,7 +165,11 @@ impl Roughness {
         let (f52v, df52) = tables.f52.value_slope(t);
         // dh/dd = F_0(−d/σ) (the fraction of the area not in contact): dt/dh = 1/(σ F_0(s)).
         let f0 = tables.f0.value_slope(s).0.max(1e-300);
-        let (p, dp) = (k * f52v, k * df52 / (self.sigma * f0));
+        self.plastic_cap(k * f52v, k * df52 / (self.sigma * f0))
+    }
+
+    /// `p/sqrt(1 + (p/p_lim)²)` and its slope from `(p, dp/dh)`.
+    fn plastic_cap(&self, p: f64, dp: f64) -> (f64, f64) {
         if !(self.plastic_limit.is_finite() && self.plastic_limit > 0.0) {
             return (p, dp);
         }
@@ -337,7 +348,7 @@ mod tests {
             assert!((d - fd).abs() <= 1e-5 * fd.abs() + 1e-14, "λ = {l}: {d} vs {fd}");
             assert!(d < 0.0 || f52(l) < 1e-15);
         }
-        let r = Roughness { sigma: 0.2e-6, eta_beta_sigma: 0.04, sigma_over_beta: 0.001, plastic_limit: 6e9 };
+        let r = Roughness { sigma: 0.2e-6, eta_beta_sigma: 0.04, sigma_over_beta: 0.001, plastic_limit: 6e9, curve: None };
         let es = 1.1e11;
         let mut last = f64::INFINITY;
         for k in 1..200 {
@@ -349,7 +360,7 @@ mod tests {
             last = p;
         }
         // Apart (h = 4σ) the mean gap is the separation: Greenwood–Tripp at d = h.
-        let elastic = Roughness { plastic_limit: f64::INFINITY, ..r };
+        let elastic = Roughness { plastic_limit: f64::INFINITY, ..r.clone() };
         let h = 0.8e-6;
         assert!((r.load_sharing_pressure(h, es).0 / elastic.asperity_pressure(h, es) - 1.0).abs() < 1e-4);
         // As the film vanishes the asperity pressure grows without bound (Gaussian tails: slowly,
@@ -383,10 +394,10 @@ mod tests {
 
     #[test]
     fn asperity_pressure_scales_with_modulus_and_vanishes_for_smooth_surfaces() {
-        let r = Roughness { sigma: 0.2e-6, eta_beta_sigma: 0.04, sigma_over_beta: 0.001, plastic_limit: f64::INFINITY };
+        let r = Roughness { sigma: 0.2e-6, eta_beta_sigma: 0.04, sigma_over_beta: 0.001, plastic_limit: f64::INFINITY, curve: None };
         let p = r.asperity_pressure(0.2e-6, 1.15e11);
         assert!((p / (r.gt_constant() * 1.15e11 * f52(1.0)) - 1.0).abs() < 1e-15);
-        let smooth = Roughness { sigma: 0.0, ..r };
+        let smooth = Roughness { sigma: 0.0, ..r.clone() };
         assert_eq!(smooth.asperity_pressure(1e-9, 1.15e11), 0.0);
     }
 }

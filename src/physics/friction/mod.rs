@@ -13,8 +13,10 @@
 //! * Eyring: `τ = τ0 asinh(η u_s / (h τ0))` (seed 001 eq. 25, τ0 the Eyring stress);
 //! * limiting shear (optional): `|τ| ≤ Λ p`.
 
+pub mod curve;
 pub mod greenwood_tripp;
 
+pub use curve::PressureGapCurve;
 pub use greenwood_tripp::{f52, Roughness};
 
 /// Shear law of the lubricant film.
