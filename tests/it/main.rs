@@ -23,6 +23,8 @@ mod journal_validation;
 mod multi_instance;
 mod openapi_drift;
 mod pin_finite;
+mod rough_stability;
+mod rough_validation;
 mod browser;
 mod plots;
 mod reliability;

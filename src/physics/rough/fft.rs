@@ -1,0 +1,142 @@
+//! Periodic convolution on the surface grid by 2-D FFT (rustfft along rows, a transpose, rustfft
+//! along columns): the influence-coefficient products `u = K p` of the normal and tangential
+//! problems, with `K` given by its Fourier multiplier (the periodic half-space response).
+
+use rustfft::num_complex::Complex;
+use rustfft::{Fft, FftPlanner};
+use std::sync::Arc;
+
+pub(crate) struct Fft2 {
+    nx: usize,
+    ny: usize,
+    fx: Arc<dyn Fft<f64>>,
+    ix: Arc<dyn Fft<f64>>,
+    fy: Arc<dyn Fft<f64>>,
+    iy: Arc<dyn Fft<f64>>,
+}
+
+/// Buffers of one user of an [`Fft2`] (one per thread).
+pub(crate) struct Workspace {
+    tmp: Vec<Complex<f64>>,
+    scratch: Vec<Complex<f64>>,
+}
+
+impl Fft2 {
+    pub(crate) fn new(nx: usize, ny: usize) -> Self {
+        let mut planner = FftPlanner::new();
+        Fft2 {
+            nx,
+            ny,
+            fx: planner.plan_fft_forward(nx),
+            ix: planner.plan_fft_inverse(nx),
+            fy: planner.plan_fft_forward(ny),
+            iy: planner.plan_fft_inverse(ny),
+        }
+    }
+
+    pub(crate) fn workspace(&self) -> Workspace {
+        let s = [&self.fx, &self.ix, &self.fy, &self.iy].iter().map(|f| f.get_inplace_scratch_len()).max().unwrap_or(0);
+        Workspace { tmp: vec![Complex::new(0.0, 0.0); self.nx * self.ny], scratch: vec![Complex::new(0.0, 0.0); s] }
+    }
+
+    /// Angular wavenumbers `2π m/L` of the x index (m wrapped to `[−n/2, n/2)`), rad/m.
+    pub(crate) fn wavenumbers_x(&self, spacing: f64) -> Vec<f64> {
+        wavenumbers(self.nx, spacing)
+    }
+    pub(crate) fn wavenumbers_y(&self, spacing: f64) -> Vec<f64> {
+        wavenumbers(self.ny, spacing)
+    }
+
+    /// Row-major `[j·nx + i]` in, spectrum in the transposed layout `[i·ny + j]` out.
+    pub(crate) fn forward(&self, buf: &mut [Complex<f64>], w: &mut Workspace) {
+        self.fx.process_with_scratch(buf, &mut w.scratch);
+        transpose(buf, &mut w.tmp, self.nx, self.ny);
+        self.fy.process_with_scratch(&mut w.tmp, &mut w.scratch);
+        buf.copy_from_slice(&w.tmp);
+    }
+
+    /// Transposed spectrum in, row-major values out, normalised (inverse of [`Fft2::forward`]).
+    pub(crate) fn inverse(&self, buf: &mut [Complex<f64>], w: &mut Workspace) {
+        self.iy.process_with_scratch(buf, &mut w.scratch);
+        transpose(buf, &mut w.tmp, self.ny, self.nx);
+        self.ix.process_with_scratch(&mut w.tmp, &mut w.scratch);
+        let s = 1.0 / (self.nx * self.ny) as f64;
+        for (b, t) in buf.iter_mut().zip(&w.tmp) {
+            *b = t * s;
+        }
+    }
+}
+
+fn wavenumbers(n: usize, spacing: f64) -> Vec<f64> {
+    let l = n as f64 * spacing;
+    (0..n)
+        .map(|m| {
+            let m = if m < n.div_ceil(2) { m as f64 } else { m as f64 - n as f64 };
+            2.0 * std::f64::consts::PI * m / l
+        })
+        .collect()
+}
+
+/// `src` holds `rows` rows of `cols` values; `dst` gets its transpose (`cols` rows of `rows`).
+fn transpose(src: &[Complex<f64>], dst: &mut [Complex<f64>], cols: usize, rows: usize) {
+    const B: usize = 32;
+    for r0 in (0..rows).step_by(B) {
+        for c0 in (0..cols).step_by(B) {
+            for r in r0..(r0 + B).min(rows) {
+                for c in c0..(c0 + B).min(cols) {
+                    dst[c * rows + r] = src[r * cols + c];
+                }
+            }
+        }
+    }
+}
+
+/// A periodic convolution operator given by a real, even Fourier multiplier (so that real input
+/// gives real output and the operator is symmetric).
+pub(crate) struct Convolution {
+    fft: Fft2,
+    /// Multiplier in the transposed spectral layout `[i·ny + j]`.
+    multiplier: Vec<f64>,
+    /// Diagonal of the operator (the self-influence coefficient), mean of the multiplier.
+    pub(crate) diagonal: f64,
+}
+
+impl Convolution {
+    /// `multiplier(kx, ky)` at each grid wavenumber (rad/m).
+    pub(crate) fn new(nx: usize, ny: usize, spacing: f64, multiplier: impl Fn(f64, f64) -> f64) -> Self {
+        let fft = Fft2::new(nx, ny);
+        let (kx, ky) = (fft.wavenumbers_x(spacing), fft.wavenumbers_y(spacing));
+        let mut m = vec![0.0; nx * ny];
+        for i in 0..nx {
+            for j in 0..ny {
+                m[i * ny + j] = multiplier(kx[i], ky[j]);
+            }
+        }
+        let diagonal = m.iter().sum::<f64>() / m.len() as f64;
+        Convolution { fft, multiplier: m, diagonal }
+    }
+
+    pub(crate) fn workspace(&self) -> ConvWorkspace {
+        ConvWorkspace { buf: vec![Complex::new(0.0, 0.0); self.multiplier.len()], fft: self.fft.workspace() }
+    }
+
+    /// `out = K x`.
+    pub(crate) fn apply(&self, x: &[f64], out: &mut [f64], w: &mut ConvWorkspace) {
+        for (b, &v) in w.buf.iter_mut().zip(x) {
+            *b = Complex::new(v, 0.0);
+        }
+        self.fft.forward(&mut w.buf, &mut w.fft);
+        for (b, &m) in w.buf.iter_mut().zip(&self.multiplier) {
+            *b *= m;
+        }
+        self.fft.inverse(&mut w.buf, &mut w.fft);
+        for (o, b) in out.iter_mut().zip(&w.buf) {
+            *o = b.re;
+        }
+    }
+}
+
+pub(crate) struct ConvWorkspace {
+    buf: Vec<Complex<f64>>,
+    fft: Workspace,
+}
