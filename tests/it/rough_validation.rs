@@ -104,7 +104,7 @@ fn rough_gaussian_area_is_proportional_to_load() {
 
 /// With the plastic cap, no pressure exceeds p_lim; when p_lim is far below the elastic contact
 /// pressure (E*∇h_rms/κ ≈ 2.7 GPa here) the contact is nearly fully plastic, A ≥ F/p_lim and
-/// A within 15 % of F/p_lim.
+/// A within 5 % of F/p_lim (measured 1.1 %).
 #[test]
 fn rough_plastic_cap_and_fully_plastic_limit() {
     let s = gaussian();
@@ -114,7 +114,7 @@ fn rough_plastic_cap_and_fully_plastic_limit() {
     println!("plastic: A/A0 {:.4} F/(p_lim A0) {:.4} plastic {:.4} max p {:.4e} {:?}", c.contact_fraction, p / p_lim, c.plastic_fraction, c.max_pressure, c.convergence);
     assert!(c.max_pressure <= p_lim);
     assert!(c.contact_fraction >= p / p_lim);
-    assert!(c.contact_fraction < 1.15 * p / p_lim);
+    assert!(c.contact_fraction < 1.05 * p / p_lim);
     // The same load elastically has a much smaller area.
     let e = solve_normal(&s, &material(), f64::INFINITY, NormalControl::MeanPressure(p), &RoughOptions::default(), None, &Silent).unwrap();
     assert!(e.contact_fraction < 0.5 * c.contact_fraction);
@@ -160,9 +160,16 @@ fn rough_maps_are_monotone_and_reach_gross_sliding() {
     let grids = MapGrids::auto(&s.summary(), 6, 9);
     let maps = AsperityMaps::build(&s, &material(), ContactLimits::SEED001, &grids, &RoughOptions::default(), &Silent).unwrap();
     println!("films {:?}\np̄ {:?}\nδgs {:?}\nμ(h0) {:?}\n{:?}", maps.film, maps.mean_pressure, maps.gross_sliding_displacement, maps.friction[0], maps.convergence);
+    println!("A/A0 {:?}", maps.contact_fraction);
     for i in 1..maps.film.len() {
         assert!(maps.mean_pressure[i] < maps.mean_pressure[i - 1]);
-        assert!(maps.gross_sliding_displacement[i] < maps.gross_sliding_displacement[i - 1]);
+        // Seed 001 Fig. 7b: thinner film, longer pre-sliding distance. In the periodic model δx
+        // is relative to the mean tangential displacement of the surface, so towards complete
+        // contact (uniform traction, no relative displacement) δx_gs falls again: the trend is
+        // checked where the contact covers less than 30 % of the area.
+        if maps.contact_fraction[i - 1] < 0.3 {
+            assert!(maps.gross_sliding_displacement[i] < maps.gross_sliding_displacement[i - 1]);
+        }
     }
     for (i, row) in maps.friction.iter().enumerate() {
         assert_eq!(row[0], 0.0);

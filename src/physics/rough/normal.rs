@@ -90,11 +90,15 @@ impl<'a> NormalSolver<'a> {
     }
 
     fn cg(&self, control: Control, x0: Vec<f64>, observer: &dyn Observer) -> Result<super::cg::BoxSolution, SolveError> {
+        self.cg_with(control, &self.upper, x0, observer)
+    }
+
+    fn cg_with(&self, control: Control, upper: &[f64], x0: Vec<f64>, observer: &dyn Observer) -> Result<super::cg::BoxSolution, SolveError> {
         BoxCg {
             op: &self.op,
             target: &self.surface.heights,
             lower: &self.lower,
-            upper: &self.upper,
+            upper,
             control,
             scale: self.scale,
             tolerance: self.options.tolerance,
@@ -130,8 +134,12 @@ impl<'a> NormalSolver<'a> {
                     ));
                 }
                 let x0 = initial.map(<[f64]>::to_vec).unwrap_or_else(|| vec![pm; n]);
-                let s = self.cg(Control::Mean(pm), x0, observer)?;
-                self.finish(s.x, s.gradient, s.shift, s.convergence)
+                if self.pressure_limit.is_infinite() {
+                    let s = self.cg(Control::Mean(pm), x0, observer)?;
+                    self.finish(s.x, s.gradient, s.shift, s.convergence)
+                } else {
+                    self.solve_mean_pressure_capped(pm, x0, observer)
+                }
             }
             NormalControl::Separation(d) => {
                 if !d.is_finite() {
@@ -148,6 +156,99 @@ impl<'a> NormalSolver<'a> {
                 self.solve_mean_gap(h, initial, observer)
             }
         }
+    }
+
+    /// Load control with the plastic cap. Polonsky–Keer's load rescaling fights the cap (a node
+    /// released from the cap is pushed back by the next rescaling), so the load is met by an
+    /// outer root search on the separation instead: the elastic load-controlled solution gives
+    /// `d_e` (where the capped contact carries at most the load), a bracket is widened towards
+    /// smaller `d`, and the Illinois variant of regula falsi closes it to `tolerance × p̄`, each
+    /// step a separation-controlled solve warm-started from the previous one.
+    fn solve_mean_pressure_capped(&self, pm: f64, x0: Vec<f64>, observer: &dyn Observer) -> Result<NormalContact, SolveError> {
+        const MAX_OUTER: u32 = 100;
+        let n = self.surface.len();
+        let unbounded = vec![f64::INFINITY; n];
+        let e = self.cg_with(Control::Mean(pm), &unbounded, x0, observer)?;
+        let (mut iterations, mut worst, mut stalled) = (e.convergence.iterations, e.convergence.residual, false);
+        let mut warm: Vec<f64> = e.x.iter().map(|p| p.min(self.pressure_limit)).collect();
+        let tol = self.options.tolerance * pm;
+        let eval = |d: f64, warm: &mut Vec<f64>, iterations: &mut u32, worst: &mut f64, stalled: &mut bool| -> Result<(f64, super::cg::BoxSolution), SolveError> {
+            let s = self.cg(Control::Shift(d), std::mem::take(warm), observer)?;
+            *iterations = iterations.saturating_add(s.convergence.iterations);
+            *worst = worst.max(s.convergence.residual);
+            *stalled |= s.convergence.termination == Termination::Stalled;
+            *warm = s.x.clone();
+            Ok((s.x.iter().sum::<f64>() / n as f64 - pm, s))
+        };
+        let finish = |s: super::cg::BoxSolution, d: f64, iterations: u32, worst: f64, stalled: bool| {
+            let termination = if stalled { Termination::Stalled } else { Termination::Converged };
+            self.finish(s.x, s.gradient, d, Convergence { iterations, residual: worst, tolerance: self.options.tolerance, termination })
+        };
+        // Bracket: f(d_b) ≤ 0 ≤ f(d_a), d_a < d_b.
+        let mut d_b = e.shift;
+        let (mut f_b, s) = eval(d_b, &mut warm, &mut iterations, &mut worst, &mut stalled)?;
+        if f_b.abs() <= tol {
+            return finish(s, d_b, iterations, worst, stalled);
+        }
+        let mut step = 0.1 * self.scale;
+        let (mut d_a, mut f_a);
+        let mut outer = 0;
+        loop {
+            outer += 1;
+            let d = if f_b > 0.0 { d_b + step } else { d_b - step };
+            let (f, s) = eval(d, &mut warm, &mut iterations, &mut worst, &mut stalled)?;
+            if f.abs() <= tol {
+                return finish(s, d, iterations, worst, stalled);
+            }
+            if (f > 0.0) != (f_b > 0.0) {
+                (d_a, f_a) = (d, f);
+                break;
+            }
+            (d_b, f_b) = (d, f);
+            step *= 2.0;
+            if outer > 60 {
+                return Err(SolveError::NotConverged {
+                    solver: "rough normal contact load bracket",
+                    iterations: outer,
+                    residual: f.abs() / pm,
+                    tolerance: self.options.tolerance,
+                    history: Vec::new(),
+                });
+            }
+        }
+        if d_a > d_b {
+            std::mem::swap(&mut d_a, &mut d_b);
+            std::mem::swap(&mut f_a, &mut f_b);
+        }
+        // Illinois: f decreases with d; f_a > 0 > f_b.
+        let mut side = 0i8;
+        for _ in 0..MAX_OUTER {
+            let d = (d_a * f_b - d_b * f_a) / (f_b - f_a);
+            let (f, s) = eval(d, &mut warm, &mut iterations, &mut worst, &mut stalled)?;
+            if f.abs() <= tol || (d_b - d_a) <= 1e-15 * self.scale {
+                return finish(s, d, iterations, worst, stalled);
+            }
+            if f > 0.0 {
+                (d_a, f_a) = (d, f);
+                if side == 1 {
+                    f_b *= 0.5;
+                }
+                side = 1;
+            } else {
+                (d_b, f_b) = (d, f);
+                if side == -1 {
+                    f_a *= 0.5;
+                }
+                side = -1;
+            }
+        }
+        Err(SolveError::NotConverged {
+            solver: "rough normal contact load (regula falsi on the separation)",
+            iterations: MAX_OUTER,
+            residual: f_a.abs().min(f_b.abs()) / pm,
+            tolerance: self.options.tolerance,
+            history: Vec::new(),
+        })
     }
 
     /// Seed 001 eq. (9): the offset `d` such that the pocket volume equals `h`. `h(d) = d` plus
