@@ -24,6 +24,8 @@ mod mixed_lubrication;
 mod multi_instance;
 mod openapi_drift;
 mod pin_finite;
+mod rough_stability;
+mod rough_validation;
 mod browser;
 mod plots;
 mod reliability;
