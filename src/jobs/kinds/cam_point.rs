@@ -143,7 +143,8 @@ pub struct PointSummary {
     /// h_min/σ at pure rolling (rough surfaces).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub lambda: Option<f64>,
-    /// Share of the load on asperities at pure rolling.
+    /// Share of the load on the asperities at pure rolling, inside the load balance of the film
+    /// solution (mixed lubrication; the fluid carries the rest).
     pub asperity_load_fraction: f64,
     /// Minimum cam–roller friction coefficient that still drives the roller (Coulomb asperities:
     /// μ_b W_a/F; Carter: 0).

@@ -39,7 +39,11 @@
 //! The solver itself is isothermal at [`EhlInput::temperature`]; [`thermal`] couples it to the
 //! film and solid energy equations (seed 000 eq. 2, 7–8) through the generalized Reynolds
 //! equation's effective coefficients. The Reynolds equation is Newtonian (seed 001 makes the same
-//! choice); non-Newtonian behaviour enters only the traction ([`traction`]). Surfaces are smooth.
+//! choice); non-Newtonian behaviour enters only the traction ([`traction`]). Rough surfaces enter
+//! through load sharing ([`EhlInput::asperity`], seed 001 eq. 1, 7): the mean asperity pressure
+//! of the local film adds to the fluid pressure in the load balance and the deflection (the
+//! Newton unknown is then the total pressure; see [`newton`]); the film is the smooth-surface
+//! Reynolds film of the mean gap (no flow factors).
 
 pub mod elastic;
 pub mod formulas;

@@ -13,11 +13,12 @@
 //!   film needs entrainment, so the closed form answers (no film: dry contact).
 //!
 //! From the converged solution: central, minimum and exit film, peak pressure, the exit pressure
-//! spike (height and position), traction nodes (every grid node with positive pressure: its cell
-//! times the contact length, the node's pressure, viscosity and film) and the profiles. Rough
-//! surfaces share the load as in the closed form (Greenwood–Tripp), but node by node with the
-//! local film: `W_a = L Σ p_a(h_i) Δx_i` (capped at the load), the fluid traction nodes scaled by
-//! `1 − W_a/W`. The EHL solution itself is that of smooth surfaces at the full load.
+//! spike (height and position), traction nodes (every grid node with positive fluid pressure: its
+//! cell times the contact length, the node's fluid pressure, viscosity and film) and the profiles.
+//! Rough surfaces (σ > 0) share the load *inside* the solution ([`super::mixed`]): the solver's
+//! load balance and deflection carry the fluid pressure plus `p_a(h)` of the local film, the
+//! asperity load is `W_a = L ∫ p_a dx` of the converged solution and the model id
+//! [`FilmModelId::NumericalMixed`].
 //!
 //! Thermal effects are not modelled (isothermal at the inlet temperature), like the closed forms.
 

@@ -99,7 +99,8 @@ pub struct CamSeries {
     /// λ = h_min/σ (rough surfaces).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub lambda: Option<Vec<f64>>,
-    /// Share of the load carried by asperities (Greenwood–Tripp).
+    /// Share of the load carried by the asperities inside the load balance of the film solution
+    /// (mixed lubrication: `film_model` ends in `_mixed`); the fluid carries the rest.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub asperity_load_fraction: Option<Vec<f64>>,
     /// Tangential (traction) force on the follower, N, positive when it drags the follower
