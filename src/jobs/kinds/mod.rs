@@ -7,6 +7,7 @@ pub mod cam_cycle;
 pub mod cam_point;
 pub mod ehl_point;
 pub mod hertz;
+pub mod rough_contact;
 pub mod sweep;
 pub mod wear;
 #[cfg(feature = "test-kinds")]
@@ -24,6 +25,7 @@ pub static CASE_KINDS: &[&dyn DynKind] = &[
     &Registered::<cam_point::CamPoint>::new(),
     &Registered::<ehl_point::EhlPoint>::new(),
     &Registered::<wear::Wear>::new(),
+    &Registered::<rough_contact::RoughContact>::new(),
 ];
 
 /// The case kind named `name` (test kinds included in test builds).
