@@ -43,7 +43,8 @@ pub trait System {
         let _ = e;
         true
     }
-    /// Whether component `i` takes part in the error norm (quadratures need not).
+    /// Whether component `i` takes part in the error norm and the Newton iteration (quadratures
+    /// do not: their stage derivative is taken at the solved stage).
     fn controlled(&self, i: usize) -> bool {
         let _ = i;
         true
@@ -251,9 +252,13 @@ pub fn integrate<S: System>(
             let after = sys.regime(ts, yy);
             if after == regime {
                 // Affine within the regime: the step with its exact Jacobian solved the stage.
-                // The derivative follows from the stage equation.
+                // Components outside the Jacobian (quadratures such as the cam's work) take the
+                // derivative at the solved stage.
+                sys.rhs(ts, yy, kk);
                 for i in 0..n {
-                    kk[i] = (yy[i] - rhs[i]) / (D * h);
+                    if !sys.controlled(i) {
+                        yy[i] = rhs[i] + D * h * kk[i];
+                    }
                 }
                 return Ok(yy.iter().all(|v| v.is_finite()));
             }
@@ -410,7 +415,8 @@ pub fn integrate<S: System>(
             }
         }
         let t_new = if last { t1 } else { t + hh };
-        while next_sample < samples.len() && samples[next_sample] <= t_new {
+        let end = if last { t1 + 1e-9 * (t1 - t0).abs() } else { t_new };
+        while next_sample < samples.len() && samples[next_sample] <= end {
             let s = ((samples[next_sample] - t) / hh).clamp(0.0, 1.0);
             hermite(&y, &f0, &y3, &k3, hh, s, &mut tmp);
             on_sample(next_sample, samples[next_sample], &tmp);
