@@ -77,7 +77,7 @@ fn sdof_residual_vibration_after_cycloidal_and_harmonic_rises_matches_the_closed
         let amplitude = 0.5 * (hi - lo);
         let centre = 0.5 * (hi + lo);
         println!("{law:?}: r = {r_target}, amplitude {amplitude:.6e} m, closed form {expected:.6e} m, centre {centre:.6e} (g h = {:.6e})", g * h);
-        assert!((amplitude / expected - 1.0).abs() < 5e-3, "{law:?}: {amplitude} vs {expected}");
+        assert!((amplitude / expected - 1.0).abs() < 1e-3, "{law:?}: {amplitude} vs {expected}");
         assert!((centre / (g * h) - 1.0).abs() < 1e-4);
         assert!(probes.iter().all(|p| p.contact > 0.0), "the preload keeps contact");
     }
@@ -116,7 +116,7 @@ fn rigid_train_and_stiff_contact_give_the_quasi_static_load() {
         peak = peak.max(qs.abs());
     }
     println!("rigid limit: largest difference {worst:.3} N of peak {peak:.1} N ({} revolutions)", r.convergence.iterations);
-    assert!(worst < 1e-3 * peak, "{worst} N");
+    assert!(worst < 1e-4 * peak, "{worst} N");
     assert!(r.separation.is_empty());
 }
 
@@ -296,4 +296,27 @@ fn seat_impact_and_bounce_at_overspeed() {
         }
         Err(e) => panic!("{e:?}"),
     }
+}
+
+/// Bad dynamic specs are refused naming the field and the rule.
+#[test]
+fn dynamic_load_validation_names_the_fields() {
+    let mut spec = example("seed003_dynamic");
+    spec["operation"]["startup"] = json!({});
+    spec["load"]["spring"]["mean_diameter"] = json!(0.003);
+    spec["load"]["tolerance"] = json!(0.5);
+    match run("cam_cycle", &spec) {
+        Err(crate::in_process::Failure::Spec(p)) => {
+            let text = format!("{p:?}");
+            for path in ["/operation/startup", "/load/spring/mean_diameter", "/load/tolerance"] {
+                assert!(text.contains(path), "{path}: {text}");
+            }
+        }
+        other => panic!("{other:?}"),
+    }
+    // Only kinematics: the dynamics are not run (no dynamic fields).
+    let mut spec = example("seed003_dynamic");
+    spec["outputs"] = json!(["kinematics"]);
+    let out = run("cam_cycle", &spec).unwrap();
+    assert!(out["summary"].get("separation").is_none() && out["series"].get("valve_lift").is_none());
 }

@@ -285,6 +285,26 @@ impl Assembly {
         u
     }
 
+    /// Net force on degree of freedom `dof` alone (as [`Assembly::forces`] would give it).
+    pub fn force_on(&self, dof: usize, x: &[f64], v: &[f64], u: &Unilateral) -> f64 {
+        let mut f = 0.0;
+        for e in &self.elements {
+            if e.b == Some(dof) {
+                f -= self.compression(e, x, v);
+            }
+            if e.a == Some(dof) {
+                f += self.compression(e, x, v);
+            }
+        }
+        if dof == self.follower {
+            f += u.contact;
+        }
+        if dof == self.valve {
+            f += u.seat;
+        }
+        f
+    }
+
     /// `∂F/∂x` and `∂F/∂v` (row-major dofs × dofs) with the contact and seat closed or open.
     pub fn force_jacobian(&self, contact: bool, seat: bool, kx: &mut [f64], cv: &mut [f64]) {
         let n = self.dofs();
@@ -322,11 +342,10 @@ impl Assembly {
     /// Kinetic plus stored elastic energy, J (the preloaded elements store `q²/(2k)` at
     /// compression `q`, the spring part of it).
     pub fn energy(&self, x: &[f64], v: &[f64], s: f64) -> f64 {
-        let zero = vec![0.0; v.len()];
         let mut e: f64 = self.masses.iter().zip(v).map(|(m, v)| 0.5 * m * v * v).sum();
         for el in &self.elements {
             if el.k > 0.0 {
-                let q = self.compression(el, x, &zero);
+                let q = el.preload + el.k * (el.b.map_or(0.0, |i| x[i]) - el.a.map_or(0.0, |i| x[i]));
                 e += q * q / (2.0 * el.k);
             }
         }

@@ -97,8 +97,7 @@ impl<'a> TrainSystem<'a> {
         let n = self.asm.dofs();
         let (x, v) = (&y[..n], &y[n..2 * n]);
         let (s, sd) = self.cam(t);
-        let mut f = vec![0.0; n];
-        let u = self.asm.forces(x, v, s, sd, &mut f);
+        let u = self.asm.unilateral(x, v, s, sd);
         let (moving, fixed) = self.asm.spring_forces(x, v);
         let iv = self.asm.valve;
         Probe {
@@ -108,7 +107,7 @@ impl<'a> TrainSystem<'a> {
             follower: x[self.asm.follower],
             valve_lift: x[iv],
             valve_velocity: v[iv],
-            valve_acceleration: f[iv] / self.asm.masses[iv],
+            valve_acceleration: self.asm.force_on(iv, x, v, &u) / self.asm.masses[iv],
             spring_moving: moving,
             spring_fixed: fixed,
             energy: self.asm.energy(x, v, s),
@@ -354,7 +353,7 @@ fn assemble_response(
         _ => {}
     }
     separation.sort_by(|a, b| a.0.total_cmp(&b.0));
-    let separation_time = separation.iter().map(|(a, b)| (b - a) / omega).sum();
+    let separation_time = separation.iter().map(|(a, b)| (b - a) / omega).fold(0.0, |s, d| s + d);
     // Seating: the first return to the closed position after the largest valve lift.
     let lifts = col(|p| p.valve_lift);
     let (k_max, _) = lifts.iter().enumerate().fold((0, f64::NEG_INFINITY), |b, (i, &v)| if v > b.1 { (i, v) } else { b });
