@@ -268,7 +268,7 @@ fn auto_tables() {
             let inp = EhlInput {
                 load_per_length: w, reduced_radius: r, effective_modulus: 2.0 * es, entrainment_velocity: u,
                 sliding_velocity: 0.0, lubricant: lub, temperature: lub.reference_temperature,
-                rheology: EhlRheology::default(), transient: None, warm_start: None,
+                rheology: EhlRheology::default(), transient: None, warm_start: None, asperity: None,
             };
             match solve(&inp, &EhlOptions { nodes: 384, ..Default::default() }, &Silent) {
                 Ok(s) => {
@@ -286,7 +286,7 @@ fn auto_tables() {
     }
     println!("\n## Closed-form traction against the numerical model's nodes (256 nodes): T_closed/T_num − 1 (%)\n");
     let ms = [0.5, 1.0, 2.0, 5.0, 10.0, 30.0, 100.0, 300.0];
-    let rough = Roughness { sigma: 0.0, eta_beta_sigma: 0.04, sigma_over_beta: 0.001 };
+    let rough = Roughness { sigma: 0.0, eta_beta_sigma: 0.04, sigma_over_beta: 0.001, plastic_limit: f64::INFINITY, curve: None };
     let asp = AsperityFriction { coefficient: 0.1, model: AsperityModel::Coulomb };
     let fast = ClosedForm { formula: FilmFormula::PanHamrock, squeeze: false };
     let num = Numerical::new(EhlOptions { nodes: 256, tolerance: 1e-8, ..Default::default() }, fast);

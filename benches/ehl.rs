@@ -35,6 +35,7 @@ fn point(w: f64, r: f64, u: f64) -> EhlInput<'static> {
         rheology: Rheology { eyring_stress: Some(5e6), ..Rheology::default() },
         transient: None,
         warm_start: None,
+        asperity: None,
     }
 }
 

@@ -25,6 +25,7 @@ fn main() {
         rheology: Rheology::default(),
         transient: None,
         warm_start: None,
+        asperity: None,
     };
     let run = |nodes: usize, nz: usize| {
         let input = ThermalInput { ehl, bodies: ThermalBodies::SEED000, previous_temperature: None };

@@ -170,7 +170,7 @@ proptest! {
     ) {
         let lub = Lubricant { viscosity: eta, pressure_viscosity: alpha, temperature_viscosity: 0.0, reference_temperature: 313.0,
                               density: 870.0, viscosity_model: ViscosityModel::Roelands, density_model: DensityModel::DowsonHigginson };
-        let rough = Roughness { sigma, eta_beta_sigma: 0.05, sigma_over_beta: 0.001 };
+        let rough = Roughness { sigma, eta_beta_sigma: 0.05, sigma_over_beta: 0.001, plastic_limit: f64::INFINITY, curve: None };
         let law = TractionLaw { rheology: if newtonian { Rheology::Newtonian } else { Rheology::Eyring { tau0: 5e6 } }, limiting_shear_coefficient: None };
         let asp = AsperityFriction { coefficient: 0.1, model: AsperityModel::Carter };
         let input = ContactInput {
@@ -269,7 +269,7 @@ proptest! {
         let lub = Lubricant { viscosity: eta, pressure_viscosity: alpha, temperature_viscosity: 0.0, reference_temperature: 313.0,
                               density: 870.0, viscosity_model: if barus { ViscosityModel::Barus } else { ViscosityModel::Roelands },
                               density_model: DensityModel::DowsonHigginson };
-        let rough = Roughness { sigma, eta_beta_sigma: 0.05, sigma_over_beta: 0.001 };
+        let rough = Roughness { sigma, eta_beta_sigma: 0.05, sigma_over_beta: 0.001, plastic_limit: f64::INFINITY, curve: None };
         let law = TractionLaw { rheology: Rheology::Eyring { tau0: 5e6 }, limiting_shear_coefficient: None };
         let asp = AsperityFriction { coefficient: 0.1, model: AsperityModel::Coulomb };
         let fast = ClosedForm { formula: FilmFormula::PanHamrock, squeeze: false };

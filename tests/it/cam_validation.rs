@@ -93,8 +93,9 @@ fn seed003_zero_entrainment_and_subsurface_shear() {
     for i in (0..p.len()).step_by(37) {
         assert!(close(tau[i], 0.3004 * p[i], 1e-3) && close(depth[i], 0.7861 * b[i], 1e-3));
     }
-    // The film vanishes where the entrainment does; the Seed003 formula ran.
-    assert_eq!(out["film_model"], "seed003");
+    // The film vanishes where the entrainment does; the Seed003 formula ran, rough surfaces
+    // sharing the load (mixed lubrication).
+    assert_eq!(out["film_model"], "seed003_mixed");
     let e = col(&out, "entrainment_velocity");
     let h = col(&out, "film_central");
     let k = e.iter().enumerate().min_by(|a, b| a.1.abs().total_cmp(&b.1.abs())).unwrap().0;
@@ -150,7 +151,7 @@ fn seed004_multiarc_cycle() {
     let lift = sm["max_lift"].as_f64().unwrap();
     assert!(lift > 0.0095 && lift < 0.0105, "{lift}");
     assert!(close(at(&out, "reduced_radius", 0.0), seed004::reduced_radius(21.5, 42.0) * 1e-3, 1e-9));
-    assert_eq!(out["film_model"], "hamrock_dowson");
+    assert_eq!(out["film_model"], "hamrock_dowson_mixed");
     // Spring force at the nose: 264 N + 44 N/mm × lift (+ inertia).
     let axial = col(&out, "axial_load");
     assert!((axial[0] - 264.0).abs() < 1e-9);
@@ -505,10 +506,10 @@ fn seed000_fast_against_accurate_full_cycle() {
     });
     let fast = run("cam_cycle", &base).unwrap();
     let acc = run("cam_cycle", &with(&base, |s| s["fidelity"] = json!("accurate"))).unwrap();
-    assert_eq!(acc["summary"]["fidelity_used"], json!({"numerical": 180}));
-    assert_eq!(fast["summary"]["fidelity_used"], json!({"pan_hamrock": 180}));
-    assert!(models(&acc).iter().all(|m| m == "numerical"));
-    assert_eq!(acc["film_model"], json!("numerical"));
+    assert_eq!(acc["summary"]["fidelity_used"], json!({"numerical_mixed": 180}));
+    assert_eq!(fast["summary"]["fidelity_used"], json!({"pan_hamrock_mixed": 180}));
+    assert!(models(&acc).iter().all(|m| m == "numerical_mixed"));
+    assert_eq!(acc["film_model"], json!("numerical_mixed"));
     let (hf, ha) = (col(&fast, "film_central"), col(&acc, "film_central"));
     let (mf, ma) = (col(&fast, "film_min"), col(&acc, "film_min"));
     let worst = |a: &[f64], b: &[f64]| (0..180).map(|i| ((a[i] / b[i] - 1.0).abs(), 2 * i)).fold((0.0, 0), |x, y| if y.0 > x.0 { y } else { x });
@@ -593,17 +594,17 @@ fn auto_picks_the_numerical_model_near_zero_entrainment() {
     let m = models(&out);
     let counts = &out["summary"]["fidelity_used"];
     println!("{counts}");
-    assert!(counts["numerical"].as_u64().unwrap() > 0 && counts["pan_hamrock"].as_u64().unwrap() > 0, "{counts}");
+    assert!(counts["numerical_mixed"].as_u64().unwrap() > 0 && counts["pan_hamrock_mixed"].as_u64().unwrap() > 0, "{counts}");
     assert!(out.get("film_model").is_none(), "mixed models: no single film_model");
     for z in out["events"]["zero_entrainment_angles_deg"].as_array().unwrap() {
         let z = z.as_f64().unwrap();
         for d in [-1.0, 0.0, 1.0] {
             let i = ((z + d).round() as usize) % 360;
-            assert_eq!(m[i], "numerical", "{}°", i);
+            assert_eq!(m[i], "numerical_mixed", "{}°", i);
         }
     }
     // Far from the reversals on the base circle the closed form runs.
-    assert_eq!(m[30], "pan_hamrock");
+    assert_eq!(m[30], "pan_hamrock_mixed");
     // A spike column exists (numerical angles) and is null (not computed) at closed-form angles.
     let spike = sparse_col(&out, "pressure_spike");
     assert_eq!(spike[30], None);
@@ -643,8 +644,8 @@ fn seed001_nose_point_accurate() {
     let h = acc["summary"]["film_central"].as_f64().unwrap();
     println!("nose film fast {} accurate {h}", fast["summary"]["film_central"]);
     assert!(close(h, 0.27e-6, 0.05), "{h}");
-    assert_eq!(acc["film_model"], json!("numerical"));
-    assert!(acc["rows"].as_array().unwrap().iter().all(|r| r["model"] == json!("numerical")));
+    assert_eq!(acc["film_model"], json!("numerical_mixed"));
+    assert!(acc["rows"].as_array().unwrap().iter().all(|r| r["model"] == json!("numerical_mixed")));
     // Heavily loaded (M ≈ 38): a spike, and traction within a few % of the closed form's.
     assert!(acc["summary"]["pressure_spike"].as_f64().unwrap() > 0.3e9);
     let (sf, sa) = (rows(&fast, "slide_roll_ratio"), rows(&acc, "slide_roll_ratio"));

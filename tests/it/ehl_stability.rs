@@ -68,6 +68,7 @@ fn input(p0: f64, r: f64, u: f64, eta0: f64, alpha: f64, roelands: bool, slide: 
         rheology: Rheology { eyring_stress: Some(5e6), ..Rheology::default() },
         transient: None,
         warm_start: None,
+        asperity: None,
     }
 }
 

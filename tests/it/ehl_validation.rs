@@ -26,6 +26,7 @@ fn input(w: f64, r: f64, u: f64, lub: Lubricant) -> EhlInput<'static> {
         rheology: Rheology::default(),
         transient: None,
         warm_start: None,
+        asperity: None,
     }
 }
 

@@ -20,6 +20,7 @@ mod journal_examples;
 mod journal_kinds;
 mod journal_stability;
 mod journal_validation;
+mod mixed_lubrication;
 mod multi_instance;
 mod openapi_drift;
 mod pin_finite;

@@ -22,6 +22,7 @@ fn input(w: f64, r: f64, um: f64, srr: f64, lub: Lubricant) -> EhlInput<'static>
         rheology: Rheology::default(),
         transient: None,
         warm_start: None,
+        asperity: None,
     }
 }
 

@@ -391,7 +391,7 @@ fn full_film_wears_nothing_at_any_fidelity_and_full_share_volume_is_model_indepe
         assert!(share < 1e-3, "{fid}: share {share}");
         assert!(depth < 1e-3 * full_depth, "{fid}: {depth} vs {full_depth}");
         if fid != "fast" {
-            assert_eq!(out["summary"]["fidelity_used"]["numerical"], json!(2 * 180), "{fid}: {}", out["summary"]["fidelity_used"]);
+            assert_eq!(out["summary"]["fidelity_used"]["numerical_mixed"], json!(2 * 180), "{fid}: {}", out["summary"]["fidelity_used"]);
             let full = run("wear", &gentle(fid, "full")).unwrap();
             let v = num(&full["summary"]["worn_volume"]);
             assert!((v / full_volume - 1.0).abs() < 1e-9, "{fid}: {v} vs {full_volume}");
@@ -415,16 +415,18 @@ fn flat_mixed(fidelity: &str, nodes: usize) -> Value {
     })
 }
 
-/// Mixed lubrication (seed 003 flat follower, λ ≈ 0.6–1.5): accurate wears ≈ 2.2× the volume of
-/// fast. Measured on the base circle (where a third of the cycle's wear happens at fast), the
-/// asperity share is 5× fast's, for two reasons that multiply:
+/// Mixed lubrication (seed 003 flat follower, λ ≈ 0.6–1.5): accurate wears ≈ 1.7× the volume of
+/// fast (2.2× before issue 15, when both evaluated Greenwood–Tripp after a smooth solution; now
+/// both share the load inside their solutions with the mean-gap law of
+/// `Roughness::load_sharing_pressure`). Measured on the base circle (where a third of the cycle's
+/// wear happens at fast), the asperity share is 5.7× fast's, for two reasons that multiply:
 /// 1. the film: seed 003's closed form is 23 % thicker than the numerical central film there
 ///    (488 vs 396 nm), and the Greenwood–Tripp pressure falls steeply with the film (F_5/2 at
-///    λ ≈ 1.8): Greenwood–Tripp at the numerical central film over the Hertz area already gives
-///    3.5× fast's share;
+///    λ ≈ 1.8): the load-sharing law at the numerical central film over the Hertz area already
+///    gives 3.7× fast's share;
 /// 2. the pressure/film distribution: the numerical film is thinnest at the exit constriction
-///    (335 nm, 15 % below its centre), where the asperity pressure peaks; the node-by-node share
-///    is another 1.46× the uniform one.
+///    (337 nm, 15 % below its centre), where the asperity pressure peaks; the node-by-node share
+///    is another 1.56× the uniform one.
 /// On the base circle (uniform cells) the wear depth is exactly `k (v_s/u_c) f_a w` per pass
 /// whatever the band's shape, so the depth ratio equals the share ratio there (to 1e-5: the
 /// numerical film varies by ~1e-7 between base-circle angles, a transient settling). Near the
@@ -444,7 +446,7 @@ fn mixed_lubrication_accurate_against_fast_is_explained() {
         num(&acc["summary"]["max_wear_depth"]),
         num(&fast["summary"]["max_wear_depth"])
     );
-    assert!((1.9..2.5).contains(&ratio), "{ratio}");
+    assert!((1.5..2.0).contains(&ratio), "{ratio}");
     assert!(((da / df) / (sa / sf) - 1.0).abs() < 1e-5, "{} vs {}", da / df, sa / sf);
     assert!(num(&fast["summary"]["max_wear_depth"]) > num(&acc["summary"]["max_wear_depth"]));
     // The decomposition, from cam_cycle at the same settings (angle 0: base circle).
@@ -458,7 +460,7 @@ fn mixed_lubrication_accurate_against_fast_is_explained() {
     let rough = tribod::jobs::kinds::common::AsperitySpec::default().roughness(sigma);
     let es = num(&ca["contact_modulus"]);
     let at0 = |o: &Value, key: &str| col(&o["series"][key])[0];
-    let uniform = |o: &Value| rough.asperity_pressure(at0(o, "film_central"), es) * 2.0 * at0(o, "hertz_half_width") * 0.012 / at0(o, "contact_load");
+    let uniform = |o: &Value| rough.load_sharing_pressure(at0(o, "film_central"), es).0 * 2.0 * at0(o, "hertz_half_width") * 0.012 / at0(o, "contact_load");
     let (hc_f, hc_a, hmin_a) = (at0(&cf, "film_central"), at0(&ca, "film_central"), at0(&ca, "film_min"));
     eprintln!(
         "base circle: h_c closed form {hc_f:.3e}, numerical {hc_a:.3e} (min {hmin_a:.3e}); share fast {sf:.3e}, GT at numerical h_c {:.3e}, node by node {sa:.3e}",

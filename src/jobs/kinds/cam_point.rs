@@ -7,6 +7,7 @@ use super::common::{composite_sigma, AsperitySpec, Material, EhlSpec, FilmSpec, 
 use crate::jobs::kind::{Kind, Limits, Validation};
 use crate::physics::contact::{contact_modulus, hertz_line};
 use crate::physics::film::{model_for, ContactInput, ContactShape, Fidelity, FilmModelId};
+use crate::physics::friction::SlipRegime;
 use crate::physics::roller::PointCase;
 use crate::physics::{ensure_finite, Convergence, Observer, SolveError};
 use serde::{Deserialize, Serialize};
@@ -110,6 +111,10 @@ pub struct PointRow {
     pub film_min: f64,
     /// 1 when the asperities stick (pure rolling), else 0.
     pub sticking: f64,
+    /// `rolling` (the asperities stick, or a full film below 1 % SRR), `micro_slip` (partial
+    /// slip of the asperity contact), `gross_sliding` (the asperities slide, or a full film at
+    /// ≥ 1 % SRR).
+    pub slip_regime: SlipRegime,
     /// Film model that ran for this row.
     pub model: FilmModelId,
 }
@@ -168,7 +173,7 @@ pub struct CamPointResult {
 
 impl Kind for CamPoint {
     const NAME: &'static str = "cam_point";
-    const SOLVER_VERSION: &'static str = "cam_point-3";
+    const SOLVER_VERSION: &'static str = "cam_point-4";
     const DESCRIPTION: &'static str = "Cam–roller contact at a fixed operating point: roller slip against \
         roller–pin friction, minimum cam–roller friction to drive the roller, gross-sliding threshold (seed 001).";
     const TABLES: &'static [&'static str] = &["rows"];
@@ -277,6 +282,7 @@ fn solve_point(spec: &CamPointSpec, observer: &dyn Observer) -> Result<CamPointR
             film_central: b.film.central_film,
             film_min: b.film.min_film,
             sticking: if b.sticking { 1.0 } else { 0.0 },
+            slip_regime: b.regime,
             model: b.film.model,
         });
     }

@@ -154,9 +154,11 @@ fn default_mub() -> f64 {
     0.1
 }
 
-/// Greenwood–Tripp surface statistics and boundary friction. The composite roughness is
-/// `σ = sqrt(σ_cam² + σ_follower²)` from the bodies' `roughness_rq`.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, ToSchema)]
+/// Asperity contact: its pressure–gap relation (Greenwood–Tripp statistics, or a tabulated
+/// curve), plastic limit and friction. The composite roughness is `σ = sqrt(σ_cam² +
+/// σ_follower²)` from the bodies' `roughness_rq`; with σ > 0 the asperities share the load inside
+/// the film solution (mixed lubrication, seed 001 eq. 1, 7, 12: `film_model` ends in `_mixed`).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, ToSchema)]
 #[serde(deny_unknown_fields)]
 pub struct AsperitySpec {
     /// Roughness parameter ηβσ (summit density × summit radius × σ). Default 0.04.
@@ -171,6 +173,27 @@ pub struct AsperitySpec {
     /// `coulomb` (default) or `carter`.
     #[serde(default)]
     pub model: AsperityModelSpec,
+    /// Plastic limit of the asperity contact pressure, Pa (seed 001 Table 1: 6e9). Absent:
+    /// elastic asperities.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub plastic_limit: Option<f64>,
+    /// Mean asperity pressure against film (the "h–p̄_a curve" of seed 001 eq. 12, e.g. from a
+    /// `rough_contact` job or a measurement): replaces Greenwood–Tripp in the load sharing.
+    /// Still needs `roughness_rq` on a body (σ > 0 switches mixed lubrication on and sets λ).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub pressure_gap_curve: Option<PressureGapSpec>,
+}
+
+/// A tabulated pressure–gap relation: `film` ascending (m), `pressure` the mean asperity pressure
+/// at each film (Pa, positive, non-increasing); interpolated monotonically in `ln p`, continued
+/// exponentially beyond the ends.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, ToSchema)]
+#[serde(deny_unknown_fields)]
+pub struct PressureGapSpec {
+    /// Films (mean gaps), m, strictly ascending, 2 to 1000 points.
+    pub film: Vec<f64>,
+    /// Mean asperity pressures, Pa.
+    pub pressure: Vec<f64>,
 }
 
 impl Default for AsperitySpec {
@@ -180,13 +203,26 @@ impl Default for AsperitySpec {
             sigma_over_beta: default_sob(),
             boundary_friction: default_mub(),
             model: AsperityModelSpec::Coulomb,
+            plastic_limit: None,
+            pressure_gap_curve: None,
         }
     }
 }
 
 impl AsperitySpec {
     pub fn roughness(&self, sigma: f64) -> Roughness {
-        Roughness { sigma, eta_beta_sigma: self.eta_beta_sigma, sigma_over_beta: self.sigma_over_beta }
+        let curve = self
+            .pressure_gap_curve
+            .as_ref()
+            .and_then(|c| crate::physics::friction::PressureGapCurve::new(&c.film, &c.pressure).ok())
+            .map(std::sync::Arc::new);
+        Roughness {
+            sigma,
+            eta_beta_sigma: self.eta_beta_sigma,
+            sigma_over_beta: self.sigma_over_beta,
+            plastic_limit: self.plastic_limit.unwrap_or(f64::INFINITY),
+            curve,
+        }
     }
     pub fn friction(&self) -> AsperityFriction {
         AsperityFriction {
@@ -201,6 +237,18 @@ impl AsperitySpec {
         v.in_range(&format!("{path}/eta_beta_sigma"), self.eta_beta_sigma, 0.0, 1.0);
         v.in_range(&format!("{path}/sigma_over_beta"), self.sigma_over_beta, 0.0, 1.0);
         v.in_range(&format!("{path}/boundary_friction"), self.boundary_friction, 0.0, 2.0);
+        if let Some(p) = self.plastic_limit {
+            v.in_range(&format!("{path}/plastic_limit"), p, 1e6, 1e11);
+        }
+        if let Some(c) = &self.pressure_gap_curve {
+            let at = format!("{path}/pressure_gap_curve");
+            v.check(c.film.len() <= 1000, &format!("{at}/film"), "at most 1000 points");
+            if c.film.len() <= 1000 {
+                if let Err(e) = crate::physics::friction::PressureGapCurve::new(&c.film, &c.pressure) {
+                    v.check(false, &at, e);
+                }
+            }
+        }
     }
 }
 

@@ -345,6 +345,7 @@ fn solve_point(spec: &EhlPointSpec, observer: &dyn Observer) -> Result<EhlPointR
         },
         transient: None,
         warm_start: None,
+        asperity: None,
     };
     let options = EhlOptions {
         nodes: spec.nodes,

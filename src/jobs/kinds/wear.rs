@@ -703,6 +703,7 @@ fn solve_archard(spec: &WearSpec, observer: &dyn Observer) -> Result<WearResult,
             (_, FilmFormula::DowsonHigginson) => FilmModelId::DowsonHigginson,
             (_, FilmFormula::Seed003) => FilmModelId::Seed003,
         })
+        .map(|m| if spec.composite_sigma() > 0.0 { m.mixed() } else { m })
     };
     if numerical {
         summary.fidelity_used = Some(ev.film_models.iter().map(|(m, c)| (m.name().to_string(), *c)).collect());
@@ -861,7 +862,7 @@ fn solve_irgashev(spec: &WearSpec, observer: &dyn Observer) -> Result<WearResult
 
 impl Kind for Wear {
     const NAME: &'static str = "wear";
-    const SOLVER_VERSION: &'static str = "wear-3";
+    const SOLVER_VERSION: &'static str = "wear-4";
     const DESCRIPTION: &'static str = "Cam wear over running hours: Archard wear over the cam cycle (asperity load share in \
         mixed lubrication, roller slip) with worn-profile evolution, or seed 004's method (model irgashev).";
     const TABLES: &'static [&'static str] = &["series", "rows", "history", "follower_face"];

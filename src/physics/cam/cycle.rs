@@ -156,6 +156,8 @@ pub struct CycleSeries {
     pub power_loss: Option<Vec<f64>>,
     pub roller_speed: Option<Vec<f64>>,
     pub slide_roll_ratio: Option<Vec<f64>>,
+    /// Rolling, micro-slip or gross sliding at each angle (roller followers).
+    pub slip_regime: Option<Vec<crate::physics::friction::SlipRegime>>,
     pub pin_torque: Option<Vec<f64>>,
     /// Effective film temperature of a thermal roller–pin bearing, K.
     pub pin_temperature: Option<Vec<f64>>,
@@ -409,6 +411,7 @@ pub fn run_cycle(spec: &CycleSpec, needs: Needs, model: &dyn FilmModel, observer
             let mut speed = Vec::with_capacity(n);
             let mut srr = Vec::with_capacity(n);
             let mut pins = Vec::with_capacity(n);
+            let mut regime = Vec::with_capacity(n);
             for (i, s) in states.iter().enumerate() {
                 let k = &kin[i];
                 let uf = rf * s.omega + k.follower_surface_base;
@@ -418,9 +421,11 @@ pub fn run_cycle(spec: &CycleSpec, needs: Needs, model: &dyn FilmModel, observer
                 speed.push(s.omega);
                 srr.push(slide_roll_ratio(k.cam_surface_velocity, uf));
                 pins.push(s.pin_torque);
+                regime.push(spec.asperity_friction.regime(&s.film.asperity, series.sliding_velocity[i], series.entrainment_velocity[i]));
             }
             series.roller_speed = Some(speed);
             series.slide_roll_ratio = Some(srr);
+            series.slip_regime = Some(regime);
             series.pin_torque = Some(pins);
             if states.iter().any(|s| s.pin_temperature.is_some()) {
                 series.pin_temperature = Some(states.iter().map(|s| s.pin_temperature.unwrap_or(spec.temperature)).collect());

@@ -121,9 +121,19 @@ pub struct EhlState {
     pub film: Vec<f64>,
     /// Density ratio `ρ/ρ0`.
     pub density_ratio: Vec<f64>,
+    /// Asperity part of `pressure`, Pa, when the asperities share the load
+    /// ([`EhlInput::asperity`]); empty for smooth surfaces. `pressure` is the total (fluid plus
+    /// asperity) pressure that deflects the surfaces; the fluid's is the difference.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub asperity_pressure: Vec<f64>,
 }
 
 impl EhlState {
+    /// Fluid (hydrodynamic) pressure at node `i`, Pa.
+    pub fn fluid_pressure(&self, i: usize) -> f64 {
+        (self.pressure[i] - self.asperity_pressure.get(i).copied().unwrap_or(0.0)).max(0.0)
+    }
+
     /// Index `i ≥ 1` with `x[i−1] ≤ at ≤ x[i]` and the weight of `x[i]`, for `at` inside the grid.
     fn locate(&self, at: f64) -> (usize, f64) {
         let n = self.x.len();
@@ -202,6 +212,18 @@ pub struct EhlInput<'a> {
     /// Warm start from a state (usually the previous cam angle); ignored when `transient` is
     /// set (the previous state is the warm start then).
     pub warm_start: Option<&'a EhlState>,
+    /// Mixed lubrication: the asperities share the load inside the solution (seed 001 eq. 1, 7):
+    /// the mean asperity pressure `p_a(h)` of the local film adds to the fluid pressure in the
+    /// load balance and in the elastic deflection. `None`: smooth surfaces.
+    pub asperity: Option<&'a dyn AsperityPressure>,
+}
+
+/// Mean asperity contact pressure as a function of the local film (seed 001 eq. 12: the
+/// "h–p̄_a curve"; Greenwood–Tripp is one such relation). Must be finite, non-negative and
+/// non-increasing in `film`.
+pub trait AsperityPressure: std::fmt::Debug + Send + Sync {
+    /// `(p_a, dp_a/dh)` at film `h` (m): Pa and Pa/m.
+    fn pressure(&self, film: f64) -> (f64, f64);
 }
 
 /// A pressure spike (the secondary maximum in the exit region).
@@ -222,6 +244,8 @@ pub struct Profiles {
     pub pressure: Vec<f64>,
     /// Film thickness, m.
     pub film: Vec<f64>,
+    /// Asperity part of `pressure`, Pa (mixed lubrication only; else empty).
+    pub asperity_pressure: Vec<f64>,
 }
 
 /// The solution of one line-contact EHL problem.
@@ -247,6 +271,9 @@ pub struct EhlSolution {
     pub max_pressure_position: f64,
     /// The exit pressure spike, when the solution has one.
     pub pressure_spike: Option<PressureSpike>,
+    /// Load per length carried by the asperities inside the load balance, N/m (0 for smooth
+    /// surfaces).
+    pub asperity_load_per_length: f64,
     /// Traction from the converged pressure and film.
     pub traction: TractionResult,
     /// Profiles, when requested.

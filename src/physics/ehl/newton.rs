@@ -38,8 +38,31 @@ const MAX_HALVINGS: u32 = 30;
 /// Largest `ln(η/η0)` used: keeps `ρH³/η` and the traction finite at absurd trial pressures.
 const LN_ETA_CAP: f64 = 600.0;
 
+/// Mixed lubrication in dimensionless form: `P_a(H) = p_a(H b²/R)/p_h` and `dP_a/dH`.
+#[derive(Clone, Copy)]
+struct AsperityScale<'a> {
+    law: &'a dyn super::AsperityPressure,
+    /// Film scale `b²/R`, m.
+    film_scale: f64,
+    /// Hertzian pressure, Pa.
+    ph: f64,
+}
+
+impl AsperityScale<'_> {
+    fn at(&self, h: f64) -> (f64, f64) {
+        let (p, dp) = self.law.pressure(h * self.film_scale);
+        (p / self.ph, dp * self.film_scale / self.ph)
+    }
+}
+
 /// Discrete problem in the dimensionless variables of [`super`] on one grid.
-struct Discretisation {
+///
+/// With mixed lubrication the unknown `P` of the Newton iteration is the *total* pressure (fluid
+/// plus asperity, seed 001 eq. 7): it alone deflects the surfaces and carries the load, so the
+/// film stays an explicit function of the unknowns, `H = H0 + X²/2 − K P`; the fluid pressure
+/// `P_f = P − P_a(H)` enters the Reynolds equation, the rheology and the cavitation condition.
+/// The Jacobian keeps its banded-plus-`K` structure: `∂F/∂H` gains `−(∂F/∂P_f) dP_a/dH`.
+struct Discretisation<'a> {
     grid: Arc<Grid>,
     /// Couette coefficient `λ` (signed).
     lambda: f64,
@@ -54,6 +77,8 @@ struct Discretisation {
     /// Thermal corrections at the nodes (generalized Reynolds equation, seed 000 eq. 2), held
     /// fixed during a Newton solve; `None`: isothermal.
     thermal: Option<NodeFactors>,
+    /// Load-sharing asperity pressure; `None`: smooth surfaces.
+    asperity: Option<AsperityScale<'a>>,
 }
 
 /// [`super::thermal::ThermalFactors`] on the nodes of one grid: multipliers of the isothermal
@@ -88,6 +113,11 @@ struct Fields {
     eh: Vec<f64>,
     /// Reynolds residual at the nodes (0 at the two boundary nodes).
     f: Vec<f64>,
+    /// Fluid pressure `P − P_a(H)` (equal to `P` for smooth surfaces).
+    fp: Vec<f64>,
+    /// Asperity pressure `P_a(H)` and `dP_a/dH` (zero for smooth surfaces).
+    pa: Vec<f64>,
+    dpa: Vec<f64>,
     /// Load balance residual `(Σ P Δ)/(π/2) − 1`.
     load: f64,
 }
@@ -95,11 +125,23 @@ struct Fields {
 impl Fields {
     fn new(n: usize) -> Self {
         let z = vec![0.0; n];
-        Fields { h: z.clone(), rho: z.clone(), drho: z.clone(), e: z.clone(), ep: z.clone(), eh: z.clone(), f: z, load: 0.0 }
+        Fields {
+            h: z.clone(),
+            rho: z.clone(),
+            drho: z.clone(),
+            e: z.clone(),
+            ep: z.clone(),
+            eh: z.clone(),
+            f: z.clone(),
+            fp: z.clone(),
+            pa: z.clone(),
+            dpa: z,
+            load: 0.0,
+        }
     }
 }
 
-impl Discretisation {
+impl Discretisation<'_> {
     fn n(&self) -> usize {
         self.grid.n
     }
@@ -140,7 +182,17 @@ impl Discretisation {
                 return false;
             }
             v.h[i] = h;
-            let (ln_eta, dln, rho, drho) = self.rheology.at(p[i] * self.ph);
+            let (pa, dpa) = match &self.asperity {
+                Some(a) => a.at(h),
+                None => (0.0, 0.0),
+            };
+            if !(pa.is_finite() && dpa.is_finite()) {
+                return false;
+            }
+            v.pa[i] = pa;
+            v.dpa[i] = dpa;
+            v.fp[i] = p[i] - pa;
+            let (ln_eta, dln, rho, drho) = self.rheology.at(v.fp[i] * self.ph);
             let ln_eta = ln_eta.min(LN_ETA_CAP);
             let ce = self.thermal.as_ref().map_or(1.0, |t| t.poiseuille[i]);
             v.rho[i] = rho;
@@ -151,6 +203,7 @@ impl Discretisation {
         }
         v.f[0] = 0.0;
         v.f[n - 1] = 0.0;
+        let p = &v.fp;
         for i in 1..n - 1 {
             let er = 0.5 * (v.e[i] + v.e[i + 1]);
             let el = 0.5 * (v.e[i - 1] + v.e[i]);
@@ -169,14 +222,30 @@ impl Discretisation {
             }
             v.f[i] = f;
         }
-        let sum: f64 = p.iter().zip(&self.grid.cell).map(|(p, w)| p * w).sum();
+        let sum: f64 = (0..n).map(|i| (v.fp[i] + v.pa[i]) * self.grid.cell[i]).sum();
         v.load = sum / (0.5 * PI) - 1.0;
         v.f.iter().all(|f| f.is_finite()) && v.load.is_finite()
     }
 
-    /// Local derivatives of `F_i`: direct in `P` (offsets −2..=2) and through the film `H`
-    /// (offsets −2..=2).
-    fn local_derivatives(&self, p: &[f64], v: &Fields, i: usize) -> ([f64; 5], [f64; 5]) {
+    /// Local derivatives of `F_i` with respect to the unknown (total) pressure `P` (offsets
+    /// −2..=2) and through the film `H` (offsets −2..=2); with asperities `P_f = P − P_a(H)`, so
+    /// `∂F/∂H` includes `−(∂F/∂P_f) dP_a/dH`.
+    fn local_derivatives(&self, v: &Fields, i: usize) -> ([f64; 5], [f64; 5]) {
+        let (a, mut g) = self.fluid_derivatives(&v.fp, v, i);
+        if self.asperity.is_some() {
+            for o in 0..5 {
+                let m = i as isize + o as isize - 2;
+                if a[o] != 0.0 && m >= 0 && (m as usize) < self.n() {
+                    g[o] -= a[o] * v.dpa[m as usize];
+                }
+            }
+        }
+        (a, g)
+    }
+
+    /// Local derivatives of `F_i`: direct in the fluid pressure (offsets −2..=2) and through the
+    /// film `H` at fixed fluid pressure (offsets −2..=2).
+    fn fluid_derivatives(&self, p: &[f64], v: &Fields, i: usize) -> ([f64; 5], [f64; 5]) {
         let x = &self.grid.x;
         let mut a = [0.0; 5];
         let mut g = [0.0; 5];
@@ -351,13 +420,13 @@ struct Run {
     converged: bool,
 }
 
-/// Scaled complementarity residuals `φ_i` (0 at boundaries) for scalings `c`.
-fn phi(p: &[f64], v: &Fields, c: &[f64], out: &mut [f64]) {
-    let n = p.len();
+/// Scaled complementarity residuals `φ_i = min(P_f, −c F)` (0 at boundaries) for scalings `c`.
+fn phi(v: &Fields, c: &[f64], out: &mut [f64]) {
+    let n = v.fp.len();
     out[0] = 0.0;
     out[n - 1] = 0.0;
     for i in 1..n - 1 {
-        out[i] = p[i].min(-c[i] * v.f[i]);
+        out[i] = v.fp[i].min(-c[i] * v.f[i]);
     }
 }
 
@@ -396,7 +465,7 @@ fn newton(
         observer.check()?;
         // Local derivatives, the full diagonal for the row scaling, and the scaled system.
         for i in 1..n - 1 {
-            let (a, g) = prob.local_derivatives(p, &ws.v, i);
+            let (a, g) = prob.local_derivatives(&ws.v, i);
             let kc = kernel.column(i);
             let mut d = a[2];
             for (o, gv) in g.iter().enumerate() {
@@ -407,24 +476,26 @@ fn newton(
             }
             let c = 1.0 / d.abs().max(1e-300);
             ws.c[i] = c;
-            let active = p[i] <= -c * ws.v.f[i];
+            let fp = ws.v.fp[i];
+            let active = fp <= -c * ws.v.f[i];
             let sys = &mut ws.sys;
             let mut gs = 0.0;
             for o in 0..5 {
                 let in_range = i + o >= 2 && i + o - 2 < n;
                 if active {
+                    // The row `P_f = P − P_a(H) = 0`.
                     sys.aa[o][i] = if o == 2 { 1.0 } else { 0.0 };
-                    sys.cg[o][i] = 0.0;
+                    sys.cg[o][i] = if o == 2 { -ws.v.dpa[i] } else { 0.0 };
                 } else {
                     sys.aa[o][i] = c * a[o];
                     sys.cg[o][i] = if in_range { c * g[o] } else { 0.0 };
-                    gs += sys.cg[o][i];
                 }
+                gs += sys.cg[o][i];
             }
             sys.gsum[i] = gs;
-            sys.rhs[i - 1] = if active { -p[i] } else { -c * ws.v.f[i] };
+            sys.rhs[i - 1] = if active { -fp } else { -c * ws.v.f[i] };
         }
-        phi(p, &ws.v, &ws.c, &mut ws.ph);
+        phi(&ws.v, &ws.c, &mut ws.ph);
         let res = residual_norm(p, &ws.ph, ws.v.load);
         history.push(res);
         if res <= tol {
@@ -460,7 +531,7 @@ fn newton(
             }
             let h0_trial = *h0 + alpha * dh0;
             if prob.evaluate(&ws.p_trial, h0_trial, &mut ws.trial) {
-                phi(&ws.p_trial, &ws.trial, &ws.c, &mut ws.ph_trial);
+                phi(&ws.trial, &ws.c, &mut ws.ph_trial);
                 let mt = merit(&ws.ph_trial, ws.trial.load, &grid.cell);
                 if mt <= (1.0 - 1e-4 * alpha) * m0 {
                     p.copy_from_slice(&ws.p_trial);
@@ -478,7 +549,7 @@ fn newton(
     }
     // Final check after the last step.
     for i in 1..n - 1 {
-        let (a, g) = prob.local_derivatives(p, &ws.v, i);
+        let (a, g) = prob.local_derivatives(&ws.v, i);
         let kc = kernel.column(i);
         let mut d = a[2];
         for (o, gv) in g.iter().enumerate() {
@@ -489,7 +560,7 @@ fn newton(
         }
         ws.c[i] = 1.0 / d.abs().max(1e-300);
     }
-    phi(p, &ws.v, &ws.c, &mut ws.ph);
+    phi(&ws.v, &ws.c, &mut ws.ph);
     let res = residual_norm(p, &ws.ph, ws.v.load);
     history.push(res);
     Ok(Run { iterations: max_iter, residual: res, history, converged: res <= tol })
@@ -631,7 +702,8 @@ impl Engine {
                 None => Vec::new(),
             };
             let thermal = thermal.map(|f| NodeFactors::on(&grid.x, b, f));
-            Discretisation { grid, lambda: sc.lambda, kappa: sc.kappa, q_old, upwind: options.upwind, rheology, ph, thermal }
+            let asperity = input.asperity.map(|law| AsperityScale { law, film_scale: b * b / r, ph });
+            Discretisation { grid, lambda: sc.lambda, kappa: sc.kappa, q_old, upwind: options.upwind, rheology, ph, thermal, asperity }
         };
         // Nested iteration: from the previous state straight on the target grid; from a cold
         // start (or when the warm start fails), solve on grids of n/2^k ≥ 64 nodes first and
@@ -910,6 +982,16 @@ fn finish(input: &EhlInput, options: &EhlOptions, prob: &Discretisation, p: &[f6
     let x: Vec<f64> = prob.grid.x.iter().map(|&x| x * b).collect();
     let pressure: Vec<f64> = p.iter().map(|&p| p.max(0.0) * ph).collect();
     let film: Vec<f64> = v.h.iter().map(|&h| h * hs).collect();
+    let asperity_pressure: Vec<f64> = match prob.asperity {
+        Some(_) => (0..n).map(|i| v.pa[i].max(0.0).min(p[i].max(0.0)) * ph).collect(),
+        None => Vec::new(),
+    };
+    let fluid_pressure: Vec<f64> = match prob.asperity {
+        Some(_) => (0..n).map(|i| pressure[i] - asperity_pressure[i]).collect(),
+        None => pressure.clone(),
+    };
+    let asperity_load_per_length: f64 = asperity_pressure.iter().zip(&prob.grid.cell).map(|(p, c)| p * c * b).sum();
+    ensure_finite("ehl asperity pressure", &asperity_pressure)?;
     ensure_finite("ehl pressure", &pressure)?;
     ensure_finite("ehl film", &film)?;
     let dir = if input.entrainment_velocity >= 0.0 { 1.0 } else { -1.0 };
@@ -953,7 +1035,7 @@ fn finish(input: &EhlInput, options: &EhlOptions, prob: &Discretisation, p: &[f6
     }
     let traction = traction(
         &x,
-        &pressure,
+        &fluid_pressure,
         &film,
         &input.lubricant,
         input.temperature,
@@ -967,8 +1049,8 @@ fn finish(input: &EhlInput, options: &EhlOptions, prob: &Discretisation, p: &[f6
     )?;
     ensure_finite("ehl films", [&central_film, &min_film, &exit_film, &max_pressure])?;
     let density_ratio = (0..n).map(|i| prob.mass_density(&v, i)).collect();
-    let state = EhlState { x: x.clone(), pressure: pressure.clone(), film: film.clone(), density_ratio };
-    let profiles = options.profiles.then(|| Profiles { x, pressure, film });
+    let state = EhlState { x: x.clone(), pressure: pressure.clone(), film: film.clone(), density_ratio, asperity_pressure: asperity_pressure.clone() };
+    let profiles = options.profiles.then(|| Profiles { x, pressure, film, asperity_pressure });
     Ok(EhlSolution {
         hertz_half_width: b,
         hertz_pressure: ph,
@@ -981,6 +1063,7 @@ fn finish(input: &EhlInput, options: &EhlOptions, prob: &Discretisation, p: &[f6
         max_pressure,
         max_pressure_position,
         pressure_spike: spike,
+        asperity_load_per_length,
         traction,
         profiles,
         state,
@@ -1032,11 +1115,12 @@ mod tests {
             rheology: Default::default(),
             transient: None,
             warm_start: None,
+            asperity: None,
         };
         let sc = scales(&input);
         let layout = Layout::for_film(sc.h_est, 1.0, None, None, true);
         let grid = Arc::new(Grid::new(80, layout));
-        let prob = Discretisation { grid: grid.clone(), lambda: sc.lambda, kappa: 0.0, q_old: Vec::new(), upwind: Upwind::Second, rheology: PressureRheology::new(&lub, input.temperature), ph: sc.ph, thermal: None };
+        let prob = Discretisation { grid: grid.clone(), lambda: sc.lambda, kappa: 0.0, q_old: Vec::new(), upwind: Upwind::Second, rheology: PressureRheology::new(&lub, input.temperature), ph: sc.ph, thermal: None, asperity: None };
         let (mut p, mut h0) = cold(&prob, sc.h_est, sc.h_est);
         let mut ws = Workspace::new();
         // Two Newton steps to get an active set with cavitated nodes, then inspect the system.

@@ -138,6 +138,7 @@ impl Track {
 ///         rheology: Rheology::default(),
 ///         transient: None,  // ignored: the solver keeps the previous state
 ///         warm_start: None, // ignored
+///         asperity: None,
 ///     };
 ///     // The first step has no previous state: a steady solve. Then squeeze steps of 0.1 ms.
 ///     let s = solver.step(&input, Some(1e-4), &Silent).unwrap();

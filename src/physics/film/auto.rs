@@ -348,7 +348,7 @@ mod tests {
         use crate::physics::lubricant::Lubricant;
         let b = ThermalBodies::SEED000;
         let est = |lub: &Lubricant, slide: f64, eyring: Option<f64>| {
-            let rough = Roughness { sigma: 0.0, eta_beta_sigma: 0.04, sigma_over_beta: 0.001 };
+            let rough = Roughness { sigma: 0.0, eta_beta_sigma: 0.04, sigma_over_beta: 0.001, plastic_limit: f64::INFINITY, curve: None };
             let rheology = match eyring {
                 Some(tau0) => Rheology::Eyring { tau0 },
                 None => Rheology::Newtonian,
@@ -384,7 +384,7 @@ mod tests {
         let inp = EhlInput {
             load_per_length: w, reduced_radius: r, effective_modulus: 2.0 * es, entrainment_velocity: u,
             sliding_velocity: 0.0, lubricant: lub, temperature: lub.reference_temperature,
-            rheology: Rheology::default(), transient: None, warm_start: None,
+            rheology: Rheology::default(), transient: None, warm_start: None, asperity: None,
         };
         let s = solve(&inp, &EhlOptions { nodes: 384, ..Default::default() }, &Silent).unwrap();
         let g = Groups::of(w, r, 2.0 * es, u, &lub, lub.reference_temperature);

@@ -1,10 +1,10 @@
 //! The `fast` film model: Hertz contact, a regression film formula and Greenwood–Tripp load
 //! sharing.
 //!
-//! Load sharing (the usual fast approach, e.g. Teodorescu, Taraza & Rahnejat 2003): the film
-//! comes from the formula at the full load (film formulas are nearly insensitive to load), the
-//! asperities carry `W_a = min(K E* F_{5/2}(h_c/σ) A, W)` over the nominal Hertz area `A`, and the
-//! fluid carries the rest at the Hertz pressure profile scaled by `1 − W_a/W`.
+//! Load sharing (Johnson–Greenwood–Poon, see [`super::mixed`]): the fluid part carries
+//! `(1 − f_a) W` with the modulus scaled alike, its film from the formula; the asperities carry
+//! `W_a = f_a W = A p_a(h_c)` over the nominal Hertz area `A` (Greenwood–Tripp with the plastic
+//! cap); the fluid's traction nodes carry the Hertz pressure profile scaled by `1 − f_a`.
 //!
 //! Traction nodes: 8 Gauss–Legendre points in `t` on `[0, π/2]` after the substitution
 //! `x = b sin t`, which removes the square-root edge of the Hertz profile `p0 cos t` (line:
@@ -71,33 +71,20 @@ fn gl8_angles() -> &'static [(f64, f64, f64); 8] {
     })
 }
 
-impl FilmModel for ClosedForm {
-    /// Only seed 003's squeeze term looks at the time step and the previous point.
-    fn history_free(&self) -> bool {
-        !(self.squeeze && self.formula == FilmFormula::Seed003)
-    }
-
-    fn solve(&self, input: &ContactInput, previous: Option<&FilmSolution>) -> Result<FilmSolution, SolveError> {
-        let load = input.load;
-        if !(load > 0.0 && load.is_finite()) {
-            return Err(SolveError::physical(crate::physics::PhysicalFailure::NoContactLoad, format!("contact load {load} N is not positive")));
-        }
-        let es = input.contact_modulus;
-        let e_prime = 2.0 * es;
-        let lub = input.lubricant;
-        let t = input.temperature;
-        let law = lub.viscosity_law(t);
-        let eta0 = law.at(0.0);
-        let alpha = lub.pressure_viscosity;
+impl ClosedForm {
+    /// Central, minimum and steady central film (m) and the formula's id for the fluid part of a
+    /// load-sharing contact that carries the fraction `s` of the load with the modulus scaled
+    /// alike (Johnson–Greenwood–Poon; `s = 1`: the smooth contact).
+    fn films(&self, input: &ContactInput, previous: Option<&FilmSolution>, eta0: f64, s: f64) -> (f64, f64, f64, FilmModelId) {
+        let load = s * input.load;
+        let e_prime = s * 2.0 * input.contact_modulus;
+        let alpha = input.lubricant.pressure_viscosity;
         let u = input.entrainment_velocity;
-        // (central, minimum, steady central, p0, half width, area, rolling radius, regime, model)
-        let (hc, hm, h_steady, p0, b, area, r_roll, regime, model, point_ab) = match input.shape {
+        match input.shape {
             ContactShape::Line { reduced_radius: r, length } => {
                 let w = load / length;
-                let hz = hertz_line(w, r, es);
                 let g = LineGroups::new(w, r, u, eta0, alpha, e_prime);
-                let regime = (g.speed > 0.0).then(|| Regime { viscous: g.viscous_parameter(), elastic: g.elastic_parameter() });
-                let (hc, hm, steady, model) = match self.formula {
+                match self.formula {
                     FilmFormula::PanHamrock => {
                         let (c, m) = formulas::pan_hamrock(&g);
                         (c * r, m * r, c * r, FilmModelId::PanHamrock)
@@ -119,25 +106,69 @@ impl FilmModel for ClosedForm {
                         let (c, m) = formulas::seed003(w_star, g.speed, g.material, ws);
                         (c * r, m * r, steady, FilmModelId::Seed003)
                     }
-                };
-                (hc, hm, steady, hz.max_pressure, hz.half_width, 2.0 * hz.half_width * length, r, regime, model, None)
+                }
+            }
+            ContactShape::Point { rx, ry } => {
+                let w = load / (e_prime * rx * rx);
+                let us = eta0 * u.abs() / (e_prime * rx);
+                let k = formulas::ellipticity(rx, ry);
+                let (c, m) = formulas::hamrock_dowson_point(w, us, alpha * e_prime, k);
+                (c * rx, m * rx, c * rx, FilmModelId::HamrockDowson)
+            }
+        }
+    }
+}
+
+impl FilmModel for ClosedForm {
+    /// Only seed 003's squeeze term looks at the time step and the previous point.
+    fn history_free(&self) -> bool {
+        !(self.squeeze && self.formula == FilmFormula::Seed003)
+    }
+
+    fn solve(&self, input: &ContactInput, previous: Option<&FilmSolution>) -> Result<FilmSolution, SolveError> {
+        let load = input.load;
+        if !(load > 0.0 && load.is_finite()) {
+            return Err(SolveError::physical(crate::physics::PhysicalFailure::NoContactLoad, format!("contact load {load} N is not positive")));
+        }
+        let es = input.contact_modulus;
+        let lub = input.lubricant;
+        let t = input.temperature;
+        let law = lub.viscosity_law(t);
+        let eta0 = law.at(0.0);
+        // Nominal (Hertz) contact of the full load: pressure scale, width, area.
+        let (p0, b, area, r_roll, regime, point_ab) = match input.shape {
+            ContactShape::Line { reduced_radius: r, length } => {
+                let w = load / length;
+                let hz = hertz_line(w, r, es);
+                let g = LineGroups::new(w, r, input.entrainment_velocity, eta0, lub.pressure_viscosity, 2.0 * es);
+                let regime = (g.speed > 0.0).then(|| Regime { viscous: g.viscous_parameter(), elastic: g.elastic_parameter() });
+                (hz.max_pressure, hz.half_width, 2.0 * hz.half_width * length, r, regime, None)
             }
             ContactShape::Point { rx, ry } => {
                 let hz = hertz_point(load, rx, ry, es)?;
                 // Semi-axis along the rolling direction x lies along the smaller reduced radius
                 // when rx < ry.
                 let (ax, ay) = if rx <= ry { (hz.semi_minor, hz.semi_major) } else { (hz.semi_major, hz.semi_minor) };
-                let w = load / (e_prime * rx * rx);
-                let us = eta0 * u.abs() / (e_prime * rx);
-                let k = formulas::ellipticity(rx, ry);
-                let (c, m) = formulas::hamrock_dowson_point(w, us, alpha * e_prime, k);
-                let area = std::f64::consts::PI * ax * ay;
-                (c * rx, m * rx, c * rx, hz.max_pressure, ax, area, rx, None, FilmModelId::HamrockDowson, Some((ax, ay)))
+                (hz.max_pressure, ax, std::f64::consts::PI * ax * ay, rx, None, Some((ax, ay)))
             }
         };
+        // Load sharing (module docs): the fluid part carries the fraction `s` of the load.
         let sigma = input.roughness.sigma;
+        let fluid_part = if sigma > 0.0 {
+            let fa = super::mixed::share_load(
+                load,
+                area,
+                |s| self.films(input, previous, eta0, s).0,
+                |h| input.roughness.load_sharing_pressure(h, es).0,
+            )?;
+            1.0 - fa
+        } else {
+            1.0
+        };
+        let (hc, hm, h_steady, model) = self.films(input, previous, eta0, fluid_part);
+        let model = if sigma > 0.0 { model.mixed() } else { model };
         let lambda = (sigma > 0.0).then(|| hm / sigma);
-        let w_a = (input.roughness.asperity_pressure(hc, es) * area).min(load);
+        let w_a = if sigma > 0.0 { ((1.0 - fluid_part) * load).min(load) } else { 0.0 };
         let fluid_share = 1.0 - w_a / load;
         let film = hc.max(FILM_FLOOR);
         let mut nodes = Vec::with_capacity(GL8.len());
@@ -238,7 +269,7 @@ mod tests {
     #[test]
     fn nodes_integrate_the_hertz_load_and_area() {
         let lub = oil();
-        let rough = Roughness { sigma: 0.0, eta_beta_sigma: 0.04, sigma_over_beta: 0.001 };
+        let rough = Roughness { sigma: 0.0, eta_beta_sigma: 0.04, sigma_over_beta: 0.001, plastic_limit: f64::INFINITY, curve: None };
         let law = TractionLaw { rheology: Rheology::Newtonian, limiting_shear_coefficient: None };
         let asp = AsperityFriction { coefficient: 0.12, model: AsperityModel::Coulomb };
         let input = seed001_nose(&lub, &rough, &law, &asp);
@@ -261,7 +292,7 @@ mod tests {
     #[test]
     fn rough_surfaces_share_the_load_and_add_asperity_friction() {
         let lub = oil();
-        let rough = Roughness { sigma: 0.3e-6, eta_beta_sigma: 0.05, sigma_over_beta: 0.001 };
+        let rough = Roughness { sigma: 0.3e-6, eta_beta_sigma: 0.05, sigma_over_beta: 0.001, plastic_limit: f64::INFINITY, curve: None };
         let law = TractionLaw { rheology: Rheology::Eyring { tau0: 5e6 }, limiting_shear_coefficient: None };
         let asp = AsperityFriction { coefficient: 0.12, model: AsperityModel::Coulomb };
         let input = seed001_nose(&lub, &rough, &law, &asp);
@@ -278,7 +309,7 @@ mod tests {
     #[test]
     fn seed003_squeeze_thickens_an_approaching_film() {
         let lub = oil();
-        let rough = Roughness { sigma: 0.0, eta_beta_sigma: 0.04, sigma_over_beta: 0.001 };
+        let rough = Roughness { sigma: 0.0, eta_beta_sigma: 0.04, sigma_over_beta: 0.001, plastic_limit: f64::INFINITY, curve: None };
         let law = TractionLaw { rheology: Rheology::Newtonian, limiting_shear_coefficient: None };
         let asp = AsperityFriction { coefficient: 0.1, model: AsperityModel::Coulomb };
         let mut input = seed001_nose(&lub, &rough, &law, &asp);

@@ -37,6 +37,7 @@
 pub mod auto;
 pub mod closed_form;
 pub mod formulas;
+pub mod mixed;
 pub mod numerical;
 pub mod thermal;
 
@@ -88,7 +89,9 @@ pub struct ContactInput<'a> {
     pub asperity_friction: &'a AsperityFriction,
 }
 
-/// Which model produced a film solution.
+/// Which model produced a film solution. The `*_mixed` variants are the same models with rough
+/// surfaces sharing the load inside the solution ([`mixed`]): their asperity load is part of the
+/// load balance (numerical: of the elastic deflection too), not evaluated afterwards.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, ToSchema)]
 #[serde(rename_all = "snake_case")]
 pub enum FilmModelId {
@@ -100,6 +103,16 @@ pub enum FilmModelId {
     Numerical,
     /// The thermal numerical line-contact EHL model (`physics::ehl::thermal`).
     Thermal,
+    /// Pan–Hamrock in the Johnson–Greenwood–Poon load sharing.
+    PanHamrockMixed,
+    /// Dowson–Higginson in the Johnson–Greenwood–Poon load sharing.
+    DowsonHigginsonMixed,
+    /// Seed 003's formula in the Johnson–Greenwood–Poon load sharing.
+    Seed003Mixed,
+    /// Hamrock–Dowson (point contacts) in the Johnson–Greenwood–Poon load sharing.
+    HamrockDowsonMixed,
+    /// The numerical EHL solver with the asperity pressure in its load balance and deflection.
+    NumericalMixed,
 }
 
 impl FilmModelId {
@@ -112,6 +125,23 @@ impl FilmModelId {
             FilmModelId::HamrockDowson => "hamrock_dowson",
             FilmModelId::Numerical => "numerical",
             FilmModelId::Thermal => "thermal",
+            FilmModelId::PanHamrockMixed => "pan_hamrock_mixed",
+            FilmModelId::DowsonHigginsonMixed => "dowson_higginson_mixed",
+            FilmModelId::Seed003Mixed => "seed003_mixed",
+            FilmModelId::HamrockDowsonMixed => "hamrock_dowson_mixed",
+            FilmModelId::NumericalMixed => "numerical_mixed",
+        }
+    }
+
+    /// The same model with the asperities sharing the load inside the solution.
+    pub fn mixed(self) -> Self {
+        match self {
+            FilmModelId::PanHamrock => FilmModelId::PanHamrockMixed,
+            FilmModelId::DowsonHigginson => FilmModelId::DowsonHigginsonMixed,
+            FilmModelId::Seed003 => FilmModelId::Seed003Mixed,
+            FilmModelId::HamrockDowson => FilmModelId::HamrockDowsonMixed,
+            FilmModelId::Numerical => FilmModelId::NumericalMixed,
+            other => other,
         }
     }
 }
@@ -136,6 +166,9 @@ pub struct FilmProfile {
     pub density_ratio: Vec<f64>,
     /// The coarse grid's state of a Richardson-extrapolated solve (its squeeze history).
     pub coarse: Option<crate::physics::ehl::EhlState>,
+    /// Asperity part of `pressure`, Pa (mixed lubrication; empty for smooth surfaces): `pressure`
+    /// is the total pressure, the fluid's is the difference.
+    pub asperity_pressure: Vec<f64>,
 }
 
 /// The lubricated contact at one point.

@@ -26,7 +26,8 @@ use super::formulas::LineGroups;
 use super::{ContactInput, ContactShape, FilmModel, FilmModelId, FilmProfile, FilmSolution, Regime};
 use crate::physics::contact::hertz_line;
 use crate::physics::ehl::grid::cells;
-use crate::physics::ehl::{EhlInput, EhlOptions, EhlState, Extrapolation, ReusableSolver, Rheology, Transient};
+use super::mixed::LoadSharingLaw;
+use crate::physics::ehl::{AsperityPressure, EhlInput, EhlOptions, EhlState, Extrapolation, ReusableSolver, Rheology, Transient};
 use crate::physics::friction::{AsperityContact, TractionNode};
 use crate::physics::{ensure_finite, Silent, SolveError};
 use std::sync::Mutex;
@@ -65,7 +66,7 @@ impl Numerical {
 impl FilmProfile {
     /// The EHL solver's state (warm start, squeeze history) held by this profile.
     pub fn to_ehl_state(&self) -> EhlState {
-        EhlState { x: self.x.clone(), pressure: self.pressure.clone(), film: self.film.clone(), density_ratio: self.density_ratio.clone() }
+        EhlState { x: self.x.clone(), pressure: self.pressure.clone(), film: self.film.clone(), density_ratio: self.density_ratio.clone(), asperity_pressure: self.asperity_pressure.clone() }
     }
 }
 
@@ -82,6 +83,9 @@ impl FilmModel for Numerical {
         let transient = state.as_ref().filter(|_| input.time_step > 0.0).map(|s| Transient { previous: s, time_step: input.time_step });
         let w = load / length;
         let es = input.contact_modulus;
+        let sigma = input.roughness.sigma;
+        // Mixed lubrication: the asperities share the load inside the solution.
+        let law = LoadSharingLaw { roughness: input.roughness.clone(), contact_modulus: es };
         let ehl_input = EhlInput {
             load_per_length: w,
             reduced_radius: r,
@@ -94,6 +98,7 @@ impl FilmModel for Numerical {
             rheology: Rheology::default(),
             transient,
             warm_start: state.as_ref(),
+            asperity: (sigma > 0.0).then_some(&law as &dyn AsperityPressure),
         };
         let options = EhlOptions { profiles: false, ..self.options };
         let mut fresh = ReusableSolver::new();
@@ -116,10 +121,9 @@ impl FilmModel for Numerical {
         let steady = self.fallback.solve(input, None)?.steady_central_film;
         let st = &s.state;
         let cell = cells(&st.x);
-        let sigma = input.roughness.sigma;
-        let w_a = asperity_load(input, st, &cell, length, load);
+        let w_a = (s.asperity_load_per_length * length).clamp(0.0, load);
         let t = input.temperature;
-        let nodes = traction_nodes(input, st, &cell, length, 1.0 - w_a / load, t);
+        let nodes = traction_nodes(input, st, &cell, length, 1.0, t);
         let hz = hertz_line(w, r, es);
         let eta0 = input.lubricant.viscosity_at(0.0, t);
         let g = LineGroups::new(w, r, input.entrainment_velocity, eta0, input.lubricant.pressure_viscosity, 2.0 * es);
@@ -127,7 +131,7 @@ impl FilmModel for Numerical {
         ensure_finite("numerical film", [&s.central_film, &s.min_film, &s.exit_film, &s.max_pressure, &w_a])?;
         ensure_finite("traction nodes", nodes.iter().flat_map(|n| [&n.area, &n.pressure, &n.viscosity, &n.film]))?;
         Ok(FilmSolution {
-            model: FilmModelId::Numerical,
+            model: if sigma > 0.0 { FilmModelId::NumericalMixed } else { FilmModelId::Numerical },
             central_film: s.central_film,
             min_film: s.min_film,
             steady_central_film: steady,
@@ -148,6 +152,7 @@ impl FilmModel for Numerical {
                 film: s.state.film,
                 density_ratio: s.state.density_ratio,
                 coarse,
+                asperity_pressure: s.state.asperity_pressure,
             })),
             iterations: Some(s.convergence.iterations),
             thermal: None,
@@ -192,15 +197,16 @@ pub(super) fn asperity_load(input: &ContactInput, st: &EhlState, cell: &[f64], l
     (per_length * length).min(load)
 }
 
-/// Traction nodes of a converged film: every node with positive pressure, its cell times the
-/// contact length, the fluid's share of its pressure, its viscosity at temperature `t`, its film.
+/// Traction nodes of a converged film: every node with positive fluid pressure, its cell times
+/// the contact length, `fluid_share` times its fluid pressure ([`EhlState::fluid_pressure`]), its
+/// viscosity at temperature `t` and that fluid pressure, its film.
 pub(super) fn traction_nodes(input: &ContactInput, st: &EhlState, cell: &[f64], length: f64, fluid_share: f64, t: f64) -> Vec<TractionNode> {
     (0..st.x.len())
-        .filter(|&i| st.pressure[i] > 0.0)
+        .filter(|&i| st.fluid_pressure(i) > 0.0)
         .map(|i| TractionNode {
             area: cell[i] * length,
-            pressure: fluid_share * st.pressure[i],
-            viscosity: input.lubricant.viscosity_at(st.pressure[i], t).min(VISCOSITY_CAP),
+            pressure: fluid_share * st.fluid_pressure(i),
+            viscosity: input.lubricant.viscosity_at(st.fluid_pressure(i), t).min(VISCOSITY_CAP),
             film: st.film[i].max(FILM_FLOOR),
         })
         .collect()
@@ -223,7 +229,7 @@ mod tests {
     #[test]
     fn nodes_carry_the_load_and_a_reversal_keeps_a_squeeze_film() {
         let lub = Lubricant { viscosity: 0.013, pressure_viscosity: 1.84e-8, ..Lubricant::SEED000 };
-        let rough = Roughness { sigma: 0.0, eta_beta_sigma: 0.04, sigma_over_beta: 0.001 };
+        let rough = Roughness { sigma: 0.0, eta_beta_sigma: 0.04, sigma_over_beta: 0.001, plastic_limit: f64::INFINITY, curve: None };
         let law = TractionLaw { rheology: Shear::Eyring { tau0: 5e6 }, limiting_shear_coefficient: None };
         let asp = AsperityFriction { coefficient: 0.1, model: AsperityModel::Coulomb };
         // Seed 001 nose (12.5 kN over 21 mm, R = 10.5 mm, 3.98 m/s).

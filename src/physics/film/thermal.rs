@@ -136,6 +136,7 @@ impl FilmModel for ThermalNumerical {
             rheology,
             transient,
             warm_start: state.as_ref(),
+            asperity: None,
         };
         let tin = ThermalInput {
             ehl,
@@ -220,6 +221,7 @@ impl FilmModel for ThermalNumerical {
                 film: st.film.clone(),
                 density_ratio: st.density_ratio.clone(),
                 coarse: None,
+                asperity_pressure: Vec::new(),
             })),
             iterations: Some(th.convergence.iterations),
             thermal: Some(Box::new(FilmThermal {

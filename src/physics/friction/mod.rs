@@ -13,8 +13,10 @@
 //! * Eyring: `τ = τ0 asinh(η u_s / (h τ0))` (seed 001 eq. 25, τ0 the Eyring stress);
 //! * limiting shear (optional): `|τ| ≤ Λ p`.
 
+pub mod curve;
 pub mod greenwood_tripp;
 
+pub use curve::PressureGapCurve;
 pub use greenwood_tripp::{f52, Roughness};
 
 /// Shear law of the lubricant film.
@@ -121,6 +123,27 @@ pub enum AsperityModel {
     Carter,
 }
 
+/// How the roller runs on the cam at one instant (seed 001 §"Tangential contact", eq. 15–23).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize, serde::Deserialize, utoipa::ToSchema)]
+#[serde(rename_all = "snake_case")]
+pub enum SlipRegime {
+    /// No sliding: the asperities stick (`u_s = 0`), or in a full film the slide-to-roll ratio
+    /// stays below [`FULL_FILM_SKID_SRR`].
+    Rolling,
+    /// Partial slip of the asperity contact: part of it sticks, part slips (Carter below its
+    /// gross-sliding creep).
+    MicroSlip,
+    /// The whole asperity contact slides (Coulomb asperities with any sliding; Carter at or
+    /// beyond its gross-sliding creep), or a full film at `|SRR| ≥` [`FULL_FILM_SKID_SRR`].
+    GrossSliding,
+}
+
+/// Slide-to-roll ratio from which a full-film contact (no asperity load) counts as
+/// [`SlipRegime::GrossSliding`] (skidding): 1 %, the order at which roller-follower studies
+/// (seed 000 §4) speak of skidding. Without asperities there is no stick, so the split between
+/// rolling and sliding of a film is a convention; this one is documented in the API.
+pub const FULL_FILM_SKID_SRR: f64 = 0.01;
+
 /// Asperity friction parameters.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct AsperityFriction {
@@ -187,6 +210,24 @@ impl AsperityFriction {
                 (if sliding.abs() < gross { 2.0 * q / (gross * gross) } else { 0.0 }, reach)
             }
             _ => (0.0, sliding.abs()),
+        }
+    }
+
+    /// The slip regime at sliding `u_s` and entrainment `u_e` ([`SlipRegime`]); the
+    /// slide-to-roll ratio is `u_s/u_e`.
+    pub fn regime(&self, contact: &AsperityContact, sliding: f64, entrainment: f64) -> SlipRegime {
+        if sliding == 0.0 {
+            return SlipRegime::Rolling;
+        }
+        let srr = if entrainment != 0.0 { (sliding / entrainment).abs() } else { f64::INFINITY };
+        if !(contact.load > 0.0 && self.coefficient > 0.0) {
+            return if srr < FULL_FILM_SKID_SRR { SlipRegime::Rolling } else { SlipRegime::GrossSliding };
+        }
+        match self.model {
+            AsperityModel::Coulomb => SlipRegime::GrossSliding,
+            AsperityModel::Carter => {
+                if srr < contact.gross_sliding_creep { SlipRegime::MicroSlip } else { SlipRegime::GrossSliding }
+            }
         }
     }
 

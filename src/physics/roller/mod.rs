@@ -372,7 +372,7 @@ mod tests {
     #[test]
     fn one_newton_step_agrees_with_the_bracketed_search() {
         let lub = oil();
-        let rough = Roughness { sigma: 0.3e-6, eta_beta_sigma: 0.05, sigma_over_beta: 0.001 };
+        let rough = Roughness { sigma: 0.3e-6, eta_beta_sigma: 0.05, sigma_over_beta: 0.001, plastic_limit: f64::INFINITY, curve: None };
         let law = TractionLaw { rheology: Rheology::Eyring { tau0: 5e6 }, limiting_shear_coefficient: None };
         let model = ClosedForm { formula: FilmFormula::PanHamrock, squeeze: false };
         let pins = [
@@ -443,7 +443,7 @@ mod tests {
             above in proptest::bool::ANY,
         ) {
             let lub = oil();
-            let rough = Roughness { sigma: rq, eta_beta_sigma: 0.05, sigma_over_beta: 0.001 };
+            let rough = Roughness { sigma: rq, eta_beta_sigma: 0.05, sigma_over_beta: 0.001, plastic_limit: f64::INFINITY, curve: None };
             let law = TractionLaw { rheology: Rheology::Eyring { tau0 }, limiting_shear_coefficient: None };
             let model = ClosedForm { formula: FilmFormula::PanHamrock, squeeze: false };
             let asp = AsperityFriction { coefficient: 0.12, model: if carter { AsperityModel::Carter } else { AsperityModel::Coulomb } };

@@ -50,6 +50,8 @@ pub struct PointBalance {
     pub film: FilmSolution,
     /// The asperities stick: the roller rolls without sliding.
     pub sticking: bool,
+    /// Rolling, micro-slip or gross sliding.
+    pub regime: crate::physics::friction::SlipRegime,
 }
 
 impl PointCase<'_> {
@@ -102,6 +104,7 @@ impl PointCase<'_> {
             traction.force = required;
         }
         let ur = uc - us;
+        let regime = self.input.asperity_friction.regime(&film.asperity, us, uc - 0.5 * us);
         Ok(PointBalance {
             pin_friction: mu_rp,
             sliding_velocity: us,
@@ -110,6 +113,7 @@ impl PointCase<'_> {
             traction,
             film,
             sticking,
+            regime,
         })
     }
 

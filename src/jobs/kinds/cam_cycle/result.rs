@@ -1,5 +1,6 @@
 //! The `cam_cycle` result: per-angle series, summary, events, film profiles.
 
+use crate::physics::friction::SlipRegime;
 use crate::physics::film::{Fidelity, FilmModelId};
 use std::collections::BTreeMap;
 use crate::physics::Convergence;
@@ -123,6 +124,11 @@ pub struct CamSeries {
     /// Slide-to-roll ratio 2(u_c − u_r)/(u_c + u_r).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub slide_roll_ratio: Option<Vec<f64>>,
+    /// Roller followers: `rolling` (asperities stick, or a full film below 1 % SRR),
+    /// `micro_slip` (partial slip of the asperity contact) or `gross_sliding` (the asperities
+    /// slide, or a full film at ≥ 1 % SRR) at each angle.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub slip_regime: Option<Vec<SlipRegime>>,
     /// Roller–pin friction torque, N·m.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub pin_torque: Option<Vec<f64>>,

@@ -381,6 +381,7 @@ pub(super) fn solve_spec(spec: &CamCycleSpec, observer: &dyn Observer) -> Result
             power_loss: s.power_loss,
             roller_speed: s.roller_speed,
             slide_roll_ratio: s.slide_roll_ratio,
+            slip_regime: s.slip_regime,
             pin_torque: s.pin_torque,
             flash_temperature: s.flash_temperature,
             film_temperature_max: s.film_temperature_max,
