@@ -36,7 +36,7 @@ pub struct DynamicsOptions {
 
 impl Default for DynamicsOptions {
     fn default() -> Self {
-        DynamicsOptions { tolerance: 1e-6, periodic_tolerance: 1e-6, max_revolutions: 200, max_steps: 1_000_000 }
+        DynamicsOptions { tolerance: 1e-8, periodic_tolerance: 1e-6, max_revolutions: 200, max_steps: 1_000_000 }
     }
 }
 

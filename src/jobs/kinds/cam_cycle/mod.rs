@@ -283,9 +283,10 @@ fn validate_dynamic(spec: &CamCycleSpec, d: &DynamicLoadSpec, limits: &Limits, v
     v.in_range("/load/tolerance", d.tolerance, 1e-12, 1e-2);
     v.in_range("/load/periodic_tolerance", d.periodic_tolerance, 1e-12, 1e-1);
     v.count_in_range("/load/max_revolutions", d.max_revolutions, 1, 10_000);
-    // Work: about 5 ms per revolution at the default tolerance with 8 spring elements (release,
-    // BENCHMARKS.md), growing with the elements and ~tolerance^(-1/3) (second-order steps).
-    let per_rev = 5e-3 * (sp.elements as f64 + 2.0) / 10.0 * (1e-6 / d.tolerance.max(1e-12)).powf(1.0 / 3.0).max(1.0);
+    // Work: about 9 ms per revolution at the default tolerance 1e-8 with 8 spring elements
+    // (release, BENCHMARKS.md), growing with the elements and ~tolerance^(-1/3) (second-order
+    // steps).
+    let per_rev = 9e-3 * (sp.elements as f64 + 2.0) / 10.0 * (1e-8 / d.tolerance.max(1e-12)).powf(1.0 / 3.0).max(1.0);
     v.work("/load/max_revolutions", per_rev * d.max_revolutions as f64, limits, "the valve-train revolutions");
 }
 

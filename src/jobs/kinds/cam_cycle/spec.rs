@@ -325,7 +325,7 @@ fn default_seat_gap() -> f64 {
     1e-6
 }
 fn default_dyn_tolerance() -> f64 {
-    1e-6
+    1e-8
 }
 fn default_periodic_tolerance() -> f64 {
     1e-6
@@ -403,7 +403,10 @@ pub struct DynamicLoadSpec {
     /// Valve seat. Absent: no seat (the valve may swing below its closed position).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub seat: Option<SeatSpec>,
-    /// Relative local error tolerance of the integrator (TR-BDF2). Default 1e-6.
+    /// Relative local error tolerance of the integrator (TR-BDF2; absolute part: this times the
+    /// lift and lift × ω). Default 1e-8: the contact load within ~1e-4 of a tight run (seed 003,
+    /// BENCHMARKS.md); the load error is ~100× the tolerance because the contact stiffness
+    /// multiplies position errors.
     #[serde(default = "default_dyn_tolerance")]
     pub tolerance: f64,
     /// Change of the state at the start of a revolution (relative to lift and lift × ω) that
