@@ -16,6 +16,7 @@ pub mod roller;
 pub mod solver;
 pub mod thermal;
 pub mod units;
+pub mod valvetrain;
 pub mod wear;
 
 pub use solver::{

@@ -33,5 +33,7 @@ mod restart_recovery;
 mod storage_faults;
 mod sweep_api;
 mod thermal_ehl;
+mod valvetrain_stability;
+mod valvetrain_validation;
 mod wear_stability;
 mod wear_validation;

@@ -517,6 +517,13 @@ pub fn cam_spec_path(field: &str) -> Option<String> {
         "EhlInput.lubricant.viscosity" => "/lubricant/viscosity",
         "EhlInput.lubricant.pressure_viscosity" => "/lubricant/pressure_viscosity",
         "EhlInput.lubricant.density" => "/lubricant/density",
+        "ValveTrain.follower_mass" => "/load/follower_mass",
+        "ValveTrain.valve_mass" => "/load/valve_mass",
+        "ValveTrain.train" => "/load/train_stiffness",
+        "ValveTrain.spring" => "/load/spring",
+        "ValveTrain.contact" => "/load/contact_stiffness",
+        "ValveTrain.preload" => "/load/spring_preload",
+        "ValveTrain.seat" => "/load/seat",
         _ => return None,
     };
     Some(path.to_string())

@@ -5,6 +5,8 @@
 //!   the follower, optional external/gas force table). The normal contact force is
 //!   `F = F_ax / cos φ` (φ the pressure angle); the friction force's axial component and guide
 //!   friction are neglected.
+//! * Dynamic: the axial force of the valve-train dynamics (`physics::valvetrain`, seed 003
+//!   §4 with compliances), computed over the cycle's angles before the cycle runs.
 //! * Spectrum: a measured contact-load table versus cam angle (seed 000 Fig. 4), plus an optional
 //!   constant offset (seed 000's "modified load" w1).
 //!
@@ -82,6 +84,12 @@ pub enum LoadModel {
         /// Constant added to the table, N.
         offset: f64,
     },
+    /// The axial contact force of the valve-train dynamics (`physics::valvetrain`), sampled at
+    /// the cycle's angles (the table returns them exactly there).
+    Dynamic {
+        /// Force along the follower axis versus cam angle, N (0 while separated).
+        axial: PeriodicTable,
+    },
 }
 
 /// Loads at one cam angle.
@@ -99,6 +107,10 @@ impl LoadModel {
             LoadModel::ValveTrain { preload, stiffness, mass, external } => {
                 let ext = external.as_ref().map_or(0.0, |t| t.at(k.theta));
                 let axial = preload + stiffness * k.lift.v + mass * k.acceleration + ext;
+                FollowerLoad { axial, contact: axial / k.axial_cosine }
+            }
+            LoadModel::Dynamic { axial } => {
+                let axial = axial.at(k.theta);
                 FollowerLoad { axial, contact: axial / k.axial_cosine }
             }
             LoadModel::Spectrum { table, offset } => {

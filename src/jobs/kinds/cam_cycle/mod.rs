@@ -228,6 +228,7 @@ impl Kind for CamCycle {
                 check_table(v, "/load", angle_deg, load, "load", limits);
                 v.in_range("/load/offset", *offset, -1e7, 1e7);
             }
+            Some(LoadSpec::Dynamic(d)) => validate_dynamic(spec, d, limits, v),
             None => {}
         }
         if let Some(l) = &spec.lubricant {
@@ -248,6 +249,45 @@ impl Kind for CamCycle {
     fn solve(spec: &CamCycleSpec, observer: &dyn Observer) -> Result<CamCycleResult, SolveError> {
         solve_spec(spec, observer).map_err(|e| e.in_spec(cam_spec_path))
     }
+}
+
+fn validate_dynamic(spec: &CamCycleSpec, d: &DynamicLoadSpec, limits: &Limits, v: &mut Validation) {
+    v.check(matches!(spec.follower, FollowerSpec::FlatFaced { .. }), "/follower", "a dynamic load models the direct-acting flat follower (seed 003)");
+    v.check(spec.operation.startup.is_none(), "/operation/startup", "a dynamic load needs steady running");
+    v.in_range("/load/spring_preload", d.spring_preload, 1e-3, 1e7);
+    let sp = &d.spring;
+    v.in_range("/load/spring/wire_diameter", sp.wire_diameter, 1e-5, 0.1);
+    v.in_range("/load/spring/mean_diameter", sp.mean_diameter, 1e-4, 1.0);
+    v.check(sp.mean_diameter > sp.wire_diameter, "/load/spring/mean_diameter", "must exceed the wire diameter");
+    v.in_range("/load/spring/active_coils", sp.active_coils, 0.5, 1000.0);
+    v.in_range("/load/spring/shear_modulus", sp.shear_modulus, 1e6, 1e12);
+    v.in_range("/load/spring/density", sp.density, 1.0, 1e5);
+    v.count_in_range("/load/spring/elements", sp.elements, 0, 64);
+    v.in_range("/load/spring/damping_ratio", sp.damping_ratio, 0.0, 10.0);
+    v.in_range("/load/follower_mass", d.follower_mass, 1e-6, 1e3);
+    v.in_range("/load/valve_mass", d.valve_mass, 0.0, 1e3);
+    if let Some(k) = d.train_stiffness {
+        v.in_range("/load/train_stiffness", k, 1.0, 1e13);
+        v.check(d.valve_mass > 0.0, "/load/valve_mass", "must be > 0 with an elastic train (train_stiffness)");
+    }
+    v.in_range("/load/train_damping_ratio", d.train_damping_ratio, 0.0, 10.0);
+    if let Some(k) = d.contact_stiffness {
+        v.in_range("/load/contact_stiffness", k, 1.0, 1e13);
+    }
+    v.in_range("/load/contact_damping_ratio", d.contact_damping_ratio, 0.0, 10.0);
+    if let Some(st) = &d.seat {
+        v.in_range("/load/seat/stiffness", st.stiffness, 1.0, 1e13);
+        v.in_range("/load/seat/damping_ratio", st.damping_ratio, 0.0, 10.0);
+        v.in_range("/load/seat/gap", st.gap, 0.0, 1e-3);
+    }
+    v.in_range("/load/tolerance", d.tolerance, 1e-12, 1e-2);
+    v.in_range("/load/periodic_tolerance", d.periodic_tolerance, 1e-12, 1e-1);
+    v.count_in_range("/load/max_revolutions", d.max_revolutions, 1, 10_000);
+    // Work: about 9 ms per revolution at the default tolerance 1e-8 with 8 spring elements
+    // (release, BENCHMARKS.md), growing with the elements and ~tolerance^(-1/3) (second-order
+    // steps).
+    let per_rev = 9e-3 * (sp.elements as f64 + 2.0) / 10.0 * (1e-8 / d.tolerance.max(1e-12)).powf(1.0 / 3.0).max(1.0);
+    v.work("/load/max_revolutions", per_rev * d.max_revolutions as f64, limits, "the valve-train revolutions");
 }
 
 fn check_table(v: &mut Validation, path: &str, angles: &[f64], values: &[f64], name: &str, limits: &Limits) {

@@ -147,6 +147,28 @@ pub struct CamSeries {
     /// Effective film temperature of a thermal finite roller–pin bearing, K.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub pin_temperature: Option<Vec<f64>>,
+    /// Valve lift from the valve-train dynamics (`dynamic` load), m.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub valve_lift: Option<Vec<f64>>,
+    /// Valve velocity (`dynamic` load), m/s.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub valve_velocity: Option<Vec<f64>>,
+    /// Valve acceleration (`dynamic` load), m/s².
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub valve_acceleration: Option<Vec<f64>>,
+    /// Follower displacement (`dynamic` load; the cam's lift minus the contact and train
+    /// compliance, or the flight while separated), m.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub follower_displacement: Option<Vec<f64>>,
+    /// Valve spring force at the retainer (moving end), N (`dynamic` load).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub spring_force_retainer: Option<Vec<f64>>,
+    /// Valve spring force at its fixed end (cylinder head), N (`dynamic` load).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub spring_force_fixed_end: Option<Vec<f64>>,
+    /// Valve seat force, N (`dynamic` load with a seat).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub seat_force: Option<Vec<f64>>,
 }
 
 /// Cycle summary: flat numbers (what a sweep tabulates). Absent when not computed.
@@ -241,6 +263,40 @@ pub struct CamSummary {
     pub max_flash_temperature: Option<f64>,
     #[serde(skip_serializing_if = "Option::is_none")]
     pub max_flash_temperature_angle_deg: Option<f64>,
+    /// `dynamic` load: cam angle intervals `[start, end]` (degrees; `end` may exceed 360 when an
+    /// interval runs past 0°) where the follower has left the cam (no contact load), from the
+    /// integration's located events; empty when contact is never lost.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub separation: Option<Vec<[f64; 2]>>,
+    /// `dynamic` load: time without contact per revolution, s.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub separation_duration: Option<f64>,
+    /// `dynamic` load: valve speed (m/s, ≥ 0) when it first returns to its closed position after
+    /// the lift (the seat impact velocity with a seat); absent when it never closes.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub seating_velocity: Option<f64>,
+    /// Cam angle of that seating, degrees.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub seating_angle_deg: Option<f64>,
+    /// `dynamic` load with a seat: seat impacts per revolution after the first (valve bounce).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub bounces: Option<usize>,
+    /// `dynamic` load with a seat: highest rebound of the valve above its closed position after
+    /// the first seat impact (sampled at the cycle's angles), m.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub max_bounce_height: Option<f64>,
+    /// `dynamic` load: valve spring rate from its coils, N/m.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub spring_rate: Option<f64>,
+    /// `dynamic` load: active spring mass, kg.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub spring_mass: Option<f64>,
+    /// `dynamic` load: first surge frequency with both ends fixed, ½√(k/m), Hz.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub spring_surge_frequency: Option<f64>,
+    /// `dynamic` load: cam–follower contact stiffness used, N/m.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub contact_stiffness: Option<f64>,
 }
 
 /// Events of the cycle.
@@ -290,5 +346,9 @@ pub struct CamCycleResult {
     pub profiles: Option<Vec<FilmProfileAtAngle>>,
     /// Periodicity of the roller speed (steady torque balance) or closed form.
     pub convergence: Convergence,
+    /// `dynamic` load: revolutions integrated to the periodic steady state and the final change
+    /// of the state between revolutions.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub dynamics_convergence: Option<Convergence>,
 }
 

@@ -12,6 +12,10 @@ use crate::physics::film::model_for;
 use std::collections::BTreeMap;
 use crate::physics::roller::pin_finite::roller_cooled_area;
 use crate::physics::roller::{Crown, FinitePin, PinFriction, PinTable, PinThermal, RollerParams};
+use crate::physics::valvetrain::{
+    damping_from_ratio, line_contact_stiffness, periodic_response, Drive, DynamicsOptions, HelicalSpring, Link, PeriodicResponse, Seat,
+    SpringChain, ValveTrain,
+};
 use crate::physics::{Observer, SolveError};
 use std::f64::consts::PI;
 
@@ -82,8 +86,13 @@ impl CamCycleSpec {
         })
     }
 
-    /// The physics description of this spec.
+    /// The physics description of this spec (a `dynamic` load is refused: it needs
+    /// [`solve_spec`]'s dynamics run).
     pub fn cycle_spec(&self) -> Result<CycleSpec, SolveError> {
+        self.cycle_spec_inner(false)
+    }
+
+    fn cycle_spec_inner(&self, dynamic_allowed: bool) -> Result<CycleSpec, SolveError> {
         let profile = self.profile()?;
         let (follower_elastic, follower_rq) = self.follower_elastic();
         let cam_elastic = self.cam.material.elastic();
@@ -164,6 +173,9 @@ impl CamCycleSpec {
                 },
             },
             Some(LoadSpec::Spectrum { angle_deg, load, offset }) => LoadModel::Spectrum { table: table(angle_deg, load, "/load")?, offset: *offset },
+            // Replaced by the dynamics' force in `solve_spec` (only the cam_cycle kind solves it).
+            Some(LoadSpec::Dynamic(_)) if dynamic_allowed => LoadModel::ValveTrain { preload: 0.0, stiffness: 0.0, mass: 0.0, external: None },
+            Some(LoadSpec::Dynamic(_)) => return Err(SolveError::invalid("/load", "a dynamic load is solved by the cam_cycle kind only")),
         };
         Ok(CycleSpec {
             profile,
@@ -210,9 +222,80 @@ fn table(angles_deg: &[f64], values: &[f64], path: &str) -> Result<PeriodicTable
     })
 }
 
+/// The physics valve train of a `dynamic` load for `cycle` (SI; damping ratios turned into
+/// coefficients, the contact stiffness defaulted from seed 003 eq. 6 at the preload on the base
+/// circle).
+pub fn valve_train(d: &DynamicLoadSpec, cycle: &CycleSpec) -> ValveTrain {
+    let coil = HelicalSpring {
+        wire_diameter: d.spring.wire_diameter,
+        mean_diameter: d.spring.mean_diameter,
+        active_coils: d.spring.active_coils,
+        shear_modulus: d.spring.shear_modulus,
+        density: d.spring.density,
+    };
+    let length = match cycle.follower {
+        FollowerKind::Flat { contact_length } | FollowerKind::Roller { contact_length, .. } => contact_length,
+        FollowerKind::Spherical { .. } => 0.0,
+    };
+    let kc = d.contact_stiffness.unwrap_or_else(|| {
+        line_contact_stiffness(d.spring_preload, length, cycle.profile.base_radius(), cycle.contact_modulus)
+    });
+    let rigid = d.train_stiffness.is_none();
+    let follower_side = if rigid { d.follower_mass + d.valve_mass } else { d.follower_mass };
+    ValveTrain {
+        follower_mass: d.follower_mass,
+        valve_mass: d.valve_mass,
+        train: d.train_stiffness.map(|k| {
+            let reduced = d.follower_mass * d.valve_mass / (d.follower_mass + d.valve_mass);
+            Link { stiffness: k, damping: damping_from_ratio(d.train_damping_ratio, k, reduced) }
+        }),
+        spring: SpringChain { rate: coil.rate(), mass: coil.active_mass(), elements: d.spring.elements, damping_ratio: d.spring.damping_ratio },
+        preload: d.spring_preload,
+        contact: Link { stiffness: kc, damping: damping_from_ratio(d.contact_damping_ratio, kc, follower_side) },
+        seat: d.seat.map(|st| Seat {
+            link: Link { stiffness: st.stiffness, damping: damping_from_ratio(st.damping_ratio, st.stiffness, d.valve_mass.max(follower_side)) },
+            gap: st.gap,
+        }),
+    }
+}
+
+/// Run the valve-train dynamics of a `dynamic` load over the cycle's angles.
+fn dynamic_response(d: &DynamicLoadSpec, cycle: &CycleSpec, observer: &dyn Observer) -> Result<(ValveTrain, PeriodicResponse), SolveError> {
+    let SpeedSchedule::Steady { omega } = cycle.schedule else {
+        return Err(SolveError::invalid("/operation/startup", "a dynamic load needs steady running"));
+    };
+    let train = valve_train(d, cycle);
+    let shape = cycle.geometry.shape;
+    let profile = &cycle.profile;
+    let lift = move |theta: f64| {
+        let j = profile.lift(theta, shape);
+        (j.v, j.d1)
+    };
+    let max_lift = (0..720).map(|k| lift(std::f64::consts::TAU * k as f64 / 720.0).0).fold(0.0, f64::max);
+    let drive = Drive { lift: &lift, omega, max_lift };
+    let options = DynamicsOptions {
+        tolerance: d.tolerance,
+        periodic_tolerance: d.periodic_tolerance,
+        max_revolutions: d.max_revolutions,
+        ..Default::default()
+    };
+    let response = periodic_response(&train, drive, cycle.angles, &options, observer)?;
+    Ok((train, response))
+}
+
 pub(super) fn solve_spec(spec: &CamCycleSpec, observer: &dyn Observer) -> Result<CamCycleResult, SolveError> {
-    let cycle = spec.cycle_spec()?;
+    let mut cycle = spec.cycle_spec_inner(true)?;
     let needs = spec.needs();
+    // Dynamic load: the train's periodic response gives the axial force at the cycle's angles.
+    let dynamics = match &spec.load {
+        Some(LoadSpec::Dynamic(d)) if needs.loads => {
+            let (train, r) = dynamic_response(d, &cycle, observer)?;
+            let angles: Vec<f64> = (0..cycle.angles).map(|k| std::f64::consts::TAU * k as f64 / cycle.angles as f64).collect();
+            cycle.load = LoadModel::Dynamic { axial: PeriodicTable::new(&angles, &r.contact_force)? };
+            Some((train, r))
+        }
+        _ => None,
+    };
     let mut settings = spec.ehl.to_physics();
     settings.thermal = spec.ehl.thermal.map(|t| t.settings(spec.thermal.cam.to_physics(), spec.thermal.follower.to_physics()));
     let model = needs.film.then(|| model_for(spec.fidelity, spec.film.to_physics(), settings));
@@ -251,7 +334,7 @@ pub(super) fn solve_spec(spec: &CamCycleSpec, observer: &dyn Observer) -> Result
             .collect()
     });
     let es = cycle.contact_modulus;
-    Ok(CamCycleResult {
+    let mut result = CamCycleResult {
         fidelity_used: spec.fidelity,
         film_model,
         contact_modulus: es,
@@ -305,6 +388,7 @@ pub(super) fn solve_spec(spec: &CamCycleSpec, observer: &dyn Observer) -> Result
             surface_temperature_cam: s.surface_temperature_cam,
             surface_temperature_follower: s.surface_temperature_follower,
             pin_temperature: s.pin_temperature,
+            ..Default::default()
         },
         summary,
         events: CamEvents {
@@ -313,7 +397,38 @@ pub(super) fn solve_spec(spec: &CamCycleSpec, observer: &dyn Observer) -> Result
         },
         profiles,
         convergence: out.convergence,
-    })
+        dynamics_convergence: None,
+    };
+    if let Some((train, r)) = dynamics {
+        add_dynamics(&mut result, &train, r);
+    }
+    Ok(result)
+}
+
+/// The valve-train response in the result: series (angles as the cycle's) and summary figures.
+fn add_dynamics(result: &mut CamCycleResult, train: &ValveTrain, r: PeriodicResponse) {
+    let series = &mut result.series;
+    series.valve_lift = Some(r.valve_lift);
+    series.valve_velocity = Some(r.valve_velocity);
+    series.valve_acceleration = Some(r.valve_acceleration);
+    series.follower_displacement = Some(r.follower_displacement);
+    series.spring_force_retainer = Some(r.spring_force_moving);
+    series.spring_force_fixed_end = Some(r.spring_force_fixed);
+    if train.seat.is_some() {
+        series.seat_force = Some(r.seat_force);
+    }
+    let summary = &mut result.summary;
+    summary.separation = Some(r.separation.iter().map(|(a, b)| [a.to_degrees(), b.to_degrees()]).collect());
+    summary.separation_duration = Some(r.separation_time);
+    summary.seating_velocity = r.seating_velocity;
+    summary.seating_angle_deg = r.seating_angle.map(f64::to_degrees);
+    summary.bounces = r.bounces;
+    summary.max_bounce_height = r.max_bounce_height;
+    summary.spring_rate = Some(train.spring.rate);
+    summary.spring_mass = Some(train.spring.mass);
+    summary.spring_surge_frequency = Some(0.5 * (train.spring.rate / train.spring.mass).sqrt()).filter(|f| f.is_finite());
+    summary.contact_stiffness = Some(train.contact.stiffness);
+    result.dynamics_convergence = Some(r.convergence);
 }
 
 
@@ -357,5 +472,6 @@ fn summary_of(p: &CycleSummary) -> CamSummary {
         mean_slide_roll_ratio: p.mean_slide_roll_ratio,
         max_flash_temperature: value(p.max_flash_temperature),
         max_flash_temperature_angle_deg: angle(p.max_flash_temperature),
+        ..Default::default()
     }
 }

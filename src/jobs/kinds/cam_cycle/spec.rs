@@ -280,6 +280,14 @@ pub enum LoadSpec {
         #[serde(default, skip_serializing_if = "Option::is_none")]
         external: Option<ForceTable>,
     },
+    /// Valve-train dynamics (direct-acting flat follower, seed 003's arrangement): the contact
+    /// load comes from a lumped multibody model — follower, valve, follower–valve link, the valve
+    /// spring as a chain of masses (surge), a unilateral compliant cam contact and an optional
+    /// valve seat — integrated to its periodic steady state (`physics::valvetrain`). The spring
+    /// preload is carried by the cam on the base circle (as in `valve_train`). Steady running
+    /// only. The result adds the valve's motion, the spring forces at both ends, and
+    /// `summary.separation` / `seating_velocity` / bounce.
+    Dynamic(DynamicLoadSpec),
     /// A measured contact-load spectrum (seed 000 Fig. 4).
     Spectrum {
         /// Cam angles, degrees.
@@ -290,6 +298,124 @@ pub enum LoadSpec {
         #[serde(default)]
         offset: f64,
     },
+}
+
+fn default_shear_modulus() -> f64 {
+    79.3e9
+}
+fn default_spring_density() -> f64 {
+    7850.0
+}
+fn default_spring_elements() -> usize {
+    8
+}
+fn default_surge_damping() -> f64 {
+    0.02
+}
+fn default_train_damping() -> f64 {
+    0.05
+}
+fn default_contact_damping() -> f64 {
+    0.1
+}
+fn default_seat_damping() -> f64 {
+    0.1
+}
+fn default_seat_gap() -> f64 {
+    1e-6
+}
+fn default_dyn_tolerance() -> f64 {
+    1e-8
+}
+fn default_periodic_tolerance() -> f64 {
+    1e-6
+}
+fn default_max_revolutions() -> usize {
+    200
+}
+
+/// A helical valve spring of round wire: its rate `G d⁴/(8 D³ n)`, active mass
+/// `ρ π² d² D n/4` and surge come from the coils.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, ToSchema)]
+#[serde(deny_unknown_fields)]
+pub struct ValveSpringSpec {
+    /// Wire diameter d, m.
+    pub wire_diameter: f64,
+    /// Mean coil diameter D, m.
+    pub mean_diameter: f64,
+    /// Active coils n.
+    pub active_coils: f64,
+    /// Shear modulus G, Pa. Default 79.3e9 (spring steel).
+    #[serde(default = "default_shear_modulus")]
+    pub shear_modulus: f64,
+    /// Wire density ρ, kg/m³. Default 7850.
+    #[serde(default = "default_spring_density")]
+    pub density: f64,
+    /// Interior masses of the spring chain (0: massless spring with a third of its mass on the
+    /// valve). Default 8.
+    #[serde(default = "default_spring_elements")]
+    pub elements: usize,
+    /// Damping ratio of the first surge mode (stiffness-proportional internal damping).
+    /// Default 0.02.
+    #[serde(default = "default_surge_damping")]
+    pub damping_ratio: f64,
+}
+
+/// The valve seat: a unilateral spring–damper stop.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, ToSchema)]
+#[serde(deny_unknown_fields)]
+pub struct SeatSpec {
+    /// Seat contact stiffness, N/m.
+    pub stiffness: f64,
+    /// Damping ratio of the seat on the valve mass (2ζ√(k m_v)). Default 0.1.
+    #[serde(default = "default_seat_damping")]
+    pub damping_ratio: f64,
+    /// Distance of the seat below the valve's closed position (cam on the base circle, which
+    /// carries the preload), m. Default 1e-6.
+    #[serde(default = "default_seat_gap")]
+    pub gap: f64,
+}
+
+/// The valve train of a `dynamic` load.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, ToSchema)]
+#[serde(deny_unknown_fields)]
+pub struct DynamicLoadSpec {
+    /// Spring force at zero lift, N (> 0).
+    pub spring_preload: f64,
+    pub spring: ValveSpringSpec,
+    /// Mass of the part the cam touches (tappet; seed 003: the retainer), kg.
+    pub follower_mass: f64,
+    /// Mass of the valve with what moves rigidly with it (retainer, keepers), kg.
+    pub valve_mass: f64,
+    /// Stiffness of the follower–valve link, N/m. Absent: rigid (one body).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub train_stiffness: Option<f64>,
+    /// Damping ratio of that link on the reduced mass. Default 0.05.
+    #[serde(default = "default_train_damping")]
+    pub train_damping_ratio: f64,
+    /// Cam–follower contact stiffness, N/m. Default: the line contact's secant stiffness at the
+    /// spring preload on the base circle (seed 003 eq. 6).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub contact_stiffness: Option<f64>,
+    /// Damping ratio of the contact on the follower mass (the oil film's damping). Default 0.1.
+    #[serde(default = "default_contact_damping")]
+    pub contact_damping_ratio: f64,
+    /// Valve seat. Absent: no seat (the valve may swing below its closed position).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub seat: Option<SeatSpec>,
+    /// Relative local error tolerance of the integrator (TR-BDF2; absolute part: this times the
+    /// lift and lift × ω). Default 1e-8: the contact load within ~1e-4 of a tight run (seed 003,
+    /// BENCHMARKS.md); the load error is ~100× the tolerance because the contact stiffness
+    /// multiplies position errors.
+    #[serde(default = "default_dyn_tolerance")]
+    pub tolerance: f64,
+    /// Change of the state at the start of a revolution (relative to lift and lift × ω) that
+    /// ends the periodic iteration. Default 1e-6.
+    #[serde(default = "default_periodic_tolerance")]
+    pub periodic_tolerance: f64,
+    /// Most revolutions integrated to reach the periodic state. Default 200.
+    #[serde(default = "default_max_revolutions")]
+    pub max_revolutions: usize,
 }
 
 /// Roller speed model.

@@ -1,0 +1,379 @@
+//! The lumped valve train of a direct-acting follower and its equations of motion.
+//!
+//! Degrees of freedom along the valve axis, positive in the opening direction, measured from the
+//! static position with the cam on its base circle (where every element carries the spring
+//! preload `P`):
+//!
+//! * the follower (tappet; in seed 003 the retainer the cam touches, Table 2 "curve to curve"),
+//!   mass `m_f`;
+//! * the valve with retainer and keepers, mass `m_v` (merged with the follower when the train is
+//!   rigid);
+//! * the valve spring as a chain of `N` interior masses (see [`SpringChain`]).
+//!
+//! Elements (each a preloaded linear spring–damper carrying compression `P + k Δ + c Δ̇`):
+//! cam–follower contact (unilateral: no tension), follower–valve train link, spring segments, and
+//! the valve seat (unilateral stop, no preload). With the follower's displacement `x_f`, cam lift
+//! `s(θ)`, the contact compression is `P + k_c (s − x_f) + c_c (ṡ − ẋ_f)`, cut to zero when the
+//! penetration `P/k_c + s − x_f` or the force itself would be negative (separation).
+//! Each mass obeys Newton's law `m ẍ = Σ forces` — seed 003 eq. (21)–(22), the valve's
+//! Lagrange equation with the spring force, here with the train's compliances (the seed's model
+//! is rigid apart from the contact, eq. (32)) — written as the first-order system
+//! `y = (x, ẋ, W)`, `W` the work done by the cam on the train (`Ẇ = F_c ṡ`, for the energy
+//! balance).
+
+use std::f64::consts::PI;
+
+/// A linear spring–damper link, N/m and N·s/m.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Link {
+    pub stiffness: f64,
+    pub damping: f64,
+}
+
+/// The valve spring as a chain: `elements` interior masses joined by `elements + 1` equal
+/// segments of stiffness `(elements + 1) k_s`. Each segment's mass `m_s/(elements + 1)` is
+/// lumped half on each end node (the fixed end's half goes to ground, the moving end's to the
+/// valve), so the fixed–fixed chain's first mode is
+/// `ω₁ = 2 (N+1) √(k_s/m_s) sin(π/(2(N+1)))` → `π √(k_s/m_s)` (the continuous spring's surge,
+/// error ≈ (π/(2(N+1)))²/6). `elements = 0`: a massless spring with Rayleigh's `m_s/3` on the
+/// valve. Internal damping is stiffness-proportional, `c_seg = β k_seg` with
+/// `β = 2ζ/(π√(k_s/m_s))`, giving the first surge mode the damping ratio `ζ`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SpringChain {
+    /// Rate k_s, N/m.
+    pub rate: f64,
+    /// Active mass m_s, kg.
+    pub mass: f64,
+    /// Interior masses N.
+    pub elements: usize,
+    /// Damping ratio of the first surge mode.
+    pub damping_ratio: f64,
+}
+
+/// A helical compression spring (round wire).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct HelicalSpring {
+    /// Wire diameter d, m.
+    pub wire_diameter: f64,
+    /// Mean coil diameter D, m.
+    pub mean_diameter: f64,
+    /// Active coils n.
+    pub active_coils: f64,
+    /// Shear modulus G, Pa.
+    pub shear_modulus: f64,
+    /// Density ρ, kg/m³.
+    pub density: f64,
+}
+
+impl HelicalSpring {
+    /// Rate `k = G d⁴/(8 D³ n)`, N/m (Shigley, *Mechanical Engineering Design*, eq. 10-9).
+    pub fn rate(&self) -> f64 {
+        self.shear_modulus * self.wire_diameter.powi(4) / (8.0 * self.mean_diameter.powi(3) * self.active_coils)
+    }
+    /// Active mass `ρ (π d²/4) (π D n)`, kg (Shigley eq. 10-24's `W`).
+    pub fn active_mass(&self) -> f64 {
+        self.density * PI * self.wire_diameter.powi(2) / 4.0 * PI * self.mean_diameter * self.active_coils
+    }
+    /// First surge frequency with both ends fixed, `f = d/(2π n D²) √(G/(2ρ))`, Hz (Shigley
+    /// eq. 10-25, = ½√(k/m)).
+    pub fn surge_frequency(&self) -> f64 {
+        self.wire_diameter / (2.0 * PI * self.active_coils * self.mean_diameter.powi(2))
+            * (self.shear_modulus / (2.0 * self.density)).sqrt()
+    }
+}
+
+/// Secant stiffness W/δ of a line contact of length `length` (m) between a cylinder of radius
+/// `radius` (m) and a flat, at load `load` (N), contact modulus E* (Pa): seed 003 eq. (6) with
+/// eq. (3)–(4), `δ = b₀ p₀ (1/E*) (ln(4b/b₀) + 0.5)` with `b₀ p₀ = 2W/(πL)` and the half-width
+/// `b₀ = √(4WR/(πLE*))` (eq. (3) with D = 2R); the seed's `b` in the logarithm is read as the
+/// half-length of the line, `L/2`.
+pub fn line_contact_stiffness(load: f64, length: f64, radius: f64, contact_modulus: f64) -> f64 {
+    let w = load.max(1e-3);
+    let b0 = (4.0 * w * radius / (PI * length * contact_modulus)).sqrt();
+    let log = (2.0 * length / b0).ln() + 0.5;
+    PI * length * contact_modulus / (2.0 * log.max(0.5))
+}
+
+/// Damping coefficient `2ζ√(k m)` of a link of stiffness `k` on mass `m`, N·s/m.
+pub fn damping_from_ratio(ratio: f64, stiffness: f64, mass: f64) -> f64 {
+    2.0 * ratio * (stiffness * mass).sqrt()
+}
+
+/// The valve train.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ValveTrain {
+    /// Follower mass m_f, kg (> 0).
+    pub follower_mass: f64,
+    /// Valve (+ retainer, keepers) mass m_v, kg (≥ 0; > 0 with an elastic train).
+    pub valve_mass: f64,
+    /// Follower–valve link; `None`: rigid (follower and valve one body).
+    pub train: Option<Link>,
+    pub spring: SpringChain,
+    /// Spring force at zero lift, N (> 0: the cam carries it on the base circle).
+    pub preload: f64,
+    /// Cam–follower contact (unilateral).
+    pub contact: Link,
+    /// Valve seat: a unilateral stop `gap` (m) below the closed position (the valve's place with
+    /// the cam on its base circle); `None`: no seat.
+    pub seat: Option<Seat>,
+}
+
+/// The valve seat.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Seat {
+    pub link: Link,
+    /// Distance below the closed position, m (≥ 0).
+    pub gap: f64,
+}
+
+/// One preloaded element between two nodes (`None`: ground), compression
+/// `P + k (x_b − x_a) + c (v_b − v_a)`; it pushes `b` by −compression and `a` by +compression
+/// (`b` lies on the cam side of `a`).
+#[derive(Debug, Clone, Copy)]
+struct Element {
+    b: Option<usize>,
+    a: Option<usize>,
+    k: f64,
+    c: f64,
+    preload: f64,
+}
+
+/// The assembled model: masses and elements.
+#[derive(Debug, Clone)]
+pub struct Assembly {
+    pub masses: Vec<f64>,
+    elements: Vec<Element>,
+    /// Index of the follower and of the valve degree of freedom.
+    pub follower: usize,
+    pub valve: usize,
+    /// Element indices of the spring's segments at the moving (valve) and fixed ends.
+    spring_moving: usize,
+    spring_fixed: usize,
+    contact: Link,
+    preload: f64,
+    seat: Option<Seat>,
+}
+
+impl ValveTrain {
+    /// Masses and elements.
+    pub fn assemble(&self) -> Assembly {
+        let mut masses = vec![self.follower_mass];
+        let mut elements = Vec::new();
+        let follower = 0;
+        let valve = match self.train {
+            None => {
+                masses[0] += self.valve_mass;
+                0
+            }
+            Some(link) => {
+                masses.push(self.valve_mass);
+                elements.push(Element { b: Some(0), a: Some(1), k: link.stiffness, c: link.damping, preload: self.preload });
+                1
+            }
+        };
+        let sp = self.spring;
+        let n = sp.elements;
+        let (spring_moving, spring_fixed);
+        if n == 0 {
+            masses[valve] += sp.mass / 3.0;
+            let beta = surge_beta(&sp);
+            elements.push(Element { b: Some(valve), a: None, k: sp.rate, c: beta * sp.rate, preload: self.preload });
+            spring_moving = elements.len() - 1;
+            spring_fixed = spring_moving;
+        } else {
+            let segs = (n + 1) as f64;
+            let (k_seg, m_node) = (sp.rate * segs, sp.mass / segs);
+            let c_seg = surge_beta(&sp) * k_seg;
+            masses[valve] += 0.5 * m_node;
+            let first = masses.len();
+            for _ in 0..n {
+                masses.push(m_node);
+            }
+            // Valve → node 1 → … → node N → ground (the fixed end).
+            let node = |j: usize| if j == 0 { valve } else { first + j - 1 };
+            spring_moving = elements.len();
+            for j in 0..=n {
+                let a = if j == n { None } else { Some(node(j + 1)) };
+                elements.push(Element { b: Some(node(j)), a, k: k_seg, c: c_seg, preload: self.preload });
+            }
+            spring_fixed = elements.len() - 1;
+        }
+        Assembly { masses, elements, follower, valve, spring_moving, spring_fixed, contact: self.contact, preload: self.preload, seat: self.seat }
+    }
+}
+
+fn surge_beta(sp: &SpringChain) -> f64 {
+    if sp.mass > 0.0 && sp.rate > 0.0 {
+        2.0 * sp.damping_ratio / (PI * (sp.rate / sp.mass).sqrt())
+    } else {
+        0.0
+    }
+}
+
+/// Contact and seat forces and whether each is closed.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Unilateral {
+    /// Cam–follower contact force, N (≥ 0).
+    pub contact: f64,
+    pub contact_closed: bool,
+    /// Event function: positive while the contact is loaded.
+    pub contact_gap: f64,
+    /// Seat force on the valve, N (≥ 0).
+    pub seat: f64,
+    pub seat_closed: bool,
+    pub seat_gap: f64,
+}
+
+impl Assembly {
+    pub fn dofs(&self) -> usize {
+        self.masses.len()
+    }
+
+    pub fn has_seat(&self) -> bool {
+        self.seat.is_some()
+    }
+
+    /// Contact and seat forces at the state `(x, v)` with cam lift `s` and lift rate `sd`.
+    pub fn unilateral(&self, x: &[f64], v: &[f64], s: f64, sd: f64) -> Unilateral {
+        let (kc, cc) = (self.contact.stiffness, self.contact.damping);
+        let pen = self.preload + kc * (s - x[self.follower]);
+        let raw = pen + cc * (sd - v[self.follower]);
+        let contact_gap = pen.min(raw);
+        let contact_closed = contact_gap > 0.0;
+        let (mut seat, mut seat_closed, mut seat_gap) = (0.0, false, -1.0);
+        if let Some(st) = self.seat {
+            let (k, c) = (st.link.stiffness, st.link.damping);
+            let pen = k * (-st.gap - x[self.valve]);
+            let raw = pen - c * v[self.valve];
+            seat_gap = pen.min(raw);
+            seat_closed = seat_gap > 0.0;
+            if seat_closed {
+                seat = raw;
+            }
+        }
+        Unilateral { contact: if contact_closed { raw } else { 0.0 }, contact_closed, contact_gap, seat, seat_closed, seat_gap }
+    }
+
+    fn compression(&self, e: &Element, x: &[f64], v: &[f64]) -> f64 {
+        let xb = e.b.map_or(0.0, |i| x[i]);
+        let xa = e.a.map_or(0.0, |i| x[i]);
+        let vb = e.b.map_or(0.0, |i| v[i]);
+        let va = e.a.map_or(0.0, |i| v[i]);
+        e.preload + e.k * (xb - xa) + e.c * (vb - va)
+    }
+
+    /// Spring force at the moving (retainer) and the fixed end, N (compression positive).
+    pub fn spring_forces(&self, x: &[f64], v: &[f64]) -> (f64, f64) {
+        (self.compression(&self.elements[self.spring_moving], x, v), self.compression(&self.elements[self.spring_fixed], x, v))
+    }
+
+    /// Net force on each mass (`out`, length dofs) and the contact/seat state.
+    pub fn forces(&self, x: &[f64], v: &[f64], s: f64, sd: f64, out: &mut [f64]) -> Unilateral {
+        out.iter_mut().for_each(|f| *f = 0.0);
+        for e in &self.elements {
+            let q = self.compression(e, x, v);
+            if let Some(b) = e.b {
+                out[b] -= q;
+            }
+            if let Some(a) = e.a {
+                out[a] += q;
+            }
+        }
+        let u = self.unilateral(x, v, s, sd);
+        out[self.follower] += u.contact;
+        out[self.valve] += u.seat;
+        u
+    }
+
+    /// Net force on degree of freedom `dof` alone (as [`Assembly::forces`] would give it).
+    pub fn force_on(&self, dof: usize, x: &[f64], v: &[f64], u: &Unilateral) -> f64 {
+        let mut f = 0.0;
+        for e in &self.elements {
+            if e.b == Some(dof) {
+                f -= self.compression(e, x, v);
+            }
+            if e.a == Some(dof) {
+                f += self.compression(e, x, v);
+            }
+        }
+        if dof == self.follower {
+            f += u.contact;
+        }
+        if dof == self.valve {
+            f += u.seat;
+        }
+        f
+    }
+
+    /// `∂F/∂x` and `∂F/∂v` (row-major dofs × dofs) with the contact and seat closed or open.
+    pub fn force_jacobian(&self, contact: bool, seat: bool, kx: &mut [f64], cv: &mut [f64]) {
+        let n = self.dofs();
+        kx.iter_mut().for_each(|v| *v = 0.0);
+        cv.iter_mut().for_each(|v| *v = 0.0);
+        let mut add = |i: usize, j: usize, k: f64, c: f64| {
+            kx[i * n + j] += k;
+            cv[i * n + j] += c;
+        };
+        for e in &self.elements {
+            // Force on b: −(k (x_b − x_a) + …); on a: +(…).
+            if let Some(b) = e.b {
+                add(b, b, -e.k, -e.c);
+                if let Some(a) = e.a {
+                    add(b, a, e.k, e.c);
+                }
+            }
+            if let Some(a) = e.a {
+                add(a, a, -e.k, -e.c);
+                if let Some(b) = e.b {
+                    add(a, b, e.k, e.c);
+                }
+            }
+        }
+        if contact {
+            add(self.follower, self.follower, -self.contact.stiffness, -self.contact.damping);
+        }
+        if seat {
+            if let Some(st) = self.seat {
+                add(self.valve, self.valve, -st.link.stiffness, -st.link.damping);
+            }
+        }
+    }
+
+    /// Kinetic plus stored elastic energy, J (the preloaded elements store `q²/(2k)` at
+    /// compression `q`, the spring part of it).
+    pub fn energy(&self, x: &[f64], v: &[f64], s: f64) -> f64 {
+        let mut e: f64 = self.masses.iter().zip(v).map(|(m, v)| 0.5 * m * v * v).sum();
+        for el in &self.elements {
+            if el.k > 0.0 {
+                let q = el.preload + el.k * (el.b.map_or(0.0, |i| x[i]) - el.a.map_or(0.0, |i| x[i]));
+                e += q * q / (2.0 * el.k);
+            }
+        }
+        let kc = self.contact.stiffness;
+        let q = (self.preload + kc * (s - x[self.follower])).max(0.0);
+        e += q * q / (2.0 * kc);
+        if let Some(st) = self.seat {
+            let q = (st.link.stiffness * (-st.gap - x[self.valve])).max(0.0);
+            e += q * q / (2.0 * st.link.stiffness);
+        }
+        e
+    }
+
+    /// Mass and stiffness matrices of the spring chain alone with both ends held (for its surge
+    /// modes): diagonal masses and row-major stiffness of the interior nodes.
+    pub fn spring_chain_matrices(&self) -> (Vec<f64>, Vec<f64>) {
+        let first = self.valve.max(self.follower) + 1;
+        let m: Vec<f64> = self.masses[first..].to_vec();
+        let n = m.len();
+        let total = self.dofs();
+        let (mut kx, mut cv) = (vec![0.0; total * total], vec![0.0; total * total]);
+        self.force_jacobian(false, false, &mut kx, &mut cv);
+        let mut k = vec![0.0; n * n];
+        for i in 0..n {
+            for j in 0..n {
+                k[i * n + j] = -kx[(first + i) * total + first + j];
+            }
+        }
+        (m, k)
+    }
+}
