@@ -73,7 +73,7 @@ pub struct OperatingSpec {
 /// One point of a viscosity–temperature curve.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, ToSchema)]
 #[serde(deny_unknown_fields)]
-pub struct ViscosityPointSpec {
+pub struct BearingViscosityPoint {
     /// K.
     pub temperature: f64,
     /// Dynamic viscosity, Pa·s.
@@ -91,7 +91,7 @@ fn default_specific_heat() -> f64 {
 /// law (ASTM D341) `log10 log10(ν + 0.7) = a − b log10 T` (ν mm²/s, T K).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize, ToSchema)]
 #[serde(deny_unknown_fields)]
-pub struct LubricantSpec {
+pub struct BearingLubricantSpec {
     /// ISO VG grade (ISO 3448: ν at 40 °C, mm²/s): 10, 15, 22, 32, 46, 68, 100, 150, 220, 320,
     /// 460, 680, 1000. The 100 °C point is the typical value of a VI ≈ 95–100 mineral oil
     /// (e.g. VG 32: 5.4, VG 46: 6.8, VG 68: 8.7 mm²/s) unless `viscosity_100c` gives it.
@@ -103,7 +103,7 @@ pub struct LubricantSpec {
     pub viscosity_100c: Option<f64>,
     /// Instead of `iso_vg`: two (temperature, dynamic viscosity) points.
     #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub viscosity_curve: Option<Vec<ViscosityPointSpec>>,
+    pub viscosity_curve: Option<Vec<BearingViscosityPoint>>,
     /// Density, kg/m³ (taken constant). Default 870.
     #[serde(default = "default_density")]
     pub density: f64,
@@ -115,7 +115,7 @@ pub struct LubricantSpec {
 /// Heat conducted through the housing to the ambient: `k_A (T_eff − T_amb)`.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, ToSchema)]
 #[serde(deny_unknown_fields)]
-pub struct HousingSpec {
+pub struct BearingHousingSpec {
     /// `k_A`: heat transfer coefficient times area, W/K.
     pub heat_transfer: f64,
     /// K.
@@ -138,11 +138,11 @@ fn default_thermal_iterations() -> u32 {
 /// `load.eccentricity_ratio`.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize, ToSchema)]
 #[serde(deny_unknown_fields)]
-pub struct ThermalSpec {
+pub struct BearingThermalSpec {
     /// Oil supply temperature, K.
     #[schema(example = 313.15)]
     pub supply_temperature: f64,
-    pub lubricant: LubricantSpec,
+    pub lubricant: BearingLubricantSpec,
     /// Hot-oil carry-over factor κ, 0 to 1: the share of the recirculating flow `Q − Q_s` that
     /// re-enters the film at the outlet temperature instead of being replaced by supply oil.
     /// Default 0 (the film is fed with supply oil only: Raimondi & Boyd's temperature rise
@@ -151,7 +151,7 @@ pub struct ThermalSpec {
     pub carry_over: f64,
     /// Optional heat path through the housing (default: none, adiabatic bearing).
     #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub housing: Option<HousingSpec>,
+    pub housing: Option<BearingHousingSpec>,
     /// Tolerance on the effective temperature, K (1e-6 to 1). Default 0.01.
     #[serde(default = "default_thermal_tolerance")]
     pub tolerance: f64,
@@ -178,7 +178,7 @@ fn default_max_specific_load() -> f64 {
 /// material's values in.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, ToSchema)]
 #[serde(deny_unknown_fields)]
-pub struct LimitsSpec {
+pub struct BearingLimitsSpec {
     /// Journal roughness Rz, m. Default 2e-6.
     #[serde(default = "default_journal_roughness")]
     pub journal_roughness: f64,
@@ -370,10 +370,10 @@ pub struct BearingSpec {
     /// Heat balance: the film viscosity from the energy balance and the lubricant's
     /// viscosity–temperature law (then `operating.viscosity` is left out).
     #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub thermal: Option<ThermalSpec>,
+    pub thermal: Option<BearingThermalSpec>,
     /// Operating limits: with them the result has a `checks` block.
     #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub limits: Option<LimitsSpec>,
+    pub limits: Option<BearingLimitsSpec>,
     /// Optional outputs: `pressure_field`, `film_field`, `dynamic_coefficients`.
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub outputs: Vec<BearingOutput>,
@@ -502,7 +502,7 @@ pub struct DynamicCoefficientsResult {
 
 /// Heat balance result.
 #[derive(Debug, Clone, PartialEq, Serialize, ToSchema)]
-pub struct ThermalResult {
+pub struct BearingThermalResult {
     /// Effective film temperature, K: the viscosity law gives `viscosity` at it, and it
     /// reproduces `(T_1 + T_2)/2` of the balance within the tolerance.
     pub effective_temperature: f64,
@@ -532,7 +532,7 @@ pub struct ThermalResult {
 
 /// One operating-limit check.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, ToSchema)]
-pub struct CheckResult {
+pub struct BearingCheck {
     pub value: f64,
     pub limit: f64,
     pub pass: bool,
@@ -543,14 +543,14 @@ pub struct CheckResult {
 
 /// Operating-limit checks (with `limits`).
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, ToSchema)]
-pub struct ChecksResult {
+pub struct BearingChecks {
     /// Minimum film, m, against `journal_roughness + bearing_roughness + film_allowance`.
-    pub min_film: CheckResult,
+    pub min_film: BearingCheck,
     /// Specific load `W/(L D)`, Pa.
-    pub specific_load: CheckResult,
+    pub specific_load: BearingCheck,
     /// Maximum bulk temperature, K (with `thermal`).
     #[serde(skip_serializing_if = "Option::is_none")]
-    pub max_temperature: Option<CheckResult>,
+    pub max_temperature: Option<BearingCheck>,
     /// Every check passes.
     pub pass: bool,
 }
@@ -620,10 +620,10 @@ pub struct BearingResult {
     pub dynamic_coefficients: Option<DynamicCoefficientsResult>,
     /// Heat balance (with `thermal`).
     #[serde(skip_serializing_if = "Option::is_none")]
-    pub thermal: Option<ThermalResult>,
+    pub thermal: Option<BearingThermalResult>,
     /// Operating-limit checks (with `limits` and dimensions).
     #[serde(skip_serializing_if = "Option::is_none")]
-    pub checks: Option<ChecksResult>,
+    pub checks: Option<BearingChecks>,
 }
 
 pub use crate::physics::journal::Dimensions;
@@ -1080,16 +1080,16 @@ impl Kind for BearingKind {
 /// the thermal block.
 fn thermal_balance(
     spec: &BearingSpec,
-    t: &ThermalSpec,
+    t: &BearingThermalSpec,
     ws: &mut Workspace,
     observer: &dyn Observer,
-) -> Result<(BearingSpec, Analysis, Option<f64>, ThermalResult), SolveError> {
+) -> Result<(BearingSpec, Analysis, Option<f64>, BearingThermalResult), SolveError> {
     use journal::heat::{balance, Cooling, Flows, Oil, Walther};
     let lu = &t.lubricant;
     let law = match (&lu.iso_vg, &lu.viscosity_curve) {
         (Some(g), _) => Walther::iso_vg(*g, lu.viscosity_100c)?,
         (None, Some(c)) if c.len() == 2 => {
-            let nu = |p: &ViscosityPointSpec| p.viscosity / lu.density * 1e6;
+            let nu = |p: &BearingViscosityPoint| p.viscosity / lu.density * 1e6;
             Walther::through(c[0].temperature, nu(&c[0]), c[1].temperature, nu(&c[1]))?
         }
         _ => return Err(SolveError::invalid("Lubricant", "an ISO VG grade or a two-point viscosity curve")),
@@ -1116,7 +1116,7 @@ fn thermal_balance(
     })?;
     let (s, a, target) = last.expect("the balance ran at least one analysis");
     let tt = b.temperatures;
-    let th = ThermalResult {
+    let th = BearingThermalResult {
         effective_temperature: b.temperature,
         viscosity: b.viscosity,
         kinematic_viscosity: b.viscosity / oil.density * 1e6,
@@ -1167,16 +1167,16 @@ fn dynamic_result(spec: &BearingSpec, a: &Analysis, c: &journal::dynamics::Coeff
 }
 
 /// The operating-limit checks of a result (needs its SI values).
-fn checks(spec: &BearingSpec, r: &BearingResult, lim: &LimitsSpec) -> Option<ChecksResult> {
+fn checks(spec: &BearingSpec, r: &BearingResult, lim: &BearingLimitsSpec) -> Option<BearingChecks> {
     let g = &spec.geometry;
     let (radius, length) = (g.radius?, g.length?);
-    let lower = |value: f64, limit: f64| CheckResult { value, limit, pass: value >= limit, margin: if limit > 0.0 { (value - limit) / limit } else { 0.0 } };
-    let upper = |value: f64, limit: f64| CheckResult { value, limit, pass: value <= limit, margin: (limit - value) / limit };
+    let lower = |value: f64, limit: f64| BearingCheck { value, limit, pass: value >= limit, margin: if limit > 0.0 { (value - limit) / limit } else { 0.0 } };
+    let upper = |value: f64, limit: f64| BearingCheck { value, limit, pass: value <= limit, margin: (limit - value) / limit };
     let min_film = lower(r.min_film?, lim.journal_roughness + lim.bearing_roughness + lim.film_allowance);
     let specific_load = upper(r.load.force? / (2.0 * radius * length), lim.max_specific_load);
     let max_temperature = r.thermal.as_ref().map(|t| upper(t.max_temperature, lim.max_temperature));
     let pass = min_film.pass && specific_load.pass && max_temperature.is_none_or(|c| c.pass);
-    Some(ChecksResult { min_film, specific_load, max_temperature, pass })
+    Some(BearingChecks { min_film, specific_load, max_temperature, pass })
 }
 
 /// The spec path of a journal-bearing solver input field (`physics::journal`).
