@@ -255,3 +255,37 @@ mod properties {
         }
     }
 }
+
+/// Cost of the coefficients against the equilibrium (thread CPU is not available here: wall
+/// time, best of 5). Not a pass/fail test: `cargo test --test it -- --ignored coefficients_cost
+/// --nocapture` prints the table quoted in BENCHMARKS.md (test profile).
+#[test]
+#[ignore]
+fn coefficients_cost() {
+    use std::time::Instant;
+    let best = |f: &mut dyn FnMut()| {
+        let mut t = f64::INFINITY;
+        for _ in 0..5 {
+            let s = Instant::now();
+            f();
+            t = t.min(s.elapsed().as_secs_f64());
+        }
+        t
+    };
+    for (ld, nt, nz) in [(0.5, 41, 21), (0.5, 121, 41), (0.5, 241, 81), (1.0, 121, 41), (1.0, 361, 121)] {
+        let b = Bearing::plain(ld);
+        let s = Settings { circumferential: nt, axial: nz, ..Settings::default() };
+        let w = analyse(&b, &Operating::Eccentricity(0.5), &s, None, None, false, &Silent).unwrap().load;
+        let mut ws = Workspace::new(&b, &s);
+        let mut a = None;
+        let te = best(&mut || {
+            ws = Workspace::new(&b, &s);
+            a = Some(analyse(&b, &Operating::Load(w), &s, Some(&mut ws), None, false, &Silent).unwrap());
+        });
+        let a = a.unwrap();
+        let tc = best(&mut || {
+            coefficients(&b, &a, &s, &mut ws, &Silent).unwrap();
+        });
+        eprintln!("| {ld} | {nt}×{nz} | {:.2} | {:.2} | {:.2} |", te * 1e3, tc * 1e3, tc / te);
+    }
+}
