@@ -104,8 +104,8 @@ pub fn coefficients(
     let (nt, nz, ds) = (l.nt, l.nz, l.dt * l.dz);
     let cos_n = l.cos_n.clone();
     let sin_n = l.sin_n.clone();
-    // linear solves a little tighter than the pressure: they differentiate it
-    let tol = (settings.pressure_tolerance * 1e-2).max(1e-12);
+    // linear solves to the pressure tolerance (relative residual of each perturbed problem)
+    let tol = settings.pressure_tolerance.max(1e-12);
     let one = |_: f64| 1.0;
     let mut disp = vec![0.0; n];
     let mut vel = vec![0.0; n];
