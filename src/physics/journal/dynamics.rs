@@ -14,7 +14,11 @@
 //! (velocities `X' = dX/d(ωt)`, the squeeze term). For the discrete complementarity problem with
 //! strict complementarity this is its exact derivative; in the continuous problem the moving
 //! Reynolds boundary contributes nothing to first order (`P = ∂P/∂n = 0` there). A supply line
-//! stays where the equilibrium put it (a groove is fixed in the bearing).
+//! stays where the equilibrium put it (a groove is fixed in the bearing). Caveat: a film
+//! *reformation* boundary (periodic supply, no groove) has `P = 0` but a non-zero gradient; its
+//! motion is a first-order effect the frozen set leaves out (still the exact derivative of the
+//! discrete problem, but not grid-convergent to the continuum one there). The validation
+//! (BENCHMARKS.md) uses the max-film groove.
 //!
 //! Units: `stiffness` and `damping` are `−∂F̄/∂X` and `−∂F̄/∂X'` in the analysis' scaling
 //! (`F̄` in `W̄` units, `X = x/c`, `X' = ẋ/(cω)`); then `K = stiffness · 6ηωRL(R/c)²/c`,
