@@ -65,9 +65,66 @@ fn richardson(f2: f64, f3: f64, p: f64) -> f64 {
     f3 + (f3 - f2) / (2f64.powf(p) - 1.0)
 }
 
+/// Dynamic coefficients (issue 18): run time of the equilibrium and of the coefficients on the
+/// same workspace, and the coefficients' error against the finest grid, at L/D 0.5 and 1,
+/// load of aligned ε = 0.5 (max-film groove); then seed 002's misaligned profiled case.
+/// `cargo bench --bench journal -- coefficients`.
+fn coefficients_section(reps: usize) {
+    use tribod::physics::journal::dynamics::coefficients;
+    println!("\n## Dynamic coefficients: run time against error (one thread)\n");
+    println!("| L/D | grid | equilibrium CPU ms | coefficients CPU ms | ratio | K̄ err | C̄ err |");
+    println!("| ---: | --- | ---: | ---: | ---: | ---: | ---: |");
+    let grids: &[(usize, usize)] = &[(41, 21), (61, 21), (121, 41), (181, 61), (241, 81), (361, 121), (721, 241)];
+    for ld in [0.5, 1.0] {
+        let b = Bearing::plain(ld);
+        let (fnt, fnz) = grids[grids.len() - 1];
+        let w = analyse(&b, &Operating::Eccentricity(0.5), &settings(fnt, fnz), None, None, false, &Silent).unwrap().load;
+        let mut rows = Vec::new();
+        for &(nt, nz) in grids {
+            let s = settings(nt, nz);
+            let r = if nt * nz > 50_000 { 1 } else { reps };
+            let (ce, _, (a, mut ws)) = best_of(r, || {
+                let mut ws = Workspace::new(&b, &s);
+                let a = analyse(&b, &Operating::Load(w), &s, Some(&mut ws), None, false, &Silent).unwrap();
+                (a, ws)
+            });
+            let (cc, _, c) = best_of(r, || coefficients(&b, &a, &s, &mut ws, &Silent).unwrap());
+            let (k, d) = c.dimensionless(a.load).unwrap();
+            rows.push((nt, nz, ce, cc, k, d));
+        }
+        let (_, _, _, _, kf, df) = rows[rows.len() - 1];
+        let err = |m: &[[f64; 2]; 2], r: &[[f64; 2]; 2]| {
+            let scale = r.iter().flatten().fold(0.0f64, |a, v| a.max(v.abs()));
+            m.iter().flatten().zip(r.iter().flatten()).fold(0.0f64, |a, (x, y)| a.max((x - y).abs())) / scale
+        };
+        for (nt, nz, ce, cc, k, d) in &rows {
+            println!("| {ld} | {nt}×{nz} | {:.2} | {:.2} | {:.2} | {:.1e} | {:.1e} |", ce * 1e3, cc * 1e3, cc / ce, err(k, &kf), err(d, &df));
+        }
+        println!("\nL/D {ld} reference ({fnt}×{fnz}): K̄ = {kf:?}, C̄ = {df:?}\n");
+    }
+    let s = settings(361, 181);
+    let w = analyse(&Bearing::plain(1.25), &Operating::Eccentricity(0.6), &s, None, None, false, &Silent).unwrap().load;
+    let b = seed_case();
+    let mut ws = Workspace::new(&b, &s);
+    let (ce, _, a) = best_of(reps, || analyse(&b, &Operating::Load(w), &s, Some(&mut ws), None, false, &Silent).unwrap());
+    let (cc, _, c) = best_of(reps, || coefficients(&b, &a, &s, &mut ws, &Silent).unwrap());
+    println!(
+        "Seed 002 misaligned profiled, 361×181: equilibrium {:.1} ms, coefficients {:.1} ms (ratio {:.2}); K̄ = {:?}, C̄ = {:?}",
+        ce * 1e3,
+        cc * 1e3,
+        cc / ce,
+        c.dimensionless(a.load).unwrap().0,
+        c.dimensionless(a.load).unwrap().1
+    );
+}
+
 fn main() {
     let quick = std::env::args().any(|a| a == "--quick");
     let reps = if quick { 2 } else { 5 };
+    if std::env::args().any(|a| a == "coefficients") {
+        coefficients_section(reps);
+        return;
+    }
     let plain = Bearing::plain(1.25);
     // the load every case carries: aligned ε = 0.6 on the finest grid of the study
     let grids: &[(usize, usize)] = &[(31, 16), (61, 31), (91, 46), (121, 61), (181, 91), (241, 121), (361, 181), (721, 361), (1441, 721)];

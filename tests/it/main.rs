@@ -16,6 +16,7 @@ mod ehl_validation;
 mod examples_run;
 mod house;
 mod http_api;
+mod journal_dynamics;
 mod journal_examples;
 mod journal_kinds;
 mod journal_stability;

@@ -16,6 +16,15 @@
 //!   (Lund & Thomsen's power loss) with the cavitated zone filled by streamers: there only the
 //!   fraction `h_c/h` of the gap is sheared, `h_c` being the film at the rupture line; it
 //!   reproduces the paper's aligned f = 2.2178 (Table 2) within 0.4 %.
+//! - Dynamic coefficients (`outputs: ["dynamic_coefficients"]`): x along the applied load, y
+//!   perpendicular to it, 90° ahead in the direction of rotation; `K_ij = −∂F_i/∂x_j`,
+//!   `C_ij = −∂F_i/∂ẋ_j` (F: film force on the journal), N/m and N·s/m; dimensionless
+//!   `K̄ = K c/W`, `C̄ = C c ω/W` (W the film load, Lund's convention). From the Reynolds equation
+//!   linearised about the equilibrium with its cavitation set (the rupture boundary's motion has
+//!   no first-order effect); a supply groove stays where the equilibrium put it.
+//! - Heat balance (`thermal`): bulk model of ISO 7902-1 / DIN 31652-2, temperatures in K
+//!   (`physics::journal::heat`); `checks` (with `limits`) compare the minimum film, the specific
+//!   load and the maximum bulk temperature with configurable limits.
 
 use crate::jobs::kind::{Kind, Limits, OutputInfo, Validation};
 use crate::physics::journal::{self, Analysis, Bearing, Guess, Misalignment, Operating, Profile, Settings, Supply, Workspace};
@@ -54,9 +63,140 @@ pub struct OperatingSpec {
     /// Journal speed, rev/min.
     #[schema(example = 3000.0)]
     pub speed_rpm: f64,
-    /// Dynamic viscosity, Pa·s.
+    /// Dynamic viscosity of the film, Pa·s. Required unless `thermal` is given (then the heat
+    /// balance finds it; a viscosity given alongside is not allowed).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
     #[schema(example = 0.0293)]
+    pub viscosity: Option<f64>,
+}
+
+/// One point of a viscosity–temperature curve.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, ToSchema)]
+#[serde(deny_unknown_fields)]
+pub struct BearingViscosityPoint {
+    /// K.
+    pub temperature: f64,
+    /// Dynamic viscosity, Pa·s.
     pub viscosity: f64,
+}
+
+fn default_density() -> f64 {
+    870.0
+}
+fn default_specific_heat() -> f64 {
+    2000.0
+}
+
+/// Lubricant of the heat balance: an ISO VG grade or a two-point curve, both through Walther's
+/// law (ASTM D341) `log10 log10(ν + 0.7) = a − b log10 T` (ν mm²/s, T K).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, ToSchema)]
+#[serde(deny_unknown_fields)]
+pub struct BearingLubricantSpec {
+    /// ISO VG grade (ISO 3448: ν at 40 °C, mm²/s): 10, 15, 22, 32, 46, 68, 100, 150, 220, 320,
+    /// 460, 680, 1000. The 100 °C point is the typical value of a VI ≈ 95–100 mineral oil
+    /// (e.g. VG 32: 5.4, VG 46: 6.8, VG 68: 8.7 mm²/s) unless `viscosity_100c` gives it.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    #[schema(example = 46)]
+    pub iso_vg: Option<u32>,
+    /// With `iso_vg`: kinematic viscosity at 100 °C, mm²/s (from the oil's data sheet).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub viscosity_100c: Option<f64>,
+    /// Instead of `iso_vg`: two (temperature, dynamic viscosity) points.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub viscosity_curve: Option<Vec<BearingViscosityPoint>>,
+    /// Density, kg/m³ (taken constant). Default 870.
+    #[serde(default = "default_density")]
+    pub density: f64,
+    /// Specific heat, J/(kg·K). Default 2000.
+    #[serde(default = "default_specific_heat")]
+    pub specific_heat: f64,
+}
+
+/// Heat conducted through the housing to the ambient: `k_A (T_eff − T_amb)`.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, ToSchema)]
+#[serde(deny_unknown_fields)]
+pub struct BearingHousingSpec {
+    /// `k_A`: heat transfer coefficient times area, W/K.
+    pub heat_transfer: f64,
+    /// K.
+    pub ambient_temperature: f64,
+}
+
+fn default_thermal_tolerance() -> f64 {
+    0.01
+}
+fn default_thermal_iterations() -> u32 {
+    30
+}
+
+/// Heat balance (ISO 7902-1 / DIN 31652-2 bulk model, see the kind's description): the film's
+/// effective temperature `T_eff = (T_1 + T_2)/2` from the friction power against the heat the
+/// oil flows carry (side leakage at `T_eff`, drained recirculation at `T_2`) and the housing
+/// conducts; the film inlet `T_1 = T_s + κ (Q − Q_s)/Q (T_2 − T_s)` mixes supply oil with the
+/// carried-over hot oil. Iterated with the viscosity–temperature law. Needs `geometry.radius`,
+/// `length`, `radial_clearance`, `operating.speed_rpm` and a `load.force` or
+/// `load.eccentricity_ratio`.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, ToSchema)]
+#[serde(deny_unknown_fields)]
+pub struct BearingThermalSpec {
+    /// Oil supply temperature, K.
+    #[schema(example = 313.15)]
+    pub supply_temperature: f64,
+    pub lubricant: BearingLubricantSpec,
+    /// Hot-oil carry-over factor κ, 0 to 1: the share of the recirculating flow `Q − Q_s` that
+    /// re-enters the film at the outlet temperature instead of being replaced by supply oil.
+    /// Default 0 (the film is fed with supply oil only: Raimondi & Boyd's temperature rise
+    /// `ΔT = P/(ρ c_p (Q − Q_s/2))`).
+    #[serde(default)]
+    pub carry_over: f64,
+    /// Optional heat path through the housing (default: none, adiabatic bearing).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub housing: Option<BearingHousingSpec>,
+    /// Tolerance on the effective temperature, K (1e-6 to 1). Default 0.01.
+    #[serde(default = "default_thermal_tolerance")]
+    pub tolerance: f64,
+    /// Cap on bearing analyses of the balance (2 to 200). Default 30.
+    #[serde(default = "default_thermal_iterations")]
+    pub max_iterations: u32,
+}
+
+fn default_journal_roughness() -> f64 {
+    2e-6
+}
+fn default_bearing_roughness() -> f64 {
+    3e-6
+}
+fn default_max_temperature() -> f64 {
+    383.15
+}
+fn default_max_specific_load() -> f64 {
+    5e6
+}
+
+/// Operating limits (ISO 7902-3 / DIN 31652-3 style); `{}` takes every default. The defaults
+/// are conservative values for a white-metal plain bearing; put your standard's or your
+/// material's values in.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, ToSchema)]
+#[serde(deny_unknown_fields)]
+pub struct BearingLimitsSpec {
+    /// Journal roughness Rz, m. Default 2e-6.
+    #[serde(default = "default_journal_roughness")]
+    pub journal_roughness: f64,
+    /// Bearing (bore) roughness Rz, m. Default 3e-6.
+    #[serde(default = "default_bearing_roughness")]
+    pub bearing_roughness: f64,
+    /// Extra allowance in the permissible film, m (shaft deflection, misalignment that is not
+    /// modelled in `misalignment`, filtration). Default 0. The permissible minimum film is
+    /// `journal_roughness + bearing_roughness + film_allowance`; a `misalignment` given in the
+    /// spec is already in the computed minimum film.
+    #[serde(default)]
+    pub film_allowance: f64,
+    /// Permissible maximum (bulk outlet) temperature, K; checked with `thermal`. Default 383.15 (110 °C).
+    #[serde(default = "default_max_temperature")]
+    pub max_temperature: f64,
+    /// Permissible specific load `W/(L D)`, Pa. Default 5e6.
+    #[serde(default = "default_max_specific_load")]
+    pub max_specific_load: f64,
 }
 
 /// The operating point: exactly one of `eccentricity_ratio`, `aligned_eccentricity_ratio`,
@@ -188,6 +328,9 @@ pub enum BearingOutput {
     PressureField,
     /// Dimensionless film at every (downsampled) grid node, in the `field` table.
     FilmField,
+    /// Stiffness and damping coefficients at the equilibrium (linearised Reynolds), block
+    /// `dynamic_coefficients`.
+    DynamicCoefficients,
 }
 
 /// Keep every n-th node of the fields (the last node of each direction is always kept).
@@ -224,7 +367,14 @@ pub struct BearingSpec {
     pub supply: SupplySpec,
     #[serde(default)]
     pub solver: SolverSpec,
-    /// Optional outputs: `pressure_field`, `film_field`.
+    /// Heat balance: the film viscosity from the energy balance and the lubricant's
+    /// viscosity–temperature law (then `operating.viscosity` is left out).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub thermal: Option<BearingThermalSpec>,
+    /// Operating limits: with them the result has a `checks` block.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub limits: Option<BearingLimitsSpec>,
+    /// Optional outputs: `pressure_field`, `film_field`, `dynamic_coefficients`.
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub outputs: Vec<BearingOutput>,
     /// Downsampling of the fields.
@@ -292,6 +442,119 @@ pub struct FieldTable {
     pub film_dimensionless: Option<Vec<f64>>,
 }
 
+/// Stiffness coefficients `K_ij = −∂F_i/∂x_j`: x along the load, y perpendicular to it, 90°
+/// ahead in the direction of rotation; F the film force on the journal, x the journal centre.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, ToSchema)]
+pub struct StiffnessResult {
+    pub kxx: f64,
+    pub kxy: f64,
+    pub kyx: f64,
+    pub kyy: f64,
+}
+
+/// Damping coefficients `C_ij = −∂F_i/∂ẋ_j`, same frame as the stiffness.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, ToSchema)]
+pub struct DampingResult {
+    pub cxx: f64,
+    pub cxy: f64,
+    pub cyx: f64,
+    pub cyy: f64,
+}
+
+/// Dynamic coefficients of the film at the equilibrium (`outputs: ["dynamic_coefficients"]`),
+/// from the linearised perturbation of the Reynolds equation on the equilibrium's cavitation set
+/// (Lund 1987); a supply groove stays where the equilibrium put it. Frame: x along the applied
+/// load, y perpendicular, 90° ahead in the direction of rotation (the journal turns from x to y);
+/// for small motions `ΔF = −K Δx − C Δẋ`.
+#[derive(Debug, Clone, PartialEq, Serialize, ToSchema)]
+pub struct DynamicCoefficientsResult {
+    /// N/m (with dimensions).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub stiffness: Option<StiffnessResult>,
+    /// N·s/m (with dimensions).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub damping: Option<DampingResult>,
+    /// `K̄ = K c/W` (W the film load); absent at zero load.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub stiffness_dimensionless: Option<StiffnessResult>,
+    /// `C̄ = C c ω/W`; absent at zero load.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub damping_dimensionless: Option<DampingResult>,
+    /// Rigid symmetric rotor on this film (Lund): whirl frequency / running speed at the
+    /// stability threshold; absent at zero load.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub whirl_ratio: Option<f64>,
+    /// Threshold rotor mass per bearing `M̄ = m c ω²/W` above which the rigid rotor whirls
+    /// (oil whip); absent when the film is stable for any mass or at zero load.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub critical_mass_dimensionless: Option<f64>,
+    /// The threshold mass per bearing, kg (with dimensions).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub critical_mass: Option<f64>,
+    /// For a rotor whose weight is the load (m = W/g): the threshold speed at this Sommerfeld
+    /// number, `ω_th = √(M̄ g/c)`, rev/min (with dimensions). At another speed the Sommerfeld
+    /// number and the coefficients change; repeat the analysis there to confirm.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub threshold_speed_rpm: Option<f64>,
+    /// The four linear solves: CG iterations, largest relative residual, tolerance.
+    pub convergence: Convergence,
+}
+
+/// Heat balance result.
+#[derive(Debug, Clone, PartialEq, Serialize, ToSchema)]
+pub struct BearingThermalResult {
+    /// Effective film temperature, K: the viscosity law gives `viscosity` at it, and it
+    /// reproduces `(T_1 + T_2)/2` of the balance within the tolerance.
+    pub effective_temperature: f64,
+    /// The film viscosity used, Pa·s (at `effective_temperature`).
+    pub viscosity: f64,
+    /// mm²/s.
+    pub kinematic_viscosity: f64,
+    /// `T_1`, film inlet after mixing with carried-over oil, K.
+    pub inlet_temperature: f64,
+    /// `T_2`, film outlet, K.
+    pub outlet_temperature: f64,
+    /// Maximum bulk temperature (= `T_2` in the bulk model), K.
+    pub max_temperature: f64,
+    /// K.
+    pub supply_temperature: f64,
+    /// Friction power at `T_eff`, W.
+    pub power_loss: f64,
+    /// Film inflow at the supply line `Q`, m³/s.
+    pub film_inflow: f64,
+    /// Side leakage `Q_s`, m³/s.
+    pub side_flow: f64,
+    /// Supply oil needed: `Q_s + (1 − κ)(Q − Q_s)`, m³/s.
+    pub supply_flow: f64,
+    /// The balance: bearing analyses, |T_eff − T| in K, tolerance.
+    pub convergence: Convergence,
+}
+
+/// One operating-limit check.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, ToSchema)]
+pub struct BearingCheck {
+    pub value: f64,
+    pub limit: f64,
+    pub pass: bool,
+    /// Relative margin: `(value − limit)/limit` for a lower limit, `(limit − value)/limit` for
+    /// an upper one; negative when the check fails.
+    pub margin: f64,
+}
+
+/// Operating-limit checks (with `limits`).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, ToSchema)]
+pub struct BearingChecks {
+    /// Minimum film, m, against `journal_roughness + bearing_roughness + film_allowance`.
+    pub min_film: BearingCheck,
+    /// Specific load `W/(L D)`, Pa.
+    pub specific_load: BearingCheck,
+    /// Maximum bulk temperature, K (with `thermal`).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub max_temperature: Option<BearingCheck>,
+    /// Every check passes.
+    pub pass: bool,
+}
+
 /// Result of a `bearing` job.
 #[derive(Debug, Clone, PartialEq, Serialize, ToSchema)]
 pub struct BearingResult {
@@ -352,6 +615,15 @@ pub struct BearingResult {
     /// Requested fields (`outputs`).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub field: Option<FieldTable>,
+    /// Stiffness and damping (`outputs: ["dynamic_coefficients"]`).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub dynamic_coefficients: Option<DynamicCoefficientsResult>,
+    /// Heat balance (with `thermal`).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub thermal: Option<BearingThermalResult>,
+    /// Operating-limit checks (with `limits` and dimensions).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub checks: Option<BearingChecks>,
 }
 
 pub use crate::physics::journal::Dimensions;
@@ -366,6 +638,22 @@ impl BearingSpec {
         }
     }
 
+    /// Radius, length, clearance and speed are given (the viscosity may come from `thermal`).
+    pub fn has_size_and_speed(&self) -> bool {
+        let g = &self.geometry;
+        g.radius.is_some() && g.length.is_some() && g.radial_clearance.is_some() && self.operating.is_some()
+    }
+
+    /// The spec with the film viscosity `eta` (Pa·s) in place of the heat balance.
+    pub fn with_viscosity(&self, eta: f64) -> BearingSpec {
+        let mut s = self.clone();
+        if let Some(o) = &mut s.operating {
+            o.viscosity = Some(eta);
+        }
+        s.thermal = None;
+        s
+    }
+
     pub fn dimensions(&self) -> Option<Dimensions> {
         let g = &self.geometry;
         let o = self.operating?;
@@ -374,7 +662,7 @@ impl BearingSpec {
             length: g.length?,
             clearance: g.radial_clearance?,
             omega: crate::physics::units::rpm_to_rad_per_s(o.speed_rpm),
-            viscosity: o.viscosity,
+            viscosity: o.viscosity?,
         })
     }
 
@@ -444,7 +732,18 @@ pub fn validate_bearing(spec: &BearingSpec, limits: &Limits, v: &mut Validation,
     }
     if let Some(o) = &spec.operating {
         v.positive(&px("/operating/speed_rpm"), o.speed_rpm);
-        v.positive(&px("/operating/viscosity"), o.viscosity);
+        match (o.viscosity, &spec.thermal) {
+            (Some(eta), None) => {
+                v.positive(&px("/operating/viscosity"), eta);
+            }
+            (None, None) => {
+                v.error(&px("/operating/viscosity"), "is required (or give a thermal block)");
+            }
+            (Some(_), Some(_)) => {
+                v.error(&px("/operating/viscosity"), "leave it out with thermal: the heat balance finds the viscosity");
+            }
+            (None, Some(_)) => {}
+        }
     }
     let l = &spec.load;
     let given = [l.eccentricity_ratio.is_some(), l.aligned_eccentricity_ratio.is_some(), l.force.is_some(), l.sommerfeld_number.is_some()]
@@ -470,7 +769,7 @@ pub fn validate_bearing(spec: &BearingSpec, limits: &Limits, v: &mut Validation,
     }
     if let Some(f) = l.force {
         v.positive(&px("/load/force"), f);
-        v.check(spec.dimensions().is_some(), &px("/load/force"), "needs geometry.radius, geometry.length, geometry.radial_clearance and operating");
+        v.check(spec.has_size_and_speed(), &px("/load/force"), "needs geometry.radius, geometry.length, geometry.radial_clearance and operating");
     }
     if let Some(s) = l.sommerfeld_number {
         v.positive(&px("/load/sommerfeld_number"), s);
@@ -500,6 +799,69 @@ pub fn validate_bearing(spec: &BearingSpec, limits: &Limits, v: &mut Validation,
     v.count_in_range(&px("/solver/max_load_iterations"), s.max_load_iterations as usize, 1, 200);
     v.count_in_range(&px("/solver/max_cycles"), s.max_cycles as usize, 10, 10_000);
     v.in_range(&px("/solver/min_film"), s.min_film, 1e-6, 0.5);
+    if !prefix.is_empty() {
+        v.check(spec.thermal.is_none(), &px("/thermal"), "not available in an optimisation");
+        v.check(spec.limits.is_none(), &px("/limits"), "not available in an optimisation");
+        v.check(!spec.outputs.contains(&BearingOutput::DynamicCoefficients), &px("/outputs"), "dynamic_coefficients is not available in an optimisation");
+    }
+    if let Some(t) = &spec.thermal {
+        v.check(spec.has_size_and_speed(), &px("/thermal"), "needs geometry.radius, geometry.length, geometry.radial_clearance and operating.speed_rpm");
+        v.check(
+            l.force.is_some() || l.eccentricity_ratio.is_some(),
+            &px("/thermal"),
+            "needs load.force or load.eccentricity_ratio (a dimensionless load would change the force with the viscosity)",
+        );
+        v.in_range(&px("/thermal/supply_temperature"), t.supply_temperature, 200.0, 600.0);
+        v.in_range(&px("/thermal/carry_over"), t.carry_over, 0.0, 1.0);
+        v.in_range(&px("/thermal/tolerance"), t.tolerance, 1e-6, 1.0);
+        v.count_in_range(&px("/thermal/max_iterations"), t.max_iterations as usize, 2, 200);
+        let lu = &t.lubricant;
+        v.in_range(&px("/thermal/lubricant/density"), lu.density, 100.0, 3000.0);
+        v.in_range(&px("/thermal/lubricant/specific_heat"), lu.specific_heat, 100.0, 10000.0);
+        v.check(
+            lu.iso_vg.is_some() != lu.viscosity_curve.is_some(),
+            &px("/thermal/lubricant"),
+            "give exactly one of iso_vg, viscosity_curve",
+        );
+        if let Some(g) = lu.iso_vg {
+            v.check(
+                journal::heat::ISO_VG_100C.iter().any(|(x, _)| *x == g),
+                &px("/thermal/lubricant/iso_vg"),
+                "one of 10, 15, 22, 32, 46, 68, 100, 150, 220, 320, 460, 680, 1000",
+            );
+        }
+        if let Some(n) = lu.viscosity_100c {
+            v.check(lu.iso_vg.is_some(), &px("/thermal/lubricant/viscosity_100c"), "only with iso_vg");
+            v.in_range(&px("/thermal/lubricant/viscosity_100c"), n, 0.5, (lu.iso_vg.unwrap_or(1000) as f64) * 0.999);
+        }
+        if let Some(c) = &lu.viscosity_curve {
+            v.check(c.len() == 2, &px("/thermal/lubricant/viscosity_curve"), "two points");
+            for (i, pt) in c.iter().enumerate() {
+                v.in_range(&px(&format!("/thermal/lubricant/viscosity_curve/{i}/temperature")), pt.temperature, 200.0, 600.0);
+                v.in_range(&px(&format!("/thermal/lubricant/viscosity_curve/{i}/viscosity")), pt.viscosity, 1e-5, 100.0);
+            }
+            if c.len() == 2 {
+                let (a, b) = (c[0], c[1]);
+                v.check(
+                    (a.temperature - b.temperature).abs() > 1.0 && (a.temperature - b.temperature) * (a.viscosity - b.viscosity) < 0.0,
+                    &px("/thermal/lubricant/viscosity_curve"),
+                    "two temperatures at least 1 K apart, the viscosity falling with temperature",
+                );
+            }
+        }
+        if let Some(h) = &t.housing {
+            v.in_range(&px("/thermal/housing/heat_transfer"), h.heat_transfer, 0.0, 1e6);
+            v.in_range(&px("/thermal/housing/ambient_temperature"), h.ambient_temperature, 200.0, 600.0);
+        }
+    }
+    if let Some(lim) = &spec.limits {
+        v.check(spec.has_size_and_speed(), &px("/limits"), "needs geometry.radius, geometry.length, geometry.radial_clearance and operating");
+        v.in_range(&px("/limits/journal_roughness"), lim.journal_roughness, 0.0, 1e-3);
+        v.in_range(&px("/limits/bearing_roughness"), lim.bearing_roughness, 0.0, 1e-3);
+        v.in_range(&px("/limits/film_allowance"), lim.film_allowance, 0.0, 1e-3);
+        v.in_range(&px("/limits/max_temperature"), lim.max_temperature, 200.0, 800.0);
+        v.positive(&px("/limits/max_specific_load"), lim.max_specific_load);
+    }
     v.count_in_range(&px("/field_stride/circumferential"), spec.field_stride.circumferential, 1, 1000);
     v.count_in_range(&px("/field_stride/axial"), spec.field_stride.axial, 1, 1000);
 }
@@ -623,6 +985,9 @@ pub fn to_result(spec: &BearingSpec, a: &Analysis, target: Option<f64>) -> Beari
             .map(|&(c, z, s)| GridSteps { circumferential: c, axial: z, steps: s })
             .collect(),
         field,
+        dynamic_coefficients: None,
+        thermal: None,
+        checks: None,
     }
 }
 
@@ -633,7 +998,7 @@ pub fn solve_spec(
     workspace: Option<&mut Workspace>,
     observer: &dyn Observer,
 ) -> Result<(Analysis, BearingResult), SolveError> {
-    let want_fields = !spec.outputs.is_empty();
+    let want_fields = spec.outputs.iter().any(|o| matches!(o, BearingOutput::PressureField | BearingOutput::FilmField));
     let a = journal::analyse(&spec.bearing(), &load.0, &spec.settings(), workspace, load.1, want_fields, observer)?;
     let r = to_result(spec, &a, load.2);
     Ok((a, r))
@@ -644,7 +1009,9 @@ impl Kind for BearingKind {
     const SOLVER_VERSION: &'static str = "bearing-1";
     const DESCRIPTION: &'static str = "Finite-length hydrodynamic journal bearing (seed 002): Reynolds \
         equation with Reynolds cavitation solved as a complementarity problem (active set + multigrid), \
-        misalignment, axial edge profiles, load balance; Raimondi–Boyd figures and SI values.";
+        misalignment, axial edge profiles, load balance; Raimondi–Boyd figures and SI values; optional \
+        heat balance (effective temperature, ISO VG/Walther viscosity), operating-limit checks and \
+        stiffness/damping coefficients (linearised Reynolds) with the rigid-rotor stability threshold.";
     const TABLES: &'static [&'static str] = &["field"];
     type Spec = BearingSpec;
     type Output = BearingResult;
@@ -664,6 +1031,7 @@ impl Kind for BearingKind {
         &[
             OutputInfo { name: "pressure_field", description: "dimensionless pressure at the grid nodes (table `field`, downsampled by `field_stride`)" },
             OutputInfo { name: "film_field", description: "dimensionless film at the grid nodes (table `field`, downsampled by `field_stride`)" },
+            OutputInfo { name: "dynamic_coefficients", description: "stiffness and damping coefficients at the equilibrium (linearised Reynolds; x along the load, y 90° ahead in rotation), dimensionless and SI, rigid-rotor stability threshold" },
         ]
     }
 
@@ -673,15 +1041,142 @@ impl Kind for BearingKind {
 
     fn solve(spec: &BearingSpec, observer: &dyn Observer) -> Result<BearingResult, SolveError> {
         let solved = || {
-            observer.progress(0.0, "load");
-            let load = resolve_load(spec, observer)?;
-            observer.progress(0.3, "analysis");
-            let (_, r) = solve_spec(spec, load, None, observer)?;
+            let bearing = spec.bearing();
+            let settings = spec.settings();
+            let mut ws = Workspace::new(&bearing, &settings);
+            let (spec_eff, a, mut r) = match &spec.thermal {
+                Some(t) => {
+                    observer.progress(0.0, "heat balance");
+                    let (spec_eff, a, target, th) = thermal_balance(spec, t, &mut ws, observer)?;
+                    let mut r = to_result(&spec_eff, &a, target);
+                    r.thermal = Some(th);
+                    (spec_eff, a, r)
+                }
+                None => {
+                    observer.progress(0.0, "load");
+                    let load = resolve_load(spec, observer)?;
+                    observer.progress(0.3, "analysis");
+                    let (a, r) = solve_spec(spec, load, Some(&mut ws), observer)?;
+                    (spec.clone(), a, r)
+                }
+            };
+            if spec.outputs.contains(&BearingOutput::DynamicCoefficients) {
+                observer.progress(0.8, "dynamic coefficients");
+                let c = journal::dynamics::coefficients(&bearing, &a, &settings, &mut ws, observer)?;
+                r.dynamic_coefficients = Some(dynamic_result(&spec_eff, &a, &c));
+            }
+            if let Some(lim) = &spec.limits {
+                r.checks = checks(&spec_eff, &r, lim);
+            }
             observer.progress(1.0, "done");
             Ok(r)
         };
         solved().map_err(|e: SolveError| e.in_spec(bearing_spec_path))
     }
+}
+
+/// The heat balance: bearing analyses at trial viscosities until the effective temperature
+/// reproduces itself. Returns the spec at the final viscosity, its analysis, the load target and
+/// the thermal block.
+fn thermal_balance(
+    spec: &BearingSpec,
+    t: &BearingThermalSpec,
+    ws: &mut Workspace,
+    observer: &dyn Observer,
+) -> Result<(BearingSpec, Analysis, Option<f64>, BearingThermalResult), SolveError> {
+    use journal::heat::{balance, Cooling, Flows, Oil, Walther};
+    let lu = &t.lubricant;
+    let law = match (&lu.iso_vg, &lu.viscosity_curve) {
+        (Some(g), _) => Walther::iso_vg(*g, lu.viscosity_100c)?,
+        (None, Some(c)) if c.len() == 2 => {
+            let nu = |p: &BearingViscosityPoint| p.viscosity / lu.density * 1e6;
+            Walther::through(c[0].temperature, nu(&c[0]), c[1].temperature, nu(&c[1]))?
+        }
+        _ => return Err(SolveError::invalid("Lubricant", "an ISO VG grade or a two-point viscosity curve")),
+    };
+    let oil = Oil { law, density: lu.density, specific_heat: lu.specific_heat };
+    let cool = Cooling {
+        supply_temperature: t.supply_temperature,
+        carry_over: t.carry_over,
+        housing: t.housing.map(|h| (h.heat_transfer, h.ambient_temperature)),
+        tolerance: t.tolerance,
+        max_iterations: t.max_iterations,
+    };
+    let mut guess: Option<Guess> = None;
+    let mut last: Option<(BearingSpec, Analysis, Option<f64>)> = None;
+    let b = balance(&oil, &cool, observer, |eta| {
+        let s = spec.with_viscosity(eta);
+        let d = s.dimensions().ok_or_else(|| SolveError::invalid("/thermal", "needs dimensions"))?;
+        let (op, g0, target) = resolve_load(&s, observer)?;
+        let (a, _) = solve_spec(&s, (op, guess.or(g0), target), Some(&mut *ws), observer)?;
+        guess = Some(Guess { eccentricity: a.eccentricity, attitude: a.attitude });
+        let f = Flows { power: d.power(a.friction_force), inflow: d.flow(a.flow_variable), side_flow: d.flow(a.side_flow_variable) };
+        last = Some((s, a, target));
+        Ok(f)
+    })?;
+    let (s, a, target) = last.expect("the balance ran at least one analysis");
+    let tt = b.temperatures;
+    let th = BearingThermalResult {
+        effective_temperature: b.temperature,
+        viscosity: b.viscosity,
+        kinematic_viscosity: b.viscosity / oil.density * 1e6,
+        inlet_temperature: tt.inlet,
+        outlet_temperature: tt.outlet,
+        max_temperature: tt.outlet,
+        supply_temperature: t.supply_temperature,
+        power_loss: b.flows.power,
+        film_inflow: b.flows.inflow,
+        side_flow: b.flows.side_flow,
+        supply_flow: tt.supply_flow,
+        convergence: b.convergence,
+    };
+    crate::physics::ensure_finite(
+        "heat balance",
+        [th.effective_temperature, th.viscosity, th.inlet_temperature, th.outlet_temperature, th.power_loss, th.film_inflow, th.side_flow, th.supply_flow].iter(),
+    )?;
+    Ok((s, a, target, th))
+}
+
+/// The coefficients block: dimensionless always (at a positive load), SI with dimensions.
+fn dynamic_result(spec: &BearingSpec, a: &Analysis, c: &journal::dynamics::Coefficients) -> DynamicCoefficientsResult {
+    let d = spec.dimensions();
+    let kmat = |m: [[f64; 2]; 2], s: f64| StiffnessResult { kxx: m[0][0] * s, kxy: m[0][1] * s, kyx: m[1][0] * s, kyy: m[1][1] * s };
+    let cmat = |m: [[f64; 2]; 2], s: f64| DampingResult { cxx: m[0][0] * s, cxy: m[0][1] * s, cyx: m[1][0] * s, cyy: m[1][1] * s };
+    let nondim = c.dimensionless(a.load);
+    let stab = nondim.map(|(k, cc)| journal::dynamics::stability(k, cc));
+    // K = (−∂F̄/∂X) · 6ηωRL(R/c)²/c, C = (−∂F̄/∂X') · 6ηωRL(R/c)²/(cω)
+    let critical_mass = match (d, stab.and_then(|s| s.critical_mass)) {
+        (Some(d), Some(m)) => Some(m * a.load * d.load_scale() / (d.clearance * d.omega * d.omega)),
+        _ => None,
+    };
+    let threshold_speed_rpm = match (d, stab.and_then(|s| s.critical_mass)) {
+        (Some(d), Some(m)) => Some((m * 9.80665 / d.clearance).sqrt() * 60.0 / (2.0 * PI)),
+        _ => None,
+    };
+    DynamicCoefficientsResult {
+        stiffness: d.map(|d| kmat(c.stiffness, d.load_scale() / d.clearance)),
+        damping: d.map(|d| cmat(c.damping, d.load_scale() / (d.clearance * d.omega))),
+        stiffness_dimensionless: nondim.map(|(k, _)| kmat(k, 1.0)),
+        damping_dimensionless: nondim.map(|(_, cc)| cmat(cc, 1.0)),
+        whirl_ratio: stab.map(|s| s.whirl_ratio),
+        critical_mass_dimensionless: stab.and_then(|s| s.critical_mass),
+        critical_mass,
+        threshold_speed_rpm,
+        convergence: c.convergence.clone(),
+    }
+}
+
+/// The operating-limit checks of a result (needs its SI values).
+fn checks(spec: &BearingSpec, r: &BearingResult, lim: &BearingLimitsSpec) -> Option<BearingChecks> {
+    let g = &spec.geometry;
+    let (radius, length) = (g.radius?, g.length?);
+    let lower = |value: f64, limit: f64| BearingCheck { value, limit, pass: value >= limit, margin: if limit > 0.0 { (value - limit) / limit } else { 0.0 } };
+    let upper = |value: f64, limit: f64| BearingCheck { value, limit, pass: value <= limit, margin: (limit - value) / limit };
+    let min_film = lower(r.min_film?, lim.journal_roughness + lim.bearing_roughness + lim.film_allowance);
+    let specific_load = upper(r.load.force? / (2.0 * radius * length), lim.max_specific_load);
+    let max_temperature = r.thermal.as_ref().map(|t| upper(t.max_temperature, lim.max_temperature));
+    let pass = min_film.pass && specific_load.pass && max_temperature.is_none_or(|c| c.pass);
+    Some(BearingChecks { min_film, specific_load, max_temperature, pass })
 }
 
 /// The spec path of a journal-bearing solver input field (`physics::journal`).
@@ -693,6 +1188,8 @@ pub fn bearing_spec_path(field: &str) -> Option<String> {
         "Settings.tolerances" => "/solver",
         "Operating.eccentricity" => "/load/eccentricity_ratio",
         "Operating.load" => "/load",
+        "Lubricant" | "Lubricant.viscosity_curve" => "/thermal/lubricant",
+        "Lubricant.iso_vg" => "/thermal/lubricant/iso_vg",
         _ => return None,
     };
     Some(path.to_string())

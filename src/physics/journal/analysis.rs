@@ -209,6 +209,13 @@ impl Workspace {
     pub fn steps(&self) -> Vec<u32> {
         self.hierarchy.step_count.clone()
     }
+    /// The grids for `bearing` and `settings` (rebuilt when the workspace does not fit them).
+    pub(super) fn hierarchy_mut(&mut self, bearing: &Bearing, settings: &Settings) -> &mut Hierarchy {
+        if !self.fits(bearing, settings) {
+            *self = Workspace::new(bearing, settings);
+        }
+        &mut self.hierarchy
+    }
     fn fits(&self, bearing: &Bearing, settings: &Settings) -> bool {
         self.groove == bearing.groove_angle(0.0).0
             && self.alpha == bearing.alpha()

@@ -7,6 +7,10 @@
 //! - [`analysis`]: one analysis — fixed position, fixed eccentricity ratio or load balance over
 //!   nested grids — and the performance figures (load, Sommerfeld number, peak pressure, minimum
 //!   film, friction by two definitions, flows, power loss).
+//! - [`dynamics`]: stiffness and damping of the film at an equilibrium (linearised Reynolds),
+//!   and the stability threshold of a rigid rotor from them.
+//! - [`heat`]: the heat balance (effective temperature, ISO 7902 / DIN 31652 bulk model) and the
+//!   Walther viscosity–temperature law with ISO VG grades.
 //! - [`taguchi`]: orthogonal arrays, the weighted-sum score of eq. (19), S/N ratios, Nelder–Mead.
 //!
 //! - [`dimensions`]: the SI scales of the dimensionless groups for a bearing of given size, speed
@@ -18,6 +22,8 @@ pub mod dimensions;
 pub mod film;
 pub mod multigrid;
 pub mod analysis;
+pub mod dynamics;
+pub mod heat;
 mod balance;
 mod figures;
 pub mod taguchi;

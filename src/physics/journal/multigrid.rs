@@ -742,6 +742,94 @@ impl Hierarchy {
     }
 }
 
+impl Level {
+    /// Right-hand sides of the linearised Reynolds equation at the converged pressure `p0` of
+    /// this level, for a journal perturbation `δH = s(Z)·(cos θ, sin θ)[dir]` (`dir` 0: along
+    /// the load, `X`; 1: across it, `Y`), on the cavitation set of `p0` (the free nodes):
+    /// - `disp`: displacement, `∂f/∂X − (∂A/∂X) p0` — the derivative of `A(H) P = f(H)` with
+    ///   the face conductances `c = H³ k` differentiated, `∂c/∂X = 3H² (∂H/∂X) k`;
+    /// - `vel`: velocity `dX/d(ωt)`, the squeeze term of the time-dependent Reynolds equation,
+    ///   `−2 ∂H/∂(ωt)` integrated over the cell (seed 002 eq. (4) with `∂h/∂t`; Lund 1987).
+    ///
+    /// Both are 0 at fixed (boundary or cavitated) nodes. `s` is the axial shape of the
+    /// perturbation (1 for a translation).
+    pub(super) fn linearised_sources(&self, film: &Film, alpha: f64, dir: usize, s: &dyn Fn(f64) -> f64, p0: &[f64], disp: &mut [f64], vel: &mut [f64]) {
+        let (nt, nz, dt, dz) = (self.nt, self.nz, self.dt, self.dz);
+        let trig = |t: f64| if dir == 0 { t.cos() } else { t.sin() };
+        // ∫ trig over a cell: d/dθ of the antiderivative at the faces
+        let anti = |t: f64| if dir == 0 { t.sin() } else { -t.cos() };
+        let ke = dz / dt;
+        let kn = alpha * dt / dz;
+        let g_f: Vec<f64> = (0..nt).map(|i| trig(self.theta0 + (i as f64 + 0.5) * dt)).collect();
+        let a_f: Vec<f64> = (0..nt).map(|i| anti(self.theta0 + (i as f64 + 0.5) * dt)).collect();
+        let g_n: Vec<f64> = (0..nt).map(|i| trig(self.theta0 + i as f64 * dt)).collect();
+        let (s_face, s_node): (Vec<f64>, Vec<f64>) =
+            (0..nz).map(|j| (s(((j as f64 + 0.5) * dz).min(1.0)), s(j as f64 * dz))).unzip();
+        disp.fill(0.0);
+        vel.fill(0.0);
+        // derivatives of the face conductances
+        let mut dce = vec![0.0; nt * nz];
+        let mut dcn = vec![0.0; nt * nz];
+        for j in 0..nz {
+            let z = j as f64 * dz;
+            let r = film.row(z);
+            let rn = film.row((z + 0.5 * dz).min(1.0));
+            for i in 0..nt {
+                let k = j * nt + i;
+                let tf = self.theta0 + (i as f64 + 0.5) * dt;
+                let he = 1.0 + r.gamma + r.x * tf.cos() + r.y * tf.sin();
+                dce[k] = 3.0 * he * he * s_node[j] * g_f[i] * ke;
+                if j + 1 < nz {
+                    let hn = 1.0 + rn.gamma + rn.x * self.cos_n[i] + rn.y * self.sin_n[i];
+                    dcn[k] = 3.0 * hn * hn * s_face[j] * g_n[i] * kn;
+                }
+            }
+        }
+        for j in 1..nz - 1 {
+            for i in 0..nt {
+                let k = j * nt + i;
+                if self.fixed[k] != FREE {
+                    continue;
+                }
+                let iw = if i == 0 { nt - 1 } else { i - 1 };
+                let ie = if i + 1 == nt { 0 } else { i + 1 };
+                let (kw, kee) = (j * nt + iw, j * nt + ie);
+                let dap = dce[k] * (p0[k] - p0[kee]) + dce[kw] * (p0[k] - p0[kw]) + dcn[k] * (p0[k] - p0[k + nt]) + dcn[k - nt] * (p0[k] - p0[k - nt]);
+                // f = −∂H/∂θ ΔθΔZ in flux form
+                let df = -dz * s_node[j] * (g_f[i] - g_f[iw]);
+                disp[k] = df - dap;
+                vel[k] = -2.0 * dz * s_node[j] * (a_f[i] - a_f[iw]);
+            }
+        }
+    }
+}
+
+impl Hierarchy {
+    /// Solve `A_II x = b` on the free nodes of level `k` (the cavitation set of the last LCP
+    /// solve, injected on every coarser level) by multigrid-preconditioned CG from zero, to the
+    /// relative residual `tol`. Returns (iterations, converged, relative residual).
+    pub(super) fn solve_free(&mut self, k: usize, b: &[f64], x: &mut [f64], tol: f64, max_iter: u32) -> (u32, bool, f64) {
+        self.inject_active_set(k);
+        let l = &mut self.levels[k];
+        let src = std::mem::replace(&mut l.src, b.to_vec());
+        let u = std::mem::replace(&mut l.u, vec![0.0; b.len()]);
+        for (v, m) in l.src.iter_mut().zip(&l.mask) {
+            *v *= m;
+        }
+        let (it, ok) = self.pcg(k, tol, max_iter);
+        self.cycle_count[k] += it;
+        let l = &mut self.levels[k];
+        let mut r = vec![0.0; b.len()];
+        l.residual_free(&l.u, &mut r);
+        let fnorm = dot(&l.src, &l.src).sqrt();
+        let res = if fnorm > 0.0 { dot(&r, &r).sqrt() / fnorm } else { 0.0 };
+        x.copy_from_slice(&l.u);
+        l.src = src;
+        l.u = u;
+        (it, ok, res)
+    }
+}
+
 fn dot(a: &[f64], b: &[f64]) -> f64 {
     a.iter().zip(b).map(|(x, y)| x * y).sum()
 }

@@ -1,0 +1,159 @@
+//! Dynamic coefficients of the film at an equilibrium: the 2×2 stiffness and damping matrices
+//! of the journal's small motions, from the linearised perturbation of the discrete Reynolds
+//! equation (Lund, "Review of the concept of dynamic coefficients for fluid film journal
+//! bearings", ASME J. Tribol. 109, 1987).
+//!
+//! Frame: `X` along the applied load (the analysis' load line), `Y` perpendicular to it, 90°
+//! ahead in the direction of rotation (so the journal turns from `X` towards `Y`). The film force
+//! on the journal changes by `ΔF = −K Δx − C Δẋ` for a small displacement `Δx` and velocity `Δẋ`
+//! of the journal centre: `K_ij = −∂F_i/∂x_j`, `C_ij = −∂F_i/∂ẋ_j`.
+//!
+//! Method: at the converged pressure `P0` the cavitation set is frozen (the pressurised nodes
+//! stay the unknowns) and four linear problems with the equilibrium's matrix give
+//! `∂P/∂X`, `∂P/∂Y` (displacements, `∂A/∂X` from `c = H³k` on the faces) and `∂P/∂X'`, `∂P/∂Y'`
+//! (velocities `X' = dX/d(ωt)`, the squeeze term). For the discrete complementarity problem with
+//! strict complementarity this is its exact derivative; in the continuous problem the moving
+//! Reynolds boundary contributes nothing to first order (`P = ∂P/∂n = 0` there). A supply line
+//! stays where the equilibrium put it (a groove is fixed in the bearing). Caveat: a film
+//! *reformation* boundary (periodic supply, no groove) has `P = 0` but a non-zero gradient; its
+//! motion is a first-order effect the frozen set leaves out (still the exact derivative of the
+//! discrete problem, but not grid-convergent to the continuum one there). The validation
+//! (BENCHMARKS.md) uses the max-film groove.
+//!
+//! Units: `stiffness` and `damping` are `−∂F̄/∂X` and `−∂F̄/∂X'` in the analysis' scaling
+//! (`F̄` in `W̄` units, `X = x/c`, `X' = ẋ/(cω)`); then `K = stiffness · 6ηωRL(R/c)²/c`,
+//! `C = damping · 6ηωRL(R/c)²/(cω)`, and the usual dimensionless coefficients
+//! `K̄ = K c/W = stiffness/W̄`, `C̄ = C c ω/W = damping/W̄`.
+
+use super::analysis::{Analysis, Bearing, Settings, Workspace};
+use crate::physics::{ensure_finite, Convergence, Observer, SolveError, Termination};
+
+/// Stiffness and damping at an equilibrium (see the module docs for frame and scaling).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Coefficients {
+    /// `[[kxx, kxy], [kyx, kyy]]`, `−∂F̄_i/∂X_j`.
+    pub stiffness: [[f64; 2]; 2],
+    /// `[[cxx, cxy], [cyx, cyy]]`, `−∂F̄_i/∂X'_j`.
+    pub damping: [[f64; 2]; 2],
+    /// The four linear solves: CG iterations (total), the largest relative residual, the tolerance.
+    pub convergence: Convergence,
+}
+
+/// Stability of a rigid, symmetric rotor on the film (Lund 1987): per bearing, the rotor mass
+/// above which the equilibrium is unstable and the whirl frequency ratio at that threshold.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Stability {
+    /// `Ω/ω` of the whirl at the threshold.
+    pub whirl_ratio: f64,
+    /// `M̄ = m c ω²/W` at the threshold; `None`: stable for any mass (`K_eq ≤ 0` or whirl ratio² ≤ 0).
+    pub critical_mass: Option<f64>,
+    /// `K̄_eq`, the effective stiffness at the threshold, `K c/W` units.
+    pub equivalent_stiffness: f64,
+}
+
+impl Coefficients {
+    /// `K̄ = K c/W` and `C̄ = C c ω/W` for the film load `W̄`.
+    pub fn dimensionless(&self, load: f64) -> Option<([[f64; 2]; 2], [[f64; 2]; 2])> {
+        if !(load > 0.0) {
+            return None;
+        }
+        let s = |m: [[f64; 2]; 2]| [[m[0][0] / load, m[0][1] / load], [m[1][0] / load, m[1][1] / load]];
+        Some((s(self.stiffness), s(self.damping)))
+    }
+}
+
+/// Threshold of a rigid rotor from dimensionless coefficients `K̄`, `C̄` (Lund 1987, eq. for the
+/// stability of a rigid rotor in two identical bearings):
+/// `K̄_eq = (K̄xx C̄yy + K̄yy C̄xx − K̄xy C̄yx − K̄yx C̄xy)/(C̄xx + C̄yy)`,
+/// `γ² = ((K̄xx − K̄_eq)(K̄yy − K̄_eq) − K̄xy K̄yx)/(C̄xx C̄yy − C̄xy C̄yx)`, `M̄_c = K̄_eq/γ²`.
+pub fn stability(k: [[f64; 2]; 2], c: [[f64; 2]; 2]) -> Stability {
+    let (kxx, kxy, kyx, kyy) = (k[0][0], k[0][1], k[1][0], k[1][1]);
+    let (cxx, cxy, cyx, cyy) = (c[0][0], c[0][1], c[1][0], c[1][1]);
+    let keq = (kxx * cyy + kyy * cxx - kxy * cyx - kyx * cxy) / (cxx + cyy);
+    let g2 = ((kxx - keq) * (kyy - keq) - kxy * kyx) / (cxx * cyy - cxy * cyx);
+    let critical = (g2 > 0.0 && keq > 0.0 && g2.is_finite() && keq.is_finite()).then(|| keq / g2);
+    Stability { whirl_ratio: if g2 > 0.0 && g2.is_finite() { g2.sqrt() } else { 0.0 }, critical_mass: critical, equivalent_stiffness: if keq.is_finite() { keq } else { 0.0 } }
+}
+
+/// Dynamic coefficients at the equilibrium of `analysis` (found by [`super::analyse`] with the
+/// same bearing and settings). `workspace` is reused: when it holds the equilibrium pressure
+/// (the one given to `analyse`) the equilibrium is not solved again.
+pub fn coefficients(
+    bearing: &Bearing,
+    analysis: &Analysis,
+    settings: &Settings,
+    workspace: &mut Workspace,
+    observer: &dyn Observer,
+) -> Result<Coefficients, SolveError> {
+    let film = analysis.film;
+    let h = workspace.hierarchy_mut(bearing, settings);
+    let (_, theta0) = bearing.groove_angle(analysis.attitude);
+    // the equilibrium pressure and its cavitation set on the finest grid (warm start)
+    h.set_film(&film, theta0);
+    let rep = h.solve_lcp(0, settings.pressure_tolerance, 60, settings.max_cycles);
+    if !rep.converged {
+        return Err(SolveError::NotConverged {
+            solver: "journal pressure (active set + multigrid CG)",
+            iterations: rep.cycles,
+            residual: rep.residual,
+            tolerance: settings.pressure_tolerance,
+            history: vec![rep.residual],
+        });
+    }
+    observer.check()?;
+    let alpha = bearing.alpha();
+    let l = &h.levels[0];
+    let n = l.u.len();
+    let p0 = l.u.clone();
+    let (nt, nz, ds) = (l.nt, l.nz, l.dt * l.dz);
+    let cos_n = l.cos_n.clone();
+    let sin_n = l.sin_n.clone();
+    // linear solves to the pressure tolerance (relative residual of each perturbed problem)
+    let tol = settings.pressure_tolerance.max(1e-12);
+    let one = |_: f64| 1.0;
+    let mut disp = vec![0.0; n];
+    let mut vel = vec![0.0; n];
+    let mut x = vec![0.0; n];
+    let mut k = [[0.0; 2]; 2];
+    let mut c = [[0.0; 2]; 2];
+    let (mut iters, mut worst) = (0u32, 0.0f64);
+    let force = |p: &[f64]| {
+        let (mut fx, mut fy) = (0.0, 0.0);
+        for j in 1..nz - 1 {
+            let row = &p[j * nt..(j + 1) * nt];
+            for i in 0..nt {
+                fx += row[i] * cos_n[i];
+                fy += row[i] * sin_n[i];
+            }
+        }
+        [fx * ds, fy * ds]
+    };
+    for dir in 0..2 {
+        h.levels[0].linearised_sources(&film, alpha, dir, &one, &p0, &mut disp, &mut vel);
+        for (rhs, out) in [(&disp, &mut k), (&vel, &mut c)] {
+            let (it, ok, res) = h.solve_free(0, rhs, &mut x, tol, settings.max_cycles);
+            iters += it;
+            worst = worst.max(res);
+            if !ok {
+                return Err(SolveError::NotConverged {
+                    solver: "journal dynamic coefficients (linearised Reynolds, multigrid CG)",
+                    iterations: it,
+                    residual: res,
+                    tolerance: tol,
+                    history: vec![res],
+                });
+            }
+            let f = force(&x);
+            // seed 002 eq. (6)-(7) differentiated: K_ij = −∂F_i/∂X_j
+            out[0][dir] = -f[0];
+            out[1][dir] = -f[1];
+            observer.check()?;
+        }
+    }
+    ensure_finite("dynamic coefficients", k.iter().chain(c.iter()).flatten())?;
+    Ok(Coefficients {
+        stiffness: k,
+        damping: c,
+        convergence: Convergence { iterations: iters, residual: worst, tolerance: tol, termination: Termination::Converged },
+    })
+}
