@@ -161,3 +161,26 @@ fn refused(k: &'static dyn tribod::jobs::kind::DynKind, path: &str, value: f64) 
         Err(p) => assert!(p.errors.iter().any(|e| e.path == path), "{} {path} = {value}: {p:?}", k.name()),
     }
 }
+
+/// utoipa names a schema by its Rust type name and the document keeps the first schema of a
+/// name: two different types of the same name in two kinds (say each kind's own `LubricantSpec`)
+/// would silently document one kind with the other's fields. Every name must mean one schema.
+#[test]
+fn no_two_different_schemas_share_a_name() {
+    use tribod::jobs::kind::DynKind;
+    let mut all = Vec::new();
+    for k in tribod::jobs::registry::KINDS.iter() {
+        k.schemas(&mut all);
+    }
+    let mut seen = std::collections::HashMap::new();
+    for (name, schema) in all {
+        let s = serde_json::to_string(&schema).unwrap();
+        match seen.get(&name) {
+            Some(prev) => assert_eq!(prev, &s, "two different types are named `{name}` in the OpenAPI document: rename one"),
+            None => {
+                seen.insert(name, s);
+            }
+        }
+    }
+    assert!(seen.len() > 20, "{} schemas", seen.len());
+}

@@ -83,13 +83,13 @@ pub struct EhlPointSpec {
     /// equations, traction from the sheared film). Absent: isothermal at the lubricant's
     /// `temperature`; present, that temperature is the inlet (ambient) temperature `T0`.
     #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub thermal: Option<EhlThermalSpec>,
+    pub thermal: Option<EhlPointThermalSpec>,
 }
 
 /// Thermal model of an `ehl_point` (see `physics::ehl::thermal`).
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, ToSchema)]
 #[serde(deny_unknown_fields)]
-pub struct EhlThermalSpec {
+pub struct EhlPointThermalSpec {
     /// Oil conductivity k_f, W/(m·K). Default 0.14 (seed 000 Table 1).
     #[serde(default = "d_kf")]
     pub oil_conductivity: f64,
