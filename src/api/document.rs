@@ -12,6 +12,10 @@
 //!   validator is the one source of truth; where one schema serves several fields or kinds the
 //!   loosest bound is kept (the schema is then necessary, the validator decides).
 //! * Object schemas are closed (`additionalProperties: false`), as the specs reject unknown fields.
+//! * A newtype variant of an internally tagged enum (`Dynamic(DynamicLoadSpec)` under
+//!   `#[serde(tag = "type")]`), which utoipa writes as `allOf: [$ref, {type tag}]`, is inlined as
+//!   one object (the referenced properties plus the tag), the form struct variants take: client
+//!   generators (openapi-python-client) cannot build a union member from that `allOf`.
 
 use crate::jobs::registry;
 use serde_json::{json, Map, Value};
@@ -19,6 +23,7 @@ use serde_json::{json, Map, Value};
 /// Apply the finishing pass to the document utoipa generated.
 pub fn finish(mut doc: Value) -> Value {
     numeric_bounds(&mut doc);
+    inline_tagged_newtypes(&mut doc);
     closed_objects(&mut doc);
     kind_tagged_requests(&mut doc);
     common_responses(&mut doc);
@@ -67,6 +72,46 @@ fn kind_tagged_requests(doc: &mut Value) {
 /// Specs reject unknown fields (`deny_unknown_fields`): say so on every object schema a spec
 /// uses, so that generators and fuzzers do not invent fields. (Results stay open: a result's
 /// `meta` gains the job id when stored.)
+fn inline_tagged_newtypes(doc: &mut Value) {
+    let Some(schemas) = doc.pointer_mut("/components/schemas").and_then(Value::as_object_mut) else { return };
+    let lookup = schemas.clone();
+    fn walk(v: &mut Value, lookup: &Map<String, Value>) {
+        match v {
+            Value::Object(map) => {
+                let merged = match map.get("allOf").and_then(Value::as_array).map(Vec::as_slice) {
+                    Some([target, tag]) if tag.get("properties").is_some() => target
+                        .get("$ref")
+                        .and_then(Value::as_str)
+                        .and_then(|r| lookup.get(r.rsplit('/').next().unwrap_or("")))
+                        .filter(|t| t.get("properties").is_some())
+                        .map(|t| {
+                            let mut out = t.clone();
+                            let o = out.as_object_mut().expect("an object schema");
+                            let mut props = tag["properties"].as_object().cloned().unwrap_or_default();
+                            props.extend(o["properties"].as_object().cloned().unwrap_or_default());
+                            o.insert("properties".into(), Value::Object(props));
+                            let mut required: Vec<Value> = tag.get("required").and_then(Value::as_array).cloned().unwrap_or_default();
+                            required.extend(o.get("required").and_then(Value::as_array).cloned().unwrap_or_default());
+                            o.insert("required".into(), Value::Array(required));
+                            if let Some(d) = map.get("description") {
+                                o.insert("description".into(), d.clone());
+                            }
+                            out
+                        }),
+                    _ => None,
+                };
+                match merged {
+                    Some(m) => *v = m,
+                    None => map.values_mut().for_each(|x| walk(x, lookup)),
+                }
+            }
+            Value::Array(items) => items.iter_mut().for_each(|x| walk(x, lookup)),
+            _ => {}
+        }
+    }
+    schemas.values_mut().for_each(|s| walk(s, &lookup));
+}
+
 fn closed_objects(doc: &mut Value) {
     fn refs(v: &Value, out: &mut Vec<String>) {
         match v {

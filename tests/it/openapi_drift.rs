@@ -167,7 +167,6 @@ fn refused(k: &'static dyn tribod::jobs::kind::DynKind, path: &str, value: f64) 
 /// would silently document one kind with the other's fields. Every name must mean one schema.
 #[test]
 fn no_two_different_schemas_share_a_name() {
-    use tribod::jobs::kind::DynKind;
     let mut all = Vec::new();
     for k in tribod::jobs::registry::KINDS.iter() {
         k.schemas(&mut all);
