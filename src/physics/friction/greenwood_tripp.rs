@@ -79,16 +79,18 @@ pub fn f52_with_slope(lambda: f64) -> (f64, f64) {
     let x = l / STEP;
     let i = (x.floor() as usize).min(NODES - 2);
     let u = x - i as f64;
-    let (y0, y1) = (t.ln_f[i], t.ln_f[i + 1]);
-    let (m0, m1) = (t.slope[i] * STEP, t.slope[i + 1] * STEP);
-    let (u2, u3) = (u * u, u * u * u);
-    let ln = (2.0 * u3 - 3.0 * u2 + 1.0) * y0
-        + (u3 - 2.0 * u2 + u) * m0
-        + (-2.0 * u3 + 3.0 * u2) * y1
-        + (u3 - u2) * m1;
-    let dln_du = (6.0 * u2 - 6.0 * u) * y0 + (3.0 * u2 - 4.0 * u + 1.0) * m0 + (-6.0 * u2 + 6.0 * u) * y1 + (3.0 * u2 - 2.0 * u) * m1;
+    let (ln, dln_du) = hermite(t.ln_f[i], t.ln_f[i + 1], t.slope[i] * STEP, t.slope[i + 1] * STEP, u);
     let f = ln.exp();
     (f, if lambda < 0.0 { 0.0 } else { f * dln_du / STEP })
+}
+
+/// Cubic Hermite interpolation on one cell: values `y0`, `y1` and slopes `m0`, `m1` (per cell
+/// width) at the ends, at `u ∈ [0, 1]`; returns the value and its derivative in `u`.
+fn hermite(y0: f64, y1: f64, m0: f64, m1: f64, u: f64) -> (f64, f64) {
+    let (u2, u3) = (u * u, u * u * u);
+    let v = (2.0 * u3 - 3.0 * u2 + 1.0) * y0 + (u3 - 2.0 * u2 + u) * m0 + (-2.0 * u3 + 3.0 * u2) * y1 + (u3 - u2) * m1;
+    let d = (6.0 * u2 - 6.0 * u) * y0 + (3.0 * u2 - 4.0 * u + 1.0) * m0 + (-6.0 * u2 + 6.0 * u) * y1 + (3.0 * u2 - 2.0 * u) * m1;
+    (v, d)
 }
 
 /// The widely used power-law fit `F_{5/2} ≈ 4.4086e-5 (4 − λ)^6.804` (λ < 4, else 0), kept only to
@@ -238,11 +240,7 @@ impl LnTable {
     /// `(ln F, d ln F/dλ)` at λ (clamped to the table).
     fn ln_value_slope(&self, lambda: f64) -> (f64, f64) {
         let (i, u) = Self::locate(lambda);
-        let (y0, y1) = (self.ln_f[i], self.ln_f[i + 1]);
-        let (m0, m1) = (self.slope[i] * GENERAL_STEP, self.slope[i + 1] * GENERAL_STEP);
-        let (u2, u3) = (u * u, u * u * u);
-        let ln = (2.0 * u3 - 3.0 * u2 + 1.0) * y0 + (u3 - 2.0 * u2 + u) * m0 + (-2.0 * u3 + 3.0 * u2) * y1 + (u3 - u2) * m1;
-        let d = (6.0 * u2 - 6.0 * u) * y0 + (3.0 * u2 - 4.0 * u + 1.0) * m0 + (-6.0 * u2 + 6.0 * u) * y1 + (3.0 * u2 - 2.0 * u) * m1;
+        let (ln, d) = hermite(self.ln_f[i], self.ln_f[i + 1], self.slope[i] * GENERAL_STEP, self.slope[i + 1] * GENERAL_STEP, u);
         (ln, d / GENERAL_STEP)
     }
 
