@@ -32,6 +32,14 @@ async fn hostile_sizes_are_refused_before_anything_is_allocated() {
     let text = p.to_string();
     assert!(text.contains("/spec/ehl/nodes") && text.contains("MiB"), "{p}");
 
+    // A rough contact of 512² points at 64 films: ≈ 160 s of solver time by the work model of
+    // benches/rough.rs, above the default 60 s; refused before a surface is generated.
+    let mut rough = kind_example("rough_contact");
+    rough["surface"]["points"] = json!(512);
+    rough["films"] = json!((1..=64).map(|k| 1e-8 * k as f64).collect::<Vec<f64>>());
+    let p = expect_problem(s.post_job(&json!({"kind": "rough_contact", "spec": rough})).await, 422, "limit_exceeded").await;
+    assert!(p.to_string().contains("/spec/films") && p.to_string().contains("solver time"), "{p}");
+
     // A grid whose node count overflows usize (found by schemathesis: a panic in validation, 500).
     let mut bearing = kind_example("bearing");
     bearing["grid"] = json!({"circumferential": 11784423u64, "axial": 478913318372841856u64});

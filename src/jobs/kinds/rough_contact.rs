@@ -174,9 +174,9 @@ impl Kind for RoughContact {
         let n = (nx * ny) as f64;
         v.limit("/surface", nx * ny, limits.max_grid_nodes, "the number of surface points");
         let seconds = films as f64 * 2.5 * (n / (512.0 * 512.0)).powf(1.1);
-        v.check(seconds <= limits.max_job_seconds, "/films", format!("needs ≈ {seconds:.0} s of solver time, above the server's {} s", limits.max_job_seconds));
+        v.work("/films", seconds, limits, "the contact solves at these films on this grid");
         let bytes = 16.0 * 8.0 * n;
-        v.check(bytes <= limits.max_job_memory as f64, "/surface", format!("needs ≈ {:.0} MiB, above the server's limit", bytes / 1048576.0));
+        v.memory("/surface", bytes, limits, "the contact solver on this grid");
     }
 
     fn solve(spec: &RoughContactSpec, observer: &dyn Observer) -> Result<RoughContactResult, SolveError> {
