@@ -205,7 +205,25 @@ fn point_table() {
             s.convergence.residual
         );
     }
-
+    // `ehl_point`'s defaults (issue 16 item 6): Richardson of 385 and 193 nodes on one layout,
+    // two threads, against one 512-node grid.
+    for fine in [257, 385, 513] {
+        let opts = EhlOptions { nodes: fine, ..EhlOptions::default() };
+        let (t, r) = best_of(5, || tribod::physics::ehl::ReusableSolver::new().solve_richardson(&inp, None, &opts, &Silent).unwrap());
+        let s = r.solution;
+        println!(
+            "| Richardson {fine}/{} | {:.2} | {} | {:.5} | {:+.2} % | {:.5} | {:+.2} % | {:.3} | {:.1e} |",
+            (fine - 1) / 2 + 1,
+            t * 1e3,
+            s.convergence.iterations,
+            s.central_film * 1e6,
+            100.0 * (s.central_film / hc_ref - 1.0),
+            s.min_film * 1e6,
+            100.0 * (s.min_film / hm_ref - 1.0),
+            s.max_pressure / s.hertz_pressure,
+            s.convergence.residual
+        );
+    }
 }
 
 fn cycle_table() {

@@ -8,7 +8,8 @@ use crate::physics::ehl::formulas::{
 };
 use crate::physics::ehl::thermal::{self, FilmHeat, ThermalBodies, ThermalInput, ThermalOptions};
 use crate::physics::ehl::{solve, EhlInput, EhlOptions, Rheology, Upwind};
-use super::common::{LubricantSpec, Material, ThermalSpec};
+use super::common::{ExtrapolationSpec, LubricantSpec, Material, ThermalSpec};
+use crate::physics::ehl::ReusableSolver;
 use crate::physics::{Convergence, Observer, SolveError};
 use serde::{Deserialize, Serialize};
 use serde_json::{json, Value};
@@ -66,10 +67,19 @@ pub struct EhlPointSpec {
     pub lubricant: LubricantSpec,
     #[serde(default)]
     pub rheology: EhlRheologySpec,
-    /// Grid nodes across the domain (graded towards inlet and exit). Default 256; 512 resolves
-    /// the central and minimum film to ≈ 0.3 %, 128 to ≈ 3 % (see BENCHMARKS.md).
+    /// Grid nodes across the domain (graded towards inlet and exit); with Richardson
+    /// extrapolation the fine grid. Default 385: with the default extrapolation the central film
+    /// is within 0.1 % and the minimum film within 0.6 % of the grid-converged solution over
+    /// Moes M = 5–200, L = 5–15 (Barus and Roelands), and the exit spike is found, at the cost of
+    /// one 512-node solve (BENCHMARKS.md, "One contact point: the defaults").
     #[serde(default = "d_nodes")]
     pub nodes: usize,
+    /// `richardson` (default): solve on `nodes` and `(nodes − 1)/2 + 1` nodes of one grid layout
+    /// (two threads) and extrapolate the second-order discretisation error out of the central,
+    /// minimum and exit films and the traction (pressures, spike and profile are the fine
+    /// grid's); `none`: one grid of `nodes`. The thermal model always runs on one grid.
+    #[serde(default)]
+    pub extrapolation: ExtrapolationSpec,
     /// Residual tolerance (relative). Default 1e-8.
     #[serde(default = "d_tol")]
     pub tolerance: f64,
@@ -149,7 +159,7 @@ pub struct ThermalResult {
 }
 
 fn d_nodes() -> usize {
-    256
+    385
 }
 fn d_tol() -> f64 {
     1e-8
@@ -228,8 +238,11 @@ pub struct EhlPointResult {
     /// Rolling (Poiseuille) resistance on each body, N/m.
     pub rolling_force: f64,
     pub closed_forms: ClosedForms,
-    /// Grid nodes used.
+    /// Grid nodes used (the fine grid when extrapolated).
     pub nodes: usize,
+    /// Whether the films and traction are Richardson-extrapolated from two grids (`false` with
+    /// `extrapolation: none`, with the thermal model, or when the coarse grid did not converge).
+    pub extrapolated: bool,
     /// Newton steps (all grid levels) and the final relative residual.
     pub convergence: Convergence,
     #[serde(skip_serializing_if = "Option::is_none")]
@@ -242,7 +255,7 @@ pub struct EhlPointResult {
 
 impl Kind for EhlPoint {
     const NAME: &'static str = "ehl_point";
-    const SOLVER_VERSION: &'static str = "ehl_point-2";
+    const SOLVER_VERSION: &'static str = "ehl_point-3";
     const DESCRIPTION: &'static str = "Numerical elastohydrodynamic line contact (compressible \
         Reynolds, elastic half-space, cavitation; isothermal or, with `thermal`, the thermal model \
         of seed 000): central and minimum film, pressure spike, traction, temperatures, optional \
@@ -263,7 +276,6 @@ impl Kind for EhlPoint {
             "body_2": {"youngs_modulus": 200e9, "poisson_ratio": 0.3},
             "lubricant": {"viscosity": 0.013, "pressure_viscosity": 1.84e-8},
             "rheology": {"eyring_stress": 5e6},
-            "nodes": 256,
             "outputs": ["profile"]
         })
     }
@@ -291,7 +303,11 @@ impl Kind for EhlPoint {
         v.non_negative("/rheology/limiting_shear_stress", spec.rheology.limiting_shear_stress);
         v.count_in_range("/nodes", spec.nodes, 32, 4096);
         v.limit("/nodes", spec.nodes, limits.max_grid_nodes, "the number of grid nodes");
-        v.memory("/nodes", crate::physics::ehl::dense_memory_bytes(spec.nodes), limits, "the dense EHL solver");
+        let coarse = match spec.extrapolation {
+            ExtrapolationSpec::Richardson if spec.thermal.is_none() => crate::physics::ehl::dense_memory_bytes((spec.nodes - 1) / 2 + 1),
+            _ => 0.0,
+        };
+        v.memory("/nodes", crate::physics::ehl::dense_memory_bytes(spec.nodes) + coarse, limits, "the dense EHL solver");
         v.in_range("/tolerance", spec.tolerance, 1e-14, 1e-2);
         v.count_in_range("/max_iterations", spec.max_iterations as usize, 1, 1000);
         if let Some(t) = &spec.thermal {
@@ -355,8 +371,13 @@ fn solve_point(spec: &EhlPointSpec, observer: &dyn Observer) -> Result<EhlPointR
         profiles: spec.outputs.contains(&EhlPointOutput::Profile),
         ..EhlOptions::default()
     };
-    let (s, thermal) = match &spec.thermal {
-        None => (solve(&input, &options, observer)?, None),
+    let (s, thermal, extrapolated) = match &spec.thermal {
+        None if spec.extrapolation == ExtrapolationSpec::Richardson => {
+            let r = ReusableSolver::new().solve_richardson(&input, None, &options, observer)?;
+            let extrapolated = r.coarse_state.is_some();
+            (r.solution, None, extrapolated)
+        }
+        None => (solve(&input, &options, observer)?, None, false),
         Some(t) => {
             let iso = solve(&input, &options, observer)?;
             let bodies = ThermalBodies {
@@ -380,7 +401,7 @@ fn solve_point(spec: &EhlPointSpec, observer: &dyn Observer) -> Result<EhlPointR
                 isothermal_central_film: iso.central_film,
                 convergence: th.convergence,
             };
-            (th.ehl, Some(result))
+            (th.ehl, Some(result), false)
         }
     };
     let g = Groups::of(w, spec.reduced_radius, ep, spec.entrainment_velocity, &lubricant, temperature);
@@ -409,6 +430,7 @@ fn solve_point(spec: &EhlPointSpec, observer: &dyn Observer) -> Result<EhlPointR
             pan_hamrock_min_film: pan_hamrock_minimum_film(&g, r),
         },
         nodes: s.nodes,
+        extrapolated,
         convergence: s.convergence,
         profile: s.profiles.map(|p| ProfileTable { x: p.x, pressure: p.pressure, film: p.film }),
         thermal,
@@ -428,7 +450,8 @@ mod tests {
         let hc = out["central_film"].as_f64().unwrap();
         // Seed 001 quotes ≈ 0.27 µm central film at the nose (its Figure 9 discussion).
         assert!(hc > 0.2e-6 && hc < 0.35e-6, "{hc}");
-        assert_eq!(out["profile"]["x"].as_array().unwrap().len(), 256);
+        assert_eq!(out["profile"]["x"].as_array().unwrap().len(), 385);
+        assert_eq!(out["extrapolated"], json!(true));
         let mut spec = kind.example();
         spec["outputs"] = json!([]);
         let out = kind.prepare(&spec, &Limits::default()).unwrap().run(&Silent).unwrap();
