@@ -140,14 +140,19 @@ proptest! {
 
     /// Point analyses across loads, speeds (down to near zero), viscosities and pin friction.
     #[test]
-    fn point_analyses(load in 10.0f64..1e5, uc in 1e-4f64..20.0, eta in 1e-4f64..1.0, mu in 0.0f64..0.3, rq in 0.0f64..1e-6, carter in prop::bool::ANY) {
+    fn point_analyses(load in 10.0f64..1e5, uc in 1e-4f64..20.0, eta in 1e-4f64..1.0, mu in 0.0f64..0.3, rq in 0.0f64..1e-6, law in 0usize..3, dx_gs in 1e-9f64..1e-6) {
+        let asperities = match law {
+            0 => json!({"model": "coulomb"}),
+            1 => json!({"model": "carter"}),
+            _ => json!({"model": "micro_slip", "gross_sliding_displacement": dx_gs}),
+        };
         let spec = json!({
             "load": load, "reduced_radius": 0.01, "cam_surface_velocity": uc, "contact_length": 0.02,
             "roller": {"radius": 0.018, "pin_radius": 0.009, "inertia": 2.5e-5, "angular_acceleration": 500.0},
             "pin_friction": [mu, 0.5 * mu],
             "cam": {"roughness_rq": rq}, "follower": {"roughness_rq": rq},
             "lubricant": {"viscosity": eta, "pressure_viscosity": 2e-8},
-            "asperities": {"model": if carter { "carter" } else { "coulomb" }},
+            "asperities": asperities,
         });
         if let Err(e) = outcome("cam_point", &spec) {
             return Err(TestCaseError::fail(format!("{e}\n{spec}")));

@@ -147,7 +147,8 @@ pub struct PointSummary {
     /// solution (mixed lubrication; the fluid carries the rest).
     pub asperity_load_fraction: f64,
     /// Minimum cam–roller friction coefficient that still drives the roller (Coulomb asperities:
-    /// μ_b W_a/F; Carter: 0).
+    /// μ_b W_a/F; the partial-slip laws `carter` and `micro_slip`: 0 — their traction vanishes
+    /// with the sliding; seed 001's sweep procedure is `first_sliding_cam_roller_friction`).
     pub min_cam_roller_friction: f64,
     /// Roller–pin friction where the asperity traction saturates (absent without asperity load).
     #[serde(skip_serializing_if = "Option::is_none")]

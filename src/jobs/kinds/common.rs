@@ -142,6 +142,12 @@ pub enum AsperityModelSpec {
     Coulomb,
     /// Partial slip of the asperity share by Carter's creep law (gross sliding at creep μ_b b/R).
     Carter,
+    /// Seed 001's micro-slip map (eq. 14–23): every point of the contact is displaced by
+    /// `δx = SRR (x + a)` since the inlet, its asperities stick–slip below the rough surface's
+    /// gross-sliding displacement `gross_sliding_displacement` and slide beyond it; integrated
+    /// over the contact (no traction jump at zero sliding; `slip_regime` is `gross_sliding` from
+    /// 99 % of the limiting asperity traction).
+    MicroSlip,
 }
 
 fn default_ebs() -> f64 {
@@ -152,6 +158,12 @@ fn default_sob() -> f64 {
 }
 fn default_mub() -> f64 {
     0.1
+}
+fn default_micro_slip_exponent() -> f64 {
+    3.0
+}
+fn is_default_micro_slip_exponent(n: &f64) -> bool {
+    *n == default_micro_slip_exponent()
 }
 
 /// Asperity contact: its pressure–gap relation (Greenwood–Tripp statistics, or a tabulated
@@ -170,9 +182,19 @@ pub struct AsperitySpec {
     /// Boundary (asperity) friction coefficient μ_b. Default 0.1.
     #[serde(default = "default_mub")]
     pub boundary_friction: f64,
-    /// `coulomb` (default) or `carter`.
+    /// `coulomb` (default), `carter` or `micro_slip`.
     #[serde(default)]
     pub model: AsperityModelSpec,
+    /// Gross-sliding displacement δx_gs of the asperity contact, m (seed 001 eq. 19–21: the
+    /// tangential rigid-body displacement at which the whole real contact area slides; a
+    /// `rough_contact` job with `friction_limit` reports it per film). Required by `micro_slip`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub gross_sliding_displacement: Option<f64>,
+    /// Exponent n of `micro_slip`'s local shape `μ_a/μ_lim = 1 − (1 − δx/δx_gs)^n`, 2–8.
+    /// Default 3: the dry rough-contact maps of seed 001's surface follow it at the working films
+    /// (BENCHMARKS.md, "Mixed lubrication: the micro-slip map"); 2 is Carter's 2-D shape.
+    #[serde(default = "default_micro_slip_exponent", skip_serializing_if = "is_default_micro_slip_exponent")]
+    pub micro_slip_exponent: f64,
     /// Plastic limit of the asperity contact pressure, Pa (seed 001 Table 1: 6e9). Absent:
     /// elastic asperities.
     #[serde(default, skip_serializing_if = "Option::is_none")]
@@ -203,6 +225,8 @@ impl Default for AsperitySpec {
             sigma_over_beta: default_sob(),
             boundary_friction: default_mub(),
             model: AsperityModelSpec::Coulomb,
+            gross_sliding_displacement: None,
+            micro_slip_exponent: default_micro_slip_exponent(),
             plastic_limit: None,
             pressure_gap_curve: None,
         }
@@ -230,6 +254,10 @@ impl AsperitySpec {
             model: match self.model {
                 AsperityModelSpec::Coulomb => AsperityModel::Coulomb,
                 AsperityModelSpec::Carter => AsperityModel::Carter,
+                AsperityModelSpec::MicroSlip => AsperityModel::MicroSlip {
+                    gross_sliding_displacement: self.gross_sliding_displacement.unwrap_or(0.0),
+                    exponent: self.micro_slip_exponent,
+                },
             },
         }
     }
@@ -237,6 +265,19 @@ impl AsperitySpec {
         v.in_range(&format!("{path}/eta_beta_sigma"), self.eta_beta_sigma, 0.0, 1.0);
         v.in_range(&format!("{path}/sigma_over_beta"), self.sigma_over_beta, 0.0, 1.0);
         v.in_range(&format!("{path}/boundary_friction"), self.boundary_friction, 0.0, 2.0);
+        match (self.model, self.gross_sliding_displacement) {
+            (AsperityModelSpec::MicroSlip, None) => {
+                v.check(false, &format!("{path}/gross_sliding_displacement"), "required by model micro_slip");
+            }
+            (AsperityModelSpec::MicroSlip, Some(d)) => {
+                v.in_range(&format!("{path}/gross_sliding_displacement"), d, 1e-12, 1e-3);
+                v.in_range(&format!("{path}/micro_slip_exponent"), self.micro_slip_exponent, 2.0, 8.0);
+            }
+            (_, Some(_)) => {
+                v.check(false, &format!("{path}/gross_sliding_displacement"), "only used by model micro_slip");
+            }
+            _ => {}
+        }
         if let Some(p) = self.plastic_limit {
             v.in_range(&format!("{path}/plastic_limit"), p, 1e6, 1e11);
         }

@@ -190,7 +190,7 @@ impl FilmModel for ClosedForm {
         }
         let asperity = AsperityContact {
             load: w_a,
-            gross_sliding_creep: input.asperity_friction.coefficient * b / r_roll,
+            gross_sliding_creep: input.asperity_friction.creep_scale(b, r_roll),
         };
         ensure_finite("closed-form film", [&hc, &hm, &p0, &b, &area, &w_a])?;
         ensure_finite("traction nodes", nodes.iter().flat_map(|n| [&n.area, &n.pressure, &n.viscosity]))?;

@@ -210,7 +210,7 @@ impl FilmModel for ThermalNumerical {
             exit_film: Some(s.exit_film),
             half_width: hz.half_width,
             contact_area: 2.0 * hz.half_width * length,
-            asperity: AsperityContact { load: w_a, gross_sliding_creep: input.asperity_friction.coefficient * hz.half_width / r },
+            asperity: AsperityContact { load: w_a, gross_sliding_creep: input.asperity_friction.creep_scale(hz.half_width, r) },
             lambda: (sigma > 0.0).then(|| s.min_film / sigma),
             regime: None,
             nodes,

@@ -121,7 +121,90 @@ pub enum AsperityModel {
     /// with creep `ξ = u_s/u_e` (the slide-to-roll ratio) and gross-sliding creep `ξ_c = μ_b b/R`.
     /// A smooth analogue of seed 001's stick–slip asperity friction map.
     Carter,
+    /// Seed 001's micro-slip map (eq. 14–23) at the macroscale: each point of the contact has
+    /// been displaced tangentially by `δx = SRR (x − x_in)` since it entered at `x_in = −a`
+    /// (eq. 22), and its asperities carry `μ_a/μ_lim = g(δx/δx_gs)` of their limiting friction,
+    /// sticking–slipping below the gross-sliding displacement `δx_gs` of the rough surface
+    /// (eq. 19, 23) and sliding beyond it. Integrated over a semi-elliptic asperity pressure
+    /// (eq. 25's asperity term) — see [`micro_slip_share`].
+    MicroSlip {
+        /// Gross-sliding displacement `δx_gs` of the asperity contact, m (e.g. from a
+        /// `rough_contact` job's tangential solution at the working film).
+        gross_sliding_displacement: f64,
+        /// Exponent `n ≥ 2` of the local shape `μ_a/μ_lim = 1 − (1 − δx/δx_gs)^n`.
+        exponent: f64,
+    },
 }
+
+/// The share `Φ(t)` of the limiting asperity traction that a contact transmits at creep
+/// `|SRR| = t ξ_m`, `ξ_m = δx_gs/a`, and `(dΦ/dt, bound on |d²Φ/dt²|)`, for
+/// [`AsperityModel::MicroSlip`] with the local partial-slip shape `μ_a/μ_lim = g(s) =
+/// 1 − (1 − s)^n`, `s = δx/δx_gs ≤ 1` (seed 001 Fig. 7b; `n = 2` is the 2-D Carter/
+/// Cattaneo shape; the maps of `physics::rough` at seed 001's surface follow `n ≈ 3` at the
+/// working films, BENCHMARKS.md "Mixed lubrication: the micro-slip map").
+///
+/// With `X = x/a`, `y = 1 + X` (eq. 22: `δx = SRR·a·y`) and the load share of a semi-elliptic
+/// asperity pressure `w(X) = (2/π)√(1 − X²)`: `Φ(t) = ∫ g(min(1, t y)) w dX`. In `X = −cos θ`
+/// the points beyond `θ* = acos(1 − 1/t)` slide (`θ* = π` for `t ≤ 1/2`); their share is
+/// `(2/π)(π/2 − θ*/2 + sin 2θ*/4)`, the rest is a 32-point Gauss–Legendre quadrature of
+/// `(2/π) sin²θ g(t(1 − cos θ))` on `[0, θ*]` (exact to round-off for integer `n`).
+/// `|Φ''| ≤ (5/4) n(n − 1)`.
+pub fn micro_slip_share(t: f64, n: f64) -> (f64, f64, f64) {
+    use std::f64::consts::PI;
+    let t = t.abs();
+    let theta = if t <= 0.5 { PI } else { (1.0 - 1.0 / t).acos() };
+    let (s2, c2) = (2.0 * theta).sin_cos();
+    let _ = c2;
+    let k = 2.0 / PI;
+    let sliding = k * (0.5 * PI - 0.5 * theta + 0.25 * s2);
+    let (nodes, weights) = gauss_legendre_32();
+    let (mut phi, mut dphi) = (sliding, 0.0);
+    for (x, w) in nodes.iter().zip(weights) {
+        let th = 0.5 * theta * (1.0 + x);
+        let (sn, cs) = th.sin_cos();
+        let y = 1.0 - cs;
+        let s = (t * y).min(1.0);
+        let rest = 1.0 - s;
+        let wt = 0.5 * theta * w * k * sn * sn;
+        phi += wt * (1.0 - rest.powf(n));
+        dphi += wt * n * rest.powf(n - 1.0) * y;
+    }
+    (phi.clamp(0.0, 1.0), dphi.max(0.0), 1.25 * n * (n - 1.0))
+}
+
+/// Nodes and weights of the 32-point Gauss–Legendre rule on `[−1, 1]` (Newton on `P_32`).
+fn gauss_legendre_32() -> &'static ([f64; 32], [f64; 32]) {
+    static RULE: std::sync::OnceLock<([f64; 32], [f64; 32])> = std::sync::OnceLock::new();
+    RULE.get_or_init(|| {
+        const N: usize = 32;
+        let (mut x, mut w) = ([0.0; N], [0.0; N]);
+        for i in 0..N {
+            let mut z = (std::f64::consts::PI * (i as f64 + 0.75) / (N as f64 + 0.5)).cos();
+            let mut dp = 1.0;
+            for _ in 0..100 {
+                let (mut p0, mut p1) = (1.0, z);
+                for j in 2..=N {
+                    let p2 = ((2 * j - 1) as f64 * z * p1 - (j - 1) as f64 * p0) / j as f64;
+                    p0 = p1;
+                    p1 = p2;
+                }
+                dp = N as f64 * (z * p1 - p0) / (z * z - 1.0);
+                let dz = p1 / dp;
+                z -= dz;
+                if dz.abs() < 1e-16 {
+                    break;
+                }
+            }
+            x[i] = z;
+            w[i] = 2.0 / ((1.0 - z * z) * dp * dp);
+        }
+        (x, w)
+    })
+}
+
+/// Share of the limiting asperity traction from which [`AsperityModel::MicroSlip`] counts as
+/// gross sliding: 99 %.
+pub const MICRO_SLIP_GROSS_SHARE: f64 = 0.99;
 
 /// How the roller runs on the cam at one instant (seed 001 §"Tangential contact", eq. 15–23).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize, serde::Deserialize, utoipa::ToSchema)]
@@ -157,7 +240,8 @@ pub struct AsperityFriction {
 pub struct AsperityContact {
     /// Load carried by the asperities, N.
     pub load: f64,
-    /// Gross-sliding creep ξ_c = μ_b b/R (Carter).
+    /// Creep scale of the partial-slip law ([`AsperityFriction::creep_scale`]): Carter's
+    /// gross-sliding creep ξ_c = μ_b b/R, the micro-slip map's δx_gs/b.
     pub gross_sliding_creep: f64,
 }
 
@@ -172,12 +256,23 @@ impl AsperityFriction {
                 AsperityModel::Carter if entrainment.abs() > 0.0 && contact.gross_sliding_creep > 0.0 => {
                     2.0 * q / (contact.gross_sliding_creep * entrainment.abs())
                 }
+                AsperityModel::MicroSlip { exponent, .. } if entrainment.abs() > 0.0 && contact.gross_sliding_creep > 0.0 => {
+                    exponent * q / (contact.gross_sliding_creep * entrainment.abs())
+                }
                 _ => 0.0,
             };
             return (0.0, slope);
         }
         match self.model {
             AsperityModel::Coulomb => (q * sliding.signum(), 0.0),
+            AsperityModel::MicroSlip { exponent, .. } => {
+                let scale = contact.gross_sliding_creep * entrainment.abs();
+                if !(scale > 0.0) {
+                    return (q * sliding.signum(), 0.0);
+                }
+                let (phi, dphi, _) = micro_slip_share(sliding / scale, exponent);
+                (q * sliding.signum() * phi, q * dphi / scale)
+            }
             AsperityModel::Carter => {
                 let ue = entrainment.abs();
                 let xc = contact.gross_sliding_creep;
@@ -209,6 +304,11 @@ impl AsperityFriction {
                 let reach = sliding.abs().min((sliding.abs() - gross).abs());
                 (if sliding.abs() < gross { 2.0 * q / (gross * gross) } else { 0.0 }, reach)
             }
+            // |Φ''| ≤ (5/4) n(n − 1) everywhere ([`micro_slip_share`]); the sign of the
+            // curvature flips at u_s = 0, so the reach stops there.
+            AsperityModel::MicroSlip { exponent, .. } if ue > 0.0 && xc > 0.0 => {
+                (micro_slip_share(0.0, exponent).2 * q / (xc * ue).powi(2), sliding.abs())
+            }
             _ => (0.0, sliding.abs()),
         }
     }
@@ -228,14 +328,31 @@ impl AsperityFriction {
             AsperityModel::Carter => {
                 if srr < contact.gross_sliding_creep { SlipRegime::MicroSlip } else { SlipRegime::GrossSliding }
             }
+            AsperityModel::MicroSlip { exponent, .. } => {
+                let xm = contact.gross_sliding_creep;
+                if xm > 0.0 && micro_slip_share(srr / xm, exponent).0 < MICRO_SLIP_GROSS_SHARE { SlipRegime::MicroSlip } else { SlipRegime::GrossSliding }
+            }
         }
     }
 
-    /// Half-height of the traction jump at `u_s = 0` (N): `μ_b W_a` for Coulomb, 0 for Carter.
+    /// The creep scale of the partial-slip laws for a contact of half-width `half_width` (m) and
+    /// reduced radius `radius` (m) in the rolling direction: Carter's gross-sliding creep
+    /// `μ_b b/R`, the micro-slip map's `δx_gs/b` (0 for Coulomb, which has none).
+    pub fn creep_scale(&self, half_width: f64, radius: f64) -> f64 {
+        match self.model {
+            AsperityModel::Coulomb | AsperityModel::Carter => self.coefficient * half_width / radius,
+            AsperityModel::MicroSlip { gross_sliding_displacement, .. } => {
+                if half_width > 0.0 { gross_sliding_displacement / half_width } else { 0.0 }
+            }
+        }
+    }
+
+    /// Half-height of the traction jump at `u_s = 0` (N): `μ_b W_a` for Coulomb, 0 for the
+    /// partial-slip laws.
     pub fn stick_limit(&self, contact: &AsperityContact) -> f64 {
         match self.model {
             AsperityModel::Coulomb => self.coefficient * contact.load,
-            AsperityModel::Carter => 0.0,
+            AsperityModel::Carter | AsperityModel::MicroSlip { .. } => 0.0,
         }
     }
 }
@@ -308,6 +425,47 @@ mod tests {
         // Node 1: g = 2e8 s⁻¹·Pa/(m/s), cap 1e7 Pa at u = 0.05 m/s.
         let l = viscous_traction_local(&[node()], &capped, 0.04);
         assert!((l.smooth_reach - 0.01).abs() < 1e-12, "{}", l.smooth_reach);
+    }
+
+    #[test]
+    fn micro_slip_share_is_the_integral_of_the_local_map() {
+        // Midpoint rule of Φ(t) = ∫ g(min(1, t(1+X))) (2/π)√(1−X²) dX in θ, g = 1 − (1 − s)^n.
+        let quad = |t: f64, n: f64| {
+            let m = 200_000;
+            (0..m)
+                .map(|k| {
+                    let th = std::f64::consts::PI * (k as f64 + 0.5) / m as f64;
+                    let s = (t * (1.0 - th.cos())).min(1.0);
+                    (1.0 - (1.0 - s).powf(n)) * (2.0 / std::f64::consts::PI) * th.sin().powi(2) * std::f64::consts::PI / m as f64
+                })
+                .sum::<f64>()
+        };
+        for n in [2.0, 3.0, 4.5] {
+            for t in [0.0, 0.1, 0.5, 0.7, 1.0, 2.0, 5.0, 40.0] {
+                let (phi, dphi, bound) = micro_slip_share(t, n);
+                assert!((phi - quad(t, n)).abs() < 1e-8, "n={n} t={t}: {phi} vs {}", quad(t, n));
+                let h = 1e-6;
+                let (lo, hi) = ((t - h).max(0.0), t + h);
+                let fd = (micro_slip_share(hi, n).0 - micro_slip_share(lo, n).0) / (hi - lo);
+                assert!((dphi - fd).abs() < 1e-5 * dphi.max(1.0), "n={n} t={t}: {dphi} vs {fd}");
+                let fd2 = (micro_slip_share(hi, n).1 - micro_slip_share(lo, n).1) / (hi - lo);
+                assert!(fd2 <= 1e-6 && -fd2 <= bound * (1.0 + 1e-6), "n={n} t={t}: {fd2} vs {bound}");
+            }
+        }
+        // n = 2, small creep: Φ = 2t − 5t²/4; Φ → 1 like 1 − O(t^−3/2).
+        assert!((micro_slip_share(0.2, 2.0).0 - (0.4 - 1.25 * 0.04)).abs() < 1e-13);
+        assert!(micro_slip_share(1e4, 3.0).0 > 0.9999);
+        let a = AsperityFriction { coefficient: 0.12, model: AsperityModel::MicroSlip { gross_sliding_displacement: 0.2e-6, exponent: 3.0 } };
+        let c = AsperityContact { load: 1000.0, gross_sliding_creep: a.creep_scale(2e-4, 0.01) };
+        assert!((c.gross_sliding_creep - 1e-3).abs() < 1e-15);
+        let ue = 4.0;
+        // Initial slope n μ W_a/(ξ_m u_e) (∫ y w dX = 1); odd in u_s.
+        assert!((a.traction(&c, 0.0, ue).1 - 3.0 * 120.0 / (1e-3 * ue)).abs() < 1e-9);
+        assert!((a.traction(&c, 1e-9, ue).1 / a.traction(&c, 0.0, ue).1 - 1.0).abs() < 1e-4);
+        let (q, _) = a.traction(&c, 1e-3 * ue, ue);
+        assert_eq!(a.traction(&c, -1e-3 * ue, ue).0, -q);
+        assert!(a.stick_limit(&c) == 0.0 && a.regime(&c, 0.5e-3 * ue, ue) == SlipRegime::MicroSlip);
+        assert_eq!(a.regime(&c, 0.5 * ue, ue), SlipRegime::GrossSliding);
     }
 
     #[test]

@@ -18,7 +18,7 @@
 
 use super::monotone_root;
 use crate::physics::film::{ContactInput, FilmModel, FilmSolution, Traction};
-use crate::physics::friction::AsperityModel;
+use crate::physics::friction::{micro_slip_share, AsperityModel, MICRO_SLIP_GROSS_SHARE};
 use crate::physics::SolveError;
 
 /// A fixed operating point of a roller follower.
@@ -118,7 +118,8 @@ impl PointCase<'_> {
     }
 
     /// Roller–pin friction at which the asperity traction saturates: the stick limit for
-    /// Coulomb asperities, gross sliding (SRR = ξ_c) for Carter. `None` without asperity load.
+    /// Coulomb asperities, gross sliding (SRR = ξ_c) for Carter, 99 % of the limiting traction
+    /// for the micro-slip map ([`MICRO_SLIP_GROSS_SHARE`]). `None` without asperity load.
     pub fn gross_sliding_pin_friction(&self) -> Result<Option<f64>, SolveError> {
         let film = self.film_at(0.0, None)?;
         let load = self.input.load;
@@ -127,8 +128,13 @@ impl PointCase<'_> {
         }
         let traction = match self.input.asperity_friction.model {
             AsperityModel::Coulomb => self.input.asperity_friction.coefficient * film.asperity.load,
-            AsperityModel::Carter => {
-                let xc = film.asperity.gross_sliding_creep;
+            AsperityModel::Carter | AsperityModel::MicroSlip { .. } => {
+                // Carter saturates at SRR = ξ_c; the micro-slip map reaches the gross-sliding
+                // share (99 %) at SRR = t99 ξ_m.
+                let xc = match self.input.asperity_friction.model {
+                    AsperityModel::MicroSlip { exponent, .. } => micro_slip_gross_creep(exponent) * film.asperity.gross_sliding_creep,
+                    _ => film.asperity.gross_sliding_creep,
+                };
                 let us = xc * self.cam_surface_velocity / (1.0 + 0.5 * xc);
                 let film = self.film_at(us, Some(&film))?;
                 self.model.traction(&film, &self.input_at(us), us).force
@@ -143,7 +149,17 @@ impl PointCase<'_> {
         let film = self.film_at(0.0, None)?;
         Ok(match self.input.asperity_friction.model {
             AsperityModel::Coulomb => self.input.asperity_friction.coefficient * film.asperity.load / self.input.load,
-            AsperityModel::Carter => 0.0,
+            AsperityModel::Carter | AsperityModel::MicroSlip { .. } => 0.0,
         })
     }
+}
+
+/// `t` at which [`micro_slip_share`] reaches [`MICRO_SLIP_GROSS_SHARE`] (bisection; Φ increases).
+fn micro_slip_gross_creep(exponent: f64) -> f64 {
+    let (mut lo, mut hi) = (0.0, 1e6);
+    for _ in 0..200 {
+        let mid = 0.5 * (lo + hi);
+        if micro_slip_share(mid, exponent).0 < MICRO_SLIP_GROSS_SHARE { lo = mid } else { hi = mid }
+    }
+    hi
 }
