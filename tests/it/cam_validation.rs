@@ -488,6 +488,41 @@ fn seed001_nose_with_a_rough_contact_curve() {
     assert!(f("gross_sliding_pin_friction") > 0.02);
 }
 
+/// The whole seed 001 chain with stick–slip: `rough_contact` with `friction_limit` gives, per
+/// film, the gross-sliding displacement and the micro-slip shape exponent of the surface (seed
+/// 001 eq. 14–21), which `cam_point` takes as `asperities.model: micro_slip` with the surface's
+/// pressure–gap curve. The roller then slides from the sweep's first step (μ_cr = 0.00051).
+#[test]
+fn seed001_chain_surface_to_micro_slip_roller() {
+    let mut rc_spec = example("rough_contact_seed001");
+    rc_spec["friction_limit"] = json!(0.12);
+    let rc = run("rough_contact", &rc_spec).unwrap();
+    let films = rc["rows"].as_array().unwrap();
+    for r in films {
+        println!("h {}: p_a {} δx_gs {} n {}", r["film"], r["mean_pressure"], r["gross_sliding_displacement"], r["micro_slip_exponent"]);
+        let (d, n) = (r["gross_sliding_displacement"].as_f64().unwrap(), r["micro_slip_exponent"].as_f64().unwrap());
+        if r["mean_pressure"].as_f64().unwrap() > 1e6 {
+            assert!((5e-9..300e-9).contains(&d) && (1.5..6.0).contains(&n), "{d} {n}");
+        }
+    }
+    // The film nearest the nose film 0.27 µm.
+    let at = films.iter().min_by(|a, b| {
+        let d = |r: &&Value| (r["film"].as_f64().unwrap() - 0.27e-6).abs();
+        d(a).total_cmp(&d(b))
+    }).unwrap();
+    let out = point("seed001_mixed_nose", |s| {
+        s["asperities"]["pressure_gap_curve"] = rc["pressure_gap_curve"].clone();
+        s["asperities"]["model"] = json!("micro_slip");
+        s["asperities"]["gross_sliding_displacement"] = at["gross_sliding_displacement"].clone();
+        s["asperities"]["micro_slip_exponent"] = at["micro_slip_exponent"].clone();
+        s["pin_friction"] = json!([0.001, 0.01, 0.03]);
+    });
+    let srr = rows(&out, "slide_roll_ratio");
+    println!("chain: SRR {srr:?}, share {}", out["summary"]["asperity_load_fraction"]);
+    assert!(srr.iter().all(|s| *s > 0.0));
+    assert_eq!(out["summary"]["first_sliding_pin_friction"], json!(0.001));
+}
+
 // ------------------------------------------------------------------ errors and limits
 
 #[test]

@@ -190,9 +190,11 @@ pub struct AsperitySpec {
     /// `rough_contact` job with `friction_limit` reports it per film). Required by `micro_slip`.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub gross_sliding_displacement: Option<f64>,
-    /// Exponent n of `micro_slip`'s local shape `μ_a/μ_lim = 1 − (1 − δx/δx_gs)^n`, 2–8.
-    /// Default 3: the dry rough-contact maps of seed 001's surface follow it at the working films
-    /// (BENCHMARKS.md, "Mixed lubrication: the micro-slip map"); 2 is Carter's 2-D shape.
+    /// Exponent n of `micro_slip`'s local shape `μ_a/μ_lim = 1 − (1 − δx/δx_gs)^n`, 2–8
+    /// (2 is Carter's 2-D shape; below 2 the law's curvature is unbounded). Default 3, the fit to
+    /// the rough-contact maps of a seed 001 surface at its working films; it depends on the
+    /// surface and the film (`rough_contact` with `friction_limit` reports it per film;
+    /// BENCHMARKS.md, "Mixed lubrication: the micro-slip map").
     #[serde(default = "default_micro_slip_exponent", skip_serializing_if = "is_default_micro_slip_exponent")]
     pub micro_slip_exponent: f64,
     /// Plastic limit of the asperity contact pressure, Pa (seed 001 Table 1: 6e9). Absent:

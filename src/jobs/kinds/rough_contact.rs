@@ -10,7 +10,10 @@
 
 use super::common::Material;
 use crate::jobs::kind::{Kind, Limits, Validation};
-use crate::physics::rough::{solve_normal, MapGrids, NormalControl, RoughMaterial, RoughOptions, RoughSurface};
+use crate::physics::rough::{
+    gross_sliding_displacement as gross_sliding_displacement_of, solve_normal, solve_tangential, MapGrids, NormalControl, RoughMaterial, RoughOptions,
+    RoughSurface, TangentialContact,
+};
 use crate::physics::{ensure_finite, Convergence, Observer, SolveError, Termination};
 use serde::{Deserialize, Serialize};
 use serde_json::{json, Value};
@@ -61,6 +64,12 @@ pub struct RoughContactSpec {
     /// Relative tolerance of the contact solver. Default 1e-7.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub tolerance: Option<f64>,
+    /// Limiting (Coulomb) friction coefficient μ_a,lim of the asperity contacts (seed 001
+    /// Table 1: 0.12). Present: each film also gets the tangential stick–slip solution (seed 001
+    /// eq. 14–21) — its gross-sliding displacement and the exponent of the micro-slip shape —
+    /// the inputs of the cam kinds' `asperities.model: micro_slip`. Triples the work.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub friction_limit: Option<f64>,
 }
 
 /// One film of the curve.
@@ -78,6 +87,15 @@ pub struct GapRow {
     pub plastic_fraction: f64,
     /// Largest local pressure, Pa.
     pub max_pressure: f64,
+    /// Rigid tangential displacement at which the whole contact slides, δx_gs, m (with
+    /// `friction_limit`): `asperities.gross_sliding_displacement` of the cam kinds.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub gross_sliding_displacement: Option<f64>,
+    /// Exponent n of `μ_a/μ_lim = 1 − (1 − δx/δx_gs)^n` fitted (mean of ln(1 − μ_a/μ_lim)/ln(1 − s))
+    /// to the stick–slip solutions at δx_gs/4 and δx_gs/2 (with `friction_limit`):
+    /// `asperities.micro_slip_exponent` of the cam kinds.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub micro_slip_exponent: Option<f64>,
 }
 
 /// The curve in the form `asperities.pressure_gap_curve` of the cam kinds takes.
@@ -162,6 +180,9 @@ impl Kind for RoughContact {
         if let Some(t) = spec.tolerance {
             v.in_range("/tolerance", t, 1e-12, 1e-2);
         }
+        if let Some(m) = spec.friction_limit {
+            v.in_range("/friction_limit", m, 1e-3, 2.0);
+        }
         let films = spec.films.as_ref().map_or(12, |f| f.len());
         if let Some(f) = &spec.films {
             v.check(!f.is_empty() && f.len() <= 64, "/films", "1 to 64 films");
@@ -173,7 +194,8 @@ impl Kind for RoughContact {
         let (nx, ny) = grid(spec);
         let n = (nx * ny) as f64;
         v.limit("/surface", nx * ny, limits.max_grid_nodes, "the number of surface points");
-        let seconds = films as f64 * 2.5 * (n / (512.0 * 512.0)).powf(1.1);
+        let per_film = if spec.friction_limit.is_some() { 3.0 } else { 1.0 };
+        let seconds = per_film * films as f64 * 2.5 * (n / (512.0 * 512.0)).powf(1.1);
         v.work("/films", seconds, limits, "the contact solves at these films on this grid");
         let bytes = 16.0 * 8.0 * n;
         v.memory("/surface", bytes, limits, "the contact solver on this grid");
@@ -204,7 +226,21 @@ impl Kind for RoughContact {
                 .map_err(|e| e.in_spec(|_| Some(format!("/films/{k}"))))?;
             iterations += c.convergence.iterations;
             residual = residual.max(c.convergence.residual);
+            let (mut gross_sliding_displacement, mut micro_slip_exponent) = (None, None);
+            if let (Some(mu), true) = (spec.friction_limit, c.mean_pressure > 0.0) {
+                let at = |e: SolveError| e.in_spec(|_| Some(format!("/films/{k}")));
+                let dgs = gross_sliding_displacement_of(&surface, &material, &c, mu).map_err(at)?;
+                let quarter = solve_tangential(&surface, &material, &c, mu, 0.25 * dgs, &options, None, observer).map_err(at)?;
+                let half = solve_tangential(&surface, &material, &c, mu, 0.5 * dgs, &options, Some(&quarter.traction), observer).map_err(at)?;
+                iterations += quarter.convergence.iterations + half.convergence.iterations;
+                residual = residual.max(quarter.convergence.residual).max(half.convergence.residual);
+                let fit = |t: &TangentialContact, s: f64| (1.0 - t.friction_coefficient.abs() / mu).max(1e-12).ln() / (1.0 - s).ln();
+                gross_sliding_displacement = Some(dgs);
+                micro_slip_exponent = Some(0.5 * (fit(&quarter, 0.25) + fit(&half, 0.5)));
+            }
             rows.push(GapRow {
+                gross_sliding_displacement,
+                micro_slip_exponent,
                 film: h,
                 mean_pressure: c.mean_pressure,
                 separation: c.separation,

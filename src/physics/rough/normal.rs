@@ -225,8 +225,13 @@ impl<'a> NormalSolver<'a> {
         for _ in 0..MAX_OUTER {
             let d = (d_a * f_b - d_b * f_a) / (f_b - f_a);
             let (f, s) = eval(d, &mut warm, &mut iterations, &mut worst, &mut stalled)?;
-            if f.abs() <= tol || (d_b - d_a) <= 1e-15 * self.scale {
+            if f.abs() <= tol {
                 return finish(s, d, iterations, worst, stalled);
+            }
+            if (d_b - d_a) <= 1e-15 * self.scale {
+                // The bracket collapsed before the load closed (the inner solves' precision
+                // limits the load): say so instead of reporting convergence.
+                return finish(s, d, iterations, worst.max(f.abs() / pm), true);
             }
             if f > 0.0 {
                 (d_a, f_a) = (d, f);
