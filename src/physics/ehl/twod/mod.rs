@@ -21,7 +21,7 @@
 //! (Johnson eq. 4.39–4.41); roller — `a`, `p_ref` the line-contact Hertz values at the peak load
 //! per length of the slice model (`physics::roller::Crown::distribute`).
 //!
-//! # Method (chosen by measurement, see `BENCHMARKS.md`, "Finite-length and point EHL")
+//! # Method
 //! A uniform `nx × ny` grid; second-order upwind wedge term (first order next to the inlet
 //! boundary), central Poiseuille terms; the deflection by DC-FFT ([`elastic`]). The discrete
 //! system — one complementarity function `min(P, −F/|J_ii|)` per interior node and the load
@@ -29,8 +29,20 @@
 //! ([`solver`]) whose steps are computed by restarted GMRES with the exact Jacobian product
 //! (two FFTs) and a sparse preconditioner: the Jacobian with the elastic kernel truncated to a
 //! `(2r+1)²` near field, factorised by faer's sparse LU. Nested iteration from coarser grids and,
-//! when a cold start fails, continuation in `λ` (faster entrainment, thicker film) reach heavy
-//! loads (p0 ≈ 1.7 GPa and beyond).
+//! when a cold start fails, continuation in `λ` (faster entrainment, thicker film).
+//!
+//! # Status (issue 16, work in progress)
+//! Measured (`TRIBOD_EHL2D_TRACE=1`, see `BENCHMARKS.md`, "Finite-length and point EHL"): the
+//! Jacobian product agrees with finite differences of the residual to 1e-6–1e-5, and GMRES
+//! with the `r = 1` near-field preconditioner reaches 1e-3 in 11–19 iterations per Newton step on
+//! 25² grids. The Newton iteration itself does not converge yet for EHL conditions: from the
+//! Hertzian cold start the line search accepts only ever smaller steps (the film's
+//! fraction-to-boundary rule, and without it the merit function) and the residual stalls near
+//! 0.5; only the continuation stages at 16× the entrainment converge (to 1e-5 in 19 steps).
+//! Until that is resolved [`solve`] returns `SolveError::NotConverged` for most inputs —
+//! a typed error, never NaN. Next steps: a Venner–Lubrecht line relaxation (or the 1-D solver's
+//! centre-line solution) as the start and smoother, a regularised film floor (`Problem::floor`)
+//! instead of the fraction-to-boundary rule, and the load balance by an outer `H0` update.
 //!
 //! # Not modelled
 //! Transient (squeeze) terms, thermal and non-Newtonian effects, grid grading and mixed

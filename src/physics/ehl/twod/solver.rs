@@ -41,6 +41,11 @@ struct Problem {
     rheo: PressureRheology,
     defl: Deflection,
     near: usize,
+    /// Second-order upwind wedge term (else first order).
+    second: bool,
+    /// Film floor in units of `a²/R_x` (`None`: off, the default): below it the film is held
+    /// constant in the Reynolds terms (a regularisation under study, see the module status).
+    floor: Option<f64>,
     /// Unknown index of each node (`usize::MAX`: boundary).
     unk: Vec<usize>,
     /// Node of each unknown (interior nodes).
@@ -60,6 +65,8 @@ struct Fields {
     deps: Vec<f64>,
     /// Reynolds residual at the nodes (0 on the boundary).
     f: Vec<f64>,
+    /// `∂H_eff/∂H`: 1, or 0 where the film is held at the floor.
+    on: Vec<f64>,
     /// Load residual `∫∫P/target − 1`.
     g: f64,
 }
@@ -99,6 +106,8 @@ impl Problem {
             rheo: PressureRheology::new(&input.lubricant, input.temperature),
             defl: Deflection::new(nx, ny, dx, dy, s.c_def),
             near,
+            floor: None,
+            second: true,
             unk,
             nodes,
         }
@@ -106,7 +115,7 @@ impl Problem {
 
     /// Upwind stencil of `∂Q/∂X` at column `i`: `(offset back, weight)`.
     fn wedge(&self, i: usize) -> [(usize, f64); 3] {
-        if i >= 2 {
+        if i >= 2 && self.second {
             [(0, 1.5 / self.dx), (1, -2.0 / self.dx), (2, 0.5 / self.dx)]
         } else {
             [(0, 1.0 / self.dx), (1, -1.0 / self.dx), (0, 0.0)]
@@ -116,12 +125,19 @@ impl Problem {
     /// Fields at `(p, h0)`; `false` when the film is not positive or a value is not finite.
     fn evaluate(&mut self, p: &[f64], h0: f64, v: &mut Fields) -> bool {
         let n = self.nx * self.ny;
-        for a in [&mut v.w, &mut v.h, &mut v.rho, &mut v.drho, &mut v.eps, &mut v.deps, &mut v.f] {
+        for a in [&mut v.w, &mut v.h, &mut v.rho, &mut v.drho, &mut v.eps, &mut v.deps, &mut v.f, &mut v.on] {
             a.resize(n, 0.0);
         }
         self.defl.apply(p, &mut v.w);
         for k in 0..n {
-            let h = h0 + self.geom[k] + v.w[k];
+            let mut h = h0 + self.geom[k] + v.w[k];
+            v.on[k] = 1.0;
+            if let Some(floor) = self.floor {
+                if h < floor {
+                    h = floor;
+                    v.on[k] = 0.0;
+                }
+            }
             if !(h > 0.0 && h.is_finite()) {
                 return false;
             }
@@ -171,7 +187,7 @@ impl Problem {
         let dh0 = x[m];
         self.defl.apply(&buf.dp, &mut buf.dw);
         for k in 0..n {
-            let dh = dh0 + buf.dw[k];
+            let dh = (dh0 + buf.dw[k]) * v.on[k];
             buf.dq[k] = v.drho[k] * buf.dp[k] * v.h[k] + v.rho[k] * dh;
             buf.de[k] = v.deps[k] * buf.dp[k] + 3.0 * v.eps[k] / v.h[k] * dh;
         }
@@ -230,6 +246,7 @@ impl Problem {
                 if self.unk[kk] != usize::MAX {
                     row.push((self.unk[kk], lw * v.drho[kk] * v.h[kk]));
                 }
+                let lw = lw * v.on[kk];
                 row.push((m, lw * v.rho[kk]));
                 for dj in -r..=r {
                     let lj = kj as isize + dj;
@@ -374,6 +391,12 @@ fn gmres(prob: &mut Problem, p: &[f64], v: &Fields, active: &[bool], c: &[f64], 
     (iters, rel)
 }
 
+/// `TRIBOD_EHL2D_TRACE` set: print each Newton step, the line search and (first step) a
+/// finite-difference check of the Jacobian product to stderr (development aid).
+fn trace() -> bool {
+    std::env::var_os("TRIBOD_EHL2D_TRACE").is_some()
+}
+
 /// Report norm: the larger of `max|φ|/max P` and `|G|`.
 fn residual_norm(p: &[f64], phi: &[f64], g: f64) -> f64 {
     let pmax = p.iter().cloned().fold(0.0_f64, f64::max).max(1e-12);
@@ -429,8 +452,34 @@ fn newton(prob: &mut Problem, p: &mut [f64], h0: &mut f64, tol: f64, max_iter: u
             rhs[u] = if active[u] { -p[k] } else { -c[u] * v.f[k] };
         }
         rhs[m] = -v.g;
-        let (its, _rel) = gmres(prob, p, &v, &active, &c, &lu, &rhs, &mut sol, &mut buf);
+        let (its, rel) = gmres(prob, p, &v, &active, &c, &lu, &rhs, &mut sol, &mut buf);
         gm_total += its;
+        if trace() {
+            eprintln!("ehl2d {}x{} λ {:.3e} iter {iter} res {res:.3e} g {:.2e} gmres {its} rel {rel:.2e} active {}", prob.nx, prob.ny, prob.lambda, v.g, active.iter().filter(|a| **a).count());
+            if iter == 0 {
+                // Directional-derivative check of the Jacobian product.
+                let mut x: Vec<f64> = (0..m + 1).map(|u| (((u * 7919) % 13) as f64 - 6.0) * 1e-3).collect();
+                for (u, &k) in prob.nodes.iter().enumerate() {
+                    if p[k] <= 0.0 { x[u] = 0.0; }
+                }
+                let mut jx = vec![0.0; m + 1];
+                let mut inactive = active.clone();
+                inactive.iter_mut().for_each(|a| *a = false);
+                prob.apply(p, &v, &inactive, &c, &x, &mut jx, &mut buf);
+                let t = 1e-4;
+                let mut pt = p.to_vec();
+                for (u, &k) in prob.nodes.iter().enumerate() { pt[k] += t * x[u]; }
+                let mut vt = Fields::default();
+                if prob.evaluate(&pt, *h0 + t * x[m], &mut vt) {
+                    let mut num = 0.0; let mut den = 0.0;
+                    for (u, &k) in prob.nodes.iter().enumerate() {
+                        let fd = c[u] * (vt.f[k] - v.f[k]) / t;
+                        num += (fd - jx[u]).powi(2); den += fd * fd;
+                    }
+                    eprintln!("ehl2d jacobian check: rel diff {:.3e}", (num / den.max(1e-300)).sqrt());
+                }
+            }
+        }
         if !sol.iter().all(|s| s.is_finite()) {
             return Ok(Run { iterations: iter + 1, residual: res, history, converged: false, gmres: gm_total });
         }
@@ -441,11 +490,17 @@ fn newton(prob: &mut Problem, p: &mut [f64], h0: &mut f64, tol: f64, max_iter: u
         let dh0 = sol[m];
         prob.defl.apply(&dpn, &mut dw);
         let mut alpha: f64 = 1.0;
+        let ftb = 0.8;
+        let mut limiting = 0;
         for k in 0..p.len() {
             let d = dh0 + dw[k];
-            if d < 0.0 {
-                alpha = alpha.min(0.8 * v.h[k] / -d);
+            if d < 0.0 && ftb * v.h[k] / -d < alpha {
+                alpha = ftb * v.h[k] / -d;
+                limiting = k;
             }
+        }
+        if trace() {
+            eprintln!("   ftb alpha {alpha:.3e} at node ({}, {}) h {:.3e} P {:.3e} dh0 {dh0:.3e}", limiting % prob.nx, limiting / prob.nx, v.h[limiting], p[limiting]);
         }
         let m0 = dot(&phi, &phi) * cell + v.g * v.g;
         let mut accepted = false;
@@ -466,6 +521,9 @@ fn newton(prob: &mut Problem, p: &mut [f64], h0: &mut f64, tol: f64, max_iter: u
                 }
             }
             alpha *= 0.5;
+        }
+        if trace() {
+            eprintln!("   accepted {accepted} alpha {alpha:.3e}");
         }
         if !accepted {
             return Ok(Run { iterations: iter + 1, residual: res, history, converged: false, gmres: gm_total });
@@ -596,10 +654,11 @@ pub fn solve(input: &Ehl2dInput, options: &Ehl2dOptions, observer: &dyn Observer
     let s = scales(input)?;
     let d = domain(input, options, &s);
     // Nested iteration: grids of (n − 1)/2^k + 1 nodes down to ≥ 17 per side.
+    let min_level = 17;
     let mut levels = vec![(options.nx, options.ny)];
     loop {
         let (lx, ly) = levels[levels.len() - 1];
-        if (lx - 1) % 2 == 0 && (ly - 1) % 2 == 0 && (lx - 1) / 2 + 1 >= 17 && (ly - 1) / 2 + 1 >= 17 && levels.len() < 4 {
+        if (lx - 1) % 2 == 0 && (ly - 1) % 2 == 0 && (lx - 1) / 2 + 1 >= min_level && (ly - 1) / 2 + 1 >= min_level && levels.len() < 4 {
             levels.push(((lx - 1) / 2 + 1, (ly - 1) / 2 + 1));
         } else {
             break;
@@ -625,12 +684,12 @@ pub fn solve(input: &Ehl2dInput, options: &Ehl2dOptions, observer: &dyn Observer
         if !run.converged && (guess.is_none() || finest) {
             // Continuation from faster entrainment: λ·4^k → λ, each stage from the last.
             let target = prob.lambda;
-            for start in [2, 4, 6] {
+            for start in [6, 12] {
                 let mut good = true;
                 for k in (0..=start).rev() {
-                    prob.lambda = target * 4f64.powi(k);
+                    prob.lambda = target * 2f64.powi(k);
                     if k == start {
-                        let s2 = Scales { h_est: s.h_est * 4f64.powf(0.7 * k as f64), ..s.clone() };
+                        let s2 = Scales { h_est: s.h_est * 2f64.powf(0.7 * k as f64), ..s.clone() };
                         (p, h0) = cold(&mut prob, input, &s2);
                     }
                     let stage_tol = if k == 0 { level_tol } else { level_tol.max(1e-5) };
