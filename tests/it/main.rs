@@ -13,6 +13,7 @@ mod cam_stability;
 mod cam_validation;
 mod ehl_stability;
 mod ehl_validation;
+mod ehl_2d;
 mod examples_run;
 mod house;
 mod http_api;

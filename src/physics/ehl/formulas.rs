@@ -91,6 +91,49 @@ pub fn martin_minimum_film(g: &Groups, radius: f64) -> f64 {
     4.9 * g.speed / g.load * radius
 }
 
+/// Moes groups of an elliptic point contact (entrainment along x): `W = F/(E'R_x²)`,
+/// `U = η0 u_m/(E'R_x)` (mean velocity), `M = W (2U)^(−3/4)`, `L = G (2U)^(1/4)`; films scale as
+/// `H = (h/R_x)(2U)^(−1/2)` (Nijenbanning, Venner & Moes, Wear 176 (1994) 217–229, §2).
+pub fn point_moes_groups(load: f64, rx: f64, e_prime: f64, speed: f64, eta0: f64, alpha: f64) -> (f64, f64, f64) {
+    let w = load / (e_prime * rx * rx);
+    let u_sum = 2.0 * eta0 * speed.abs() / (e_prime * rx);
+    (w * u_sum.powf(-0.75), alpha * e_prime * u_sum.powf(0.25), u_sum)
+}
+
+/// Central film of an elliptic EHL contact in Moes units, `H_c = (h_c/R_x)(2U)^(−1/2)`, by the
+/// formula of Nijenbanning, Venner & Moes (Wear 176 (1994) 217–229, eq. 17–21), for the ratio of
+/// reduced radii `λ = R_x/R_y` (1: circular; < 1: the major axis of the ellipse across the
+/// entrainment, as in rollers) and the Moes parameters `M`, `L` of [`point_moes_groups`]:
+/// `H_c = [(H_RI^{3/2} + (H_EI^{−4} + 0.1^4)^{−3/8})^{2s/3} + (H_RP^{−8} + H_EP^{−8})^{−s/8}]^{1/s}`,
+/// `s = 1.5 (1 + exp(−1.2 H_EI/H_RI))`, with the asymptotes
+/// `H_RI = 145 (1 + 0.796 λ^{14/15})^{−15/7} λ^{−1} M^{−2}`,
+/// `H_EI = 3.18 (1 + 0.006 ln λ + 0.63 λ^{4/7})^{−14/25} λ^{−1/15} M^{−2/15}`,
+/// `H_RP = 1.29 (1 + 0.691 λ)^{−2/3} L^{2/3}`,
+/// `H_EP = 1.48 (1 + 0.006 ln λ + 0.63 λ^{4/7})^{−7/20} M^{−1/12} L^{3/4}`.
+/// The paper states agreement with its numerical solutions within a few percent over its survey
+/// (M = 3–1000, L = 0–25, λ = 0.04–1; larger deviations, up to ~10 %, at the transitions).
+/// The coefficients were transcribed from a secondary memory of the paper, not checked against
+/// the printed text in this repository (see `BENCHMARKS.md`, issue 16).
+pub fn nijenbanning_central(m: f64, l: f64, lambda: f64) -> f64 {
+    let lam = lambda;
+    let q = 1.0 + 0.006 * lam.ln() + 0.63 * lam.powf(4.0 / 7.0);
+    let h_ri = 145.0 * (1.0 + 0.796 * lam.powf(14.0 / 15.0)).powf(-15.0 / 7.0) / lam * m.powi(-2);
+    let h_ei = 3.18 * q.powf(-14.0 / 25.0) * lam.powf(-1.0 / 15.0) * m.powf(-2.0 / 15.0);
+    let h_rp = 1.29 * (1.0 + 0.691 * lam).powf(-2.0 / 3.0) * l.powf(2.0 / 3.0);
+    let h_ep = 1.48 * q.powf(-7.0 / 20.0) * m.powf(-1.0 / 12.0) * l.powf(0.75);
+    let s = 1.5 * (1.0 + (-1.2 * h_ei / h_ri).exp());
+    let first = (h_ri.powf(1.5) + (h_ei.powi(-4) + 1e-4).powf(-0.375)).powf(2.0 * s / 3.0);
+    let second = if l > 0.0 { (h_rp.powi(-8) + h_ep.powi(-8)).powf(-s / 8.0) } else { 0.0 };
+    (first + second).powf(1.0 / s)
+}
+
+/// Nijenbanning–Venner–Moes central film, m, of a point contact: load `F` (N), radii `R_x`
+/// (entrainment direction) and `R_y` (m), `E'` (Pa), mean speed `u_m` (m/s), `η0` (Pa·s), `α` (1/Pa).
+pub fn nijenbanning_central_film(load: f64, rx: f64, ry: f64, e_prime: f64, speed: f64, eta0: f64, alpha: f64) -> f64 {
+    let (m, l, u_sum) = point_moes_groups(load, rx, e_prime, speed, eta0, alpha);
+    nijenbanning_central(m, l, rx / ry) * rx * u_sum.sqrt()
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -50,10 +50,11 @@ pub mod formulas;
 pub mod grid;
 mod linear;
 pub mod newton;
-mod rheology;
+pub(crate) mod rheology;
 pub mod thermal;
 pub mod traction;
 pub mod transient;
+pub mod twod;
 
 pub use newton::{solve, SolverStats};
 pub use traction::{Rheology, TractionResult};

@@ -7,7 +7,7 @@ use crate::physics::lubricant::{DensityModel, Lubricant, ViscosityModel, DH_C1, 
 /// Pressure dependence of `ln η̄ = ln(η/η(0,T))` and `ρ̄ = ρ/ρ0` at the (uniform) temperature,
 /// with the temperature factors evaluated once per problem (same laws as [`Lubricant`]).
 #[derive(Debug, Clone, Copy)]
-pub(super) struct PressureRheology {
+pub(crate) struct PressureRheology {
     /// Barus: `ln η̄ = α p`. Roelands: `ln η̄ = A1 θ ((1 + p/p_r)^Z − 1)`.
     pub(super) roelands: bool,
     pub(super) alpha: f64,
@@ -21,7 +21,7 @@ pub(super) struct PressureRheology {
 }
 
 impl PressureRheology {
-    pub(super) fn new(lub: &Lubricant, t: f64) -> Self {
+    pub(crate) fn new(lub: &Lubricant, t: f64) -> Self {
         let roelands = lub.viscosity_model == ViscosityModel::Roelands;
         // ln η̄ = ln η(p,T)/η0 − ln η(0,T)/η0; for Roelands both share A1 θ with
         // θ = ((T − 138)/(T0 − 138))^(−S0): recover A1 θ from the ratio at one pressure.
@@ -41,7 +41,7 @@ impl PressureRheology {
 
     /// `(ln η̄, d ln η̄/dp, ρ̄, dρ̄/dp)` at gauge pressure `p` (Pa; clamped at 0, slopes 0 below).
     #[inline]
-    pub(super) fn at(&self, p: f64) -> (f64, f64, f64, f64) {
+    pub(crate) fn at(&self, p: f64) -> (f64, f64, f64, f64) {
         let pc = p.max(0.0);
         let on = if p < 0.0 { 0.0 } else { 1.0 };
         let (ln_eta, dln) = if self.roelands {

@@ -40,6 +40,20 @@ pub struct CrownedContact {
 }
 
 impl Crown {
+    /// Axial gap of the unloaded roller at `y` (m from the roller centre) against a straight
+    /// generator, m (the profile of the module docs, seed 000 eq. 3 with the sign slip
+    /// corrected): `h_td (2y/L1)²` on the middle, `h_td + (|y| − L1/2)²/(2R_d)` beyond.
+    pub fn gap(&self, y: f64) -> f64 {
+        let half1 = 0.5 * self.middle_length;
+        let ya = y.abs();
+        if ya <= half1 {
+            if half1 > 0.0 { self.crown_height * (ya / half1).powi(2) } else { 0.0 }
+        } else {
+            let z = ya - half1;
+            self.crown_height + if self.end_radius.is_finite() && self.end_radius > 0.0 { z * z / (2.0 * self.end_radius) } else { 0.0 }
+        }
+    }
+
     /// `(G(δ), G'(δ))` for this profile.
     fn g_integral(&self, delta: f64) -> (f64, f64) {
         if delta <= 0.0 {

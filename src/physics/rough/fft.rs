@@ -116,6 +116,19 @@ impl Convolution {
         Convolution { fft, multiplier: m, diagonal }
     }
 
+    /// The operator of a real kernel given in space, row-major `[j·nx + i]`, that is even in both
+    /// directions (`k[i] = k[nx − i]`, `k[j] = k[ny − j]`): its multiplier is the (real) DFT of
+    /// the kernel. Used by the DC-FFT of the 2-D EHL solver (`physics::ehl::twod`), whose
+    /// wrap-around influence coefficients are such a kernel.
+    pub(crate) fn from_kernel(nx: usize, ny: usize, kernel: &[f64]) -> Self {
+        let fft = Fft2::new(nx, ny);
+        let mut buf: Vec<Complex<f64>> = kernel.iter().map(|&v| Complex::new(v, 0.0)).collect();
+        let mut w = fft.workspace();
+        fft.forward(&mut buf, &mut w);
+        let multiplier: Vec<f64> = buf.iter().map(|c| c.re).collect();
+        Convolution { fft, multiplier, diagonal: kernel[0] }
+    }
+
     pub(crate) fn workspace(&self) -> ConvWorkspace {
         let (nx, ny) = (self.fft.nx, self.fft.ny);
         let z = Complex::new(0.0, 0.0);

@@ -31,7 +31,7 @@ pub mod surface;
 pub mod tangential;
 
 mod cg;
-mod fft;
+pub(crate) mod fft;
 mod pchip;
 
 pub use maps::{AsperityMaps, MapGrids};

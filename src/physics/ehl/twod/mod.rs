@@ -1,0 +1,179 @@
+//! Steady isothermal EHL of point contacts (elliptic, spherical followers) and finite line contacts
+//! (the crowned roller of seed 000), solved over a 2-D grid.
+//!
+//! # Equations (dimensionless with a Hertzian length `a` and pressure `p_ref`)
+//! `X = x/a`, `Y = y/a`, `P = p/p_ref`, `H = h R_x/a²`, `ρ̄ = ρ/ρ0`, `η̄ = η/η(0, T)`; the
+//! entrainment is along `x` (a negative `u_m` mirrors the solution in `x`):
+//! * compressible Reynolds (seed 000 eq. 2, isothermal, steady):
+//!   `∂/∂X(ε ∂P/∂X) + ∂/∂Y(ε ∂P/∂Y) − λ ∂(ρ̄H)/∂X = 0`, `ε = ρ̄H³/η̄`,
+//!   `λ = 12 η0 u_m R_x²/(a³ p_ref)`;
+//! * film (seed 000 eq. 3): `H = H0 + X²/2 + S(Y) + c ∫∫ P(X', Y')/sqrt((X−X')² + (Y−Y')²)`,
+//!   `c = 2 p_ref R_x/(π E' a)` with `E' = 2/Σ(1−ν²)/E` (Hamrock–Dowson); `S = (R_x/R_y) Y²/2`
+//!   for a point contact, `S = g(aY) R_x/a²` for the crowned roller (`physics::roller::Crown::gap`,
+//!   seed 000 eq. 3 with its sign slip corrected);
+//! * load balance (seed 000 eq. 6): `∫∫ P dX dY = F/(p_ref a²)`;
+//! * cavitation as complementarity: `P ≥ 0`, Reynolds residual `≤ 0`, product zero; `P = 0` on
+//!   the domain boundary (for the roller: at its end faces, seed 000's boundary condition);
+//! * rheology: the 1-D solver's pressure laws (`super::rheology`, Roelands or Barus viscosity,
+//!   Dowson–Higginson density, seed 000 eq. 4–5) at the uniform temperature.
+//!
+//! Scales: point contact — `a` the Hertzian semi-axis along `x`, `p_ref` the Hertzian peak
+//! (Johnson eq. 4.39–4.41); roller — `a`, `p_ref` the line-contact Hertz values at the peak load
+//! per length of the slice model (`physics::roller::Crown::distribute`).
+//!
+//! # Method
+//! A uniform `nx × ny` grid; second-order upwind wedge term (first order next to the inlet
+//! boundary), central Poiseuille terms; the deflection by DC-FFT ([`elastic`]). The discrete
+//! system — one complementarity function `min(P, −F/|J_ii|)` per interior node and the load
+//! balance, unknowns `P` and `H0` — is solved by a damped semismooth Newton method
+//! ([`solver`]) whose steps are computed by restarted GMRES with the exact Jacobian product
+//! (two FFTs) and a sparse preconditioner: the Jacobian with the elastic kernel truncated to a
+//! `(2r+1)²` near field, factorised by faer's sparse LU. Nested iteration from coarser grids and,
+//! when a cold start fails, continuation in `λ` (faster entrainment, thicker film).
+//!
+//! # Status (issue 16, work in progress)
+//! Measured (`TRIBOD_EHL2D_TRACE=1`, see `BENCHMARKS.md`, "Finite-length and point EHL"): the
+//! Jacobian product agrees with finite differences of the residual to 1e-6–1e-5, and GMRES
+//! with the `r = 1` near-field preconditioner reaches 1e-3 in 11–19 iterations per Newton step on
+//! 25² grids. The Newton iteration itself does not converge yet for EHL conditions: from the
+//! Hertzian cold start the line search accepts only ever smaller steps (the film's
+//! fraction-to-boundary rule, and without it the merit function) and the residual stalls near
+//! 0.5; only the continuation stages at 16× the entrainment converge (to 1e-5 in 19 steps).
+//! Until that is resolved [`solve`] returns `SolveError::NotConverged` for most inputs —
+//! a typed error, never NaN. Next steps: a Venner–Lubrecht line relaxation (or the 1-D solver's
+//! centre-line solution) as the start and smoother, a regularised film floor (`Problem::floor`)
+//! instead of the fraction-to-boundary rule, and the load balance by an outer `H0` update.
+//!
+//! # Not modelled
+//! Transient (squeeze) terms, thermal and non-Newtonian effects, grid grading and mixed
+//! lubrication are the 1-D solver's only: this solver is steady, isothermal, Newtonian, smooth.
+
+pub mod elastic;
+mod geometry;
+pub mod solver;
+
+pub use solver::solve;
+
+use crate::physics::lubricant::Lubricant;
+use crate::physics::roller::Crown;
+use crate::physics::Convergence;
+use serde::{Deserialize, Serialize};
+
+/// The contact's undeformed shape. Entrainment is along `x`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Geometry2d {
+    /// Elliptic point contact with principal reduced radii `rx` (in the entrainment direction) and
+    /// `ry` (across), m. `rx = ry`: circular (spherical follower).
+    Point { rx: f64, ry: f64 },
+    /// Finite line contact: a roller of reduced radius `rx` (m) in the entrainment direction with
+    /// the axial profile `crown` (seed 000 Table 1: total length, middle length, crown height, end
+    /// radius). A straight roller is a crown of zero height with middle length = length.
+    Finite { rx: f64, crown: Crown },
+}
+
+/// One 2-D EHL problem, SI units.
+#[derive(Debug, Clone, Copy)]
+pub struct Ehl2dInput {
+    /// Normal load, N (> 0).
+    pub load: f64,
+    pub geometry: Geometry2d,
+    /// `E' = 2/Σ(1−ν²)/E`, Pa (Hamrock–Dowson convention).
+    pub effective_modulus: f64,
+    /// Entrainment velocity `u_m = (u1 + u2)/2` along x, m/s (≠ 0; the sign mirrors the field).
+    pub entrainment_velocity: f64,
+    pub lubricant: Lubricant,
+    /// Film temperature, K (isothermal).
+    pub temperature: f64,
+}
+
+/// Resolution, tolerance and iteration cap.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct Ehl2dOptions {
+    /// Nodes in the entrainment direction (including both boundary nodes), 9–1025.
+    pub nx: usize,
+    /// Nodes across (including both boundary nodes), 9–1025.
+    pub ny: usize,
+    /// Tolerance on the larger of the relative load-balance error and the largest scaled
+    /// complementarity residual `|min(P, −F/|J_ii|)|` divided by the peak pressure.
+    pub tolerance: f64,
+    /// Most Newton steps per stage (a grid level or a continuation step).
+    pub max_iterations: u32,
+    /// Inlet distance in units of `a`; `None`: `clamp(10 sqrt(2 H_est), 3.5, 12)`.
+    pub inlet: Option<f64>,
+    /// Outlet distance in units of `a`; `None`: `clamp(1.5 sqrt(2 H_est), 1.5, 4)`.
+    pub outlet: Option<f64>,
+    /// Half-width of the domain across the entrainment for point contacts, units of `a`;
+    /// `None`: `max(1.8 b/a + 0.5 sqrt(2 H_est), 1.5)` (`b` the other semi-axis). A roller's
+    /// domain is its length.
+    pub side: Option<f64>,
+    /// Near-field radius `r` of the preconditioner's elastic kernel (1–3).
+    pub near_field: usize,
+    /// Return the pressure and film fields.
+    pub fields: bool,
+}
+
+impl Default for Ehl2dOptions {
+    fn default() -> Self {
+        Ehl2dOptions { nx: 65, ny: 65, tolerance: 1e-7, max_iterations: 40, inlet: None, outlet: None, side: None, near_field: 1, fields: false }
+    }
+}
+
+/// A located pressure or film value.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct Located {
+    /// Value (Pa or m).
+    pub value: f64,
+    /// Position along the entrainment from the contact centre, m (positive downstream).
+    pub x: f64,
+    /// Position across (along the roller axis), m from the centre.
+    pub y: f64,
+}
+
+/// Pressure and film over the grid, row-major `[j·nx + i]`.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct Fields2d {
+    /// Node positions, m.
+    pub x: Vec<f64>,
+    pub y: Vec<f64>,
+    /// Pressure, Pa.
+    pub pressure: Vec<f64>,
+    /// Film thickness, m.
+    pub film: Vec<f64>,
+}
+
+/// The solution of one 2-D problem.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Ehl2dSolution {
+    /// Length scale `a` (Hertzian semi-axis along x, or half-width), m.
+    pub hertz_half_width: f64,
+    /// Hertzian peak pressure used as the pressure scale, Pa.
+    pub hertz_pressure: f64,
+    /// Moes `M`, `L` (point contact: Nijenbanning's point groups; roller: line groups at the
+    /// peak load per length).
+    pub moes_m: f64,
+    pub moes_l: f64,
+    /// Film at the contact centre, m.
+    pub central_film: f64,
+    /// Smallest film and where.
+    pub min_film: Located,
+    /// Largest pressure and where.
+    pub max_pressure: Located,
+    /// Finite line contacts: the largest off-centre maximum of the pressure along the roller
+    /// (`max_x p(x, y)` as a function of `y`), when the profile has one (`None`: the pressure
+    /// falls monotonically from the centre to the ends).
+    pub edge_pressure_peak: Option<Located>,
+    /// Load carried by the converged pressure, N (equals the input within the tolerance).
+    pub load: f64,
+    pub nx: usize,
+    pub ny: usize,
+    pub fields: Option<Fields2d>,
+    pub convergence: Convergence,
+}
+
+/// Memory estimate of a solve on `nx × ny` nodes, bytes: about 40 node arrays, the padded FFT
+/// buffers (≈ 4·(2nx)(2ny) complex) and the sparse LU of the preconditioner (≈ 60 nonzeros per
+/// node after fill for `r = 1`, measured order of magnitude), plus GMRES' 40 basis vectors.
+pub fn memory_bytes(nx: usize, ny: usize) -> f64 {
+    let n = (nx * ny) as f64;
+    8.0 * n * (40.0 + 4.0 * 4.0 * 2.0 + 60.0 * 2.0 + 41.0)
+}

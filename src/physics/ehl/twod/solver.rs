@@ -1,0 +1,801 @@
+//! The semismooth Newton–Krylov solver of the 2-D EHL problem (equations and method in [`super`]).
+//!
+//! Unknowns: `P` at the interior nodes (row-major) and `H0`. Rows: `φ = min(P, −c F)` per
+//! interior node with `c = 1/|∂F/∂P|` (the diagonal of the preconditioner, elastic self term
+//! included) — the complementarity reformulation of the 1-D solver (`super::super::newton`) —
+//! and the load balance. A Newton step solves `J δ = −φ` by restarted GMRES, right-preconditioned
+//! by the sparse LU of the near-field Jacobian; a backtracking line search on `Σ φ² ΔXΔY + G²`
+//! and a fraction-to-boundary rule on the film damp it.
+
+use super::elastic::Deflection;
+use super::geometry::{domain, scales, side_gap, Domain, Scales};
+use super::{Ehl2dInput, Ehl2dOptions, Ehl2dSolution, Fields2d, Geometry2d, Located};
+use crate::physics::ehl::rheology::PressureRheology;
+use crate::physics::{Convergence, Observer, SolveError, Termination};
+use faer::prelude::Solve;
+use faer::sparse::linalg::solvers::Lu;
+use faer::sparse::{SparseColMat, Triplet};
+
+/// Largest `ln(η/η0)` used (keeps `ε` finite at absurd trial pressures), as in the 1-D solver.
+const LN_ETA_CAP: f64 = 600.0;
+/// GMRES: restart length, most iterations per Newton step, relative tolerance.
+const RESTART: usize = 40;
+const GMRES_MAX: usize = 160;
+const GMRES_TOL: f64 = 1e-3;
+/// Most halvings in the line search.
+const MAX_HALVINGS: u32 = 25;
+
+/// The discretisation on one grid.
+struct Problem {
+    nx: usize,
+    ny: usize,
+    dx: f64,
+    dy: f64,
+    x: Vec<f64>,
+    y: Vec<f64>,
+    /// `X²/2 + S(Y)` at each node.
+    geom: Vec<f64>,
+    lambda: f64,
+    load: f64,
+    p_ref: f64,
+    rheo: PressureRheology,
+    defl: Deflection,
+    near: usize,
+    /// Second-order upwind wedge term (else first order).
+    second: bool,
+    /// Film floor in units of `a²/R_x` (`None`: off, the default): below it the film is held
+    /// constant in the Reynolds terms (a regularisation under study, see the module status).
+    floor: Option<f64>,
+    /// Unknown index of each node (`usize::MAX`: boundary).
+    unk: Vec<usize>,
+    /// Node of each unknown (interior nodes).
+    nodes: Vec<usize>,
+}
+
+/// Fields at one iterate.
+#[derive(Clone, Default)]
+struct Fields {
+    w: Vec<f64>,
+    h: Vec<f64>,
+    rho: Vec<f64>,
+    /// `dρ̄/dP`.
+    drho: Vec<f64>,
+    eps: Vec<f64>,
+    /// `∂ε/∂P` at fixed `H`.
+    deps: Vec<f64>,
+    /// Reynolds residual at the nodes (0 on the boundary).
+    f: Vec<f64>,
+    /// `∂H_eff/∂H`: 1, or 0 where the film is held at the floor.
+    on: Vec<f64>,
+    /// Load residual `∫∫P/target − 1`.
+    g: f64,
+}
+
+impl Problem {
+    fn new(input: &Ehl2dInput, s: &Scales, d: Domain, nx: usize, ny: usize, near: usize) -> Self {
+        let dx = (d.x_out - d.x_in) / (nx - 1) as f64;
+        let dy = (d.y_hi - d.y_lo) / (ny - 1) as f64;
+        let x: Vec<f64> = (0..nx).map(|i| d.x_in + i as f64 * dx).collect();
+        let y: Vec<f64> = (0..ny).map(|j| d.y_lo + j as f64 * dy).collect();
+        let mut geom = vec![0.0; nx * ny];
+        for j in 0..ny {
+            let sy = side_gap(input, s, y[j]);
+            for i in 0..nx {
+                geom[j * nx + i] = 0.5 * x[i] * x[i] + sy;
+            }
+        }
+        let mut unk = vec![usize::MAX; nx * ny];
+        let mut nodes = Vec::with_capacity((nx - 2) * (ny - 2));
+        for j in 1..ny - 1 {
+            for i in 1..nx - 1 {
+                unk[j * nx + i] = nodes.len();
+                nodes.push(j * nx + i);
+            }
+        }
+        Problem {
+            nx,
+            ny,
+            dx,
+            dy,
+            x,
+            y,
+            geom,
+            lambda: s.lambda,
+            load: s.load,
+            p_ref: s.p_ref,
+            rheo: PressureRheology::new(&input.lubricant, input.temperature),
+            defl: Deflection::new(nx, ny, dx, dy, s.c_def),
+            near,
+            floor: None,
+            second: true,
+            unk,
+            nodes,
+        }
+    }
+
+    /// Upwind stencil of `∂Q/∂X` at column `i`: `(offset back, weight)`.
+    fn wedge(&self, i: usize) -> [(usize, f64); 3] {
+        if i >= 2 && self.second {
+            [(0, 1.5 / self.dx), (1, -2.0 / self.dx), (2, 0.5 / self.dx)]
+        } else {
+            [(0, 1.0 / self.dx), (1, -1.0 / self.dx), (0, 0.0)]
+        }
+    }
+
+    /// Fields at `(p, h0)`; `false` when the film is not positive or a value is not finite.
+    fn evaluate(&mut self, p: &[f64], h0: f64, v: &mut Fields) -> bool {
+        let n = self.nx * self.ny;
+        for a in [&mut v.w, &mut v.h, &mut v.rho, &mut v.drho, &mut v.eps, &mut v.deps, &mut v.f, &mut v.on] {
+            a.resize(n, 0.0);
+        }
+        self.defl.apply(p, &mut v.w);
+        for k in 0..n {
+            let mut h = h0 + self.geom[k] + v.w[k];
+            v.on[k] = 1.0;
+            if let Some(floor) = self.floor {
+                if h < floor {
+                    h = floor;
+                    v.on[k] = 0.0;
+                }
+            }
+            if !(h > 0.0 && h.is_finite()) {
+                return false;
+            }
+            let (ln_eta, dln, rho, drho) = self.rheo.at(p[k] * self.p_ref);
+            let ln_eta = ln_eta.min(LN_ETA_CAP);
+            let eps = rho * h * h * h * (-ln_eta).exp();
+            v.h[k] = h;
+            v.rho[k] = rho;
+            v.drho[k] = drho * self.p_ref;
+            v.eps[k] = eps;
+            v.deps[k] = eps * (drho / rho - dln) * self.p_ref;
+        }
+        let (nx, dx2, dy2) = (self.nx, self.dx * self.dx, self.dy * self.dy);
+        let mut sum = 0.0;
+        for &k in &self.nodes {
+            let i = k % nx;
+            let e = &v.eps;
+            let exp_ = 0.5 * (e[k] + e[k + 1]);
+            let exm = 0.5 * (e[k] + e[k - 1]);
+            let eyp = 0.5 * (e[k] + e[k + nx]);
+            let eym = 0.5 * (e[k] + e[k - nx]);
+            let pois = (exp_ * (p[k + 1] - p[k]) - exm * (p[k] - p[k - 1])) / dx2
+                + (eyp * (p[k + nx] - p[k]) - eym * (p[k] - p[k - nx])) / dy2;
+            let mut wedge = 0.0;
+            for (s, wt) in self.wedge(i) {
+                wedge += wt * v.rho[k - s] * v.h[k - s];
+            }
+            v.f[k] = pois - self.lambda * wedge;
+            sum += p[k];
+        }
+        v.g = sum * self.dx * self.dy / self.load - 1.0;
+        v.f.iter().all(|x| x.is_finite()) && v.g.is_finite()
+    }
+
+    /// `out = A x`: the scaled Newton matrix applied to `x` (`dP` at the unknowns, then `dH0`).
+    fn apply(&mut self, p: &[f64], v: &Fields, active: &[bool], c: &[f64], x: &[f64], out: &mut [f64], buf: &mut Buffers) {
+        let n = self.nx * self.ny;
+        let m = self.nodes.len();
+        buf.dp.resize(n, 0.0);
+        buf.dw.resize(n, 0.0);
+        buf.dq.resize(n, 0.0);
+        buf.de.resize(n, 0.0);
+        buf.dp.iter_mut().for_each(|d| *d = 0.0);
+        for (u, &k) in self.nodes.iter().enumerate() {
+            buf.dp[k] = x[u];
+        }
+        let dh0 = x[m];
+        self.defl.apply(&buf.dp, &mut buf.dw);
+        for k in 0..n {
+            let dh = (dh0 + buf.dw[k]) * v.on[k];
+            buf.dq[k] = v.drho[k] * buf.dp[k] * v.h[k] + v.rho[k] * dh;
+            buf.de[k] = v.deps[k] * buf.dp[k] + 3.0 * v.eps[k] / v.h[k] * dh;
+        }
+        let (nx, dx2, dy2) = (self.nx, self.dx * self.dx, self.dy * self.dy);
+        let mut sum = 0.0;
+        for (u, &k) in self.nodes.iter().enumerate() {
+            let dp = &buf.dp;
+            sum += dp[k];
+            if active[u] {
+                out[u] = dp[k];
+                continue;
+            }
+            let i = k % nx;
+            let (e, de) = (&v.eps, &buf.de);
+            let mut df = 0.0;
+            for (nb, d2) in [(k + 1, dx2), (k - 1, dx2), (k + nx, dy2), (k - nx, dy2)] {
+                let ef = 0.5 * (e[k] + e[nb]);
+                let def = 0.5 * (de[k] + de[nb]);
+                df += (def * (p[nb] - p[k]) + ef * (dp[nb] - dp[k])) / d2;
+            }
+            let mut wedge = 0.0;
+            for (s, wt) in self.wedge(i) {
+                wedge += wt * buf.dq[k - s];
+            }
+            out[u] = c[u] * (df - self.lambda * wedge);
+        }
+        out[m] = sum * self.dx * self.dy / self.load;
+    }
+
+    /// The near-field preconditioner (scaled like the Newton matrix) and the row scales `c`.
+    fn precondition(&self, p: &[f64], v: &Fields, active: &mut [bool], c: &mut [f64]) -> Option<Lu<usize, f64>> {
+        let (nx, ny, dx2, dy2) = (self.nx, self.ny, self.dx * self.dx, self.dy * self.dy);
+        let m = self.nodes.len();
+        let r = self.near as isize;
+        let mut trip: Vec<Triplet<usize, usize, f64>> = Vec::with_capacity(m * (10 + (2 * self.near + 3) * (2 * self.near + 1)) + 2 * m);
+        let mut row: Vec<(usize, f64)> = Vec::with_capacity(64);
+        for (u, &k) in self.nodes.iter().enumerate() {
+            let (i, j) = (k % nx, k / nx);
+            row.clear();
+            let e = &v.eps;
+            for (nb, d2) in [(k + 1, dx2), (k - 1, dx2), (k + nx, dy2), (k - nx, dy2)] {
+                let ef = 0.5 * (e[k] + e[nb]);
+                let dpf = p[nb] - p[k];
+                row.push((u, -ef / d2 + 0.5 * v.deps[k] * dpf / d2));
+                if self.unk[nb] != usize::MAX {
+                    row.push((self.unk[nb], ef / d2 + 0.5 * v.deps[nb] * dpf / d2));
+                }
+            }
+            for (s, wt) in self.wedge(i) {
+                if wt == 0.0 {
+                    continue;
+                }
+                let kk = k - s;
+                let (ki, kj) = (i - s, j);
+                let lw = -self.lambda * wt;
+                if self.unk[kk] != usize::MAX {
+                    row.push((self.unk[kk], lw * v.drho[kk] * v.h[kk]));
+                }
+                let lw = lw * v.on[kk];
+                row.push((m, lw * v.rho[kk]));
+                for dj in -r..=r {
+                    let lj = kj as isize + dj;
+                    if lj < 1 || lj >= ny as isize - 1 {
+                        continue;
+                    }
+                    for di in -r..=r {
+                        let li = ki as isize + di;
+                        if li < 1 || li >= nx as isize - 1 {
+                            continue;
+                        }
+                        let l = lj as usize * nx + li as usize;
+                        row.push((self.unk[l], lw * v.rho[kk] * self.defl.coefficient(di.unsigned_abs(), dj.unsigned_abs())));
+                    }
+                }
+            }
+            let diag: f64 = row.iter().filter(|(col, _)| *col == u).map(|(_, val)| val).sum();
+            let cu = 1.0 / diag.abs().max(1e-300);
+            c[u] = cu;
+            active[u] = p[k] <= -cu * v.f[k];
+            if active[u] {
+                trip.push(Triplet::new(u, u, 1.0));
+            } else {
+                for &(col, val) in &row {
+                    trip.push(Triplet::new(u, col, cu * val));
+                }
+            }
+            trip.push(Triplet::new(m, u, self.dx * self.dy / self.load));
+        }
+        trip.push(Triplet::new(m, m, 0.0));
+        let mat = SparseColMat::<usize, f64>::try_new_from_triplets(m + 1, m + 1, &trip).ok()?;
+        mat.sp_lu().ok()
+    }
+
+    fn phi(&self, p: &[f64], v: &Fields, c: &[f64], out: &mut Vec<f64>) {
+        out.clear();
+        for (u, &k) in self.nodes.iter().enumerate() {
+            out.push(p[k].min(-c[u] * v.f[k]));
+        }
+    }
+}
+
+#[derive(Default)]
+struct Buffers {
+    dp: Vec<f64>,
+    dw: Vec<f64>,
+    dq: Vec<f64>,
+    de: Vec<f64>,
+}
+
+fn dot(a: &[f64], b: &[f64]) -> f64 {
+    a.iter().zip(b).map(|(x, y)| x * y).sum()
+}
+
+/// Restarted GMRES for `A x = b` right-preconditioned by `lu`; `x` starts at 0. Returns the
+/// iterations and the final relative residual.
+#[allow(clippy::too_many_arguments)]
+fn gmres(prob: &mut Problem, p: &[f64], v: &Fields, active: &[bool], c: &[f64], lu: &Lu<usize, f64>, b: &[f64], x: &mut [f64], buf: &mut Buffers) -> (usize, f64) {
+    let n = b.len();
+    x.iter_mut().for_each(|v| *v = 0.0);
+    let bnorm = dot(b, b).sqrt();
+    if bnorm == 0.0 {
+        return (0, 0.0);
+    }
+    let mut r = b.to_vec();
+    let mut iters = 0;
+    let mut rel = 1.0;
+    let mut w = vec![0.0; n];
+    let mut z = vec![0.0; n];
+    while iters < GMRES_MAX {
+        let beta = dot(&r, &r).sqrt();
+        rel = beta / bnorm;
+        if rel <= GMRES_TOL {
+            break;
+        }
+        let mut basis: Vec<Vec<f64>> = vec![r.iter().map(|v| v / beta).collect()];
+        let mut hess: Vec<Vec<f64>> = Vec::new();
+        let (mut cs, mut sn): (Vec<f64>, Vec<f64>) = (Vec::new(), Vec::new());
+        let mut g = vec![beta];
+        let mut zs: Vec<Vec<f64>> = Vec::new();
+        let mut k = 0;
+        while k < RESTART && iters < GMRES_MAX {
+            z.copy_from_slice(&basis[k]);
+            lu.solve_in_place(faer::MatMut::from_column_major_slice_mut(&mut z, n, 1));
+            prob.apply(p, v, active, c, &z, &mut w, buf);
+            zs.push(z.clone());
+            let mut h = vec![0.0; k + 2];
+            for (jj, bj) in basis.iter().enumerate() {
+                let d = dot(&w, bj);
+                h[jj] = d;
+                for (wv, bv) in w.iter_mut().zip(bj) {
+                    *wv -= d * bv;
+                }
+            }
+            let wn = dot(&w, &w).sqrt();
+            h[k + 1] = wn;
+            for jj in 0..k {
+                let t = cs[jj] * h[jj] + sn[jj] * h[jj + 1];
+                h[jj + 1] = -sn[jj] * h[jj] + cs[jj] * h[jj + 1];
+                h[jj] = t;
+            }
+            let den = (h[k] * h[k] + h[k + 1] * h[k + 1]).sqrt();
+            let (cc, ss) = if den > 0.0 { (h[k] / den, h[k + 1] / den) } else { (1.0, 0.0) };
+            cs.push(cc);
+            sn.push(ss);
+            h[k] = den;
+            h[k + 1] = 0.0;
+            g.push(-ss * g[k]);
+            g[k] *= cc;
+            hess.push(h);
+            iters += 1;
+            k += 1;
+            rel = g[k].abs() / bnorm;
+            if rel <= GMRES_TOL || wn == 0.0 || !rel.is_finite() {
+                break;
+            }
+            basis.push(w.iter().map(|v| v / wn).collect());
+        }
+        // Back substitution for the combination of the preconditioned directions.
+        let mut yk = vec![0.0; k];
+        for ii in (0..k).rev() {
+            let mut s = g[ii];
+            for jj in ii + 1..k {
+                s -= hess[jj][ii] * yk[jj];
+            }
+            yk[ii] = if hess[ii][ii] != 0.0 { s / hess[ii][ii] } else { 0.0 };
+        }
+        for (ii, zi) in zs.iter().enumerate() {
+            for (xv, zv) in x.iter_mut().zip(zi) {
+                *xv += yk[ii] * zv;
+            }
+        }
+        if rel <= GMRES_TOL || !rel.is_finite() {
+            break;
+        }
+        // True residual for the restart.
+        prob.apply(p, v, active, c, x, &mut w, buf);
+        for ii in 0..n {
+            r[ii] = b[ii] - w[ii];
+        }
+    }
+    (iters, rel)
+}
+
+/// `TRIBOD_EHL2D_TRACE` set: print each Newton step, the line search and (first step) a
+/// finite-difference check of the Jacobian product to stderr (development aid).
+fn trace() -> bool {
+    std::env::var_os("TRIBOD_EHL2D_TRACE").is_some()
+}
+
+/// Report norm: the larger of `max|φ|/max P` and `|G|`.
+fn residual_norm(p: &[f64], phi: &[f64], g: f64) -> f64 {
+    let pmax = p.iter().cloned().fold(0.0_f64, f64::max).max(1e-12);
+    let pr = phi.iter().fold(0.0_f64, |a, v| a.max(v.abs())) / pmax;
+    pr.max(g.abs())
+}
+
+struct Run {
+    iterations: u32,
+    residual: f64,
+    history: Vec<f64>,
+    converged: bool,
+    gmres: usize,
+}
+
+/// Damped semismooth Newton from `(p, h0)`, in place.
+fn newton(prob: &mut Problem, p: &mut [f64], h0: &mut f64, tol: f64, max_iter: u32, observer: &dyn Observer) -> Result<Run, SolveError> {
+    let m = prob.nodes.len();
+    let mut v = Fields::default();
+    let mut trial = Fields::default();
+    let mut history = Vec::new();
+    let mut gm_total = 0;
+    if !prob.evaluate(p, *h0, &mut v) {
+        return Ok(Run { iterations: 0, residual: f64::INFINITY, history, converged: false, gmres: 0 });
+    }
+    let mut active = vec![false; m];
+    let mut c = vec![0.0; m];
+    let mut phi = Vec::with_capacity(m);
+    let mut phi_t = Vec::with_capacity(m);
+    let mut buf = Buffers::default();
+    let cell = prob.dx * prob.dy;
+    let mut rhs = vec![0.0; m + 1];
+    let mut sol = vec![0.0; m + 1];
+    let mut p_trial = p.to_vec();
+    let mut dw = vec![0.0; p.len()];
+    let mut dpn = vec![0.0; p.len()];
+    for iter in 0..=max_iter {
+        observer.check()?;
+        let lu = prob.precondition(p, &v, &mut active, &mut c);
+        prob.phi(p, &v, &c, &mut phi);
+        let res = residual_norm(p, &phi, v.g);
+        history.push(res);
+        if res <= tol {
+            return Ok(Run { iterations: iter, residual: res, history, converged: true, gmres: gm_total });
+        }
+        let Some(lu) = lu else {
+            return Ok(Run { iterations: iter, residual: res, history, converged: false, gmres: gm_total });
+        };
+        if iter == max_iter {
+            return Ok(Run { iterations: iter, residual: res, history, converged: false, gmres: gm_total });
+        }
+        for (u, &k) in prob.nodes.iter().enumerate() {
+            rhs[u] = if active[u] { -p[k] } else { -c[u] * v.f[k] };
+        }
+        rhs[m] = -v.g;
+        let (its, rel) = gmres(prob, p, &v, &active, &c, &lu, &rhs, &mut sol, &mut buf);
+        gm_total += its;
+        if trace() {
+            eprintln!("ehl2d {}x{} λ {:.3e} iter {iter} res {res:.3e} g {:.2e} gmres {its} rel {rel:.2e} active {}", prob.nx, prob.ny, prob.lambda, v.g, active.iter().filter(|a| **a).count());
+            if iter == 0 {
+                // Directional-derivative check of the Jacobian product.
+                let mut x: Vec<f64> = (0..m + 1).map(|u| (((u * 7919) % 13) as f64 - 6.0) * 1e-3).collect();
+                for (u, &k) in prob.nodes.iter().enumerate() {
+                    if p[k] <= 0.0 { x[u] = 0.0; }
+                }
+                let mut jx = vec![0.0; m + 1];
+                let mut inactive = active.clone();
+                inactive.iter_mut().for_each(|a| *a = false);
+                prob.apply(p, &v, &inactive, &c, &x, &mut jx, &mut buf);
+                let t = 1e-4;
+                let mut pt = p.to_vec();
+                for (u, &k) in prob.nodes.iter().enumerate() { pt[k] += t * x[u]; }
+                let mut vt = Fields::default();
+                if prob.evaluate(&pt, *h0 + t * x[m], &mut vt) {
+                    let mut num = 0.0; let mut den = 0.0;
+                    for (u, &k) in prob.nodes.iter().enumerate() {
+                        let fd = c[u] * (vt.f[k] - v.f[k]) / t;
+                        num += (fd - jx[u]).powi(2); den += fd * fd;
+                    }
+                    eprintln!("ehl2d jacobian check: rel diff {:.3e}", (num / den.max(1e-300)).sqrt());
+                }
+            }
+        }
+        if !sol.iter().all(|s| s.is_finite()) {
+            return Ok(Run { iterations: iter + 1, residual: res, history, converged: false, gmres: gm_total });
+        }
+        dpn.iter_mut().for_each(|d| *d = 0.0);
+        for (u, &k) in prob.nodes.iter().enumerate() {
+            dpn[k] = sol[u];
+        }
+        let dh0 = sol[m];
+        prob.defl.apply(&dpn, &mut dw);
+        let mut alpha: f64 = 1.0;
+        let ftb = 0.8;
+        let mut limiting = 0;
+        for k in 0..p.len() {
+            let d = dh0 + dw[k];
+            if d < 0.0 && ftb * v.h[k] / -d < alpha {
+                alpha = ftb * v.h[k] / -d;
+                limiting = k;
+            }
+        }
+        if trace() {
+            eprintln!("   ftb alpha {alpha:.3e} at node ({}, {}) h {:.3e} P {:.3e} dh0 {dh0:.3e}", limiting % prob.nx, limiting / prob.nx, v.h[limiting], p[limiting]);
+        }
+        let m0 = dot(&phi, &phi) * cell + v.g * v.g;
+        let mut accepted = false;
+        for _ in 0..MAX_HALVINGS {
+            for k in 0..p.len() {
+                p_trial[k] = p[k] + alpha * dpn[k];
+            }
+            let h0_trial = *h0 + alpha * dh0;
+            if prob.evaluate(&p_trial, h0_trial, &mut trial) {
+                prob.phi(&p_trial, &trial, &c, &mut phi_t);
+                let mt = dot(&phi_t, &phi_t) * cell + trial.g * trial.g;
+                if mt <= (1.0 - 1e-4 * alpha) * m0 {
+                    p.copy_from_slice(&p_trial);
+                    *h0 = h0_trial;
+                    std::mem::swap(&mut v, &mut trial);
+                    accepted = true;
+                    break;
+                }
+            }
+            alpha *= 0.5;
+        }
+        if trace() {
+            eprintln!("   accepted {accepted} alpha {alpha:.3e}");
+        }
+        if !accepted {
+            return Ok(Run { iterations: iter + 1, residual: res, history, converged: false, gmres: gm_total });
+        }
+    }
+    unreachable!("the loop returns at iter == max_iter")
+}
+
+fn validate(input: &Ehl2dInput, options: &Ehl2dOptions) -> Result<(), SolveError> {
+    let pos = |v: f64, path: &str| if v.is_finite() && v > 0.0 { Ok(()) } else { Err(SolveError::invalid(path, "must be a finite number > 0")) };
+    pos(input.load, "Ehl2dInput.load")?;
+    pos(input.effective_modulus, "Ehl2dInput.effective_modulus")?;
+    pos(input.temperature, "Ehl2dInput.temperature")?;
+    pos(input.entrainment_velocity.abs(), "Ehl2dInput.entrainment_velocity")?;
+    pos(input.lubricant.viscosity, "Ehl2dInput.lubricant.viscosity")?;
+    if !(input.lubricant.pressure_viscosity.is_finite() && input.lubricant.pressure_viscosity >= 0.0) {
+        return Err(SolveError::invalid("Ehl2dInput.lubricant.pressure_viscosity", "must be finite and ≥ 0"));
+    }
+    match input.geometry {
+        Geometry2d::Point { rx, ry } => {
+            pos(rx, "Ehl2dInput.geometry.rx")?;
+            pos(ry, "Ehl2dInput.geometry.ry")?;
+            if !(0.02..=50.0).contains(&(rx / ry)) {
+                return Err(SolveError::invalid("Ehl2dInput.geometry", "R_x/R_y must be within 0.02–50"));
+            }
+        }
+        Geometry2d::Finite { rx, crown } => {
+            pos(rx, "Ehl2dInput.geometry.rx")?;
+            pos(crown.length, "Ehl2dInput.geometry.crown.length")?;
+            pos(crown.end_radius, "Ehl2dInput.geometry.crown.end_radius")?;
+            if !(crown.middle_length > 0.0 && crown.middle_length <= crown.length) {
+                return Err(SolveError::invalid("Ehl2dInput.geometry.crown.middle_length", "must be in (0, length]"));
+            }
+            if !(crown.crown_height.is_finite() && crown.crown_height >= 0.0) {
+                return Err(SolveError::invalid("Ehl2dInput.geometry.crown.crown_height", "must be finite and ≥ 0"));
+            }
+        }
+    }
+    for (n, path) in [(options.nx, "Ehl2dOptions.nx"), (options.ny, "Ehl2dOptions.ny")] {
+        if !(9..=1025).contains(&n) {
+            return Err(SolveError::invalid(path, "must be within 9–1025"));
+        }
+    }
+    if !(options.tolerance.is_finite() && options.tolerance > 0.0) {
+        return Err(SolveError::invalid("Ehl2dOptions.tolerance", "must be finite and > 0"));
+    }
+    if options.max_iterations == 0 {
+        return Err(SolveError::invalid("Ehl2dOptions.max_iterations", "must be ≥ 1"));
+    }
+    if !(1..=3).contains(&options.near_field) {
+        return Err(SolveError::invalid("Ehl2dOptions.near_field", "must be within 1–3"));
+    }
+    for (v, path) in [(options.inlet, "Ehl2dOptions.inlet"), (options.outlet, "Ehl2dOptions.outlet"), (options.side, "Ehl2dOptions.side")] {
+        if let Some(v) = v {
+            if !(v.is_finite() && v >= 0.5 && v <= 100.0) {
+                return Err(SolveError::invalid(path, "must be within 0.5–100 (units of the Hertzian semi-axis)"));
+            }
+        }
+    }
+    Ok(())
+}
+
+/// `H0` that puts the centre film at `target` and keeps the film positive.
+fn h0_for(prob: &mut Problem, p: &[f64], target: f64) -> f64 {
+    let mut w = vec![0.0; p.len()];
+    prob.defl.apply(p, &mut w);
+    let rigid: Vec<f64> = (0..p.len()).map(|k| prob.geom[k] + w[k]).collect();
+    let min_rigid = rigid.iter().cloned().fold(f64::INFINITY, f64::min);
+    let at_centre = bilinear(&prob.x, &prob.y, &rigid, 0.0, 0.0);
+    (target - at_centre).max(0.05 * target - min_rigid)
+}
+
+/// Bilinear interpolation of a node field at `(x, y)` (clamped to the grid).
+fn bilinear(xs: &[f64], ys: &[f64], f: &[f64], x: f64, y: f64) -> f64 {
+    let (nx, ny) = (xs.len(), ys.len());
+    let loc = |v: &[f64], at: f64| {
+        let n = v.len();
+        let d = v[1] - v[0];
+        let t = ((at - v[0]) / d).clamp(0.0, (n - 1) as f64);
+        let i = (t.floor() as usize).min(n - 2);
+        (i, t - i as f64)
+    };
+    let (i, tx) = loc(xs, x);
+    let (j, ty) = loc(ys, y);
+    let _ = ny;
+    let g = |ii: usize, jj: usize| f[jj * nx + ii];
+    (1.0 - ty) * ((1.0 - tx) * g(i, j) + tx * g(i + 1, j)) + ty * ((1.0 - tx) * g(i, j + 1) + tx * g(i + 1, j + 1))
+}
+
+/// Cold start: the Hertzian (point) or slice-shaped (roller) pressure scaled to the load.
+fn cold(prob: &mut Problem, input: &Ehl2dInput, s: &Scales) -> (Vec<f64>, f64) {
+    let (nx, ny) = (prob.nx, prob.ny);
+    let mut p = vec![0.0; nx * ny];
+    // Light loads spread the pressure over ~sqrt(2H) (as the 1-D cold start).
+    let wide = 1f64.max((2.0 * s.h_est).sqrt());
+    for &k in &prob.nodes {
+        let (x, y) = (prob.x[k % nx] / wide, prob.y[k / nx]);
+        p[k] = match input.geometry {
+            Geometry2d::Point { .. } => (1.0 - x * x - (y / (s.ky * wide)).powi(2)).max(0.0).sqrt(),
+            Geometry2d::Finite { .. } => (1.0 - x * x).max(0.0).sqrt() * (1.0 - (y / s.loaded).powi(2)).max(0.0),
+        };
+    }
+    let sum: f64 = p.iter().sum::<f64>() * prob.dx * prob.dy;
+    if sum > 0.0 {
+        p.iter_mut().for_each(|v| *v *= prob.load / sum);
+    }
+    let h0 = h0_for(prob, &p, s.h_est);
+    (p, h0)
+}
+
+/// The pressure of a coarser grid interpolated onto `prob`'s nodes, scaled to the load.
+fn prolong(prob: &Problem, cx: &[f64], cy: &[f64], cp: &[f64]) -> Vec<f64> {
+    let (nx, ny) = (prob.nx, prob.ny);
+    let mut p = vec![0.0; nx * ny];
+    for &k in &prob.nodes {
+        p[k] = bilinear(cx, cy, cp, prob.x[k % nx], prob.y[k / nx]);
+    }
+    let sum: f64 = p.iter().sum::<f64>() * prob.dx * prob.dy;
+    if sum > 0.0 {
+        p.iter_mut().for_each(|v| *v *= prob.load / sum);
+    }
+    p
+}
+
+/// Solve one 2-D EHL problem. Polls `observer` once per Newton step.
+pub fn solve(input: &Ehl2dInput, options: &Ehl2dOptions, observer: &dyn Observer) -> Result<Ehl2dSolution, SolveError> {
+    validate(input, options)?;
+    let s = scales(input)?;
+    let d = domain(input, options, &s);
+    // Nested iteration: grids of (n − 1)/2^k + 1 nodes down to ≥ 17 per side.
+    let min_level = 17;
+    let mut levels = vec![(options.nx, options.ny)];
+    loop {
+        let (lx, ly) = levels[levels.len() - 1];
+        if (lx - 1) % 2 == 0 && (ly - 1) % 2 == 0 && (lx - 1) / 2 + 1 >= min_level && (ly - 1) / 2 + 1 >= min_level && levels.len() < 4 {
+            levels.push(((lx - 1) / 2 + 1, (ly - 1) / 2 + 1));
+        } else {
+            break;
+        }
+    }
+    levels.reverse();
+    let tol = options.tolerance;
+    let mut total = 0u32;
+    let mut gmres_total = 0usize;
+    let mut guess: Option<(Vec<f64>, Vec<f64>, Vec<f64>, f64)> = None;
+    let nlev = levels.len();
+    for (li, &(lx, ly)) in levels.iter().enumerate() {
+        let finest = li + 1 == nlev;
+        let mut prob = Problem::new(input, &s, d, lx, ly, options.near_field);
+        let level_tol = if finest { tol } else { tol.max(1e-5) };
+        let (mut p, mut h0) = match &guess {
+            Some((gx, gy, gp, gh0)) => (prolong(&prob, gx, gy, gp), *gh0),
+            None => cold(&mut prob, input, &s),
+        };
+        let mut run = newton(&mut prob, &mut p, &mut h0, level_tol, options.max_iterations, observer)?;
+        total += run.iterations;
+        gmres_total += run.gmres;
+        if !run.converged && (guess.is_none() || finest) {
+            // Continuation from faster entrainment: λ·4^k → λ, each stage from the last.
+            let target = prob.lambda;
+            for start in [6, 12] {
+                let mut good = true;
+                for k in (0..=start).rev() {
+                    prob.lambda = target * 2f64.powi(k);
+                    if k == start {
+                        let s2 = Scales { h_est: s.h_est * 2f64.powf(0.7 * k as f64), ..s.clone() };
+                        (p, h0) = cold(&mut prob, input, &s2);
+                    }
+                    let stage_tol = if k == 0 { level_tol } else { level_tol.max(1e-5) };
+                    let r2 = newton(&mut prob, &mut p, &mut h0, stage_tol, options.max_iterations, observer)?;
+                    total += r2.iterations;
+                    gmres_total += r2.gmres;
+                    if k == 0 {
+                        run = r2;
+                    } else if !r2.converged {
+                        good = false;
+                        break;
+                    }
+                }
+                prob.lambda = target;
+                if good && run.converged {
+                    break;
+                }
+            }
+        }
+        if finest {
+            if !run.converged {
+                let mut history = run.history;
+                if history.len() > 20 {
+                    history.drain(..history.len() - 20);
+                }
+                return Err(SolveError::NotConverged { solver: "ehl 2-D (Newton–Krylov)", iterations: total, residual: run.residual, tolerance: tol, history });
+            }
+            let _ = gmres_total;
+            return finish(input, options, &s, &mut prob, &p, h0, total, run.residual);
+        }
+        guess = Some((prob.x.clone(), prob.y.clone(), p, h0));
+    }
+    unreachable!("the finest level returns")
+}
+
+/// GMRES iterations of the last [`solve`] are not reported; this is the count of Newton steps.
+#[allow(clippy::too_many_arguments)]
+fn finish(input: &Ehl2dInput, options: &Ehl2dOptions, s: &Scales, prob: &mut Problem, p: &[f64], h0: f64, iterations: u32, residual: f64) -> Result<Ehl2dSolution, SolveError> {
+    let mut v = Fields::default();
+    if !prob.evaluate(p, h0, &mut v) {
+        return Err(SolveError::NonFinite { quantity: "2-D EHL film".into() });
+    }
+    let (nx, ny) = (prob.nx, prob.ny);
+    let film_scale = s.a * s.a / s.rx;
+    let sign = if input.entrainment_velocity >= 0.0 { 1.0 } else { -1.0 };
+    let at = |k: usize| (sign * prob.x[k % nx] * s.a, prob.y[k / nx] * s.a);
+    let central = bilinear(&prob.x, &prob.y, &v.h, 0.0, 0.0) * film_scale;
+    let kmin = (0..nx * ny).min_by(|&a, &b| v.h[a].total_cmp(&v.h[b])).unwrap_or(0);
+    let kmax = (0..nx * ny).max_by(|&a, &b| p[a].total_cmp(&p[b])).unwrap_or(0);
+    let loc = |k: usize, value: f64| {
+        let (x, y) = at(k);
+        Located { value, x, y }
+    };
+    let min_film = loc(kmin, v.h[kmin] * film_scale);
+    let max_pressure = loc(kmax, p[kmax].max(0.0) * s.p_ref);
+    if min_film.value <= 0.0 {
+        return Err(SolveError::physical(crate::physics::PhysicalFailure::FilmCollapse, "the converged 2-D EHL film is not positive"));
+    }
+    let edge = match input.geometry {
+        Geometry2d::Finite { .. } => {
+            // max_x P along y, its off-centre local maxima.
+            let line: Vec<(f64, usize)> = (0..ny)
+                .map(|j| {
+                    let i = (0..nx).max_by(|&a, &b| p[j * nx + a].total_cmp(&p[j * nx + b])).unwrap_or(0);
+                    (p[j * nx + i], j * nx + i)
+                })
+                .collect();
+            let centre = bilinear(&prob.x, &prob.y, p, 0.0, 0.0);
+            let mut best: Option<(f64, usize)> = None;
+            for j in 1..ny - 1 {
+                let (pv, k) = line[j];
+                let off = prob.y[j].abs() > 0.1 * s.ky;
+                if off && pv >= line[j - 1].0 && pv >= line[j + 1].0 && pv > centre * (1.0 + 1e-3) && best.is_none_or(|(b, _)| pv > b) {
+                    best = Some((pv, k));
+                }
+            }
+            best.map(|(pv, k)| loc(k, pv * s.p_ref))
+        }
+        Geometry2d::Point { .. } => None,
+    };
+    let load = p.iter().sum::<f64>() * prob.dx * prob.dy * s.p_ref * s.a * s.a;
+    let fields = options.fields.then(|| Fields2d {
+        x: prob.x.iter().map(|x| sign * x * s.a).collect(),
+        y: prob.y.iter().map(|y| y * s.a).collect(),
+        pressure: p.iter().map(|v| v.max(0.0) * s.p_ref).collect(),
+        film: v.h.iter().map(|h| h * film_scale).collect(),
+    });
+    let sol = Ehl2dSolution {
+        hertz_half_width: s.a,
+        hertz_pressure: s.p_ref,
+        moes_m: s.moes_m,
+        moes_l: s.moes_l,
+        central_film: central,
+        min_film,
+        max_pressure,
+        edge_pressure_peak: edge,
+        load,
+        nx,
+        ny,
+        fields,
+        convergence: Convergence { iterations, residual, tolerance: options.tolerance, termination: Termination::Converged },
+    };
+    let scalars = [sol.central_film, sol.min_film.value, sol.max_pressure.value, sol.load, residual];
+    crate::physics::ensure_finite("2-D EHL result", scalars.iter())?;
+    if let Some(f) = &sol.fields {
+        crate::physics::ensure_finite("2-D EHL fields", f.pressure.iter().chain(&f.film))?;
+    }
+    Ok(sol)
+}
