@@ -1,13 +1,14 @@
 //! Valve-train dynamics benchmarks (issue 17): one revolution of seed 003's train at 3600 output
 //! angles against the integration tolerance (run time, steps, contact-load error against a
 //! tight run from the same periodic state), the periodic steady state from rest, and a run-up of
-//! 20 revolutions. `cargo bench --bench valvetrain` (release). Plain `Instant` timing, best of N.
+//! 20 revolutions (from rest at constant speed, and over a speed ramp 1000 → 3600 rpm with
+//! `run_up`). `cargo bench --bench valvetrain` (release). Plain `Instant` timing, best of N.
 
 use std::f64::consts::TAU;
 use std::time::Instant;
 use tribod::physics::cam::{LiftLaw, LiftProgram};
 use tribod::physics::valvetrain::{
-    damping_from_ratio, line_contact_stiffness, periodic_response, transient, Drive, DynamicsOptions, HelicalSpring, Link, Seat,
+    damping_from_ratio, line_contact_stiffness, periodic_response, run_up, transient, Drive, DynamicsOptions, HelicalSpring, Link, Seat,
     SpringChain, ValveTrain,
 };
 use tribod::physics::Silent;
@@ -97,5 +98,33 @@ fn main() {
             std::hint::black_box(r);
         }
         println!("{rpm} rpm: run-up of 20 revolutions from rest (tolerance 1e-6, 3600 samples each): {best:.1} ms\n");
+    }
+    // Run-up over a speed ramp (load.run_up): 20 revolutions from 1000 to 3600 rpm, 360 samples
+    // per revolution; the speed at the first loss of contact against a tight run.
+    let to = 3600.0 * TAU / 60.0;
+    let from = Drive { lift: &cam, omega: 1000.0 * TAU / 60.0, max_lift: h };
+    let tight = run_up(&train, from, to, 20, 360, &DynamicsOptions { tolerance: 1e-11, ..Default::default() }, &Silent).unwrap();
+    let rpm = |w: Option<f64>| w.map(|w| w * 60.0 / TAU);
+    println!("| run-up 1000→3600 rpm, 20 rev | tolerance | ms | steps | first separation, rpm | max contact-load error / max load |");
+    println!("|---|---|---|---|---|---|");
+    let fmax = tight.contact_force.iter().copied().fold(0.0, f64::max);
+    for tol in [1e-6, 1e-7, 1e-8, 1e-9] {
+        let options = DynamicsOptions { tolerance: tol, ..Default::default() };
+        let mut best = f64::INFINITY;
+        let mut last = None;
+        for _ in 0..3 {
+            let t = Instant::now();
+            let r = run_up(&train, from, to, 20, 360, &options, &Silent).unwrap();
+            best = best.min(t.elapsed().as_secs_f64() * 1e3);
+            last = Some(r);
+        }
+        let r = last.unwrap();
+        let err = r.contact_force.iter().zip(&tight.contact_force).map(|(a, b)| (a - b).abs()).fold(0.0, f64::max) / fmax;
+        println!(
+            "| | {tol:.0e} | {best:.1} | {} | {:.1} (tight {:.1}) | {err:.2e} |",
+            r.stats.accepted,
+            rpm(r.first_separation_speed).unwrap_or(f64::NAN),
+            rpm(tight.first_separation_speed).unwrap_or(f64::NAN)
+        );
     }
 }

@@ -9,7 +9,7 @@ use std::f64::consts::{PI, TAU};
 use tribod::physics::cam::{LiftLaw, LiftProgram};
 use tribod::physics::valvetrain::integrator::Lu;
 use tribod::physics::valvetrain::{
-    periodic_response, transient, Drive, DynamicsOptions, HelicalSpring, Link, Seat, SpringChain, ValveTrain,
+    periodic_response, run_up, transient, Drive, DynamicsOptions, HelicalSpring, Link, Seat, SpringChain, ValveTrain,
 };
 use tribod::physics::Silent;
 
@@ -295,6 +295,138 @@ fn seat_impact_and_bounce_at_overspeed() {
             assert!(r.seat_force.iter().any(|f| *f > 0.0));
         }
         Err(e) => panic!("{e:?}"),
+    }
+}
+
+/// The lowest speed with separation of `train` on `p`, by bisection on the periodic response
+/// between `lo` (contact kept) and `hi` (separated), to `rel` relative width.
+fn jump_speed_by_bisection(train: &ValveTrain, p: &LiftProgram, mut lo: f64, mut hi: f64, rel: f64) -> f64 {
+    let lift = |th: f64| {
+        let j = p.lift(th);
+        (j.v, j.d1)
+    };
+    let separated = |omega: f64| {
+        let drive = Drive { lift: &lift, omega, max_lift: p.lift };
+        let r = periodic_response(train, drive, 360, &DynamicsOptions::default(), &Silent).unwrap();
+        !r.separation.is_empty()
+    };
+    assert!(!separated(lo), "separated at {lo}");
+    assert!(separated(hi), "not separated at {hi}");
+    while hi - lo > rel * hi {
+        let mid = 0.5 * (lo + hi);
+        if separated(mid) {
+            hi = mid;
+        } else {
+            lo = mid;
+        }
+    }
+    0.5 * (lo + hi)
+}
+
+/// Separation ("jump") speed of a single-degree-of-freedom train — one mass on a stiff, damped
+/// contact (ω_n ≈ 230× the cam speed, ζ = 0.3) against a massless spring — on a cycloidal cam:
+/// the lowest speed with a separation interval, by bisection on the periodic response, against
+/// the closed form. Constant spring force (k_s = 0): the cycloid's deceleration peaks at
+/// `2πh/β²` (per rad²), so `ω_j = β √(P/(2π m h))` exactly; with a spring rate, the closed form
+/// `min √((P + k s)/(m (−s'')))` of `ValveTrain::rigid_jump_speed` (the summary's
+/// `rigid_jump_speed_rpm`). Both within 0.3 %.
+#[test]
+fn sdof_jump_speed_matches_the_closed_form() {
+    let (m, h, p0, kc) = (0.2, 8e-3, 200.0, 1e9);
+    let beta = 90f64.to_radians();
+    let p = program(90.0, 90.0, 0.0, LiftLaw::Cycloidal, h);
+    for ks in [0.0, 2.0e4] {
+        let train = sdof(m, kc, ks, p0, tribod::physics::valvetrain::damping_from_ratio(0.3, kc, m));
+        let closed = if ks == 0.0 {
+            beta * (p0 / (TAU * m * h)).sqrt()
+        } else {
+            train
+                .rigid_jump_speed((0..36_000).map(|k| {
+                    let j = p.lift(TAU * k as f64 / 36_000.0);
+                    (j.v, j.d2)
+                }))
+                .unwrap()
+        };
+        if ks == 0.0 {
+            let from_code = train.rigid_jump_speed((0..36_000).map(|k| {
+                let j = p.lift(TAU * k as f64 / 36_000.0);
+                (j.v, j.d2)
+            }));
+            assert!((from_code.unwrap() / closed - 1.0).abs() < 1e-6, "{from_code:?} vs {closed}");
+        }
+        let found = jump_speed_by_bisection(&train, &p, 0.9 * closed, 1.1 * closed, 5e-4);
+        println!("k_s = {ks}: jump speed {:.2} rpm, closed form {:.2} rpm ({:+.3} %)", found * 30.0 / PI, closed * 30.0 / PI, 100.0 * (found / closed - 1.0));
+        assert!((found / closed - 1.0).abs() < 3e-3, "k_s = {ks}: {found} vs {closed}");
+    }
+}
+
+/// Run-up (`run_up`): with equal start and end speeds it is the constant-speed transient
+/// (samples equal within the integrator's tolerance); on a slow ramp through the single-degree-of-
+/// freedom train's jump speed, contact is first lost in the first deceleration after the speed
+/// passes the closed form `ω_j = β √(P/(2π m h))` — within one revolution's speed step above it.
+#[test]
+fn run_up_is_the_transient_at_constant_speed_and_separates_just_above_the_jump_speed() {
+    let (m, h, p0, kc) = (0.2, 8e-3, 200.0, 1e9);
+    let beta = 90f64.to_radians();
+    let p = program(90.0, 90.0, 0.0, LiftLaw::Cycloidal, h);
+    let lift = move |th: f64| {
+        let j = p.lift(th);
+        (j.v, j.d1)
+    };
+    let train = sdof(m, kc, 0.0, p0, tribod::physics::valvetrain::damping_from_ratio(0.3, kc, m));
+    let wj = beta * (p0 / (TAU * m * h)).sqrt();
+    // Constant speed: run_up against transient, 3 revolutions × 120 samples.
+    let omega = 0.8 * wj;
+    let drive = Drive { lift: &lift, omega, max_lift: h };
+    let r = run_up(&train, drive, omega, 3, 120, &tight(), &Silent).unwrap();
+    let times: Vec<f64> = (1..=360).map(|k| TAU * k as f64 / 120.0 / omega).collect();
+    let (_, probes, _) = transient(&train, drive, None, *times.last().unwrap(), &times, &tight()).unwrap();
+    let fmax = probes.iter().map(|p| p.contact).fold(0.0, f64::max);
+    for (k, pr) in probes.iter().enumerate() {
+        // Different step sequences (run_up restarts every revolution): the load differs by
+        // about k_c × tolerance × lift = 8e-3 N (2.4e-5 of the largest load).
+        assert!((r.contact_force[k] - pr.contact).abs() < 5e-5 * fmax, "{k}: {} vs {}", r.contact_force[k], pr.contact);
+        assert!((r.speed[k] - omega).abs() < 1e-12 * omega && (r.angle[k] - TAU * (k + 1) as f64 / 120.0).abs() < 1e-12);
+    }
+    assert!(r.separation.is_empty() && r.first_separation_speed.is_none());
+    // Slow ramp 0.9 → 1.1 ω_j over 40 revolutions: 0.5 % of ω_j per revolution.
+    let from = Drive { omega: 0.9 * wj, ..drive };
+    let r = run_up(&train, from, 1.1 * wj, 40, 360, &DynamicsOptions::default(), &Silent).unwrap();
+    let first = r.first_separation_speed.expect("separates on the ramp");
+    println!("run-up 0.9→1.1 ω_j: first separation at {:.4} ω_j, {} intervals, {} steps", first / wj, r.separation.len(), r.stats.accepted);
+    assert!(first > wj && first < 1.006 * wj, "{}", first / wj);
+    assert!((r.speed.last().unwrap() / (1.1 * wj) - 1.0).abs() < 1e-12);
+    assert!(r.separation.iter().all(|(a, b)| b > a && *a >= 0.0 && *b <= 80.0 * PI + 1e-9));
+}
+
+/// Run-up through the job (`load.run_up`): seed 003's train over 20 revolutions 2000 → 3600 rpm;
+/// the table spans the ramp, the first separation lies between the example's 3000 rpm (contact
+/// kept) and 3600 rpm.
+#[test]
+fn run_up_through_the_job() {
+    let mut spec = example("seed003_dynamic");
+    spec["operation"]["speed_rpm"] = json!(3600.0);
+    spec["outputs"] = json!(["kinematics", "loads"]);
+    spec["angles"] = json!(360);
+    spec["load"]["run_up"] = json!({"from_rpm": 2000.0, "revolutions": 20, "samples_per_revolution": 90});
+    let out = run("cam_cycle", &spec).unwrap();
+    let t = &out["run_up"];
+    let speed: Vec<f64> = t["speed_rpm"].as_array().unwrap().iter().map(|v| v.as_f64().unwrap()).collect();
+    assert_eq!(speed.len(), 1800);
+    assert!((speed.last().unwrap() - 3600.0).abs() < 1e-9 && speed[0] > 2000.0 && speed[0] < 2010.0);
+    assert_eq!(t["contact_load"].as_array().unwrap().len(), 1800);
+    let first = out["summary"]["run_up_first_separation_rpm"].as_f64().unwrap();
+    println!("seed 003 run-up 2000→3600 rpm: first separation at {first:.0} rpm; {} steps; rigid jump speed {:.0} rpm", t["steps"], out["summary"]["rigid_jump_speed_rpm"]);
+    assert!(first > 3000.0 && first < 3600.0, "{first}");
+    assert_eq!(t["first_separation_rpm"].as_f64(), Some(first));
+    // Bad ramps are refused by field.
+    spec["load"]["run_up"] = json!({"from_rpm": -5.0, "revolutions": 0});
+    match run("cam_cycle", &spec) {
+        Err(crate::in_process::Failure::Spec(p)) => {
+            let text = format!("{p:?}");
+            assert!(text.contains("/load/run_up/from_rpm") && text.contains("/load/run_up/revolutions"), "{text}");
+        }
+        other => panic!("{other:?}"),
     }
 }
 

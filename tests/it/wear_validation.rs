@@ -235,10 +235,69 @@ fn seed004_table5_wear_rates() {
     assert_eq!(out["termination"]["reason"], "wear_limit");
     let t = f(sm, "hours_to_limit");
     assert!((t * f(&r[imax], "wear_rate_mm_per_h") - 0.5).abs() < 1e-12);
-    // With the widths printed in Table 3 instead of eq. 2's (0.8 % narrower), eq. 15 is 2.4 % higher.
+}
+
+/// Table 5's printed inputs (force, width; slip of Table 4; the inputs after eq. 15) through
+/// eq. 15 — the paper's rows — against the kind's `irgashev` rows, to 0.1 %: with the paper's
+/// width reading (eq. 2 at 215 GPa, rounded to 0.001 mm, what the example asks for) every row
+/// agrees to 1e-12; the material reading at 210 GPa leaves the widths 0.80 % wide and the rates
+/// 2.3–2.5 % low — the ~2 % of issue 17 (regression test named after it).
+#[test]
+fn seed004_table5_rows_from_printed_inputs_to_0_1_percent() {
+    // (force N, printed width mm, part) in Table 5's order.
+    let table5 = [
+        (264.0, 0.508, 1),
+        (308.0, 0.709, 2),
+        (352.0, 0.741, 2),
+        (396.0, 0.771, 2),
+        (440.0, 0.799, 2),
+        (484.0, 0.825, 2),
+        (528.0, 0.849, 2),
+        (572.0, 0.872, 2),
+        (616.0, 0.894, 2),
+        (660.0, 0.915, 2),
+        (704.0, 0.764, 3),
+        (704.0, 0.764, 4),
+        (660.0, 0.915, 5),
+        (616.0, 0.894, 5),
+        (572.0, 0.872, 5),
+        (528.0, 0.849, 5),
+        (484.0, 0.825, 5),
+        (440.0, 0.799, 5),
+        (396.0, 0.771, 5),
+        (352.0, 0.741, 5),
+        (308.0, 0.709, 5),
+        (264.0, 0.508, 6),
+    ];
+    let slip = [0.0111, 0.1211, 0.2360, 0.2360, 0.1285, 0.113];
+    let paper = |p: f64, b: f64, d: f64| 6.376 * p * p * 4.23e-6 * (1.0 + d) * 20.0 / (b.powi(3) * 1300.0 * 3.0 * 24.0);
+    let spec = example("seed004_irgashev");
+    assert_eq!(spec["irgashev"]["width_reading"], "paper");
+    let r = rows(&run("wear", &spec).unwrap());
+    let material = rows(&run("wear", &with(&spec, |s| s["irgashev"]["width_reading"] = json!("material"))).unwrap());
+    let mut worst = 0.0f64;
+    for (k, (p, b, part)) in table5.iter().enumerate() {
+        let expect = paper(*p, *b, slip[part - 1]);
+        assert_eq!(r[k]["part"], *part);
+        assert!((f(&r[k], "spring_force") - p).abs() < 1e-9);
+        assert!((f(&r[k], "contact_width") * 1e3 - b).abs() < 1e-9, "row {k}: width {}", f(&r[k], "contact_width"));
+        let got = f(&r[k], "wear_rate_mm_per_h");
+        assert!((got / expect - 1.0).abs() < 1e-3, "row {k}: {got} vs {expect}");
+        assert!((got / expect - 1.0).abs() < 1e-12, "row {k}: {got} vs {expect}");
+        let off = f(&material[k], "wear_rate_mm_per_h") / expect - 1.0;
+        assert!((-0.026..-0.021).contains(&off), "row {k}: material reading {off}");
+        worst = worst.max(off.abs());
+    }
+    eprintln!("material reading (210 GPa, unrounded): worst {:.2} % off Table 5's printed inputs", 100.0 * worst);
+    // Unrounded at 215 GPa the rates stay within 0.17 % (the widths' rounding, cubed).
     let i = irgashev::paper_intake();
-    let printed = irgashev::eq15(264.0, 0.508, 0.0111, &i);
-    assert!((printed / f(&r[0], "wear_rate_mm_per_h") - 1.0).abs() < 0.03);
+    for (p, b, part) in table5 {
+        let rho = seed004::reduced_radius([21.5, 153.3, 31.5, 31.5, 153.3, 21.5][part - 1], 42.0);
+        let w = seed004::contact_width_mm(p, rho, irgashev::PAPER_WIDTH_MODULUS_MPA, 0.3);
+        assert!((w - b).abs() <= 5e-4 + 1e-12, "{p} N: {w} vs {b}");
+        let un = irgashev::eq15(p, w, slip[part - 1], &i) / paper(p, b, slip[part - 1]) - 1.0;
+        assert!(un.abs() < 1.8e-3, "{p} N: {un}");
+    }
 }
 
 // ------------------------------------------------------------------ stops and errors

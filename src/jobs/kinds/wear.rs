@@ -110,6 +110,29 @@ pub enum LoadShareSpec {
     Full,
 }
 
+/// Which contact widths (eq. 2) and areas (eq. 3) seed 004's method uses.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize, ToSchema)]
+#[serde(rename_all = "snake_case")]
+pub enum WidthReadingSpec {
+    /// Eq. 2–3 at the cam material's Young's modulus, unrounded (the consistent reading).
+    #[default]
+    Material,
+    /// The paper's tables: eq. 2 at E = 215 GPa (the modulus with which eq. 2 gives every width of
+    /// Table 3 to its printed 0.001 mm; 210 GPa leaves them 0.8 % wide and eq. 15 2.4 % low),
+    /// rounded to 0.001 mm as Table 5 feeds them into eq. 15; eq. 3 at the cam's modulus rounded
+    /// to 0.001 mm². Reproduces Table 5's rows from its printed inputs.
+    Paper,
+}
+
+impl From<WidthReadingSpec> for irgashev::WidthReading {
+    fn from(w: WidthReadingSpec) -> Self {
+        match w {
+            WidthReadingSpec::Material => irgashev::WidthReading::Material,
+            WidthReadingSpec::Paper => irgashev::WidthReading::Paper,
+        }
+    }
+}
+
 fn default_steps() -> usize {
     9
 }
@@ -150,6 +173,10 @@ pub struct IrgashevSpec {
     /// Loadings that fail the deformed volume, n_p. Default 24.
     #[serde(default = "default_np")]
     pub cycles_to_failure: f64,
+    /// Contact widths and areas: `material` (default: eq. 2–3 at the cam's modulus) or `paper`
+    /// (Table 3's reading: eq. 2 at 215 GPa, rounded to 0.001 mm; reproduces Table 5).
+    #[serde(default)]
+    pub width_reading: WidthReadingSpec,
 }
 
 fn default_snapshots() -> usize {
@@ -791,6 +818,7 @@ fn irgashev_input(spec: &WearSpec) -> Result<IrgashevSi, SolveError> {
         cycles_to_failure: ir.cycles_to_failure,
         speed: crate::physics::units::rpm_to_rev_per_s(spec.cycle.operation.speed_rpm),
         archard: spec.wear_coefficient.map(|c| (c.k(), es)),
+        width_reading: ir.width_reading.into(),
     })
 }
 

@@ -12,11 +12,12 @@
 //!   intervals, seating velocity and bounce.
 //!
 //! Not modelled: gravity, guide friction, the film's own stiffness and squeeze damping (the
-//! contact's damping stands for them), rocker/finger followers, speed ramps.
+//! contact's damping stands for them), rocker/finger followers.
+//! A run-up over a speed ramp is [`periodic::run_up`].
 
 pub mod integrator;
 pub mod model;
 pub mod periodic;
 
 pub use model::{damping_from_ratio, line_contact_stiffness, HelicalSpring, Link, Seat, SpringChain, ValveTrain};
-pub use periodic::{periodic_response, transient, Drive, DynamicsOptions, PeriodicResponse, Probe};
+pub use periodic::{periodic_response, run_up, transient, RunUpResponse, Drive, DynamicsOptions, PeriodicResponse, Probe};

@@ -118,6 +118,25 @@ pub struct ValveTrain {
     pub seat: Option<Seat>,
 }
 
+impl ValveTrain {
+    /// The rigid train's separation ("jump") speed, rad/s: with every part rigid and the spring
+    /// massless but for Rayleigh's third, the contact force is `P + k s + m ω² s''` (s'' per rad²;
+    /// seed 003 eq. (21)–(22) with the rigid train, the quasi-static load), so contact is lost
+    /// first at `ω_j = min over s'' < 0 of √((P + k s)/(m (−s'')))`, `m = m_f + m_v + m_s/3`
+    /// (Norton, *Cam Design and Manufacturing Handbook*, ch. 10). `samples`: `(s, s'')` over the
+    /// revolution. `None` when the lift never decelerates; 0 when the spring force is not
+    /// positive where it does. A closed form: the dynamic train (compliance, surge, residual
+    /// vibration) separates near it, usually below — a `sweep` over speed finds that one.
+    pub fn rigid_jump_speed(&self, samples: impl IntoIterator<Item = (f64, f64)>) -> Option<f64> {
+        let m = self.follower_mass + self.valve_mass + self.spring.mass / 3.0;
+        samples
+            .into_iter()
+            .filter(|&(_, d2)| d2 < 0.0)
+            .map(|(s, d2)| ((self.preload + self.spring.rate * s).max(0.0) / (m * -d2)).sqrt())
+            .fold(None, |best: Option<f64>, w| Some(best.map_or(w, |b| b.min(w))))
+    }
+}
+
 /// The valve seat.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Seat {

@@ -50,6 +50,8 @@ pub struct TrainSystem<'a> {
     jacobians: [Vec<f64>; 4],
     /// Seating reference height above the closed position, m.
     seating_height: f64,
+    /// Speed ramp `(ω₀, α)`: cam angle `ω₀ t + α t²/2` instead of `ω t` (run-up).
+    ramp: Option<(f64, f64)>,
 }
 
 /// Event functions of [`TrainSystem`].
@@ -84,12 +86,21 @@ impl<'a> TrainSystem<'a> {
         // stage values follow from the stage equation exactly enough for a quadrature checked
         // against the energy.
         let seating_height = 1e-6 * h;
-        TrainSystem { asm, drive, scale, kx, cv, jacobians, seating_height }
+        TrainSystem { asm, drive, scale, kx, cv, jacobians, seating_height, ramp: None }
+    }
+
+    /// Cam angle and speed at time `t`.
+    fn angle_and_speed(&self, t: f64) -> (f64, f64) {
+        match self.ramp {
+            None => (self.drive.omega * t, self.drive.omega),
+            Some((w0, alpha)) => (w0 * t + 0.5 * alpha * t * t, w0 + alpha * t),
+        }
     }
 
     fn cam(&self, t: f64) -> (f64, f64) {
-        let (s, ds) = (self.drive.lift)(self.drive.omega * t);
-        (s, ds * self.drive.omega)
+        let (theta, w) = self.angle_and_speed(t);
+        let (s, ds) = (self.drive.lift)(theta);
+        (s, ds * w)
     }
 
     /// Contact/seat state, spring end forces and valve acceleration at `(t, y)`.
@@ -233,6 +244,9 @@ pub struct PeriodicResponse {
     pub stats: Stats,
     /// State `(x, v, W = 0)` at θ = 0 of the sampled revolution (to continue or re-run it).
     pub start: Vec<f64>,
+    /// The rigid train's jump speed, rad/s ([`super::ValveTrain::rigid_jump_speed`]; filled by
+    /// callers that have the lift's second derivative).
+    pub rigid_jump_speed: Option<f64>,
 }
 
 
@@ -409,6 +423,7 @@ fn assemble_response(
         convergence,
         stats,
         start: y_start.to_vec(),
+        rigid_jump_speed: None,
     }
 }
 
@@ -432,6 +447,123 @@ pub fn transient(
     let (y, _) = integrate(&sys, 0.0, &y0, t1, control, times, |k, t, y| probes[k] = Some(sys.probe(t, y)), |e| events.push(e))?;
     ensure_finite("valve-train state", &y)?;
     Ok((y, probes.into_iter().map(|p| p.expect("sampled")).collect(), events))
+}
+
+/// A run-up sampled at uniform cam angles over its revolutions.
+#[derive(Debug, Clone, PartialEq)]
+pub struct RunUpResponse {
+    /// Cam angle from the start of the run-up, rad (`samples_per_revolution × revolutions`
+    /// points, the first one revolution's step after the start).
+    pub angle: Vec<f64>,
+    /// Cam speed, rad/s.
+    pub speed: Vec<f64>,
+    /// Contact force (N), valve lift (m) and velocity (m/s), spring force at the fixed end (N).
+    pub contact_force: Vec<f64>,
+    pub valve_lift: Vec<f64>,
+    pub valve_velocity: Vec<f64>,
+    pub spring_force_fixed: Vec<f64>,
+    /// Cam angle intervals without contact, rad from the start (located events; an interval
+    /// still open at the end closes there).
+    pub separation: Vec<(f64, f64)>,
+    /// Cam speed when contact is first lost, rad/s.
+    pub first_separation_speed: Option<f64>,
+    /// Integrator counters summed over the run-up.
+    pub stats: Stats,
+}
+
+/// The cam accelerated uniformly in angle from `drive.omega` to `omega_end` over `revolutions`
+/// revolutions (`θ(t) = ω₀ t + α t²/2`, `α = (ω₁² − ω₀²)/(4π N)`), from the static state at
+/// θ = 0 (every body moving with the lift at ω₀, as [`periodic_response`] starts). Sampled at
+/// `samples_per_revolution` uniform angles per revolution; polls the observer every revolution.
+/// A slow run-up passes the jump speed quasi-statically: its first separation speed approaches
+/// the steady-state jump speed from above as the ramp slows (the train needs time to build up
+/// the response that separates it).
+pub fn run_up(
+    train: &ValveTrain,
+    drive: Drive,
+    omega_end: f64,
+    revolutions: usize,
+    samples_per_revolution: usize,
+    options: &DynamicsOptions,
+    observer: &dyn Observer,
+) -> Result<RunUpResponse, SolveError> {
+    validate(train, &drive)?;
+    if !(omega_end.is_finite() && omega_end > 0.0) {
+        return Err(SolveError::invalid("run_up.omega_end", "must be > 0"));
+    }
+    if revolutions == 0 || samples_per_revolution == 0 {
+        return Err(SolveError::invalid("run_up.revolutions", "needs ≥ 1 revolution and ≥ 1 sample per revolution"));
+    }
+    let w0 = drive.omega;
+    let w_max = w0.max(omega_end);
+    let total = TAU * revolutions as f64;
+    let alpha = (omega_end * omega_end - w0 * w0) / (2.0 * total);
+    // Time at cam angle θ: the root of α t²/2 + ω₀ t − θ = 0 (written to avoid cancellation).
+    let time_at = |theta: f64| 2.0 * theta / (w0 + (w0 * w0 + 2.0 * alpha * theta).max(0.0).sqrt());
+    // Scales (velocities) at the highest speed.
+    let mut sys = TrainSystem::new(train, Drive { omega: w_max, ..drive });
+    sys.ramp = Some((w0, alpha));
+    let n_samples = samples_per_revolution * revolutions;
+    let angle: Vec<f64> = (1..=n_samples).map(|k| total * k as f64 / n_samples as f64).collect();
+    let times: Vec<f64> = angle.iter().map(|&a| time_at(a)).collect();
+    let mut control = StepControl {
+        tolerance: options.tolerance,
+        max_step: TAU / w_max / 90.0,
+        first_step: TAU / w_max * 1e-4,
+        max_steps: options.max_steps,
+    };
+    let mut y = sys.initial_state(0.0);
+    // initial_state's velocities are at `sys.drive.omega` (the highest speed): rescale to ω₀.
+    let nd = sys.asm.dofs();
+    for v in &mut y[nd..2 * nd] {
+        *v *= w0 / w_max;
+    }
+    let mut probes: Vec<Option<Probe>> = vec![None; n_samples];
+    let mut events: Vec<Event> = Vec::new();
+    let mut stats = Stats::default();
+    let mut t = 0.0;
+    for rev in 0..revolutions {
+        observer.check()?;
+        observer.progress(rev as f64 / revolutions as f64, "valve-train run-up");
+        let t1 = times[(rev + 1) * samples_per_revolution - 1];
+        let (y1, st) = integrate(&sys, t, &y, t1, control, &times, |k, tk, yk| probes[k] = Some(sys.probe(tk, yk)), |e| events.push(e))?;
+        ensure_finite("valve-train run-up state", &y1)?;
+        stats.accepted += st.accepted;
+        stats.rejected += st.rejected;
+        stats.factorisations += st.factorisations;
+        stats.last_step = st.last_step;
+        control.first_step = st.last_step.max(TAU / w_max * 1e-7);
+        y = y1;
+        t = t1;
+    }
+    let probes: Vec<Probe> = probes.into_iter().map(|p| p.ok_or_else(|| SolveError::invalid("run_up", "a sample was not reached"))).collect::<Result<_, _>>()?;
+    ensure_finite("valve-train run-up samples", probes.iter().flat_map(|p| [&p.contact, &p.valve_lift, &p.spring_fixed]))?;
+    let mut separation = Vec::new();
+    let mut open: Option<f64> = None;
+    let mut first_separation_speed = None;
+    for e in events.iter().filter(|e| e.index == EVENT_CONTACT) {
+        let (theta, w) = sys.angle_and_speed(e.time);
+        if !e.rising {
+            open = Some(theta);
+            first_separation_speed.get_or_insert(w);
+        } else if let Some(a) = open.take() {
+            separation.push((a, theta));
+        }
+    }
+    if let Some(a) = open {
+        separation.push((a, total));
+    }
+    Ok(RunUpResponse {
+        speed: times.iter().map(|&tk| sys.angle_and_speed(tk).1).collect(),
+        angle,
+        contact_force: probes.iter().map(|p| p.contact).collect(),
+        valve_lift: probes.iter().map(|p| p.valve_lift).collect(),
+        valve_velocity: probes.iter().map(|p| p.valve_velocity).collect(),
+        spring_force_fixed: probes.iter().map(|p| p.spring_fixed).collect(),
+        separation,
+        first_separation_speed,
+        stats,
+    })
 }
 
 /// Inputs the integration cannot use.

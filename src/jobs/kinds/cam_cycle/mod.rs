@@ -288,6 +288,16 @@ fn validate_dynamic(spec: &CamCycleSpec, d: &DynamicLoadSpec, limits: &Limits, v
     // steps).
     let per_rev = 9e-3 * (sp.elements as f64 + 2.0) / 10.0 * (1e-8 / d.tolerance.max(1e-12)).powf(1.0 / 3.0).max(1.0);
     v.work("/load/max_revolutions", per_rev * d.max_revolutions as f64, limits, "the valve-train revolutions");
+    if let Some(r) = &d.run_up {
+        v.in_range("/load/run_up/from_rpm", r.from_rpm, 1.0, 1e5);
+        v.count_in_range("/load/run_up/revolutions", r.revolutions, 1, 10_000);
+        v.count_in_range("/load/run_up/samples_per_revolution", r.samples_per_revolution, 1, 7200);
+        v.limit("/load/run_up/samples_per_revolution", r.revolutions.saturating_mul(r.samples_per_revolution), limits.max_angles, "the run-up table's rows");
+        // The ramp's revolutions cost as many periodic ones at the faster end (step ∝ 1/ω).
+        let speed = spec.operation.speed_rpm.max(1.0);
+        let slow = (r.from_rpm.max(speed) / speed).max(1.0);
+        v.work("/load/run_up/revolutions", per_rev * slow * r.revolutions as f64, limits, "the run-up revolutions");
+    }
 }
 
 fn check_table(v: &mut Validation, path: &str, angles: &[f64], values: &[f64], name: &str, limits: &Limits) {

@@ -297,6 +297,17 @@ pub struct CamSummary {
     /// `dynamic` load: cam–follower contact stiffness used, N/m.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub contact_stiffness: Option<f64>,
+    /// `dynamic` load: the rigid train's separation ("jump") speed, rpm — the closed form
+    /// `min √((P + k s)/(m (−s'')))` over the decelerating lift, `m` the follower, valve and a
+    /// third of the spring's mass. The dynamic train's jump speed (the lowest speed with a
+    /// non-empty `separation`) is found by a `sweep` over `/operation/speed_rpm` with the
+    /// quantity `/summary/separation_duration` (README: jump speed); compliance and surge usually
+    /// put it below this figure.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub rigid_jump_speed_rpm: Option<f64>,
+    /// `dynamic` load with `run_up`: cam speed at the first loss of contact on the ramp, rpm.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub run_up_first_separation_rpm: Option<f64>,
 }
 
 /// Events of the cycle.
@@ -350,5 +361,31 @@ pub struct CamCycleResult {
     /// of the state between revolutions.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub dynamics_convergence: Option<Convergence>,
+    /// `dynamic` load with `run_up`: the train over the speed ramp.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub run_up: Option<RunUpTable>,
+}
+
+/// The valve train over a run-up, at uniform cam angles (columns of equal length).
+#[derive(Debug, Clone, PartialEq, Serialize, ToSchema)]
+pub struct RunUpTable {
+    /// Cam angle from the start of the ramp, degrees.
+    pub angle_deg: Vec<f64>,
+    /// Cam speed, rpm.
+    pub speed_rpm: Vec<f64>,
+    /// Cam–follower contact load, N.
+    pub contact_load: Vec<f64>,
+    /// Valve lift (m) and velocity (m/s).
+    pub valve_lift: Vec<f64>,
+    pub valve_velocity: Vec<f64>,
+    /// Spring force at the fixed end, N.
+    pub spring_force_fixed_end: Vec<f64>,
+    /// Intervals `[start, end]` of the cam angle from the start (degrees) without contact.
+    pub separation: Vec<[f64; 2]>,
+    /// Cam speed at the first loss of contact, rpm (absent: contact kept throughout).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub first_separation_rpm: Option<f64>,
+    /// Integrator steps accepted over the ramp.
+    pub steps: usize,
 }
 

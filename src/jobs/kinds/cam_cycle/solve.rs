@@ -13,8 +13,8 @@ use std::collections::BTreeMap;
 use crate::physics::roller::pin_finite::roller_cooled_area;
 use crate::physics::roller::{Crown, FinitePin, PinFriction, PinTable, PinThermal, RollerParams};
 use crate::physics::valvetrain::{
-    damping_from_ratio, line_contact_stiffness, periodic_response, Drive, DynamicsOptions, HelicalSpring, Link, PeriodicResponse, Seat,
-    SpringChain, ValveTrain,
+    damping_from_ratio, line_contact_stiffness, periodic_response, run_up, Drive, DynamicsOptions, HelicalSpring, Link, PeriodicResponse,
+    RunUpResponse, Seat, SpringChain, ValveTrain,
 };
 use crate::physics::{Observer, SolveError};
 use std::f64::consts::PI;
@@ -260,7 +260,12 @@ pub fn valve_train(d: &DynamicLoadSpec, cycle: &CycleSpec) -> ValveTrain {
 }
 
 /// Run the valve-train dynamics of a `dynamic` load over the cycle's angles.
-fn dynamic_response(d: &DynamicLoadSpec, cycle: &CycleSpec, observer: &dyn Observer) -> Result<(ValveTrain, PeriodicResponse), SolveError> {
+#[allow(clippy::type_complexity)]
+fn dynamic_response(
+    d: &DynamicLoadSpec,
+    cycle: &CycleSpec,
+    observer: &dyn Observer,
+) -> Result<(ValveTrain, PeriodicResponse, Option<RunUpResponse>), SolveError> {
     let SpeedSchedule::Steady { omega } = cycle.schedule else {
         return Err(SolveError::invalid("/operation/startup", "a dynamic load needs steady running"));
     };
@@ -280,7 +285,17 @@ fn dynamic_response(d: &DynamicLoadSpec, cycle: &CycleSpec, observer: &dyn Obser
         ..Default::default()
     };
     let response = periodic_response(&train, drive, cycle.angles, &options, observer)?;
-    Ok((train, response))
+    let ramp = match &d.run_up {
+        Some(r) => {
+            let from = Drive { omega: r.from_rpm * PI / 30.0, ..drive };
+            Some(run_up(&train, from, omega, r.revolutions, r.samples_per_revolution, &options, observer).map_err(|e| match e {
+                SolveError::InvalidInput { message, .. } => SolveError::invalid("/load/run_up", message),
+                other => other,
+            })?)
+        }
+        None => None,
+    };
+    Ok((train, response, ramp))
 }
 
 pub(super) fn solve_spec(spec: &CamCycleSpec, observer: &dyn Observer) -> Result<CamCycleResult, SolveError> {
@@ -289,10 +304,16 @@ pub(super) fn solve_spec(spec: &CamCycleSpec, observer: &dyn Observer) -> Result
     // Dynamic load: the train's periodic response gives the axial force at the cycle's angles.
     let dynamics = match &spec.load {
         Some(LoadSpec::Dynamic(d)) if needs.loads => {
-            let (train, r) = dynamic_response(d, &cycle, observer)?;
+            let (train, mut r, ramp) = dynamic_response(d, &cycle, observer)?;
+            let shape = cycle.geometry.shape;
+            let jump = train.rigid_jump_speed((0..3600).map(|k| {
+                let j = cycle.profile.lift(std::f64::consts::TAU * k as f64 / 3600.0, shape);
+                (j.v, j.d2)
+            }));
+            r.rigid_jump_speed = jump;
             let angles: Vec<f64> = (0..cycle.angles).map(|k| std::f64::consts::TAU * k as f64 / cycle.angles as f64).collect();
             cycle.load = LoadModel::Dynamic { axial: PeriodicTable::new(&angles, &r.contact_force)? };
-            Some((train, r))
+            Some((train, r, ramp))
         }
         _ => None,
     };
@@ -398,9 +419,13 @@ pub(super) fn solve_spec(spec: &CamCycleSpec, observer: &dyn Observer) -> Result
         profiles,
         convergence: out.convergence,
         dynamics_convergence: None,
+        run_up: None,
     };
-    if let Some((train, r)) = dynamics {
+    if let Some((train, r, ramp)) = dynamics {
         add_dynamics(&mut result, &train, r);
+        if let Some(u) = ramp {
+            add_run_up(&mut result, u);
+        }
     }
     Ok(result)
 }
@@ -428,9 +453,28 @@ fn add_dynamics(result: &mut CamCycleResult, train: &ValveTrain, r: PeriodicResp
     summary.spring_mass = Some(train.spring.mass);
     summary.spring_surge_frequency = Some(0.5 * (train.spring.rate / train.spring.mass).sqrt()).filter(|f| f.is_finite());
     summary.contact_stiffness = Some(train.contact.stiffness);
+    summary.rigid_jump_speed_rpm = r.rigid_jump_speed.map(|w| w * 30.0 / std::f64::consts::PI).filter(|w| w.is_finite());
     result.dynamics_convergence = Some(r.convergence);
 }
 
+
+/// The run-up table and its summary figure.
+fn add_run_up(result: &mut CamCycleResult, u: RunUpResponse) {
+    let rpm = |w: f64| w * 30.0 / PI;
+    let first = u.first_separation_speed.map(rpm);
+    result.summary.run_up_first_separation_rpm = first;
+    result.run_up = Some(RunUpTable {
+        angle_deg: u.angle.iter().map(|a| a.to_degrees()).collect(),
+        speed_rpm: u.speed.iter().map(|&w| rpm(w)).collect(),
+        contact_load: u.contact_force,
+        valve_lift: u.valve_lift,
+        valve_velocity: u.valve_velocity,
+        spring_force_fixed_end: u.spring_force_fixed,
+        separation: u.separation.iter().map(|(a, b)| [a.to_degrees(), b.to_degrees()]).collect(),
+        first_separation_rpm: first,
+        steps: u.stats.accepted,
+    });
+}
 
 /// The physics summary in the result's terms (angles in degrees).
 fn summary_of(p: &CycleSummary) -> CamSummary {

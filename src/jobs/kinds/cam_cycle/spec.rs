@@ -376,6 +376,29 @@ pub struct SeatSpec {
     pub gap: f64,
 }
 
+fn default_run_up_revolutions() -> usize {
+    20
+}
+fn default_run_up_samples() -> usize {
+    360
+}
+
+/// A run-up of the valve train: the cam accelerated uniformly in angle from `from_rpm` to the
+/// operation's `speed_rpm` over `revolutions` revolutions, from the static state (integrated
+/// with the same tolerance; the tribology still uses the periodic state at `speed_rpm`).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, ToSchema)]
+#[serde(deny_unknown_fields)]
+pub struct RunUpSpec {
+    /// Cam speed at the start, rpm (> 0; above `speed_rpm` gives a run-down).
+    pub from_rpm: f64,
+    /// Revolutions of the ramp. Default 20.
+    #[serde(default = "default_run_up_revolutions")]
+    pub revolutions: usize,
+    /// Samples per revolution of the `run_up` table. Default 360.
+    #[serde(default = "default_run_up_samples")]
+    pub samples_per_revolution: usize,
+}
+
 /// The valve train of a `dynamic` load.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize, ToSchema)]
 #[serde(deny_unknown_fields)]
@@ -416,6 +439,10 @@ pub struct DynamicLoadSpec {
     /// Most revolutions integrated to reach the periodic state. Default 200.
     #[serde(default = "default_max_revolutions")]
     pub max_revolutions: usize,
+    /// Also integrate a run-up over a speed ramp ending at `speed_rpm` (result table `run_up`,
+    /// `summary.run_up_first_separation_rpm`). Absent: none.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub run_up: Option<RunUpSpec>,
 }
 
 /// Roller speed model.
