@@ -118,9 +118,104 @@ fn coefficients_section(reps: usize) {
     );
 }
 
+/// ROSS's plain-bearing case (issue 18): the geometry, speed and load of ROSS's cylindrical
+/// bearing example (`PlainJournal` docstring / `cylindrical_bearing_example`: L = 0.263144 m,
+/// D = 0.4 m, c = 1.95e-4 m, 900 rpm, W = 112814.91 N), isothermal with ROSS's reference
+/// viscosity 0.02 Pa·s, one supply line at the largest film. Returns (L/D, W̄).
+fn ross_case() -> (f64, f64) {
+    let (l, r, c, eta, w) = (0.263144, 0.2, 1.95e-4, 0.02, 112814.91);
+    let omega = 900.0 * std::f64::consts::TAU / 60.0;
+    // seed 002 scaling: W̄ = w (c/R)² / (6 η ω R L)
+    (l / (2.0 * r), w * (c / r).powi(2) / (6.0 * eta * omega * r * l))
+}
+
+/// The speed deliverable of issue 18: ROSS's case at 121×41 (and 41×121), equilibrium and
+/// coefficients; the misaligned profiled case at 361×181; the L9 on two cores.
+/// `cargo bench --bench journal -- speed`.
+fn speed_section(reps: usize) {
+    use tribod::physics::journal::dynamics::coefficients;
+    let (ld, w) = ross_case();
+    let b = Bearing::plain(ld);
+    let fine = settings(721, 241);
+    let r = analyse(&b, &Operating::Load(w), &fine, None, None, false, &Silent).unwrap();
+    println!("\n## ROSS plain-bearing case: L/D = {ld:.5}, W̄ = {w:.6} (S = {:.4}); 721×241: ε = {:.6}, β = {:.4}°\n", 1.0 / (6.0 * std::f64::consts::PI * w), r.eccentricity, r.attitude.to_degrees());
+    println!("| grid | cold equilibrium CPU ms (wall) | warm workspace CPU ms | coefficients CPU ms | ratio | ε err | β err | steps per grid | V-cycles per level |");
+    println!("| --- | ---: | ---: | ---: | ---: | ---: | ---: | --- | --- |");
+    for (nt, nz) in [(121, 41), (41, 121), (241, 81)] {
+        let s = settings(nt, nz);
+        let (ce, we, a) = best_of(reps * 4, || analyse(&b, &Operating::Load(w), &s, None, None, false, &Silent).unwrap());
+        let mut ws = Workspace::new(&b, &s);
+        analyse(&b, &Operating::Load(w), &s, Some(&mut ws), None, false, &Silent).unwrap();
+        let c0 = ws.cycles();
+        let (cw, _, _) = best_of(reps * 4, || analyse(&b, &Operating::Load(w), &s, Some(&mut ws), None, false, &Silent).unwrap());
+        let mut ws2 = Workspace::new(&b, &s);
+        analyse(&b, &Operating::Load(w), &s, Some(&mut ws2), None, false, &Silent).unwrap();
+        let (cc, _, _) = best_of(reps * 4, || coefficients(&b, &a, &s, &mut ws2, &Silent).unwrap());
+        println!(
+            "| {nt}×{nz} | {:.3} ({:.3}) | {:.3} | {:.3} | {:.2} | {:.1e} | {:.1e} | {:?} | {:?} |",
+            ce * 1e3, we * 1e3, cw * 1e3, cc * 1e3, cc / ce,
+            (a.eccentricity / r.eccentricity - 1.0).abs(), (a.attitude / r.attitude - 1.0).abs(),
+            a.steps_per_grid, c0
+        );
+    }
+    let s = settings(361, 181);
+    let wa = analyse(&Bearing::plain(1.25), &Operating::Eccentricity(0.6), &s, None, None, false, &Silent).unwrap().load;
+    let (c, wl, m) = best_of(reps * 2, || analyse(&seed_case(), &Operating::Load(wa), &s, None, None, false, &Silent).unwrap());
+    let mut ws = Workspace::new(&seed_case(), &s);
+    analyse(&seed_case(), &Operating::Load(wa), &s, Some(&mut ws), None, false, &Silent).unwrap();
+    println!("\nmisaligned profiled 361×181, cold: {:.2} ms CPU ({:.2} wall); P0 {:.6}, H0 {:.6}; steps per grid {:?}; V-cycles {:?}; active-set steps {:?}",
+        c * 1e3, wl * 1e3, m.max_pressure, m.min_film, m.steps_per_grid, ws.cycles(), ws.steps());
+    let spec_json = serde_json::json!({
+        "base": {
+            "geometry": {"length_to_diameter": 1.25},
+            "load": {"aligned_eccentricity_ratio": 0.6},
+            "misalignment": {"vertical": 0.56, "horizontal": 0.56},
+            "grid": {"circumferential": 361, "axial": 181}
+        },
+        "method": "taguchi_l9",
+        "factors": {"order": [1, 2, 3], "height": [0.1, 0.4, 1.0], "length_fraction": [0.01, 0.2, 0.4]},
+        "continuous": {"enabled": false}
+    });
+    let spec: OptimisationSpec = serde_json::from_value(spec_json).unwrap();
+    let pool = rayon::ThreadPoolBuilder::new().num_threads(2).build().unwrap();
+    let (mut wall, mut cpu) = (f64::INFINITY, f64::INFINITY);
+    let mut ev = 0;
+    for _ in 0..reps {
+        let (c, t) = (process_cpu(), Instant::now());
+        ev = pool.install(|| BearingOptimisation::solve(&spec, &Silent).unwrap()).evaluations;
+        wall = wall.min(t.elapsed().as_secs_f64());
+        cpu = cpu.min(process_cpu() - c);
+    }
+    println!("L9 ({ev} analyses, 2 threads): {:.1} ms wall, {:.1} ms CPU over both threads (best of {reps})", wall * 1e3, cpu * 1e3);
+}
+
 fn main() {
     let quick = std::env::args().any(|a| a == "--quick");
     let reps = if quick { 2 } else { 5 };
+    if let Some(which) = std::env::args().find(|a| a.starts_with("prof-")) {
+        // a loop for a sampling profiler (`perf record`): prof-ross or prof-mis
+        let (b, w, s) = if which == "prof-ross" {
+            let (ld, w) = ross_case();
+            (Bearing::plain(ld), w, settings(121, 41))
+        } else {
+            (seed_case(), 0.557045, settings(361, 181))
+        };
+        let n = if which == "prof-ross" { 2000 } else { 100 };
+        let (c, _, _) = best_of(1, || {
+            let sweeps: usize = std::env::var("SWEEPS").ok().and_then(|v| v.parse().ok()).unwrap_or(2);
+            for _ in 0..n {
+                let mut ws = Workspace::new(&b, &s);
+                ws.set_smoothing_sweeps(sweeps);
+                analyse(&b, &Operating::Load(w), &s, Some(&mut ws), None, false, &Silent).unwrap();
+            }
+        });
+        println!("{which}: {:.3} ms CPU per analysis", c * 1e3 / n as f64);
+        return;
+    }
+    if std::env::args().any(|a| a == "speed") {
+        speed_section(reps);
+        return;
+    }
     if std::env::args().any(|a| a == "coefficients") {
         coefficients_section(reps);
         return;

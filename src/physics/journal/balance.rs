@@ -404,6 +404,118 @@ pub(super) fn load_balance(
     Ok((ev, Convergence { iterations: it, residual: err, tolerance: tol, termination: Termination::Converged }, it))
 }
 
+/// `d ln W̄/dε` of the short-bearing estimate used by [`initial_eccentricity`]: the starting
+/// slope of the secant iteration in [`load_balance_invariant`].
+pub(super) fn initial_log_slope(eps: f64) -> f64 {
+    let g = |e: f64| {
+        let e = e.clamp(1e-6, 0.999);
+        (e * (1.0 - e * e + 16.0 / (PI * PI) * e * e).sqrt() / (1.0 - e * e).powi(2)).ln()
+    };
+    let d = 1e-4;
+    (g(eps + d) - g(eps - d)) / (2.0 * d)
+}
+
+/// Load balance of a bearing whose solution turns rigidly with the journal
+/// ([`Bearing::rotation_invariant`]): the pressure field, relative to the supply line, depends on
+/// ε only, and turning the journal turns the force. So the attitude is exact after every
+/// pressure solve (β turned by the force's angle from the load line) and the balance is one
+/// equation, `ln|F(ε)| = ln W̄`, solved by the secant method (slope carried between grids in
+/// `slope`; the first from the short-bearing law). One pressure solve per step, no Jacobian
+/// columns. Returns `None` if the iteration does not make progress (the caller falls back to
+/// the two-dimensional Newton iteration).
+#[allow(clippy::too_many_arguments)]
+pub(super) fn load_balance_invariant(
+    p: &mut BalanceSearch,
+    k: usize,
+    w: f64,
+    eps: &mut f64,
+    beta: &mut f64,
+    slope: &mut Option<f64>,
+    cold: bool,
+    tol: f64,
+    cap: u32,
+    observer: &dyn Observer,
+) -> Result<Option<(Eval, Convergence, u32)>, SolveError> {
+    let full = p.tol_at(k);
+    let inexact = |err: f64| (1e-3 * err).clamp(full, full.max(1e-5));
+    // turn the journal so that the force of `e` lies on the load line (exact, see above)
+    let turn = |e: &mut Eval, beta: &mut f64| {
+        let mag = e.fv.hypot(e.fh);
+        if mag > 0.0 {
+            *beta = wrap_pm(*beta - wrap_pm(e.fh.atan2(e.fv) - PI));
+        }
+        e.fv = -mag;
+        e.fh = 0.0;
+        mag
+    };
+    let mut t_used = if cold { full } else { inexact(1e-2) };
+    let mut ev = p.eval_tol(k, *eps, *beta, cold, t_used)?;
+    let mut mag = turn(&mut ev, beta);
+    let mut r = if mag > 0.0 { (mag / w).ln() } else { return Ok(None) };
+    let mut err = (mag - w).abs() / w;
+    let mut history = vec![err];
+    let mut it = 0;
+    let mut m = slope.unwrap_or_else(|| initial_log_slope(*eps));
+    loop {
+        if err <= tol {
+            if t_used <= full {
+                break;
+            }
+            // the accepted point again, to the full pressure tolerance
+            t_used = full;
+            ev = p.eval_tol(k, *eps, *beta, false, full)?;
+            mag = turn(&mut ev, beta);
+            r = (mag / w).ln();
+            err = (mag - w).abs() / w;
+            continue;
+        }
+        observer.check()?;
+        if it >= cap || !(m > 0.0 && m.is_finite()) {
+            return Ok(None);
+        }
+        it += 1;
+        let mut de = -r / m;
+        let lim = 0.5 * if de > 0.0 { 1.0 - *eps } else { *eps };
+        if de.abs() > lim {
+            de = lim.copysign(de);
+        }
+        let mut accepted = false;
+        for _ in 0..30 {
+            let e1 = *eps + de;
+            if e1 > 0.0 && p.feasible(e1, *beta) {
+                let t = if err < 1e3 * tol { full } else { inexact(err) };
+                let mut ev1 = p.eval_tol(k, e1, *beta, false, t)?;
+                let mag1 = turn(&mut ev1, beta);
+                if mag1 > 0.0 {
+                    let r1 = (mag1 / w).ln();
+                    if r1.abs() < r.abs() {
+                        let m1 = (r1 - r) / (e1 - *eps);
+                        if m1 > 0.0 && m1.is_finite() {
+                            m = m1;
+                        }
+                        *eps = e1;
+                        ev = ev1;
+                        r = r1;
+                        mag = mag1;
+                        t_used = t;
+                        accepted = true;
+                        break;
+                    }
+                }
+            }
+            de *= 0.5;
+        }
+        if !accepted {
+            return Ok(None);
+        }
+        err = (mag - w).abs() / w;
+        history.push(err);
+    }
+    *slope = Some(m);
+    let _ = history;
+    Ok(Some((ev, Convergence { iterations: it, residual: err, tolerance: tol, termination: Termination::Converged }, it)))
+}
+
 /// Evaluate the load residual over a polar grid of mid-plane positions on level `k` and return
 /// the best feasible one.
 pub(super) fn scan_positions(p: &mut BalanceSearch, k: usize, w: f64) -> Result<(f64, f64), SolveError> {

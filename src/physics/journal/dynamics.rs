@@ -18,7 +18,10 @@
 //! *reformation* boundary (periodic supply, no groove) has `P = 0` but a non-zero gradient; its
 //! motion is a first-order effect the frozen set leaves out (still the exact derivative of the
 //! discrete problem, but not grid-convergent to the continuum one there). The validation
-//! (BENCHMARKS.md) uses the max-film groove.
+//! (BENCHMARKS.md) uses the max-film groove for the short-bearing limit and two axial grooves
+//! at ±90° from the load ([`super::analysis::Supply::TwoGrooves`]) against Someya's
+//! *Journal-Bearing Databook* (L/D = 0.5: ε within 0.005, K̄ and C̄ within 2–8 % of the largest
+//! coefficient from ε ≈ 0.37 on, 13–20 % at ε ≈ 0.2, where the groove width matters most).
 //!
 //! Units: `stiffness` and `damping` are `−∂F̄/∂X` and `−∂F̄/∂X'` in the analysis' scaling
 //! (`F̄` in `W̄` units, `X = x/c`, `X' = ẋ/(cω)`); then `K = stiffness · 6ηωRL(R/c)²/c`,

@@ -102,13 +102,22 @@ pub(super) fn figures(
     for j in 0..nz {
         let wz = if j == 0 || j + 1 == nz { 0.5 } else { 1.0 };
         let at = |i: usize| u[j * nt + (i % nt)];
-        let dp = if groove {
-            (-3.0 * at(0) + 4.0 * at(1) - at(2)) / (2.0 * dt)
-        } else {
-            (at(i0 + 1) - at(i0 + nt - 1)) / (2.0 * dt)
+        // inflow across a supply line at column `c`: one-sided second-order ∂P/∂θ downstream
+        let line = |c: usize| {
+            let dp = (-3.0 * at(c) + 4.0 * at(c + 1) - at(c + 2)) / (2.0 * dt);
+            let hh = l.h[j * nt + c];
+            hh - hh * hh * hh * dp
         };
-        let hh = l.h[j * nt + i0];
-        q += wz * (hh - hh * hh * hh * dp);
+        if groove {
+            q += wz * line(0);
+            if let Some(c) = l.second_groove {
+                q += wz * line(c);
+            }
+        } else {
+            let dp = (at(i0 + 1) - at(i0 + nt - 1)) / (2.0 * dt);
+            let hh = l.h[j * nt + i0];
+            q += wz * (hh - hh * hh * hh * dp);
+        }
     }
     let flow = PI * q * dz;
     // side flow: Qs/(RcNL) = πα Σ_edges ∫ H³ |∂P/∂Z| dθ, one-sided second-order differences

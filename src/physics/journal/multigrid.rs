@@ -109,6 +109,8 @@ pub struct Level {
     pub dz: f64,
     /// Column 0 is held at ambient pressure (a supply groove).
     pub groove: bool,
+    /// A second supply line held at ambient pressure (two axial grooves 180° apart).
+    pub second_groove: Option<usize>,
     /// Absolute angle of node 0.
     pub theta0: f64,
     pub cos_n: Vec<f64>,
@@ -139,6 +141,10 @@ pub struct Level {
     tmp: Vec<f64>,
     tt: Option<Transfer1D>,
     tz: Option<Transfer1D>,
+    /// Dense Cholesky factor of `A_II` on this level's free nodes (used on the coarsest level
+    /// only): the free node indices and the row-major lower factor; `None` when the
+    /// coefficients or the free set changed since it was built.
+    chol: Option<(Vec<usize>, Vec<f64>)>,
 }
 
 const BOUNDARY: u8 = 2;
@@ -146,14 +152,19 @@ const CAVITATED: u8 = 1;
 const FREE: u8 = 0;
 
 impl Level {
-    fn new(nt: usize, nz: usize, groove: bool) -> Self {
+    /// `grooves`: 0 (periodic film), 1 (ambient line at column 0) or 2 (also at column
+    /// `round(nt/2)`, the opposite line when `nt` is even).
+    fn new(nt: usize, nz: usize, grooves: usize) -> Self {
         let n = nt * nz;
+        let groove = grooves > 0;
+        let second = (grooves > 1).then(|| (nt + 1) / 2 % nt);
         let mut l = Level {
             nt,
             nz,
             dt: std::f64::consts::TAU / nt as f64,
             dz: 1.0 / (nz - 1) as f64,
             groove,
+            second_groove: second,
             theta0: 0.0,
             cos_n: vec![0.0; nt],
             sin_n: vec![0.0; nt],
@@ -173,10 +184,11 @@ impl Level {
             tmp: Vec::new(),
             tt: None,
             tz: None,
+            chol: None,
         };
         for j in 0..nz {
             for i in 0..nt {
-                if j == 0 || j + 1 == nz || (groove && i == 0) {
+                if j == 0 || j + 1 == nz || (groove && i == 0) || second == Some(i) {
                     l.fixed[j * nt + i] = BOUNDARY;
                 } else {
                     l.interior[j * nt + i] = 1.0;
@@ -249,10 +261,88 @@ impl Level {
 
     /// Recompute `mask` and `inv_d` from `fixed` and `diag`.
     fn refresh_masks(&mut self) {
+        self.chol = None;
         for k in 0..self.fixed.len() {
             let free = self.fixed[k] == FREE;
             self.mask[k] = if free { 1.0 } else { 0.0 };
             self.inv_d[k] = if free { 1.0 / self.diag[k] } else { 0.0 };
+        }
+    }
+
+    /// Factor `A_II` (free nodes) densely: `A_II = L Lᵀ` (Cholesky; `A` is a symmetric
+    /// M-matrix with at least one fixed node in each connected part, hence positive definite).
+    /// Returns false (and keeps no factor) if a pivot is not positive.
+    fn factor_dense(&mut self) -> bool {
+        let nt = self.nt;
+        let idx: Vec<usize> = (0..self.fixed.len()).filter(|&k| self.fixed[k] == FREE).collect();
+        let m = idx.len();
+        let mut pos = vec![usize::MAX; self.fixed.len()];
+        for (a, &k) in idx.iter().enumerate() {
+            pos[k] = a;
+        }
+        let mut a = vec![0.0; m * m];
+        for (r, &k) in idx.iter().enumerate() {
+            a[r * m + r] = self.diag[k];
+            let i = k % nt;
+            let kw = if i == 0 { k + nt - 1 } else { k - 1 };
+            let ke = if i + 1 == nt { k + 1 - nt } else { k + 1 };
+            for (nb, c) in [(ke, self.ce[k]), (kw, self.ce[kw]), (k + nt, self.cn[k]), (k - nt, self.cn[k - nt])] {
+                let q = pos[nb];
+                if q != usize::MAX {
+                    a[r * m + q] -= c;
+                }
+            }
+        }
+        // in-place Cholesky, lower triangle (Golub & Van Loan, alg. 4.2.1)
+        for c in 0..m {
+            let mut d = a[c * m + c];
+            for t in 0..c {
+                d -= a[c * m + t] * a[c * m + t];
+            }
+            if !(d > 0.0) {
+                self.chol = None;
+                return false;
+            }
+            let d = d.sqrt();
+            a[c * m + c] = d;
+            for r in c + 1..m {
+                let mut v = a[r * m + c];
+                for t in 0..c {
+                    v -= a[r * m + t] * a[c * m + t];
+                }
+                a[r * m + c] = v / d;
+            }
+        }
+        self.chol = Some((idx, a));
+        true
+    }
+
+    /// `x = A_II⁻¹ b` on the free nodes with the dense factor (0 at fixed nodes).
+    fn solve_dense(&mut self) {
+        let (idx, l) = self.chol.as_ref().unwrap();
+        let m = idx.len();
+        // `r` is free on the coarsest level (no residual is restricted from it): the work vector
+        let y = &mut self.r[..m];
+        for (a, &k) in idx.iter().enumerate() {
+            y[a] = self.b[k];
+        }
+        for r in 0..m {
+            let mut v = y[r];
+            for t in 0..r {
+                v -= l[r * m + t] * y[t];
+            }
+            y[r] = v / l[r * m + r];
+        }
+        for r in (0..m).rev() {
+            let mut v = y[r];
+            for t in r + 1..m {
+                v -= l[t * m + r] * y[t];
+            }
+            y[r] = v / l[r * m + r];
+        }
+        self.x.fill(0.0);
+        for (a, &k) in idx.iter().enumerate() {
+            self.x[k] = y[a];
         }
     }
 
@@ -432,7 +522,12 @@ impl Hierarchy {
     /// Build the hierarchy for `nt` circumferential nodes (periodic) and `nz` axial nodes.
     /// `alpha = (R/L)²` sets the anisotropy that decides the coarsening direction.
     pub fn new(nt: usize, nz: usize, alpha: f64, groove: bool) -> Self {
-        let mut levels = vec![Level::new(nt, nz, groove)];
+        Self::with_grooves(nt, nz, alpha, groove as usize)
+    }
+
+    /// [`Hierarchy::new`] with 0, 1 or 2 supply lines (the second opposite the first).
+    pub fn with_grooves(nt: usize, nz: usize, alpha: f64, grooves: usize) -> Self {
+        let mut levels = vec![Level::new(nt, nz, grooves)];
         loop {
             let l = levels.last().unwrap();
             let (nt, nz) = (l.nt, l.nz);
@@ -465,7 +560,7 @@ impl Hierarchy {
             fine.tt = Some(tt);
             fine.tz = Some(tz);
             fine.tmp = vec![0.0; nz_c * nt];
-            levels.push(Level::new(nt_c, nz_c, groove));
+            levels.push(Level::new(nt_c, nz_c, grooves));
         }
         let n = levels.len();
         Hierarchy { levels, alpha, sweeps: 2, cycle_count: vec![0; n], step_count: vec![0; n], scratch: Default::default() }
@@ -474,6 +569,12 @@ impl Hierarchy {
     /// Rebuild the coefficients of every level for `film`, node 0 at angle `theta0`.
     pub fn set_film(&mut self, film: &Film, theta0: f64) {
         self.set_film_from(0, film, theta0);
+    }
+
+    /// Rebuild the coefficients of level `k` only.
+    pub fn set_film_level(&mut self, k: usize, film: &Film, theta0: f64) {
+        let alpha = self.alpha;
+        self.levels[k].set_film(film, alpha, theta0);
     }
 
     /// Rebuild the coefficients of levels `k` and coarser.
@@ -648,10 +749,16 @@ impl Hierarchy {
         let last = self.levels.len() - 1;
         if k == last {
             let l = &mut self.levels[last];
-            // coarsest: symmetric Gauss–Seidel to (near) round-off; few unknowns
-            for _ in 0..200 {
-                l.smooth(1, false);
-                l.smooth(1, true);
+            // coarsest (≤ 80 nodes): exact solve by a dense Cholesky factor, rebuilt only when
+            // the coefficients or the free set change; symmetric Gauss–Seidel to (near)
+            // round-off if the factorisation fails
+            if l.chol.is_some() || l.factor_dense() {
+                l.solve_dense();
+            } else {
+                for _ in 0..200 {
+                    l.smooth(1, false);
+                    l.smooth(1, true);
+                }
             }
             return;
         }
