@@ -142,7 +142,7 @@ fn grid(spec: &RoughContactSpec) -> (usize, usize) {
 
 impl Kind for RoughContact {
     const NAME: &'static str = "rough_contact";
-    const SOLVER_VERSION: &'static str = "rough_contact-1";
+    const SOLVER_VERSION: &'static str = "rough_contact-2";
     const DESCRIPTION: &'static str = "Dry contact of a rough surface pair (generated Gaussian or measured heights): \
         the asperity pressure–gap curve of mixed lubrication with contact and plastic area fractions (seed 001 eq. 8–12).";
     const TABLES: &'static [&'static str] = &["rows"];
