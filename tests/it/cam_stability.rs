@@ -193,7 +193,11 @@ proptest! {
                 prop_assert!(again.central_film.is_finite());
                 let t = model.traction(&f, &input, us);
                 prop_assert!(t.force.is_finite() && t.slope.is_finite() && t.slope >= 0.0);
-                prop_assert!(t.force * us >= 0.0);
+                // Sliding adds traction in its own direction on top of the film's rolling
+                // (Poiseuille) resistance at zero sliding, which opposes the entrainment.
+                let rolling = model.traction(&f, &input, 0.0).force;
+                prop_assert!((t.force - rolling) * us >= 0.0);
+                prop_assert!(rolling * ue <= 0.0 && rolling.is_finite());
             }
             Err(SolveError::Physical { .. }) | Err(SolveError::NonFinite { .. }) => {
                 // NonFinite is a typed refusal at the chokepoint (e.g. Barus-like overflow):

@@ -191,7 +191,11 @@ fn seed000_steady_slide_roll_ratio_features() {
     let rolling = run("cam_cycle", &with(&example("seed000_roller_steady"), |s| s["slip"] = json!({"mode": "pure_rolling"}))).unwrap();
     let (h1, h0) = (out["summary"]["min_film"].as_f64().unwrap(), rolling["summary"]["min_film"].as_f64().unwrap());
     assert!(close(h1, h0, 0.15), "{h1} vs {h0}");
-    assert!(col(&rolling, "friction_coefficient").iter().all(|m| *m == 0.0));
+    // Pure rolling leaves only the film's rolling (Poiseuille) resistance, against the
+    // entrainment: never positive, −0.0025 of the load on the base circle (Goksem–Hargreaves:
+    // the thick oil, η0 = 0.152 Pa·s, under the light spring load), −0.0014 … −0.0032 on the lift.
+    let fc = col(&rolling, "friction_coefficient");
+    assert!(fc.iter().all(|m| *m < 0.0 && *m > -4e-3), "{fc:?}");
     assert!(out["summary"]["max_friction_coefficient"].as_f64().unwrap() > 0.01);
 }
 
@@ -338,7 +342,10 @@ fn seed001_gross_sliding_threshold_is_consistent() {
     let min_mu = probe["summary"]["min_cam_roller_friction"].as_f64().unwrap();
     let share = probe["summary"]["asperity_load_fraction"].as_f64().unwrap();
     assert!(share > 0.005, "asperity share {share}");
-    assert!(close(min_mu, 0.12 * share, 1e-9));
+    // The stuck asperities also overcome the film's rolling resistance (negative).
+    let rolling = probe["summary"]["rolling_resistance"].as_f64().unwrap() / 12_500.0;
+    assert!(rolling < 0.0 && rolling > -2e-4, "{rolling}");
+    assert!(close(min_mu, 0.12 * share + rolling, 1e-9));
     assert!(close(threshold, min_mu * 0.018 / 0.0091, 1e-6), "no inertia: μ_rp* = μ_cr,min R_f/R_pin");
     let out = point("seed001_nose_point", |s| {
         rough(s);
@@ -383,7 +390,11 @@ fn seed001_mixed_nose_accurate() {
     assert!(close(f("film_central"), 0.27e-6, 0.05), "{}", f("film_central"));
     let share = f("asperity_load_fraction");
     assert!(close(share, 9.0e-4, 0.1), "{share}");
-    assert!(close(f("min_cam_roller_friction"), 0.12 * share, 1e-9));
+    // The film's rolling resistance (≈ 1e-4 of the load, seed 001 eq. 24) takes nearly all of
+    // the stuck asperities' capacity here.
+    let rolling = f("rolling_resistance") / 12_500.0;
+    println!("rolling resistance {rolling:.3e} of the load, asperity capacity {:.3e}", 0.12 * share);
+    assert!(close(f("min_cam_roller_friction"), (0.12 * share + rolling).max(0.0), 1e-9));
     let srr = rows(&out, "slide_roll_ratio");
     assert!(srr.iter().all(|v| *v > 1e-7 && *v < 1e-3), "{srr:?}");
     assert!(out["rows"].as_array().unwrap().iter().all(|r| r["slip_regime"] == json!("gross_sliding")));
@@ -484,7 +495,7 @@ fn seed001_nose_with_a_rough_contact_curve() {
     println!("rough-contact curve: share {}, μ_cr,min {}, μ_rp* {}", f("asperity_load_fraction"), f("min_cam_roller_friction"), f("gross_sliding_pin_friction"));
     let share = f("asperity_load_fraction");
     assert!((0.05..0.2).contains(&share), "{share}");
-    assert!(close(f("min_cam_roller_friction"), 0.12 * share, 1e-9));
+    assert!(close(f("min_cam_roller_friction"), 0.12 * share + f("rolling_resistance") / 12_500.0, 1e-9));
     assert!(f("gross_sliding_pin_friction") > 0.02);
 }
 
@@ -813,8 +824,11 @@ fn seed001_nose_point_accurate() {
     assert!(acc["summary"]["pressure_spike"].as_f64().unwrap() > 0.3e9);
     let (sf, sa) = (rows(&fast, "slide_roll_ratio"), rows(&acc, "slide_roll_ratio"));
     println!("SRR fast {sf:?} accurate {sa:?}");
-    // The numerical film is ≈ 8 % thicker: less viscous traction, slightly more slip (≤ 30 %).
-    for (f, a) in sf.iter().zip(&sa) {
-        assert!(*a >= *f && *a <= 1.3 * *f, "{f} vs {a}");
+    // The numerical film is ≈ 8 % thicker: less viscous traction, slightly more slip (≤ 30 %);
+    // at the lowest pin friction (0.001) the film's rolling resistance is ≈ 17 % of the demand
+    // and the numerical one (∫ −(h/2) dp/dx) is ≈ 11 % above Goksem–Hargreaves': ≤ 40 % there.
+    for (i, (f, a)) in sf.iter().zip(&sa).enumerate() {
+        let most = if i == 0 { 1.4 } else { 1.3 };
+        assert!(*a >= *f && *a <= most * *f, "{f} vs {a}");
     }
 }

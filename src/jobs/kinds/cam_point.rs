@@ -146,11 +146,17 @@ pub struct PointSummary {
     /// Share of the load on the asperities at pure rolling, inside the load balance of the film
     /// solution (mixed lubrication; the fluid carries the rest).
     pub asperity_load_fraction: f64,
+    /// The film's traction at zero sliding: its rolling (Poiseuille) resistance, N on each
+    /// surface, negative: against the entrainment (seed 001 eq. 24–25: `−(h/2) dp/dx` at the
+    /// numerical film's nodes through the traction law; Goksem–Hargreaves for closed forms).
+    /// Part of `viscous_traction`; the roller must overcome it as it overcomes the pin.
+    pub rolling_resistance: f64,
     /// Minimum cam–roller friction coefficient that still drives the roller (Coulomb asperities:
     /// μ_b W_a/F; the partial-slip laws `carter` and `micro_slip`: 0 — their traction vanishes
     /// with the sliding; seed 001's sweep procedure is `first_sliding_cam_roller_friction`).
     pub min_cam_roller_friction: f64,
-    /// Roller–pin friction where the asperity traction saturates (absent without asperity load).
+    /// Roller–pin friction where the asperity traction saturates (absent without asperity load;
+    /// 0 when the film's rolling resistance alone exceeds the asperities' stick capacity).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub gross_sliding_pin_friction: Option<f64>,
     /// Seed 001's procedure on the requested list: the first μ_rp with SRR > 0 …
@@ -175,7 +181,7 @@ pub struct CamPointResult {
 
 impl Kind for CamPoint {
     const NAME: &'static str = "cam_point";
-    const SOLVER_VERSION: &'static str = "cam_point-5";
+    const SOLVER_VERSION: &'static str = "cam_point-6";
     const DESCRIPTION: &'static str = "Cam–roller contact at a fixed operating point: roller slip against \
         roller–pin friction, minimum cam–roller friction to drive the roller, gross-sliding threshold (seed 001).";
     const TABLES: &'static [&'static str] = &["rows"];
@@ -300,6 +306,7 @@ fn solve_point(spec: &CamPointSpec, observer: &dyn Observer) -> Result<CamPointR
         max_pressure: rolling.max_pressure,
         lambda: rolling.lambda,
         asperity_load_fraction: rolling.asperity.load / spec.load,
+        rolling_resistance: model.traction(&rolling, &input, 0.0).viscous,
         min_cam_roller_friction: case.min_cam_roller_friction()?,
         gross_sliding_pin_friction: case.gross_sliding_pin_friction()?,
         first_sliding_pin_friction: first.map(|f| f.0),

@@ -186,13 +186,23 @@ impl FilmModel for ClosedForm {
                 Some(prev) if prev[k].pressure == pressure => prev[k].viscosity,
                 _ => law.at(pressure).min(VISCOSITY_CAP),
             };
-            nodes.push(TractionNode { area: node_area, pressure, viscosity, film });
+            nodes.push(TractionNode { area: node_area, pressure, viscosity, film, poiseuille: 0.0 });
         }
+        // The film's rolling (Poiseuille) resistance, which the Hertzian nodes (uniform film, a
+        // symmetric pressure) cannot carry: Goksem–Hargreaves for line contacts at the fluid's
+        // load, against the entrainment; point contacts and isoviscous oils leave it out.
+        let rolling_force = match input.shape {
+            ContactShape::Line { reduced_radius: r, length } if lub.pressure_viscosity > 0.0 && input.entrainment_velocity != 0.0 => {
+                let g = LineGroups::new(fluid_share * load / length, r, input.entrainment_velocity, eta0, lub.pressure_viscosity, 2.0 * es);
+                -input.entrainment_velocity.signum() * formulas::goksem_hargreaves_rolling(&g) * r * length / lub.pressure_viscosity
+            }
+            _ => 0.0,
+        };
         let asperity = AsperityContact {
             load: w_a,
             gross_sliding_creep: input.asperity_friction.creep_scale(b, r_roll),
         };
-        ensure_finite("closed-form film", [&hc, &hm, &p0, &b, &area, &w_a])?;
+        ensure_finite("closed-form film", [&hc, &hm, &p0, &b, &area, &w_a, &rolling_force])?;
         ensure_finite("traction nodes", nodes.iter().flat_map(|n| [&n.area, &n.pressure, &n.viscosity]))?;
         Ok(FilmSolution {
             model,
@@ -209,6 +219,7 @@ impl FilmModel for ClosedForm {
             lambda,
             regime,
             nodes,
+            rolling_force,
             viscosity_law: Some(law),
             profile: None,
             iterations: None,

@@ -203,6 +203,11 @@ pub struct FilmSolution {
     pub regime: Option<Regime>,
     /// Quadrature nodes for the traction integral.
     pub nodes: Vec<TractionNode>,
+    /// The film's rolling (Poiseuille, seed 001 eq. 24) force on the follower that `nodes` do not
+    /// carry, N along the positive sense of the surface velocities: closed forms' integrated
+    /// Goksem–Hargreaves force (line contacts); 0 for the numerical models, whose nodes carry
+    /// their own Poiseuille stresses.
+    pub rolling_force: f64,
     /// The viscosity law (lubricant at the film's temperature) the nodes' viscosities were
     /// evaluated with, when one law holds for all of them (closed forms): lets the next point
     /// reuse viscosities at identical node pressures.
@@ -270,10 +275,10 @@ pub trait FilmModel: Send + Sync {
         let (asp, aslope) = input.asperity_friction.traction(&film.asperity, sliding, input.entrainment_velocity);
         let (acurv, areach) = input.asperity_friction.curvature(&film.asperity, sliding, input.entrainment_velocity);
         let traction = Traction {
-            force: v.force + asp,
+            force: v.force + film.rolling_force + asp,
             slope: v.slope + aslope,
             stick_limit: self.stick_limit(film, input),
-            viscous: v.force,
+            viscous: v.force + film.rolling_force,
         };
         (traction, (1.5 * v.curvature + acurv, v.smooth_reach.min(areach)))
     }

@@ -214,6 +214,7 @@ impl FilmModel for ThermalNumerical {
             lambda: (sigma > 0.0).then(|| s.min_film / sigma),
             regime: None,
             nodes,
+            rolling_force: 0.0,
             viscosity_law: None,
             profile: Some(Box::new(FilmProfile {
                 x: st.x.clone(),

@@ -7,10 +7,14 @@
 //! point; [`viscous_traction`] then evaluates the traction for any sliding velocity cheaply, which
 //! is what the roller torque balance needs inside its root finder.
 //!
-//! Shear stress at a node for sliding velocity `u_s` (seed 001 eq. 24–25, Couette part; the
-//! Poiseuille part averages out across the film and is not a traction):
-//! * Newtonian: `τ = η u_s / h`;
-//! * Eyring: `τ = τ0 asinh(η u_s / (h τ0))` (seed 001 eq. 25, τ0 the Eyring stress);
+//! Shear stress on the follower's surface at a node for sliding velocity `u_s` (seed 001 eq. 24–25):
+//! the Couette part `η u_s / h` plus the node's Poiseuille part `τ_p = −(h/2) dp/dx` (the rolling
+//! resistance of the film: it acts on both surfaces alike, against the entrainment, wherever the
+//! pressure gradient is resolved — the numerical models' nodes; closed forms carry it as one
+//! integrated force, [`crate::physics::film::FilmSolution::rolling_force`]):
+//! * Newtonian: `τ = η u_s / h + τ_p`;
+//! * Eyring: `τ = τ0 asinh((η u_s / h + τ_p)/τ0)` (seed 001 eq. 25 applied to eq. 24's total, τ0 the
+//!   Eyring stress);
 //! * limiting shear (optional): `|τ| ≤ Λ p`.
 
 pub mod curve;
@@ -46,6 +50,10 @@ pub struct TractionNode {
     pub viscosity: f64,
     /// Film thickness at the node, m (> 0).
     pub film: f64,
+    /// Poiseuille shear stress on the surfaces at the node, `−(h/2) dp/dx` along the positive
+    /// sense of the surface velocities, Pa (seed 001 eq. 24; 0 where the model does not resolve
+    /// the pressure gradient).
+    pub poiseuille: f64,
 }
 
 /// Viscous traction force (N, same sign as `u_s`) and its derivative with respect to `u_s`
@@ -69,36 +77,40 @@ pub struct LocalTraction {
     pub smooth_reach: f64,
 }
 
-/// Eyring: per node `d²τ/du² = −(g²/τ0) φ(x)`, `φ(x) = x/(1 + x²)^{3/2}`, `x = g u/τ0`, `g = η/h`.
-/// Within a tenth of `u` every node's `x` moves by at most a tenth of itself, where `|φ|` stays
-/// below 1.5 times its value (at most `1/0.9²` for large `x`), hence the reach `0.1 |u|`. A
-/// limiting-shear cap switches on or off where the uncapped stress crosses it; as `|dτ/du| ≤ g`,
-/// that is at least `|τ − Λp|/g` away. Newtonian nodes have no curvature.
+/// Eyring: per node `d²τ/du² = −(g²/τ0) φ(x)`, `φ(x) = x/(1 + x²)^{3/2}`, `x = (g u + τ_p)/τ0 =
+/// g (u − u_p)/τ0`, `g = η/h`, `u_p = −τ_p/g` (the sliding speed at which the node's stress
+/// vanishes). Within a tenth of `|u − u_p|` of `u` the node's `x` moves by at most a tenth of
+/// itself, where `|φ|` stays below 1.5 times its value (at most `1/0.9²` for large `x`), hence
+/// the reach `0.1 min |u − u_p|` (`0.1 |u|` without Poiseuille stresses). A limiting-shear cap
+/// switches on or off where the uncapped stress crosses it; as `|dτ/du| ≤ g`, that is at least
+/// `|τ − Λp|/g` away. Newtonian nodes have no curvature.
 pub fn viscous_traction_local(nodes: &[TractionNode], law: &TractionLaw, sliding_velocity: f64) -> LocalTraction {
     let u = sliding_velocity;
-    let mut out = LocalTraction {
-        force: 0.0,
-        slope: 0.0,
-        curvature: 0.0,
-        smooth_reach: if matches!(law.rheology, Rheology::Eyring { .. }) { 0.1 * u.abs() } else { f64::INFINITY },
-    };
+    let eyring = matches!(law.rheology, Rheology::Eyring { .. });
+    let mut out = LocalTraction { force: 0.0, slope: 0.0, curvature: 0.0, smooth_reach: f64::INFINITY };
     for n in nodes {
-        let g = n.viscosity / n.film; // shear modulus of the rate: τ_N = g u
+        let g = n.viscosity / n.film; // shear modulus of the rate: τ_N = g u + τ_p
+        let newtonian = g * u + n.poiseuille;
         let (mut tau, mut dtau, mut ddtau) = match law.rheology {
-            Rheology::Newtonian => (g * u, g, 0.0),
+            Rheology::Newtonian => (newtonian, g, 0.0),
             Rheology::Eyring { tau0 } => {
-                let x = g * u / tau0;
+                let x = newtonian / tau0;
                 let r2 = x * x + 1.0;
                 let r = r2.sqrt();
                 // asinh(x) = sign(x) ln(|x| + r), stable for large |x|.
                 (tau0 * x.signum() * (x.abs() + r).ln(), g / r, g * g / tau0 * x.abs() / (r2 * r))
             }
         };
+        if eyring && g > 0.0 {
+            out.smooth_reach = out.smooth_reach.min(0.1 * (u + n.poiseuille / g).abs());
+        }
         if let Some(lam) = law.limiting_shear_coefficient {
             let cap = lam * n.pressure.max(0.0);
-            out.smooth_reach = out.smooth_reach.min((tau.abs() - cap).abs() / g);
+            if g > 0.0 {
+                out.smooth_reach = out.smooth_reach.min((tau.abs() - cap).abs() / g);
+            }
             if tau.abs() > cap {
-                tau = cap * u.signum();
+                tau = cap * tau.signum();
                 dtau = 0.0;
                 ddtau = 0.0;
             }
@@ -108,6 +120,12 @@ pub fn viscous_traction_local(nodes: &[TractionNode], law: &TractionLaw, sliding
         out.curvature += n.area * ddtau;
     }
     out
+}
+
+/// The film's rolling (Poiseuille) force on each surface over `nodes`, Newtonian (`Σ A τ_p`), N
+/// along the positive sense of the surface velocities (negative: against the entrainment).
+pub fn poiseuille_force(nodes: &[TractionNode]) -> f64 {
+    nodes.iter().map(|n| n.area * n.poiseuille).sum()
 }
 
 /// Friction law of the asperity-borne load share.
@@ -362,7 +380,7 @@ mod tests {
     use super::*;
 
     fn node() -> TractionNode {
-        TractionNode { area: 1e-6, pressure: 1e9, viscosity: 100.0, film: 0.5e-6 }
+        TractionNode { area: 1e-6, pressure: 1e9, viscosity: 100.0, film: 0.5e-6, poiseuille: 0.0 }
     }
 
     #[test]

@@ -127,7 +127,9 @@ impl PointCase<'_> {
             return Ok(None);
         }
         let traction = match self.input.asperity_friction.model {
-            AsperityModel::Coulomb => self.input.asperity_friction.coefficient * film.asperity.load,
+            // The stick capacity on top of the film's traction at zero sliding (its rolling
+            // resistance).
+            AsperityModel::Coulomb => self.input.asperity_friction.coefficient * film.asperity.load + self.model.traction(&film, &self.input_at(0.0), 0.0).force,
             AsperityModel::Carter | AsperityModel::MicroSlip { .. } => {
                 // Carter saturates at SRR = ξ_c; the micro-slip map reaches the gross-sliding
                 // share (99 %) at SRR = t99 ξ_m.
@@ -140,15 +142,22 @@ impl PointCase<'_> {
                 self.model.traction(&film, &self.input_at(us), us).force
             }
         };
-        Ok(Some((self.roller_radius * traction - self.inertia_torque) / (self.pin_radius * load)))
+        // 0 when the film's rolling resistance alone exceeds what the asperities transmit: the
+        // roller then slides at any pin friction.
+        Ok(Some(((self.roller_radius * traction - self.inertia_torque) / (self.pin_radius * load)).max(0.0)))
     }
 
-    /// Minimum cam–roller friction coefficient that still drives the roller (seed 001): the
-    /// asperities' stick capacity `μ_b W_a/F` for Coulomb asperities, 0 otherwise.
+    /// Minimum cam–roller friction coefficient that still drives the roller (seed 001): the most
+    /// the contact transmits while the asperities stick, `(μ_b W_a + F_R)/F` for Coulomb
+    /// asperities (`F_R ≤ 0` the film's rolling resistance, which the stuck asperities must
+    /// overcome too), 0 for the partial-slip laws (their traction vanishes with the sliding).
     pub fn min_cam_roller_friction(&self) -> Result<f64, SolveError> {
         let film = self.film_at(0.0, None)?;
         Ok(match self.input.asperity_friction.model {
-            AsperityModel::Coulomb => self.input.asperity_friction.coefficient * film.asperity.load / self.input.load,
+            AsperityModel::Coulomb => {
+                let rolling = self.model.traction(&film, &self.input_at(0.0), 0.0).force;
+                (self.input.asperity_friction.coefficient * film.asperity.load + rolling).max(0.0) / self.input.load
+            }
             AsperityModel::Carter | AsperityModel::MicroSlip { .. } => 0.0,
         })
     }
