@@ -126,3 +126,23 @@ fn l4_and_l27_arrays_run() {
         assert!(r.get("continuous").is_none());
     }
 }
+
+/// `supply: two_grooves` (issue 18): the kind solves Someya's two-axial-groove bearing (Table 1a,
+/// L/D = 0.5, S = 0.580: ε = 0.477, φ = 51.01°; the physics-level comparison of every row and
+/// its tolerances are in `journal_dynamics::someya_two_axial_groove_l_over_d_half`), and an even
+/// circumferential node count, which would put the second groove between nodes, is refused.
+#[test]
+fn two_groove_supply_is_a_spec_choice() {
+    let spec = json!({"geometry": {"length_to_diameter": 0.5}, "load": {"sommerfeld_number": 0.580},
+        "supply": {"type": "two_grooves", "angle_deg": 90.0}, "grid": {"circumferential": 121, "axial": 41}});
+    let r = prepare("bearing", spec.clone()).unwrap();
+    let e = r["eccentricity_ratio"].as_f64().unwrap();
+    let phi = r["attitude_angle_deg"].as_f64().unwrap();
+    assert!((e - 0.477).abs() < 0.006, "ε = {e}");
+    assert!((phi - 51.01).abs() < 4.0, "φ = {phi}");
+    let mut s = spec;
+    s["grid"]["circumferential"] = json!(120);
+    let (code, paths) = errors("bearing", s, Limits::default());
+    assert_eq!(code, "invalid_spec");
+    assert_eq!(paths, vec!["/grid/circumferential".to_string()]);
+}

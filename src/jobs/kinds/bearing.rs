@@ -289,6 +289,14 @@ pub enum SupplySpec {
     },
     /// No supply line: periodic film, pressure builds where the cavitation condition allows.
     Periodic,
+    /// Two axial grooves 180° apart, the first at `angle_deg` (degrees from the unloaded side in
+    /// the direction of rotation; 90 puts both on the horizontal plane of a vertical load, the
+    /// two-axial-groove bearing of Someya's *Journal-Bearing Databook*). The grooves are lines of
+    /// ambient pressure (no width); `grid.circumferential` must be odd (an even number of
+    /// intervals) so that the second line falls on a node.
+    TwoGrooves {
+        angle_deg: f64,
+    },
 }
 
 /// Solver tolerances and caps (defaults are fine for design work).
@@ -677,6 +685,7 @@ impl BearingSpec {
                 SupplySpec::MaxFilm => Supply::MaxFilm,
                 SupplySpec::Angle { angle_deg } => Supply::Angle(angle_deg.to_radians()),
                 SupplySpec::Periodic => Supply::Periodic,
+                SupplySpec::TwoGrooves { angle_deg } => Supply::TwoGrooves(angle_deg.to_radians()),
             },
         }
     }
@@ -790,8 +799,15 @@ pub fn validate_bearing(spec: &BearingSpec, limits: &Limits, v: &mut Validation,
     v.count_in_range(&px("/grid/circumferential"), spec.grid.circumferential, 17, 4001);
     v.count_in_range(&px("/grid/axial"), spec.grid.axial, 5, 2001);
     v.limit(&px("/grid"), spec.grid.circumferential.saturating_mul(spec.grid.axial), limits.max_grid_nodes, "circumferential × axial nodes");
-    if let SupplySpec::Angle { angle_deg } = spec.supply {
+    if let SupplySpec::Angle { angle_deg } | SupplySpec::TwoGrooves { angle_deg } = spec.supply {
         v.check(angle_deg.is_finite(), &px("/supply/angle_deg"), "must be a finite number");
+    }
+    if let SupplySpec::TwoGrooves { .. } = spec.supply {
+        v.check(
+            spec.grid.circumferential % 2 == 1,
+            &px("/grid/circumferential"),
+            "must be odd with two grooves (an even number of intervals puts the second groove on a node)",
+        );
     }
     let s = &spec.solver;
     v.in_range(&px("/solver/pressure_tolerance"), s.pressure_tolerance, 1e-12, 1e-4);
@@ -1006,7 +1022,7 @@ pub fn solve_spec(
 
 impl Kind for BearingKind {
     const NAME: &'static str = "bearing";
-    const SOLVER_VERSION: &'static str = "bearing-2";
+    const SOLVER_VERSION: &'static str = "bearing-3";
     const DESCRIPTION: &'static str = "Finite-length hydrodynamic journal bearing (seed 002): Reynolds \
         equation with Reynolds cavitation solved as a complementarity problem (active set + multigrid), \
         misalignment, axial edge profiles, load balance; Raimondi–Boyd figures and SI values; optional \

@@ -270,10 +270,14 @@ pub fn analyse(
         }
     };
     let nlev = ws.hierarchy.levels.len();
-    // start level: the coarsest grid with at least ~1000 nodes (or the finest)
+    // start level: the coarsest grid with at least ~1000 nodes (or the finest); ~500 for a
+    // load on a bearing that turns with the journal, whose balance is one secant iteration in ε
+    // that the next grids only correct (BENCHMARKS.md, journal speed)
+    let one_dimensional_load = matches!(operating, Operating::Load(_)) && bearing.turns_with_journal();
+    let min_nodes = if one_dimensional_load { 500 } else { 1000 };
     let mut ks = 0;
     for (k, l) in ws.hierarchy.levels.iter().enumerate() {
-        if l.nt * l.nz >= 1000 && l.nt >= 24 && l.nz >= 9 {
+        if l.nt * l.nz >= min_nodes && l.nt >= 24 && l.nz >= 9 {
             ks = k;
         }
     }
@@ -281,7 +285,11 @@ pub fn analyse(
     // coarse grids only start the finer ones: solve them loosely where the balance on them is
     // one-dimensional (fixed ε, or a load on a bearing that turns with the journal)
     let coarse_loose = bearing.rotation_invariant() && (!matches!(operating, Operating::Load(_)) || bearing.turns_with_journal());
-    let mut prob = BalanceSearch { bearing, settings, h: &mut ws.hierarchy, coarse_loose };
+    // a load balance solves each pressure to the full tolerance as soon as its cavitation set
+    // nearly settles (`Hierarchy::eager_tight`); the fixed-eccentricity and fixed-position
+    // analyses keep the plain active-set schedule (the roller–pin tables are built on them)
+    ws.hierarchy.eager_tight = matches!(operating, Operating::Load(_));
+    let mut prob = BalanceSearch { bearing, settings, h: &mut ws.hierarchy, coarse_loose, start_level: ks };
     let mut steps_per_grid = Vec::new();
 
     // unknowns and starting point
@@ -346,6 +354,9 @@ pub fn analyse(
             prob.h.interpolate_up(k);
         }
         let cold = k == ks;
+        // grids between the start grid and the finest only pass a start on (one solve and
+        // one Newton/secant step each)
+        let predict = k > 0 && k < ks;
         let coarse_load_tol = if bearing.turns_with_journal() { 1e-4 } else { 1e-5 };
         let tol_load = if k == 0 { settings.load_tolerance } else { settings.load_tolerance.max(coarse_load_tol) };
         let cap = if k == 0 { settings.max_load_iterations } else { settings.max_load_iterations.max(60) };
@@ -357,18 +368,18 @@ pub fn analyse(
             }
             Operating::Eccentricity(_) => attitude_search(&mut prob, k, eps, &mut beta, cold, tol_load, cap, observer)?,
             Operating::Load(w) if bearing.turns_with_journal() && !invariant_failed => {
-                match load_balance_invariant(&mut prob, k, w, &mut eps, &mut beta, &mut slope, cold, tol_load, cap, observer)? {
+                match load_balance_invariant(&mut prob, k, w, &mut eps, &mut beta, &mut slope, cold, predict, tol_load, cap, observer)? {
                     Some(out) => out,
                     None => {
                         // no progress on the one-dimensional iteration: the general Newton
                         // iteration from here on
                         invariant_failed = true;
-                        load_balance(&mut prob, k, w, &mut eps, &mut beta, &mut jac, false, tol_load, cap, observer)?
+                        load_balance(&mut prob, k, w, &mut eps, &mut beta, &mut jac, false, false, tol_load, cap, observer)?
                     }
                 }
             }
             Operating::Load(w) => {
-                match load_balance(&mut prob, k, w, &mut eps, &mut beta, &mut jac, cold, tol_load, cap, observer) {
+                match load_balance(&mut prob, k, w, &mut eps, &mut beta, &mut jac, cold, predict, tol_load, cap, observer) {
                     Err(SolveError::NotConverged { .. }) if k == ks => {
                         // Newton from the starting guess stalled on the coarse grid (misalignment
                         // can make the force map far from linear): scan the journal positions for
@@ -377,7 +388,7 @@ pub fn analyse(
                         eps = e0;
                         beta = b0;
                         jac = None;
-                        match load_balance(&mut prob, k, w, &mut eps, &mut beta, &mut jac, false, tol_load, cap, observer) {
+                        match load_balance(&mut prob, k, w, &mut eps, &mut beta, &mut jac, false, false, tol_load, cap, observer) {
                             Err(SolveError::NotConverged { residual, .. }) => {
                                 return Err(SolveError::physical(
                                     crate::physics::PhysicalFailure::NoEquilibriumPosition,

@@ -19,6 +19,9 @@ pub(super) struct BalanceSearch<'a> {
     pub(super) h: &'a mut Hierarchy,
     /// Coarse grids serve only as starting guesses (no load balance): solve them loosely.
     pub(super) coarse_loose: bool,
+    /// The grid on which the position search starts (finite-difference Jacobians are taken
+    /// there; the grids between it and the finest are reached by Broyden/secant updates).
+    pub(super) start_level: usize,
 }
 
 impl BalanceSearch<'_> {
@@ -33,6 +36,10 @@ impl BalanceSearch<'_> {
             self.settings.pressure_tolerance
         } else if self.coarse_loose {
             self.settings.pressure_tolerance.max(1e-5)
+        } else if k < self.start_level {
+            // between the start grid and the finest: only steers the next grid's start, and no
+            // difference Jacobian is taken here
+            self.settings.pressure_tolerance.max(1e-6)
         } else {
             self.settings.pressure_tolerance.max(1e-7)
         }
@@ -262,6 +269,7 @@ pub(super) fn load_balance(
     beta: &mut f64,
     jac: &mut Option<[[f64; 2]; 2]>,
     cold: bool,
+    predict_only: bool,
     tol: f64,
     cap: u32,
     observer: &dyn Observer,
@@ -274,6 +282,19 @@ pub(super) fn load_balance(
     let mut exact = cold || inexact(1e-2, full) <= full;
     let mut r = load_residual(&ev, w);
     let mut err = relative_load_error(&ev, w);
+    if predict_only {
+        // a grid between the start grid and the finest: one pressure solve at the coarser
+        // grid's equilibrium and one Newton step with the carried Jacobian give the next grid
+        // its start (its own equilibrium is not needed)
+        if let Some(j) = *jac {
+            let (de, db) = newton_step(&j, &r, *eps);
+            if *eps + de > 0.0 && p.feasible(*eps + de, *beta + db) {
+                *eps += de;
+                *beta = wrap_pm(*beta + db);
+            }
+            return Ok((ev, Convergence { iterations: 0, residual: err, tolerance: tol, termination: Termination::Converged }, 0));
+        }
+    }
     let mut history = vec![err];
     let mut it = 0;
     let mut blocked = 0;
@@ -324,24 +345,7 @@ pub(super) fn load_balance(
             *jac = Some(fd_jacobian(p, k, w, *eps, *beta, &r)?);
         }
         let j = jac.unwrap();
-        let det = j[0][0] * j[1][1] - j[0][1] * j[1][0];
-        let (mut de, mut db) = if det.abs() > 1e-300 {
-            ((-r[0] * j[1][1] + r[1] * j[0][1]) / det, (r[0] * j[1][0] - r[1] * j[0][0]) / det)
-        } else {
-            (-r[0] / j[0][0].max(1e-12), -r[1])
-        };
-        // keep steps moderate: the eccentricity moves at most halfway to 0 or to 1
-        let lim_e = 0.5 * if de > 0.0 { 1.0 - *eps } else { *eps };
-        if de.abs() > lim_e {
-            let s = lim_e / de.abs();
-            de *= s;
-            db *= s;
-        }
-        if db.abs() > 0.5 {
-            let s = 0.5 / db.abs();
-            de *= s;
-            db *= s;
-        }
+        let (de, db) = newton_step(&j, &r, *eps);
         let norm0 = r[0].hypot(r[1]);
         let mut t = 1.0;
         let mut accepted = false;
@@ -404,6 +408,29 @@ pub(super) fn load_balance(
     Ok((ev, Convergence { iterations: it, residual: err, tolerance: tol, termination: Termination::Converged }, it))
 }
 
+/// Newton step `−J⁻¹ r` in (ε, β), shortened so that the eccentricity moves at most halfway
+/// to 0 or to 1 and the attitude at most 0.5 rad.
+fn newton_step(j: &[[f64; 2]; 2], r: &[f64; 2], eps: f64) -> (f64, f64) {
+    let det = j[0][0] * j[1][1] - j[0][1] * j[1][0];
+    let (mut de, mut db) = if det.abs() > 1e-300 {
+        ((-r[0] * j[1][1] + r[1] * j[0][1]) / det, (r[0] * j[1][0] - r[1] * j[0][0]) / det)
+    } else {
+        (-r[0] / j[0][0].max(1e-12), -r[1])
+    };
+    let lim_e = 0.5 * if de > 0.0 { 1.0 - eps } else { eps };
+    if de.abs() > lim_e {
+        let s = lim_e / de.abs();
+        de *= s;
+        db *= s;
+    }
+    if db.abs() > 0.5 {
+        let s = 0.5 / db.abs();
+        de *= s;
+        db *= s;
+    }
+    (de, db)
+}
+
 /// `d ln W̄/dε` of the short-bearing estimate used by [`initial_eccentricity`]: the starting
 /// slope of the secant iteration in [`load_balance_invariant`].
 pub(super) fn initial_log_slope(eps: f64) -> f64 {
@@ -432,6 +459,7 @@ pub(super) fn load_balance_invariant(
     beta: &mut f64,
     slope: &mut Option<f64>,
     cold: bool,
+    predict_only: bool,
     tol: f64,
     cap: u32,
     observer: &dyn Observer,
@@ -453,6 +481,21 @@ pub(super) fn load_balance_invariant(
     let mut mag = turn(&mut ev, beta);
     let mut r = if mag > 0.0 { (mag / w).ln() } else { return Ok(None) };
     let mut err = (mag - w).abs() / w;
+    if predict_only {
+        // between the start grid and the finest: one solve and one secant step with the
+        // carried slope start the next grid
+        if let Some(m) = *slope {
+            let mut de = -r / m;
+            let lim = 0.5 * if de > 0.0 { 1.0 - *eps } else { *eps };
+            if de.abs() > lim {
+                de = lim.copysign(de);
+            }
+            if m > 0.0 && m.is_finite() && *eps + de > 0.0 && p.feasible(*eps + de, *beta) {
+                *eps += de;
+            }
+            return Ok(Some((ev, Convergence { iterations: 0, residual: err, tolerance: tol, termination: Termination::Converged }, 0)));
+        }
+    }
     let mut history = vec![err];
     let mut it = 0;
     let mut m = slope.unwrap_or_else(|| initial_log_slope(*eps));
