@@ -243,4 +243,36 @@ mod seed000_cycle {
         // Measured at 10°: 0.246 against 0.205 (+20 %, not +50 %).
         assert!(at(&sa, &ss, 10.0) > 1.1 * at(&a, &srr, 10.0), "10°");
     }
+
+    /// Key points (`ehl.thermal.carry_tolerance`) against the full thermal solve at every angle,
+    /// seed 000 steady at 72 angles: films within 1 % at every angle, SRR within 1 % of the
+    /// cycle's largest SRR (the closing-ramp SRR crosses zero). BENCHMARKS.md, "Thermal EHL".
+    #[test]
+    fn carried_thermal_factors_match_the_full_cycle() {
+        let base = example("seed000_thermal_steady");
+        let with = |carry: Option<f64>| {
+            let mut s = base.clone();
+            s["angles"] = 72.into();
+            if let Some(c) = carry {
+                s["ehl"]["thermal"]["carry_tolerance"] = c.into();
+            }
+            s
+        };
+        let full = run("cam_cycle", &with(None)).unwrap();
+        let fast = run("cam_cycle", &with(Some(0.05))).unwrap();
+        let keys = fast["summary"]["fidelity_used"]["thermal"].as_u64().unwrap_or(0);
+        println!("fidelity_used: {}", fast["summary"]["fidelity_used"]);
+        let worst = |name: &str, scale: Option<f64>| {
+            let (a, b) = (series(&full, name), series(&fast, name));
+            let s = scale.unwrap_or(1.0);
+            (0..a.len()).map(|i| (b[i] - a[i]).abs() / scale.map_or(a[i].abs(), |_| s)).fold(0.0, f64::max)
+        };
+        let srr = series(&full, "slide_roll_ratio");
+        let srr_scale = srr.iter().fold(0.0f64, |m, s| m.max(s.abs()));
+        let (hc, hm, sr) = (worst("film_central", None), worst("film_min", None), worst("slide_roll_ratio", Some(srr_scale)));
+        println!("key points {keys} of 72; worst film_central {hc:.2e}, film_min {hm:.2e}, SRR {sr:.2e} (of {srr_scale:.3})");
+        assert!(keys > 0 && keys < 72, "{keys}");
+        assert!(hc < 0.01 && hm < 0.01, "films: {hc:.3e} {hm:.3e}");
+        assert!(sr < 0.01, "SRR: {sr:.3e}");
+    }
 }
