@@ -4,14 +4,91 @@
 //! w' = 5e4 N/m, R = 14 mm, u_m = 3 m/s, slide-to-roll ratio 0.3) at x nodes × film levels from
 //! 96 × 5 to 512 × 9, errors of the central film, the largest temperature rise and the friction
 //! coefficient against 512 × 11, the coupling iterations and the best of three run times.
+//!
+//! `cargo bench --bench thermal -- cycle` (only that part; without an argument both run): the
+//! seed 000 thermal cycle (`examples/seed000_thermal_steady.json`) at 720 angles, the full
+//! thermal solve at every angle against key points (`ehl.thermal.carry_tolerance`) and `auto`:
+//! run time (the whole job, one run each: the full cycle takes minutes), key points, and the worst
+//! film and SRR differences against the full cycle.
 
+use serde_json::Value;
 use std::time::Instant;
+use tribod::jobs::{registry, Limits};
 use tribod::physics::ehl::thermal::{self, ThermalBodies, ThermalInput, ThermalOptions};
 use tribod::physics::ehl::{EhlInput, EhlOptions, Rheology};
 use tribod::physics::lubricant::Lubricant;
 use tribod::physics::Silent;
 
+/// The whole `cam_cycle` job: result and run time, s.
+fn cycle_job(spec: &Value) -> (Value, f64) {
+    let k = registry::find("cam_cycle").unwrap();
+    let prepared = k.prepare(spec, &Limits::default()).unwrap();
+    let t = Instant::now();
+    let out = prepared.run(&Silent).unwrap();
+    (out, t.elapsed().as_secs_f64())
+}
+
+fn series(out: &Value, name: &str) -> Vec<f64> {
+    out["series"][name].as_array().unwrap_or_else(|| panic!("{name}")).iter().map(|v| v.as_f64().unwrap()).collect()
+}
+
+fn cycle_table() {
+    let text = std::fs::read_to_string("examples/seed000_thermal_steady.json").unwrap();
+    let base = serde_json::from_str::<Value>(&text).unwrap()["spec"].clone();
+    let angles = std::env::var("THERMAL_BENCH_ANGLES").ok().and_then(|a| a.parse::<u64>().ok()).unwrap_or(720);
+    let spec = |f: &dyn Fn(&mut Value)| {
+        let mut s = base.clone();
+        s["angles"] = angles.into();
+        f(&mut s);
+        s
+    };
+    // THERMAL_BENCH_NO_FULL: leave out the every-angle thermal cycles (full and plain `auto`:
+    // minutes each); errors then against the carried cycle at carry_tolerance 0.01.
+    let skip_full = std::env::var("THERMAL_BENCH_NO_FULL").is_ok();
+    let (full, t_full) = if skip_full { cycle_job(&spec(&|s| s["ehl"]["thermal"]["carry_tolerance"] = 0.01.into())) } else { cycle_job(&spec(&|_| {})) };
+    let srr_full = series(&full, "slide_roll_ratio");
+    let srr_scale = srr_full.iter().fold(0.0f64, |m, s| m.max(s.abs()));
+    println!("\n## Seed 000 thermal cycle, {angles} angles (whole job, release, rayon pool of the machine)\n");
+    println!("| case | time, s | thermal solves (angles) | worst film_central | worst film_min | worst SRR (of max \\|SRR\\| {srr_scale:.3}) | convergence |");
+    println!("|---|---|---|---|---|---|---|");
+    let row = |name: &str, out: &Value, t: f64| {
+        let worst = |n: &str| {
+            let (a, b) = (series(&full, n), series(out, n));
+            (0..a.len()).map(|i| (b[i] - a[i]).abs() / a[i].abs()).fold(0.0, f64::max)
+        };
+        let srr = series(out, "slide_roll_ratio");
+        let ws = (0..srr.len()).map(|i| (srr[i] - srr_full[i]).abs()).fold(0.0, f64::max) / srr_scale;
+        println!(
+            "| {name} | {t:.2} | {} | {:.3} % | {:.3} % | {:.3} % | {} |",
+            out["summary"]["fidelity_used"],
+            100.0 * worst("film_central"),
+            100.0 * worst("film_min"),
+            100.0 * ws,
+            out["convergence"]
+        );
+    };
+    row(if skip_full { "reference: accurate, carry_tolerance 0.01" } else { "accurate, full thermal solve at every angle" }, &full, t_full);
+    for tol in [0.02, 0.05, 0.1] {
+        let (out, t) = cycle_job(&spec(&|s| s["ehl"]["thermal"]["carry_tolerance"] = tol.into()));
+        row(&format!("accurate, carry_tolerance {tol}"), &out, t);
+    }
+    if !skip_full {
+        let (out, t) = cycle_job(&spec(&|s| s["fidelity"] = "auto".into()));
+        row("auto", &out, t);
+    }
+    let (out, t) = cycle_job(&spec(&|s| {
+        s["fidelity"] = "auto".into();
+        s["ehl"]["thermal"]["carry_tolerance"] = 0.05.into();
+    }));
+    row("auto, carry_tolerance 0.05", &out, t);
+}
+
 fn main() {
+    let args: Vec<String> = std::env::args().skip(1).filter(|a| !a.starts_with('-')).collect();
+    if args.iter().any(|a| a == "cycle") {
+        cycle_table();
+        return;
+    }
     faer::set_global_parallelism(faer::Par::Seq);
     let lub = Lubricant::SEED000;
     let ehl = EhlInput {
@@ -63,4 +140,5 @@ fn main() {
         reference.summary.film_temperature_max - t0,
         reference.ehl.traction.friction_coefficient
     );
+    cycle_table();
 }

@@ -455,6 +455,15 @@ pub struct EhlThermalSpec {
     /// Nodes in each solid from the surface to the depth 3.15 b, 4–81. Default 16.
     #[serde(default = "default_solid_points")]
     pub solid_points: usize,
+    /// Key points (cam kinds): the full thermal solve only where the operating conditions moved
+    /// by more than this from every key point solved so far — the largest of `|Δ ln w'|`,
+    /// `|Δ ln u_m|`, `|Δ ln R|` and `|Δ SRR|` — and elsewhere the nearest key point's thermal film
+    /// reduction, temperatures and traction table carried onto the closed form's change between
+    /// the two (series `model`: `thermal_carried`). Key points are solved quasi-steady (no
+    /// squeeze or ∂T/∂t history). 0.001–0.5; absent: the full solve at every angle. Seed 000 at
+    /// 720 angles with 0.05: see BENCHMARKS.md, "Thermal EHL".
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub carry_tolerance: Option<f64>,
 }
 
 fn default_oil_conductivity() -> f64 {
@@ -476,6 +485,7 @@ impl EhlThermalSpec {
         ThermalFilmSettings {
             options: ThermalOptions { film_points: self.film_points, solid_points: self.solid_points, ..ThermalOptions::default() },
             bodies: ThermalBodies { film: FilmHeat { conductivity: self.oil_conductivity, specific_heat: self.oil_specific_heat }, body_1, body_2 },
+            carry_tolerance: self.carry_tolerance,
         }
     }
 
@@ -484,6 +494,9 @@ impl EhlThermalSpec {
         v.positive(&format!("{path}/oil_specific_heat"), self.oil_specific_heat);
         v.count_in_range(&format!("{path}/film_points"), self.film_points, 3, 41);
         v.count_in_range(&format!("{path}/solid_points"), self.solid_points, 4, 81);
+        if let Some(t) = self.carry_tolerance {
+            v.in_range(&format!("{path}/carry_tolerance"), t, 0.001, 0.5);
+        }
     }
 }
 

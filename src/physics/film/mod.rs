@@ -103,6 +103,9 @@ pub enum FilmModelId {
     Numerical,
     /// The thermal numerical line-contact EHL model (`physics::ehl::thermal`).
     Thermal,
+    /// The thermal model's factors carried from a key point onto the closed form's change
+    /// (`ehl.thermal.carry_tolerance`; `physics::film::thermal`).
+    ThermalCarried,
     /// Pan–Hamrock in the Johnson–Greenwood–Poon load sharing.
     PanHamrockMixed,
     /// Dowson–Higginson in the Johnson–Greenwood–Poon load sharing.
@@ -125,6 +128,7 @@ impl FilmModelId {
             FilmModelId::HamrockDowson => "hamrock_dowson",
             FilmModelId::Numerical => "numerical",
             FilmModelId::Thermal => "thermal",
+            FilmModelId::ThermalCarried => "thermal_carried",
             FilmModelId::PanHamrockMixed => "pan_hamrock_mixed",
             FilmModelId::DowsonHigginsonMixed => "dowson_higginson_mixed",
             FilmModelId::Seed003Mixed => "seed003_mixed",
