@@ -179,6 +179,8 @@ impl ThermalNumerical {
             lambda: (sigma > 0.0).then(|| min_film / sigma),
             regime: None,
             nodes: cf.nodes,
+            // The carried table includes the key's surface stresses (Poiseuille part too).
+            rolling_force: 0.0,
             viscosity_law: None,
             // No profile of its own (the next key point warm-starts from the nearest key).
             profile: None,
