@@ -658,6 +658,24 @@ mod tests {
     }
 
     #[test]
+    fn point_geometry_runs_the_2d_solver_and_bad_geometry_is_named() {
+        let kind = registry::find("ehl_point").unwrap();
+        // Circular contact F = 100 N, R = 10 mm, u_m = 1 m/s (tests/it/ehl_2d.rs, 49² here).
+        let spec = json!({"load": 100.0, "length": 0.01, "reduced_radius": 0.01, "entrainment_velocity": 1.0,
+            "lubricant": {"viscosity": 0.04, "pressure_viscosity": 2e-8},
+            "geometry": {"type": "point", "rx": 0.01, "ry": 0.01, "nx": 49, "ny": 49}});
+        let out = kind.prepare(&spec, &Limits::default()).unwrap().run(&Silent).unwrap();
+        let (hc, hm) = (out["central_film"].as_f64().unwrap(), out["min_film"].as_f64().unwrap());
+        assert!(hm > 0.0 && hm < hc, "{hc} {hm}");
+        assert!(out.get("exit_film").is_none() && out.get("edge_pressure_peak").is_none() && out.get("load_per_length").is_none());
+        assert_eq!(out["nodes_across"], json!(49));
+        let mut bad = spec.clone();
+        bad["geometry"] = json!({"type": "finite", "middle_length": 0.02, "crown_height": 1e-6, "end_radius": 0.01, "nx": 8});
+        let text = serde_json::to_string(&kind.prepare(&bad, &Limits::default()).unwrap_err()).unwrap();
+        assert!(text.contains("/geometry/middle_length") && text.contains("/geometry/nx"), "{text}");
+    }
+
+    #[test]
     fn bad_fields_are_named() {
         let kind = registry::find("ehl_point").unwrap();
         let mut spec = kind.example();
