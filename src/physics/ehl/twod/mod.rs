@@ -47,7 +47,10 @@
 //! stalls at 1e-5–6e-2 while the film at one node shrinks geometrically (fraction-to-boundary
 //! rule). Pseudo-time continuation with the squeeze term ([`solver`], `march`) is the fallback
 //! when Newton fails; it did not rescue those cases. Next: a film floor with a collapse report,
-//! or Venner–Lubrecht line relaxation as the smoother.
+//! or Venner–Lubrecht line relaxation as the smoother. Caution (release bench): the films
+//! converge slowly with the grid (−28 % at 65², −7 % at 129², −1.8 % at 257² against a
+//! Richardson value) and a 33² solve "converges" to a pinched 5 nm film; grid grading in x is
+//! needed before the 2-D films can be trusted to a few percent.
 //!
 //! # Not modelled
 //! Transient (squeeze) terms, thermal and non-Newtonian effects, grid grading and mixed
