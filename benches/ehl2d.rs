@@ -42,11 +42,20 @@ fn main() {
         for &n in &sizes {
             let o = Ehl2dOptions { nx: n, ny: n, inlet: Some(3.5), outlet: Some(1.5), side: Some(2.0), ..Default::default() };
             let reps = if n <= 65 { 3 } else { 1 };
-            let (t, s) = best_of(reps, || solve(&input, &o, &Silent).expect("converges"));
-            eprintln!("{n}: {t:.3} s, hc {:.6e}, hmin {:.6e}, newton {}", s.central_film, s.min_film.value, s.convergence.iterations);
-            rows.push((n, t, s.central_film, s.min_film.value, s.convergence.iterations));
+            let (t, s) = best_of(reps, || solve(&input, &o, &Silent));
+            match s {
+                Ok(s) => {
+                    eprintln!("{n}: {t:.3} s, hc {:.6e}, hmin {:.6e}, newton {}", s.central_film, s.min_film.value, s.convergence.iterations);
+                    rows.push((n, t, s.central_film, s.min_film.value, s.convergence.iterations));
+                }
+                Err(e) => println!("{n}×{n}: not converged after {t:.3} s: {e}"),
+            }
         }
         let k = rows.len();
+        if k < 2 {
+            println!("fewer than two converged grids: no Richardson reference");
+            return;
+        }
         let rich = |a: f64, b: f64| b + (b - a) / 3.0;
         let (rc, rm) = (rich(rows[k - 2].2, rows[k - 1].2), rich(rows[k - 2].3, rows[k - 1].3));
         println!("| grid | time (s) | Newton steps | h_c (nm) | error h_c | h_min (nm) | error h_min |");
@@ -64,7 +73,11 @@ fn main() {
     println!("| --- | --- | --- | --- | --- | --- |");
     for (nx, ny) in [(33, 65), (65, 129), (129, 257)] {
         let o = Ehl2dOptions { nx, ny, ..Default::default() };
-        let (t, s) = best_of(1, || solve(&input, &o, &Silent).expect("converges"));
+        let (t, s) = best_of(1, || solve(&input, &o, &Silent));
+        let Ok(s) = s else {
+            println!("| {nx}×{ny} | {t:.3} | not converged | | | |");
+            continue;
+        };
         let edge = s.edge_pressure_peak.map_or("none".to_string(), |e| format!("{:.3} at {:.2}", e.value * 1e-9, e.y * 1e3));
         println!("| {nx}×{ny} | {t:.3} | {:.4} | {:.4} at {:.2} | {:.3} | {edge} |", s.central_film * 1e6, s.min_film.value * 1e6, s.min_film.y * 1e3, s.max_pressure.value * 1e-9);
     }

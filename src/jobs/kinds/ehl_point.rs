@@ -9,7 +9,9 @@ use crate::physics::ehl::formulas::{
 use crate::physics::ehl::thermal::{self, FilmHeat, ThermalBodies, ThermalInput, ThermalOptions};
 use crate::physics::ehl::{solve, EhlInput, EhlOptions, Rheology, Upwind};
 use super::common::{ExtrapolationSpec, LubricantSpec, Material, ThermalSpec};
+use crate::physics::ehl::twod::{self, Ehl2dInput, Ehl2dOptions, Geometry2d};
 use crate::physics::ehl::ReusableSolver;
+use crate::physics::roller::Crown;
 use crate::physics::{Convergence, Observer, SolveError};
 use serde::{Deserialize, Serialize};
 use serde_json::{json, Value};
@@ -40,8 +42,56 @@ pub enum EhlPointOutput {
     Profile,
 }
 
-/// Spec of an `ehl_point` job: a smooth, fully flooded line contact in steady state, isothermal
-/// or thermal (`thermal`).
+/// Contact geometry of an `ehl_point` job (issue 16). `line` (default): the contact is uniform
+/// along `length` (1-D solver, Richardson extrapolation, thermal model available); `point` and
+/// `finite`: the 2-D solver (`physics::ehl::twod`, isothermal, Newtonian, one grid).
+#[derive(Debug, Clone, Copy, PartialEq, Default, Serialize, Deserialize, ToSchema)]
+#[serde(tag = "type", rename_all = "snake_case", deny_unknown_fields)]
+pub enum EhlGeometrySpec {
+    /// Infinitely long line contact (the load spread uniformly over `length`).
+    #[default]
+    Line,
+    /// Elliptic point contact (spherical or barrel follower); `reduced_radius` and `length` are
+    /// not used.
+    Point {
+        /// Reduced radius along the entrainment `1/R_x = 1/r_1x + 1/r_2x`, m.
+        rx: f64,
+        /// Reduced radius across the entrainment, m (`rx = ry`: circular contact).
+        ry: f64,
+        /// Nodes along the entrainment. Default 65.
+        #[serde(default = "d_nx")]
+        nx: usize,
+        /// Nodes across. Default 65.
+        #[serde(default = "d_nx")]
+        ny: usize,
+    },
+    /// Finite-length roller of `length` and reduced radius `reduced_radius` with seed 000's
+    /// crowned profile (eq. 3, Table 1): straight middle, crown drop, end radius.
+    Finite {
+        /// Length of the straight middle section L1, m (`≤ length`).
+        middle_length: f64,
+        /// Crown drop h_td at the ends of the middle section, m.
+        crown_height: f64,
+        /// End profile radius R_d, m.
+        end_radius: f64,
+        /// Nodes along the entrainment. Default 65.
+        #[serde(default = "d_nx")]
+        nx: usize,
+        /// Nodes along the roller axis. Default 129.
+        #[serde(default = "d_ny_finite")]
+        ny: usize,
+    },
+}
+
+fn d_nx() -> usize {
+    65
+}
+fn d_ny_finite() -> usize {
+    129
+}
+
+/// Spec of an `ehl_point` job: a smooth, fully flooded contact in steady state — a line contact,
+/// isothermal or thermal (`thermal`), or (`geometry`) an isothermal point or finite-length one.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize, ToSchema)]
 #[serde(deny_unknown_fields)]
 pub struct EhlPointSpec {
@@ -67,6 +117,10 @@ pub struct EhlPointSpec {
     pub lubricant: LubricantSpec,
     #[serde(default)]
     pub rheology: EhlRheologySpec,
+    /// `{"type": "line"}` (default), `{"type": "point", "rx", "ry"}` or `{"type": "finite",
+    /// "middle_length", "crown_height", "end_radius"}`, each 2-D one with optional `nx`, `ny`.
+    #[serde(default)]
+    pub geometry: EhlGeometrySpec,
     /// Grid nodes across the domain (graded towards inlet and exit); with Richardson
     /// extrapolation the fine grid. Default 385: with the default extrapolation the central film
     /// is within 0.1 % and the minimum film within 0.6 % of the grid-converged solution over
@@ -204,9 +258,11 @@ pub struct ClosedForms {
 pub struct EhlPointResult {
     /// `E' = 2E*`, Pa.
     pub effective_modulus: f64,
-    /// Load per unit length, N/m.
-    pub load_per_length: f64,
-    /// Hertzian half-width, m.
+    /// Load per unit length, N/m (absent for a point contact).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub load_per_length: Option<f64>,
+    /// Hertzian half-width (2-D: the semi-axis along the entrainment, for a finite roller at the
+    /// peak load per length of the slice model), m.
     pub hertz_half_width: f64,
     /// Hertzian peak pressure, Pa.
     pub hertz_pressure: f64,
@@ -218,33 +274,60 @@ pub struct EhlPointResult {
     pub central_film: f64,
     /// Smallest film, m.
     pub min_film: f64,
-    /// Where the smallest film is, m from the centre.
+    /// Where the smallest film is, m from the centre along the entrainment.
     pub min_film_position: f64,
-    /// Smallest film downstream of the centre (exit constriction), m.
-    pub exit_film: f64,
+    /// 2-D: where the smallest film is across the entrainment (along the roller axis), m from the
+    /// centre.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub min_film_axial_position: Option<f64>,
+    /// Smallest film downstream of the centre (exit constriction), m (line contacts).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub exit_film: Option<f64>,
     /// Largest pressure, Pa.
     pub max_pressure: f64,
     /// Where the largest pressure is, m.
     pub max_pressure_position: f64,
+    /// 2-D: where the largest pressure is across the entrainment, m from the centre.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub max_pressure_axial_position: Option<f64>,
+    /// Finite roller: the largest off-centre maximum along the roller axis of the pressure
+    /// (`max_x p(x, y)` against `y`), Pa — the edge peak at the crown transition; absent when the
+    /// pressure falls monotonically from the centre to the ends, and for other geometries.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub edge_pressure_peak: Option<f64>,
+    /// Where the edge peak is along the roller axis, m from the centre (positive side).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub edge_pressure_peak_axial_position: Option<f64>,
     /// The exit pressure spike; absent when the solution has none.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub pressure_spike: Option<SpikeResult>,
-    /// Sliding friction coefficient `(F2 − F1)/(2w')`, signed like the sliding velocity.
-    pub friction_coefficient: f64,
-    /// Shear force on body 1 along +x, N/m.
-    pub traction_body_1: f64,
-    /// Shear force on body 2 along +x, N/m.
-    pub traction_body_2: f64,
-    /// Rolling (Poiseuille) resistance on each body, N/m.
-    pub rolling_force: f64,
-    pub closed_forms: ClosedForms,
-    /// Grid nodes used (the fine grid when extrapolated).
+    /// Sliding friction coefficient `(F2 − F1)/(2w')`, signed like the sliding velocity (line
+    /// contacts).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub friction_coefficient: Option<f64>,
+    /// Shear force on body 1 along +x, N/m (line contacts).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub traction_body_1: Option<f64>,
+    /// Shear force on body 2 along +x, N/m (line contacts).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub traction_body_2: Option<f64>,
+    /// Rolling (Poiseuille) resistance on each body, N/m (line contacts).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub rolling_force: Option<f64>,
+    /// Line-contact closed forms (line contacts).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub closed_forms: Option<ClosedForms>,
+    /// Grid nodes used (the fine grid when extrapolated; 2-D: along the entrainment).
     pub nodes: usize,
+    /// 2-D: grid nodes across the entrainment.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub nodes_across: Option<usize>,
     /// Whether the films and traction are Richardson-extrapolated from two grids (`false` with
     /// `extrapolation: none`, with the thermal model, or when the coarse grid did not converge).
     pub extrapolated: bool,
     /// Newton steps (all grid levels) and the final relative residual.
     pub convergence: Convergence,
+    /// Pressure and film along the rolling direction (2-D: along the centre line `y = 0`).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub profile: Option<ProfileTable>,
     /// The thermal solution's temperatures and heat flows, when `thermal` was requested (the
@@ -255,11 +338,12 @@ pub struct EhlPointResult {
 
 impl Kind for EhlPoint {
     const NAME: &'static str = "ehl_point";
-    const SOLVER_VERSION: &'static str = "ehl_point-3";
+    const SOLVER_VERSION: &'static str = "ehl_point-4";
     const DESCRIPTION: &'static str = "Numerical elastohydrodynamic line contact (compressible \
         Reynolds, elastic half-space, cavitation; isothermal or, with `thermal`, the thermal model \
-        of seed 000): central and minimum film, pressure spike, traction, temperatures, optional \
-        pressure/film profile.";
+        of seed 000), or with `geometry` an isothermal point or finite-length (crowned roller) \
+        contact on a 2-D grid: central and minimum film, pressure spike, edge pressure peak, \
+        traction, temperatures, optional pressure/film profile.";
     const TABLES: &'static [&'static str] = &["profile"];
     type Spec = EhlPointSpec;
     type Output = EhlPointResult;
@@ -310,6 +394,30 @@ impl Kind for EhlPoint {
         v.memory("/nodes", crate::physics::ehl::dense_memory_bytes(spec.nodes) + coarse, limits, "the dense EHL solver");
         v.in_range("/tolerance", spec.tolerance, 1e-14, 1e-2);
         v.count_in_range("/max_iterations", spec.max_iterations as usize, 1, 1000);
+        let two_d = |nx: usize, ny: usize, v: &mut Validation| {
+            v.count_in_range("/geometry/nx", nx, 17, 1025);
+            v.count_in_range("/geometry/ny", ny, 17, 1025);
+            v.limit("/geometry/nx", nx * ny, limits.max_grid_nodes, "the number of grid nodes (nx·ny)");
+            v.memory("/geometry/nx", twod::memory_bytes(nx, ny), limits, "the 2-D EHL solver");
+            v.check(spec.thermal.is_none(), "/thermal", "the thermal model is available for line contacts only");
+        };
+        match spec.geometry {
+            EhlGeometrySpec::Line => {}
+            EhlGeometrySpec::Point { rx, ry, nx, ny } => {
+                v.positive("/geometry/rx", rx);
+                v.positive("/geometry/ry", ry);
+                if rx > 0.0 && ry > 0.0 {
+                    v.in_range("/geometry/ry", rx / ry, 0.02, 50.0);
+                }
+                two_d(nx, ny, v);
+            }
+            EhlGeometrySpec::Finite { middle_length, crown_height, end_radius, nx, ny } => {
+                v.check(middle_length > 0.0 && middle_length <= spec.length, "/geometry/middle_length", "must be in (0, length]");
+                v.in_range("/geometry/crown_height", crown_height, 0.0, 1e-3);
+                v.positive("/geometry/end_radius", end_radius);
+                two_d(nx, ny, v);
+            }
+        }
         if let Some(t) = &spec.thermal {
             v.positive("/thermal/oil_conductivity", t.oil_conductivity);
             v.positive("/thermal/oil_specific_heat", t.oil_specific_heat);
@@ -336,12 +444,78 @@ fn spec_path(field: &str) -> Option<String> {
         "EhlInput.entrainment_velocity" => "/entrainment_velocity",
         "EhlInput.sliding_velocity" => "/sliding_velocity",
         "EhlInput.temperature" => "/lubricant/temperature",
+        "Ehl2dOptions.nx" => "/geometry/nx",
+        "Ehl2dOptions.ny" => "/geometry/ny",
+        "Ehl2dOptions.tolerance" => "/tolerance",
+        "Ehl2dInput.entrainment_velocity" => "/entrainment_velocity",
+        "Ehl2dInput.temperature" => "/lubricant/temperature",
+        "Ehl2dInput.geometry" | "Ehl2dInput.geometry.rx" => "/geometry",
+        _ if field.starts_with("Ehl2dInput.lubricant.") => return field.strip_prefix("Ehl2dInput.lubricant.").map(|f| format!("/lubricant/{f}")),
         _ => return field.strip_prefix("EhlInput.lubricant.").map(|f| format!("/lubricant/{f}")),
     };
     Some(path.to_string())
 }
 
+/// A point or finite-length contact by the 2-D solver.
+fn solve_2d(spec: &EhlPointSpec, observer: &dyn Observer) -> Result<EhlPointResult, SolveError> {
+    let ep = effective_modulus(spec.body_1.elastic(), spec.body_2.elastic());
+    let lubricant = spec.lubricant.to_physics();
+    let temperature = spec.lubricant.inlet_temperature();
+    let (geometry, nx, ny) = match spec.geometry {
+        EhlGeometrySpec::Point { rx, ry, nx, ny } => (Geometry2d::Point { rx, ry }, nx, ny),
+        EhlGeometrySpec::Finite { middle_length, crown_height, end_radius, nx, ny } => {
+            let crown = Crown { length: spec.length, middle_length, crown_height, end_radius };
+            (Geometry2d::Finite { rx: spec.reduced_radius, crown }, nx, ny)
+        }
+        EhlGeometrySpec::Line => unreachable!("line contacts take the 1-D solver"),
+    };
+    let input = Ehl2dInput { load: spec.load, geometry, effective_modulus: ep, entrainment_velocity: spec.entrainment_velocity, lubricant, temperature };
+    let profile = spec.outputs.contains(&EhlPointOutput::Profile);
+    let options = Ehl2dOptions { nx, ny, tolerance: spec.tolerance, max_iterations: spec.max_iterations, fields: profile, ..Ehl2dOptions::default() };
+    let s = twod::solve(&input, &options, observer)?;
+    let profile = s.fields.as_ref().map(|f| {
+        // The row nearest the centre line y = 0.
+        let j = (0..f.y.len()).min_by(|&a, &b| f.y[a].abs().total_cmp(&f.y[b].abs())).unwrap_or(0);
+        let n = f.x.len();
+        ProfileTable { x: f.x.clone(), pressure: f.pressure[j * n..(j + 1) * n].to_vec(), film: f.film[j * n..(j + 1) * n].to_vec() }
+    });
+    let finite = matches!(spec.geometry, EhlGeometrySpec::Finite { .. });
+    Ok(EhlPointResult {
+        effective_modulus: ep,
+        load_per_length: finite.then(|| spec.load / spec.length),
+        hertz_half_width: s.hertz_half_width,
+        hertz_pressure: s.hertz_pressure,
+        moes_m: s.moes_m,
+        moes_l: s.moes_l,
+        central_film: s.central_film,
+        min_film: s.min_film.value,
+        min_film_position: s.min_film.x,
+        min_film_axial_position: Some(s.min_film.y),
+        exit_film: None,
+        max_pressure: s.max_pressure.value,
+        max_pressure_position: s.max_pressure.x,
+        max_pressure_axial_position: Some(s.max_pressure.y),
+        edge_pressure_peak: s.edge_pressure_peak.map(|e| e.value),
+        edge_pressure_peak_axial_position: s.edge_pressure_peak.map(|e| e.y.abs()),
+        pressure_spike: None,
+        friction_coefficient: None,
+        traction_body_1: None,
+        traction_body_2: None,
+        rolling_force: None,
+        closed_forms: None,
+        nodes: s.nx,
+        nodes_across: Some(s.ny),
+        extrapolated: false,
+        convergence: s.convergence,
+        profile,
+        thermal: None,
+    })
+}
+
 fn solve_point(spec: &EhlPointSpec, observer: &dyn Observer) -> Result<EhlPointResult, SolveError> {
+    if spec.geometry != EhlGeometrySpec::Line {
+        return solve_2d(spec, observer);
+    }
     let ep = effective_modulus(spec.body_1.elastic(), spec.body_2.elastic());
     let lubricant = spec.lubricant.to_physics();
     let temperature = spec.lubricant.inlet_temperature();
@@ -408,7 +582,7 @@ fn solve_point(spec: &EhlPointSpec, observer: &dyn Observer) -> Result<EhlPointR
     let r = spec.reduced_radius;
     Ok(EhlPointResult {
         effective_modulus: ep,
-        load_per_length: w,
+        load_per_length: Some(w),
         hertz_half_width: s.hertz_half_width,
         hertz_pressure: s.hertz_pressure,
         moes_m: s.moes_m,
@@ -416,20 +590,25 @@ fn solve_point(spec: &EhlPointSpec, observer: &dyn Observer) -> Result<EhlPointR
         central_film: s.central_film,
         min_film: s.min_film,
         min_film_position: s.min_film_position,
-        exit_film: s.exit_film,
+        min_film_axial_position: None,
+        exit_film: Some(s.exit_film),
         max_pressure: s.max_pressure,
         max_pressure_position: s.max_pressure_position,
+        max_pressure_axial_position: None,
+        edge_pressure_peak: None,
+        edge_pressure_peak_axial_position: None,
         pressure_spike: s.pressure_spike.map(|p| SpikeResult { pressure: p.pressure, position: p.position }),
-        friction_coefficient: s.traction.friction_coefficient,
-        traction_body_1: s.traction.force_body_1,
-        traction_body_2: s.traction.force_body_2,
-        rolling_force: s.traction.rolling_force,
-        closed_forms: ClosedForms {
+        friction_coefficient: Some(s.traction.friction_coefficient),
+        traction_body_1: Some(s.traction.force_body_1),
+        traction_body_2: Some(s.traction.force_body_2),
+        rolling_force: Some(s.traction.rolling_force),
+        closed_forms: Some(ClosedForms {
             moes_central_film: moes_central_film(&g, r),
             pan_hamrock_central_film: pan_hamrock_central_film(&g, r),
             pan_hamrock_min_film: pan_hamrock_minimum_film(&g, r),
-        },
+        }),
         nodes: s.nodes,
+        nodes_across: None,
         extrapolated,
         convergence: s.convergence,
         profile: s.profiles.map(|p| ProfileTable { x: p.x, pressure: p.pressure, film: p.film }),
@@ -476,6 +655,24 @@ mod tests {
         let err = kind.prepare(&bad, &Limits::default()).unwrap_err();
         let text = format!("{err:?}");
         assert!(text.contains("/thermal/film_points") && text.contains("/thermal/body_1/conductivity"), "{text}");
+    }
+
+    #[test]
+    fn point_geometry_runs_the_2d_solver_and_bad_geometry_is_named() {
+        let kind = registry::find("ehl_point").unwrap();
+        // Circular contact F = 100 N, R = 10 mm, u_m = 1 m/s (tests/it/ehl_2d.rs, 49² here).
+        let spec = json!({"load": 100.0, "length": 0.01, "reduced_radius": 0.01, "entrainment_velocity": 1.0,
+            "lubricant": {"viscosity": 0.04, "pressure_viscosity": 2e-8},
+            "geometry": {"type": "point", "rx": 0.01, "ry": 0.01, "nx": 49, "ny": 49}});
+        let out = kind.prepare(&spec, &Limits::default()).unwrap().run(&Silent).unwrap();
+        let (hc, hm) = (out["central_film"].as_f64().unwrap(), out["min_film"].as_f64().unwrap());
+        assert!(hm > 0.0 && hm < hc, "{hc} {hm}");
+        assert!(out.get("exit_film").is_none() && out.get("edge_pressure_peak").is_none() && out.get("load_per_length").is_none());
+        assert_eq!(out["nodes_across"], json!(49));
+        let mut bad = spec.clone();
+        bad["geometry"] = json!({"type": "finite", "middle_length": 0.02, "crown_height": 1e-6, "end_radius": 0.01, "nx": 8});
+        let text = serde_json::to_string(&kind.prepare(&bad, &Limits::default()).unwrap_err()).unwrap();
+        assert!(text.contains("/geometry/middle_length") && text.contains("/geometry/nx"), "{text}");
     }
 
     #[test]

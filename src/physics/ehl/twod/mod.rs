@@ -28,21 +28,29 @@
 //! balance, unknowns `P` and `H0` — is solved by a damped semismooth Newton method
 //! ([`solver`]) whose steps are computed by restarted GMRES with the exact Jacobian product
 //! (two FFTs) and a sparse preconditioner: the Jacobian with the elastic kernel truncated to a
-//! `(2r+1)²` near field, factorised by faer's sparse LU. Nested iteration from coarser grids and,
-//! when a cold start fails, continuation in `λ` (faster entrainment, thicker film).
+//! `(2r+1)²` near field, factorised by faer's sparse LU (the `H0` border by its Schur
+//! complement). Nested iteration from the coarsest grid that resolves the film and, when Newton
+//! fails, pseudo-time continuation: backward-Euler steps of the transient problem (squeeze term)
+//! with a growing step.
 //!
 //! # Status (issue 16, work in progress)
-//! Measured (`TRIBOD_EHL2D_TRACE=1`, see `BENCHMARKS.md`, "Finite-length and point EHL"): the
-//! Jacobian product agrees with finite differences of the residual to 1e-6–1e-5, and GMRES
-//! with the `r = 1` near-field preconditioner reaches 1e-3 in 11–19 iterations per Newton step on
-//! 25² grids. The Newton iteration itself does not converge yet for EHL conditions: from the
-//! Hertzian cold start the line search accepts only ever smaller steps (the film's
-//! fraction-to-boundary rule, and without it the merit function) and the residual stalls near
-//! 0.5; only the continuation stages at 16× the entrainment converge (to 1e-5 in 19 steps).
-//! Until that is resolved [`solve`] returns `SolveError::NotConverged` for most inputs —
-//! a typed error, never NaN. Next steps: a Venner–Lubrecht line relaxation (or the 1-D solver's
-//! centre-line solution) as the start and smoother, a regularised film floor (`Problem::floor`)
-//! instead of the fraction-to-boundary rule, and the load balance by an outer `H0` update.
+//! Measured (`TRIBOD_EHL2D_TRACE=1`, `BENCHMARKS.md`, "Finite-length and point EHL"): the
+//! preconditioner now factorises only the pressure block and takes the `H0` border by its Schur
+//! complement (the bordered LU filled in: 35 s → 0.2 s per factorisation at 97², dev build), and
+//! the nested iteration starts on the coarsest grid that resolves the film (`h² ≤ 0.3 H_est`):
+//! on 25² at M ≈ 300 the discrete film pinches to zero at a node and Newton (also pseudo-time
+//! stepping) stalls, on 49² the cold Hertzian start converges in 9–12 Newton steps. The circular
+//! (M ≈ 300, L ≈ 11) and elliptic (M ≈ 610) contacts on 97² and the seed 000 nose roller on
+//! 65×129 converge to 1e-7 in 9–24 Newton steps; central films are within 0.6 % and 3.6 % of
+//! Hamrock–Dowson. Still failing (`NotConverged`, typed): near-dry (M ≈ 3000), 1.7 GPa on 65²,
+//! the 129×65 long straight roller and one grid of the convergence series — the line search
+//! stalls at 1e-5–6e-2 while the film at one node shrinks geometrically (fraction-to-boundary
+//! rule). Pseudo-time continuation with the squeeze term ([`solver`], `march`) is the fallback
+//! when Newton fails; it did not rescue those cases. Next: a film floor with a collapse report,
+//! or Venner–Lubrecht line relaxation as the smoother. Caution (release bench): the films
+//! converge slowly with the grid (−28 % at 65², −7 % at 129², −1.8 % at 257² against a
+//! Richardson value) and a 33² solve "converges" to a pinched 5 nm film; grid grading in x is
+//! needed before the 2-D films can be trusted to a few percent.
 //!
 //! # Not modelled
 //! Transient (squeeze) terms, thermal and non-Newtonian effects, grid grading and mixed

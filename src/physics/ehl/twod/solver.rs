@@ -36,6 +36,11 @@ struct Problem {
     /// `X²/2 + S(Y)` at each node.
     geom: Vec<f64>,
     lambda: f64,
+    /// Pseudo-time coefficient `κ = λ/ΔT` of the squeeze term `−κ (ρ̄H − (ρ̄H)_old)` (backward
+    /// Euler in the time `T = t u_m/a`, seed 000 eq. 2's `∂(ρh)/∂t`); 0: steady.
+    kappa: f64,
+    /// `ρ̄H` of the previous pseudo-time step at the nodes.
+    q_old: Vec<f64>,
     load: f64,
     p_ref: f64,
     rheo: PressureRheology,
@@ -101,6 +106,8 @@ impl Problem {
             y,
             geom,
             lambda: s.lambda,
+            kappa: 0.0,
+            q_old: vec![0.0; nx * ny],
             load: s.load,
             p_ref: s.p_ref,
             rheo: PressureRheology::new(&input.lubricant, input.temperature),
@@ -120,6 +127,17 @@ impl Problem {
         } else {
             [(0, 1.0 / self.dx), (1, -1.0 / self.dx), (0, 0.0)]
         }
+    }
+
+    /// Weights of `ρ̄H` at `(offset back, weight)` in the convective and squeeze terms of column
+    /// `i`: `λ ∂(ρ̄H)/∂X + κ ρ̄H` (the residual subtracts `Σ w ρ̄H` and adds `κ (ρ̄H)_old`).
+    fn stencil(&self, i: usize) -> [(usize, f64); 3] {
+        let mut w = self.wedge(i);
+        for e in w.iter_mut() {
+            e.1 *= self.lambda;
+        }
+        w[0].1 += self.kappa;
+        w
     }
 
     /// Fields at `(p, h0)`; `false` when the film is not positive or a value is not finite.
@@ -162,10 +180,10 @@ impl Problem {
             let pois = (exp_ * (p[k + 1] - p[k]) - exm * (p[k] - p[k - 1])) / dx2
                 + (eyp * (p[k + nx] - p[k]) - eym * (p[k] - p[k - nx])) / dy2;
             let mut wedge = 0.0;
-            for (s, wt) in self.wedge(i) {
+            for (s, wt) in self.stencil(i) {
                 wedge += wt * v.rho[k - s] * v.h[k - s];
             }
-            v.f[k] = pois - self.lambda * wedge;
+            v.f[k] = pois - wedge + self.kappa * self.q_old[k];
             sum += p[k];
         }
         v.g = sum * self.dx * self.dy / self.load - 1.0;
@@ -209,21 +227,22 @@ impl Problem {
                 df += (def * (p[nb] - p[k]) + ef * (dp[nb] - dp[k])) / d2;
             }
             let mut wedge = 0.0;
-            for (s, wt) in self.wedge(i) {
+            for (s, wt) in self.stencil(i) {
                 wedge += wt * buf.dq[k - s];
             }
-            out[u] = c[u] * (df - self.lambda * wedge);
+            out[u] = c[u] * (df - wedge);
         }
         out[m] = sum * self.dx * self.dy / self.load;
     }
 
     /// The near-field preconditioner (scaled like the Newton matrix) and the row scales `c`.
-    fn precondition(&self, p: &[f64], v: &Fields, active: &mut [bool], c: &mut [f64]) -> Option<Lu<usize, f64>> {
+    fn precondition(&self, p: &[f64], v: &Fields, active: &mut [bool], c: &mut [f64]) -> Option<Precond> {
         let (nx, ny, dx2, dy2) = (self.nx, self.ny, self.dx * self.dx, self.dy * self.dy);
         let m = self.nodes.len();
         let r = self.near as isize;
         let mut trip: Vec<Triplet<usize, usize, f64>> = Vec::with_capacity(m * (10 + (2 * self.near + 3) * (2 * self.near + 1)) + 2 * m);
         let mut row: Vec<(usize, f64)> = Vec::with_capacity(64);
+        let mut ucol = vec![0.0; m];
         for (u, &k) in self.nodes.iter().enumerate() {
             let (i, j) = (k % nx, k / nx);
             row.clear();
@@ -236,13 +255,13 @@ impl Problem {
                     row.push((self.unk[nb], ef / d2 + 0.5 * v.deps[nb] * dpf / d2));
                 }
             }
-            for (s, wt) in self.wedge(i) {
+            for (s, wt) in self.stencil(i) {
                 if wt == 0.0 {
                     continue;
                 }
                 let kk = k - s;
                 let (ki, kj) = (i - s, j);
-                let lw = -self.lambda * wt;
+                let lw = -wt;
                 if self.unk[kk] != usize::MAX {
                     row.push((self.unk[kk], lw * v.drho[kk] * v.h[kk]));
                 }
@@ -271,14 +290,23 @@ impl Problem {
                 trip.push(Triplet::new(u, u, 1.0));
             } else {
                 for &(col, val) in &row {
-                    trip.push(Triplet::new(u, col, cu * val));
+                    if col == m {
+                        ucol[u] += cu * val;
+                    } else {
+                        trip.push(Triplet::new(u, col, cu * val));
+                    }
                 }
             }
-            trip.push(Triplet::new(m, u, self.dx * self.dy / self.load));
         }
-        trip.push(Triplet::new(m, m, 0.0));
-        let mat = SparseColMat::<usize, f64>::try_new_from_triplets(m + 1, m + 1, &trip).ok()?;
-        mat.sp_lu().ok()
+        // The bordered system `[B u; wᵀ 0]` (the `H0` column `u`, the load row `w`) by its Schur
+        // complement: factorising it with the dense border made the sparse LU fill in (35 s at
+        // 97², measured), the block `B` alone factorises in a fraction of a second.
+        let mat = SparseColMat::<usize, f64>::try_new_from_triplets(m, m, &trip).ok()?;
+        let lu = mat.sp_lu().ok()?;
+        let w = self.dx * self.dy / self.load;
+        lu.solve_in_place(faer::MatMut::from_column_major_slice_mut(&mut ucol, m, 1));
+        let schur = w * ucol.iter().sum::<f64>();
+        (schur.is_finite() && ucol.iter().all(|x| x.is_finite())).then_some(Precond { lu, bu: ucol, w, schur })
     }
 
     fn phi(&self, p: &[f64], v: &Fields, c: &[f64], out: &mut Vec<f64>) {
@@ -286,6 +314,31 @@ impl Problem {
         for (u, &k) in self.nodes.iter().enumerate() {
             out.push(p[k].min(-c[u] * v.f[k]));
         }
+    }
+}
+
+/// The preconditioner: the near-field Newton matrix `[B u; wᵀ 0]` (unknowns `P`, then `H0`),
+/// solved by the sparse LU of `B` and the Schur complement `s = wᵀB⁻¹u` (`w` the constant
+/// load-row weight).
+struct Precond {
+    lu: Lu<usize, f64>,
+    /// `B⁻¹u`.
+    bu: Vec<f64>,
+    w: f64,
+    schur: f64,
+}
+
+impl Precond {
+    /// `z ← M⁻¹ z`: `x1 = B⁻¹f`, `y = (wᵀx1 − g)/s`, `x = x1 − y B⁻¹u`.
+    fn apply(&self, z: &mut [f64]) {
+        let m = self.bu.len();
+        let g = z[m];
+        self.lu.solve_in_place(faer::MatMut::from_column_major_slice_mut(&mut z[..m], m, 1));
+        let y = if self.schur != 0.0 { (self.w * z[..m].iter().sum::<f64>() - g) / self.schur } else { 0.0 };
+        for (zi, bi) in z[..m].iter_mut().zip(&self.bu) {
+            *zi -= y * bi;
+        }
+        z[m] = y;
     }
 }
 
@@ -304,7 +357,7 @@ fn dot(a: &[f64], b: &[f64]) -> f64 {
 /// Restarted GMRES for `A x = b` right-preconditioned by `lu`; `x` starts at 0. Returns the
 /// iterations and the final relative residual.
 #[allow(clippy::too_many_arguments)]
-fn gmres(prob: &mut Problem, p: &[f64], v: &Fields, active: &[bool], c: &[f64], lu: &Lu<usize, f64>, b: &[f64], x: &mut [f64], buf: &mut Buffers) -> (usize, f64) {
+fn gmres(prob: &mut Problem, p: &[f64], v: &Fields, active: &[bool], c: &[f64], lu: &Precond, b: &[f64], x: &mut [f64], buf: &mut Buffers) -> (usize, f64) {
     let n = b.len();
     x.iter_mut().for_each(|v| *v = 0.0);
     let bnorm = dot(b, b).sqrt();
@@ -330,7 +383,7 @@ fn gmres(prob: &mut Problem, p: &[f64], v: &Fields, active: &[bool], c: &[f64], 
         let mut k = 0;
         while k < RESTART && iters < GMRES_MAX {
             z.copy_from_slice(&basis[k]);
-            lu.solve_in_place(faer::MatMut::from_column_major_slice_mut(&mut z, n, 1));
+            lu.apply(&mut z);
             prob.apply(p, v, active, c, &z, &mut w, buf);
             zs.push(z.clone());
             let mut h = vec![0.0; k + 2];
@@ -435,7 +488,9 @@ fn newton(prob: &mut Problem, p: &mut [f64], h0: &mut f64, tol: f64, max_iter: u
     let mut dpn = vec![0.0; p.len()];
     for iter in 0..=max_iter {
         observer.check()?;
+        let t_lu = std::time::Instant::now();
         let lu = prob.precondition(p, &v, &mut active, &mut c);
+        let t_lu = t_lu.elapsed().as_secs_f64();
         prob.phi(p, &v, &c, &mut phi);
         let res = residual_norm(p, &phi, v.g);
         history.push(res);
@@ -452,10 +507,12 @@ fn newton(prob: &mut Problem, p: &mut [f64], h0: &mut f64, tol: f64, max_iter: u
             rhs[u] = if active[u] { -p[k] } else { -c[u] * v.f[k] };
         }
         rhs[m] = -v.g;
+        let t_gm = std::time::Instant::now();
         let (its, rel) = gmres(prob, p, &v, &active, &c, &lu, &rhs, &mut sol, &mut buf);
+        let t_gm = t_gm.elapsed().as_secs_f64();
         gm_total += its;
         if trace() {
-            eprintln!("ehl2d {}x{} λ {:.3e} iter {iter} res {res:.3e} g {:.2e} gmres {its} rel {rel:.2e} active {}", prob.nx, prob.ny, prob.lambda, v.g, active.iter().filter(|a| **a).count());
+            eprintln!("ehl2d {}x{} κ {:.3e} iter {iter} res {res:.3e} g {:.2e} gmres {its} rel {rel:.2e} active {} lu {t_lu:.3} s gmres {t_gm:.3} s", prob.nx, prob.ny, prob.kappa, v.g, active.iter().filter(|a| **a).count());
             if iter == 0 {
                 // Directional-derivative check of the Jacobian product.
                 let mut x: Vec<f64> = (0..m + 1).map(|u| (((u * 7919) % 13) as f64 - 6.0) * 1e-3).collect();
@@ -494,7 +551,7 @@ fn newton(prob: &mut Problem, p: &mut [f64], h0: &mut f64, tol: f64, max_iter: u
         let mut limiting = 0;
         for k in 0..p.len() {
             let d = dh0 + dw[k];
-            if d < 0.0 && ftb * v.h[k] / -d < alpha {
+            if prob.floor.is_none() && d < 0.0 && ftb * v.h[k] / -d < alpha {
                 alpha = ftb * v.h[k] / -d;
                 limiting = k;
             }
@@ -530,6 +587,91 @@ fn newton(prob: &mut Problem, p: &mut [f64], h0: &mut f64, tol: f64, max_iter: u
         }
     }
     unreachable!("the loop returns at iter == max_iter")
+}
+
+/// Pseudo-time marching: first step `ΔT` from a cold start and after a failed nested start (units
+/// of the passage time `a/u_m`); `ΔT` from which a steady Newton solve is tried; smallest `ΔT`
+/// before giving up; most steps; tolerance and Newton cap of one step; Newton cap of the
+/// nested (interpolated) start.
+const DT_COLD: f64 = 0.1;
+const DT_NESTED: f64 = 1.0;
+const DT_STEADY: f64 = 30.0;
+const DT_MIN: f64 = 1e-4;
+const DT_MAX: f64 = 1e5;
+const MAX_STEPS: u32 = 60;
+const STEP_TOL: f64 = 1e-5;
+const STEP_ITER: u32 = 10;
+const NESTED_ITER: u32 = 15;
+/// Coarsest grid of the nested iteration: at least `MIN_LEVEL` nodes per side and a spacing `h`
+/// with `h² ≤ RESOLVED · H_est` (the film estimate in units of `a²/R_x`).
+const MIN_LEVEL: usize = 17;
+const RESOLVED: f64 = 0.3;
+
+/// Pseudo-transient continuation (Kelley & Keyes, SIAM J. Numer. Anal. 35 (1998)) with the
+/// physical squeeze term: backward-Euler steps of the transient Reynolds equation (seed 000
+/// eq. 2 with `∂(ρh)/∂t`) at fixed load, each solved by [`newton`] from the last state; `ΔT`
+/// doubles (quadruples after a quick step) on success and is quartered on failure; from
+/// `ΔT ≥ DT_STEADY` each step first tries the steady problem (`κ = 0`) and returns when it
+/// converges. The squeeze term damps the changes of `ρ̄H` that stall the steady Newton
+/// iteration from a Hertzian start (see `BENCHMARKS.md`, issue 16).
+fn march(prob: &mut Problem, p: &mut [f64], h0: &mut f64, tol: f64, max_iter: u32, dt0: f64, observer: &dyn Observer) -> Result<Run, SolveError> {
+    let mut dt = dt0;
+    let (mut its, mut gm) = (0u32, 0usize);
+    let mut last = Run { iterations: 0, residual: f64::INFINITY, history: Vec::new(), converged: false, gmres: 0 };
+    let mut saved = p.to_vec();
+    let mut v = Fields::default();
+    for step in 0..MAX_STEPS {
+        if dt >= DT_STEADY {
+            saved.copy_from_slice(p);
+            let h0_saved = *h0;
+            prob.kappa = 0.0;
+            let r = newton(prob, p, h0, tol, max_iter.min(NESTED_ITER), observer)?;
+            its += r.iterations;
+            gm += r.gmres;
+            if trace() {
+                eprintln!("ehl2d march {}x{} step {step} steady try: converged {} res {:.3e} in {}", prob.nx, prob.ny, r.converged, r.residual, r.iterations);
+            }
+            if r.converged {
+                return Ok(Run { iterations: its, gmres: gm, ..r });
+            }
+            p.copy_from_slice(&saved);
+            *h0 = h0_saved;
+            last = r;
+            if dt >= DT_MAX {
+                break;
+            }
+        }
+        if !prob.evaluate(p, *h0, &mut v) {
+            break;
+        }
+        for (q, (r, h)) in prob.q_old.iter_mut().zip(v.rho.iter().zip(&v.h)) {
+            *q = r * h;
+        }
+        prob.kappa = prob.lambda / dt;
+        saved.copy_from_slice(p);
+        let h0_saved = *h0;
+        let r = newton(prob, p, h0, tol.max(STEP_TOL), STEP_ITER, observer)?;
+        prob.kappa = 0.0;
+        its += r.iterations;
+        gm += r.gmres;
+        if trace() {
+            eprintln!("ehl2d march {}x{} step {step} dT {dt:.3e}: converged {} res {:.3e} in {} (H0 {:.4e})", prob.nx, prob.ny, r.converged, r.residual, r.iterations, *h0);
+        }
+        if r.converged {
+            dt *= if r.iterations <= 3 { 4.0 } else { 2.0 };
+            dt = dt.min(DT_MAX);
+        } else {
+            p.copy_from_slice(&saved);
+            *h0 = h0_saved;
+            last = r;
+            dt *= 0.25;
+            if dt < DT_MIN {
+                break;
+            }
+        }
+    }
+    prob.kappa = 0.0;
+    Ok(Run { iterations: its, residual: last.residual, history: last.history, converged: false, gmres: gm })
 }
 
 fn validate(input: &Ehl2dInput, options: &Ehl2dOptions) -> Result<(), SolveError> {
@@ -653,13 +795,18 @@ pub fn solve(input: &Ehl2dInput, options: &Ehl2dOptions, observer: &dyn Observer
     validate(input, options)?;
     let s = scales(input)?;
     let d = domain(input, options, &s);
-    // Nested iteration: grids of (n − 1)/2^k + 1 nodes down to ≥ 17 per side.
-    let min_level = 17;
+    // Nested iteration: grids of (n − 1)/2^k + 1 nodes down to ≥ 17 per side, the coarsest
+    // one that resolves the film: a grid whose spacing is not small against sqrt(H) carries a
+    // deflection discretisation error (O(h²), cell-constant pressure) as large as the film, and
+    // its discrete problem pinches the film to zero (measured: 25² at M ≈ 60 stalls, 49² converges
+    // in 9 Newton steps; `BENCHMARKS.md`, issue 16).
+    let spacing = |lx: usize, ly: usize| ((d.x_out - d.x_in) / (lx - 1) as f64).max((d.y_hi - d.y_lo) / (ly - 1) as f64);
     let mut levels = vec![(options.nx, options.ny)];
     loop {
         let (lx, ly) = levels[levels.len() - 1];
-        if (lx - 1) % 2 == 0 && (ly - 1) % 2 == 0 && (lx - 1) / 2 + 1 >= min_level && (ly - 1) / 2 + 1 >= min_level && levels.len() < 4 {
-            levels.push(((lx - 1) / 2 + 1, (ly - 1) / 2 + 1));
+        let (cx, cy) = ((lx - 1) / 2 + 1, (ly - 1) / 2 + 1);
+        if (lx - 1) % 2 == 0 && (ly - 1) % 2 == 0 && cx >= MIN_LEVEL && cy >= MIN_LEVEL && levels.len() < 4 && spacing(cx, cy).powi(2) <= RESOLVED * s.h_est {
+            levels.push((cx, cy));
         } else {
             break;
         }
@@ -668,6 +815,7 @@ pub fn solve(input: &Ehl2dInput, options: &Ehl2dOptions, observer: &dyn Observer
     let tol = options.tolerance;
     let mut total = 0u32;
     let mut gmres_total = 0usize;
+    // Coarse solution: nodes, pressure and central film.
     let mut guess: Option<(Vec<f64>, Vec<f64>, Vec<f64>, f64)> = None;
     let nlev = levels.len();
     for (li, &(lx, ly)) in levels.iter().enumerate() {
@@ -675,52 +823,46 @@ pub fn solve(input: &Ehl2dInput, options: &Ehl2dOptions, observer: &dyn Observer
         let mut prob = Problem::new(input, &s, d, lx, ly, options.near_field);
         let level_tol = if finest { tol } else { tol.max(1e-5) };
         let (mut p, mut h0) = match &guess {
-            Some((gx, gy, gp, gh0)) => (prolong(&prob, gx, gy, gp), *gh0),
+            // The coarse pressure, and `H0` that keeps the coarse central film (the coarse
+            // grid's `H0` carries its deflection discretisation error).
+            Some((gx, gy, gp, hc)) => {
+                let p = prolong(&prob, gx, gy, gp);
+                let h0 = h0_for(&mut prob, &p, *hc);
+                (p, h0)
+            }
             None => cold(&mut prob, input, &s),
         };
-        let mut run = newton(&mut prob, &mut p, &mut h0, level_tol, options.max_iterations, observer)?;
+        // Newton from the start; when it fails, pseudo-time steps from the same start.
+        let (p_start, h0_start) = (p.clone(), h0);
+        let cap = if guess.is_some() { options.max_iterations.min(NESTED_ITER) } else { options.max_iterations };
+        let first = newton(&mut prob, &mut p, &mut h0, level_tol, cap, observer)?;
+        let run = if first.converged {
+            first
+        } else {
+            p.copy_from_slice(&p_start);
+            h0 = h0_start;
+            let dt0 = if guess.is_some() { DT_NESTED } else { DT_COLD };
+            let mut r = march(&mut prob, &mut p, &mut h0, level_tol, options.max_iterations, dt0, observer)?;
+            r.iterations += first.iterations;
+            r.gmres += first.gmres;
+            r
+        };
         total += run.iterations;
         gmres_total += run.gmres;
-        if !run.converged && (guess.is_none() || finest) {
-            // Continuation from faster entrainment: λ·4^k → λ, each stage from the last.
-            let target = prob.lambda;
-            for start in [6, 12] {
-                let mut good = true;
-                for k in (0..=start).rev() {
-                    prob.lambda = target * 2f64.powi(k);
-                    if k == start {
-                        let s2 = Scales { h_est: s.h_est * 2f64.powf(0.7 * k as f64), ..s.clone() };
-                        (p, h0) = cold(&mut prob, input, &s2);
-                    }
-                    let stage_tol = if k == 0 { level_tol } else { level_tol.max(1e-5) };
-                    let r2 = newton(&mut prob, &mut p, &mut h0, stage_tol, options.max_iterations, observer)?;
-                    total += r2.iterations;
-                    gmres_total += r2.gmres;
-                    if k == 0 {
-                        run = r2;
-                    } else if !r2.converged {
-                        good = false;
-                        break;
-                    }
-                }
-                prob.lambda = target;
-                if good && run.converged {
-                    break;
-                }
-            }
-        }
         if finest {
             if !run.converged {
                 let mut history = run.history;
                 if history.len() > 20 {
                     history.drain(..history.len() - 20);
                 }
-                return Err(SolveError::NotConverged { solver: "ehl 2-D (Newton–Krylov)", iterations: total, residual: run.residual, tolerance: tol, history });
+                return Err(SolveError::NotConverged { solver: "ehl 2-D (pseudo-time Newton–Krylov)", iterations: total, residual: run.residual, tolerance: tol, history });
             }
             let _ = gmres_total;
             return finish(input, options, &s, &mut prob, &p, h0, total, run.residual);
         }
-        guess = Some((prob.x.clone(), prob.y.clone(), p, h0));
+        let mut v = Fields::default();
+        let hc = if prob.evaluate(&p, h0, &mut v) { bilinear(&prob.x, &prob.y, &v.h, 0.0, 0.0) } else { s.h_est };
+        guess = Some((prob.x.clone(), prob.y.clone(), p, hc));
     }
     unreachable!("the finest level returns")
 }
