@@ -408,7 +408,11 @@ mod tests {
                     let got = p.solve(guess).unwrap();
                     let scale = reference.omega.abs();
                     assert!((got.omega - reference.omega).abs() <= 2.0 * tol, "{asp_model:?} {:?}: {} vs {}", roller.pin, got.omega, reference.omega);
-                    assert!((got.traction.force - reference.traction.force).abs() <= 1e-9 * reference.traction.force.abs().max(1e-9), "{asp_model:?} prev {previous} rel {rel}: F {} vs {}, Ω {} vs {}, pin {} vs {}", got.traction.force, reference.traction.force, got.omega, reference.omega, got.pin_torque, reference.pin_torque);
+                    // The traction agrees to 1e-9 of itself plus what the speeds' own difference
+                    // (≤ 2e-12 relative) moves it by: the film's rolling resistance (≈ −1 N here)
+                    // offsets the force, so a relative bound alone reads that slope.
+                    let speed_part = got.traction.slope.abs() * (got.omega - reference.omega).abs() * roller.radius;
+                    assert!((got.traction.force - reference.traction.force).abs() <= 1e-9 * reference.traction.force.abs().max(1e-9) + 1.01 * speed_part, "{asp_model:?} prev {previous} rel {rel}: F {} vs {}, Ω {} vs {}, pin {} vs {}", got.traction.force, reference.traction.force, got.omega, reference.omega, got.pin_torque, reference.pin_torque);
                     assert!((got.pin_torque - reference.pin_torque).abs() <= 1e-9 * reference.pin_torque.abs().max(1e-12));
                     assert_eq!(got.pin_temperature.is_some(), matches!(roller.pin, PinFriction::FiniteBearing(_)));
                     if let (Some(a), Some(b)) = (got.pin_temperature, reference.pin_temperature) {
