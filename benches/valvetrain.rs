@@ -28,6 +28,7 @@ fn seed003() -> ValveTrain {
         preload: 300.0,
         contact: Link { stiffness: kc, damping: damping_from_ratio(0.1, kc, m) },
         seat: Some(Seat { link: Link { stiffness: 2e8, damping: damping_from_ratio(0.1, 2e8, m) }, gap: 1e-6 }),
+        lever: None,
     }
 }
 
