@@ -35,6 +35,8 @@ mod restart_recovery;
 mod storage_faults;
 mod sweep_api;
 mod thermal_ehl;
+mod valvetrain_http;
+mod valvetrain_lever;
 mod valvetrain_stability;
 mod valvetrain_validation;
 mod wear_stability;

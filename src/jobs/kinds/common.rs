@@ -580,6 +580,8 @@ pub fn cam_spec_path(field: &str) -> Option<String> {
         "ValveTrain.contact" => "/load/contact_stiffness",
         "ValveTrain.preload" => "/load/spring_preload",
         "ValveTrain.seat" => "/load/seat",
+        "ValveTrain.lever" => "/load/arrangement",
+        "ValveTrain.lever.pushrod" => "/load/arrangement/pushrod",
         _ => return None,
     };
     Some(path.to_string())

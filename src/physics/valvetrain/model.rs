@@ -1,25 +1,39 @@
-//! The lumped valve train of a direct-acting follower and its equations of motion.
+//! The lumped valve train and its equations of motion: a direct-acting follower, or a lever
+//! (rocker arm, optionally driven through a pushrod; end-pivot finger follower) between the cam
+//! and the valve.
 //!
-//! Degrees of freedom along the valve axis, positive in the opening direction, measured from the
-//! static position with the cam on its base circle (where every element carries the spring
-//! preload `P`):
+//! Degrees of freedom along the cam's line of action, positive in the opening direction,
+//! measured from the static position with the cam on its base circle (where every element
+//! carries the spring preload `P`):
 //!
 //! * the follower (tappet; in seed 003 the retainer the cam touches, Table 2 "curve to curve"),
 //!   mass `m_f`;
-//! * the valve with retainer and keepers, mass `m_v` (merged with the follower when the train is
-//!   rigid);
+//! * with a pushrod, the lever's cam-side end (the rocker's inertia `I/l_c²` plus half the
+//!   pushrod; the other half is on the tappet);
+//! * the valve with retainer and keepers, mass `m_v` (merged with the body before it when the
+//!   train is rigid);
 //! * the valve spring as a chain of `N` interior masses (see [`SpringChain`]).
 //!
 //! Elements (each a preloaded linear spring–damper carrying compression `P + k Δ + c Δ̇`):
-//! cam–follower contact (unilateral: no tension), follower–valve train link, spring segments, and
-//! the valve seat (unilateral stop, no preload). With the follower's displacement `x_f`, cam lift
-//! `s(θ)`, the contact compression is `P + k_c (s − x_f) + c_c (ṡ − ẋ_f)`, cut to zero when the
-//! penetration `P/k_c + s − x_f` or the force itself would be negative (separation).
+//! cam–follower contact (unilateral: no tension), pushrod, the lever–valve (or follower–valve)
+//! train link, spring segments, and the valve seat (unilateral stop, no preload). With the
+//! follower's displacement `x_f`, cam lift `s(θ)`, the contact compression is
+//! `P + k_c (s − x_f) + c_c (ṡ − ẋ_f)`, cut to zero when the penetration `P/k_c + s − x_f` or the
+//! force itself would be negative (separation).
 //! Each mass obeys Newton's law `m ẍ = Σ forces` — seed 003 eq. (21)–(22), the valve's
 //! Lagrange equation with the spring force, here with the train's compliances (the seed's model
 //! is rigid apart from the contact, eq. (32)) — written as the first-order system
 //! `y = (x, ẋ, W)`, `W` the work done by the cam on the train (`Ẇ = F_c ṡ`, for the energy
 //! balance).
+//!
+//! **A lever** of ratio `r = l_v/l_c` (see [`Lever`]) is taken with a constant ratio: the valve
+//! side moves `r` times the cam side and carries `1/r` of its force. Lagrange's equations of the
+//! lever with the valve-side coordinate `x_v = r x_c` then hold in cam-side coordinates with every
+//! valve-side mass and stiffness (and damping) multiplied by `r²`, forces and preloads by `r`,
+//! lengths by `1/r`; the lever's rotation `φ = x_c/l_c` adds the mass `I/l_c²` (standard reduction,
+//! Norton, *Cam Design and Manufacturing Handbook*, ch. 10). The assembly works in those cam-side
+//! coordinates; [`Assembly`]'s valve outputs are converted back to the valve side. Kinetic and
+//! elastic energies are invariant under the reduction.
 
 use std::f64::consts::PI;
 
@@ -99,6 +113,51 @@ pub fn damping_from_ratio(ratio: f64, stiffness: f64, mass: f64) -> f64 {
     2.0 * ratio * (stiffness * mass).sqrt()
 }
 
+/// A pushrod between the follower (tappet) and the lever's cam side (overhead-valve train): mass
+/// `mass` (kg), lumped half on each end, and its axial stiffness and damping (N/m, N·s/m).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Pushrod {
+    pub mass: f64,
+    pub link: Link,
+}
+
+/// A rigid lever between the cam and the valve, pivoted on the frame: a rocker arm (pivot between
+/// the cam side and the valve side; the cam acts through a pushrod or directly on a pad or
+/// roller on the arm) or an end-pivot finger follower (pivot at one end, valve pad at the other,
+/// the cam's roller or slipper in between: `cam_arm < valve_arm`).
+///
+/// Kinematics to first order in the lever's angle: the ratio `r = l_v/l_c` is constant. For
+/// straight arms perpendicular to both lines of action at mid-lift, both ends move `l sin φ` and
+/// the ratio of the displacements is exact; the neglected terms are the arms' obliquity away from
+/// mid-lift (`cos φ`, a relative error in the ratio of at most `1 − cos(φ_max/2) ≈ φ_max²/8`,
+/// `φ_max = s_max/l_c`: 0.6 % for a 6.5 mm lift on a 30 mm arm) and the travel of the contact
+/// points along pads of radius `ρ` (of order `ρ φ/l`; not modelled). The cam's lift is the
+/// translating follower's: on a finger follower the roller moves on an arc of radius `l_c`
+/// instead, a difference of the same order. Gravity and pivot friction are not modelled.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Lever {
+    /// Pivot to the cam side's line of action l_c, m (> 0).
+    pub cam_arm: f64,
+    /// Pivot to the valve's line of action l_v, m (> 0).
+    pub valve_arm: f64,
+    /// Moment of inertia about the pivot, kg·m² (≥ 0).
+    pub inertia: f64,
+    /// Pushrod from the follower to the lever; `None`: the cam acts on the lever itself (its
+    /// pad or roller; the follower mass is then what moves with the cam's lift outside `I`).
+    pub pushrod: Option<Pushrod>,
+}
+
+impl Lever {
+    /// The ratio r = l_v/l_c (valve motion per cam-side motion).
+    pub fn ratio(&self) -> f64 {
+        self.valve_arm / self.cam_arm
+    }
+    /// The lever's inertia reduced to its cam side, `I/l_c²`, kg.
+    pub fn cam_side_mass(&self) -> f64 {
+        self.inertia / (self.cam_arm * self.cam_arm)
+    }
+}
+
 /// The valve train.
 #[derive(Debug, Clone, PartialEq)]
 pub struct ValveTrain {
@@ -116,23 +175,46 @@ pub struct ValveTrain {
     /// Valve seat: a unilateral stop `gap` (m) below the closed position (the valve's place with
     /// the cam on its base circle); `None`: no seat.
     pub seat: Option<Seat>,
+    /// Lever between cam and valve; `None`: direct-acting. With a lever, `follower_mass` is
+    /// the part moving with the cam's lift outside the lever (tappet; ≥ 0), and `valve_mass`,
+    /// `train` (the lever–valve link: arm bending, valve stem), `spring`, `preload` and `seat`
+    /// are valve-side quantities.
+    pub lever: Option<Lever>,
 }
 
 impl ValveTrain {
+    /// The lever ratio r (1 for a direct-acting follower).
+    pub fn ratio(&self) -> f64 {
+        self.lever.map_or(1.0, |l| l.ratio())
+    }
+
+    /// The rigid train's quasi-static load at the cam, `P_c + k_c s + m_c s̈`: every part rigid,
+    /// the spring massless but for Rayleigh's third, reduced to the cam side — `(P_c, k_c, m_c)`
+    /// = `(P, k, m_f + m_v + m_s/3)` direct-acting; with a lever of ratio r,
+    /// `(r P, r² k, m_f + m_p + I/l_c² + r² (m_v + m_s/3))` (seed 003 eq. (21)–(22) with the
+    /// rigid train; the lever's reduction as in the module docs).
+    pub fn quasi_static_equivalent(&self) -> (f64, f64, f64) {
+        let r = self.ratio();
+        let valve_side = self.valve_mass + self.spring.mass / 3.0;
+        let cam_side = self.follower_mass
+            + self.lever.map_or(0.0, |l| l.cam_side_mass() + l.pushrod.map_or(0.0, |p| p.mass));
+        (r * self.preload, r * r * self.spring.rate, cam_side + r * r * valve_side)
+    }
+
     /// The rigid train's separation ("jump") speed, rad/s: with every part rigid and the spring
-    /// massless but for Rayleigh's third, the contact force is `P + k s + m ω² s''` (s'' per rad²;
-    /// seed 003 eq. (21)–(22) with the rigid train, the quasi-static load), so contact is lost
-    /// first at `ω_j = min over s'' < 0 of √((P + k s)/(m (−s'')))`, `m = m_f + m_v + m_s/3`
-    /// (Norton, *Cam Design and Manufacturing Handbook*, ch. 10). `samples`: `(s, s'')` over the
-    /// revolution. `None` when the lift never decelerates; 0 when the spring force is not
-    /// positive where it does. A closed form: the dynamic train (compliance, surge, residual
-    /// vibration) separates near it, usually below — a `sweep` over speed finds that one.
+    /// massless but for Rayleigh's third, the contact force is `P_c + k_c s + m_c ω² s''` (s'' per
+    /// rad²; [`ValveTrain::quasi_static_equivalent`]), so contact is lost first at
+    /// `ω_j = min over s'' < 0 of √((P_c + k_c s)/(m_c (−s'')))` (Norton, *Cam Design and
+    /// Manufacturing Handbook*, ch. 10). `samples`: `(s, s'')` over the revolution. `None` when
+    /// the lift never decelerates; 0 when the spring force is not positive where it does. A
+    /// closed form: the dynamic train (compliance, surge, residual vibration) separates near it,
+    /// usually below — a `sweep` over speed finds that one.
     pub fn rigid_jump_speed(&self, samples: impl IntoIterator<Item = (f64, f64)>) -> Option<f64> {
-        let m = self.follower_mass + self.valve_mass + self.spring.mass / 3.0;
+        let (p, k, m) = self.quasi_static_equivalent();
         samples
             .into_iter()
             .filter(|&(_, d2)| d2 < 0.0)
-            .map(|(s, d2)| ((self.preload + self.spring.rate * s).max(0.0) / (m * -d2)).sqrt())
+            .map(|(s, d2)| ((p + k * s).max(0.0) / (m * -d2)).sqrt())
             .fold(None, |best: Option<f64>, w| Some(best.map_or(w, |b| b.min(w))))
     }
 }
@@ -170,38 +252,60 @@ pub struct Assembly {
     spring_fixed: usize,
     contact: Link,
     preload: f64,
+    /// The seat in cam-side coordinates.
     seat: Option<Seat>,
+    /// Lever ratio r: valve-side displacement per cam-side coordinate (1: direct-acting).
+    pub ratio: f64,
 }
 
 impl ValveTrain {
-    /// Masses and elements.
+    /// Masses and elements, in cam-side coordinates (with a lever: valve-side masses, stiffnesses
+    /// and damping times r², the preload times r, the seat gap over r).
     pub fn assemble(&self) -> Assembly {
+        let r = self.ratio();
+        let r2 = r * r;
+        let preload = r * self.preload;
         let mut masses = vec![self.follower_mass];
         let mut elements = Vec::new();
         let follower = 0;
+        // The body the valve side hangs on: the follower, or with a lever the lever itself (on
+        // the follower without a pushrod, its own node with one).
+        let mut lever_node = 0;
+        if let Some(l) = self.lever {
+            match l.pushrod {
+                None => masses[0] += l.cam_side_mass(),
+                Some(p) => {
+                    masses[0] += 0.5 * p.mass;
+                    masses.push(l.cam_side_mass() + 0.5 * p.mass);
+                    lever_node = 1;
+                    elements.push(Element { b: Some(0), a: Some(1), k: p.link.stiffness, c: p.link.damping, preload });
+                }
+            }
+        }
         let valve = match self.train {
             None => {
-                masses[0] += self.valve_mass;
-                0
+                masses[lever_node] += r2 * self.valve_mass;
+                lever_node
             }
             Some(link) => {
-                masses.push(self.valve_mass);
-                elements.push(Element { b: Some(0), a: Some(1), k: link.stiffness, c: link.damping, preload: self.preload });
-                1
+                masses.push(r2 * self.valve_mass);
+                let v = masses.len() - 1;
+                elements.push(Element { b: Some(lever_node), a: Some(v), k: r2 * link.stiffness, c: r2 * link.damping, preload });
+                v
             }
         };
         let sp = self.spring;
         let n = sp.elements;
         let (spring_moving, spring_fixed);
         if n == 0 {
-            masses[valve] += sp.mass / 3.0;
+            masses[valve] += r2 * sp.mass / 3.0;
             let beta = surge_beta(&sp);
-            elements.push(Element { b: Some(valve), a: None, k: sp.rate, c: beta * sp.rate, preload: self.preload });
+            elements.push(Element { b: Some(valve), a: None, k: r2 * sp.rate, c: beta * r2 * sp.rate, preload });
             spring_moving = elements.len() - 1;
             spring_fixed = spring_moving;
         } else {
             let segs = (n + 1) as f64;
-            let (k_seg, m_node) = (sp.rate * segs, sp.mass / segs);
+            let (k_seg, m_node) = (r2 * sp.rate * segs, r2 * sp.mass / segs);
             let c_seg = surge_beta(&sp) * k_seg;
             masses[valve] += 0.5 * m_node;
             let first = masses.len();
@@ -213,11 +317,12 @@ impl ValveTrain {
             spring_moving = elements.len();
             for j in 0..=n {
                 let a = if j == n { None } else { Some(node(j + 1)) };
-                elements.push(Element { b: Some(node(j)), a, k: k_seg, c: c_seg, preload: self.preload });
+                elements.push(Element { b: Some(node(j)), a, k: k_seg, c: c_seg, preload });
             }
             spring_fixed = elements.len() - 1;
         }
-        Assembly { masses, elements, follower, valve, spring_moving, spring_fixed, contact: self.contact, preload: self.preload, seat: self.seat }
+        let seat = self.seat.map(|st| Seat { link: Link { stiffness: r2 * st.link.stiffness, damping: r2 * st.link.damping }, gap: st.gap / r });
+        Assembly { masses, elements, follower, valve, spring_moving, spring_fixed, contact: self.contact, preload, seat, ratio: r }
     }
 }
 
@@ -252,7 +357,8 @@ impl Assembly {
         self.seat.is_some()
     }
 
-    /// Contact and seat forces at the state `(x, v)` with cam lift `s` and lift rate `sd`.
+    /// Contact and seat forces at the state `(x, v)` with cam lift `s` and lift rate `sd` (cam-side
+    /// coordinates: the seat force on the valve is `seat / ratio`).
     pub fn unilateral(&self, x: &[f64], v: &[f64], s: f64, sd: f64) -> Unilateral {
         let (kc, cc) = (self.contact.stiffness, self.contact.damping);
         let pen = self.preload + kc * (s - x[self.follower]);
@@ -281,9 +387,11 @@ impl Assembly {
         e.preload + e.k * (xb - xa) + e.c * (vb - va)
     }
 
-    /// Spring force at the moving (retainer) and the fixed end, N (compression positive).
+    /// Spring force at the moving (retainer) and the fixed end, N (compression positive; the
+    /// valve side's own force, cam-side force over the ratio).
     pub fn spring_forces(&self, x: &[f64], v: &[f64]) -> (f64, f64) {
-        (self.compression(&self.elements[self.spring_moving], x, v), self.compression(&self.elements[self.spring_fixed], x, v))
+        let r = self.ratio;
+        (self.compression(&self.elements[self.spring_moving], x, v) / r, self.compression(&self.elements[self.spring_fixed], x, v) / r)
     }
 
     /// Net force on each mass (`out`, length dofs) and the contact/seat state.

@@ -66,7 +66,7 @@ impl<'a> TrainSystem<'a> {
         let h = drive.max_lift.max(1e-6);
         let mut scale = vec![h; n];
         scale.extend(std::iter::repeat_n(h * drive.omega, n));
-        scale.push(train.preload.abs().max(1.0) * h);
+        scale.push((train.ratio() * train.preload).abs().max(1.0) * h);
         let (mut kx, mut cv) = (vec![0.0; n * n], vec![0.0; n * n]);
         let dim = 2 * n + 1;
         let mut jacobians: [Vec<f64>; 4] = Default::default();
@@ -111,14 +111,16 @@ impl<'a> TrainSystem<'a> {
         let u = self.asm.unilateral(x, v, s, sd);
         let (moving, fixed) = self.asm.spring_forces(x, v);
         let iv = self.asm.valve;
+        // Valve-side figures from the cam-side coordinates (lever ratio r; 1 direct-acting).
+        let r = self.asm.ratio;
         Probe {
             cam_lift: s,
             contact: u.contact,
-            seat: u.seat,
+            seat: u.seat / r,
             follower: x[self.asm.follower],
-            valve_lift: x[iv],
-            valve_velocity: v[iv],
-            valve_acceleration: self.asm.force_on(iv, x, v, &u) / self.asm.masses[iv],
+            valve_lift: r * x[iv],
+            valve_velocity: r * v[iv],
+            valve_acceleration: r * self.asm.force_on(iv, x, v, &u) / self.asm.masses[iv],
             spring_moving: moving,
             spring_fixed: fixed,
             energy: self.asm.energy(x, v, s),
@@ -148,8 +150,11 @@ impl<'a> TrainSystem<'a> {
 pub struct Probe {
     pub cam_lift: f64,
     pub contact: f64,
+    /// Seat force on the valve, N.
     pub seat: f64,
+    /// Follower (cam-side) displacement, m.
     pub follower: f64,
+    /// Valve lift (m), velocity (m/s), acceleration (m/s²): the valve side.
     pub valve_lift: f64,
     pub valve_velocity: f64,
     pub valve_acceleration: f64,
@@ -375,7 +380,7 @@ fn assemble_response(
     let seatings: Vec<&Event> = events.iter().filter(|e| e.index == EVENT_SEATING && e.rising).collect();
     let after = |t: f64| (t - t_max).rem_euclid(period);
     let first = seatings.iter().min_by(|a, b| after(a.time).total_cmp(&after(b.time)));
-    let seating_velocity = first.map(|e| (-e.state[n + sys.asm.valve]).max(0.0));
+    let seating_velocity = first.map(|e| (-sys.asm.ratio * e.state[n + sys.asm.valve]).max(0.0));
     let seating_angle = first.map(|e| (e.time * omega).rem_euclid(TAU));
     let (bounces, max_bounce_height) = if sys.asm.has_seat() {
         let impacts: Vec<&Event> = events.iter().filter(|e| e.index == EVENT_SEAT && e.rising).collect();
@@ -570,7 +575,19 @@ pub fn run_up(
 fn validate(train: &ValveTrain, drive: &Drive) -> Result<(), SolveError> {
     let pos = |v: f64| v.is_finite() && v > 0.0;
     let nonneg = |v: f64| v.is_finite() && v >= 0.0;
-    if !pos(train.follower_mass) {
+    if let Some(l) = train.lever {
+        if !pos(l.cam_arm) || !pos(l.valve_arm) || !nonneg(l.inertia) {
+            return Err(SolveError::invalid("ValveTrain.lever", "arm lengths must be > 0, the inertia ≥ 0"));
+        }
+        if let Some(p) = l.pushrod {
+            if !nonneg(p.mass) || !pos(p.link.stiffness) || !nonneg(p.link.damping) {
+                return Err(SolveError::invalid("ValveTrain.lever.pushrod", "mass ≥ 0, stiffness > 0, damping ≥ 0"));
+            }
+        }
+        if !nonneg(train.follower_mass) {
+            return Err(SolveError::invalid("ValveTrain.follower_mass", "must be ≥ 0"));
+        }
+    } else if !pos(train.follower_mass) {
         return Err(SolveError::invalid("ValveTrain.follower_mass", "must be > 0"));
     }
     if !nonneg(train.valve_mass) || (train.train.is_some() && !pos(train.valve_mass)) {
@@ -601,6 +618,13 @@ fn validate(train: &ValveTrain, drive: &Drive) -> Result<(), SolveError> {
     }
     if !pos(drive.omega) {
         return Err(SolveError::invalid("Drive.omega", "must be > 0"));
+    }
+    // Every lumped body needs mass (with a lever the follower may be massless when the lever's
+    // inertia stands for it; with a pushrod both of its ends need mass).
+    let asm = train.assemble();
+    if let Some(i) = asm.masses.iter().position(|m| !pos(*m)) {
+        let field = if i == asm.follower { "ValveTrain.follower_mass" } else { "ValveTrain.lever" };
+        return Err(SolveError::invalid(field, "a lumped body of the train has no mass (follower, lever or valve)"));
     }
     Ok(())
 }

@@ -374,7 +374,7 @@ async function jobView(id) {
     const downloads = h("div", { class: "actions", id: "downloads" },
       h("button", { type: "button", class: "secondary", onclick: () =>
         download(new Blob([JSON.stringify(result, null, 2)], { type: "application/json" }), job.kind + "-" + id.slice(0, 8) + ".json") }, "Download JSON"),
-      ((kind && kind.tables) || []).map((t) => h("button", { type: "button", class: "secondary", "data-table": t, onclick: async () => {
+      ((kind && kind.tables) || []).filter((t) => result[t] != null).map((t) => h("button", { type: "button", class: "secondary", "data-table": t, onclick: async () => {
         const r = await api("/v1/jobs/" + id + "/result?format=csv&table=" + encodeURIComponent(t), { headers: { Accept: "text/csv" } });
         if (r.ok) download(await r.blob(), job.kind + "-" + id.slice(0, 8) + "-" + t + ".csv");
         else notice("No CSV for table " + t + " (" + r.status + ")");

@@ -27,12 +27,12 @@ pub struct CamCycle;
 
 impl Kind for CamCycle {
     const NAME: &'static str = "cam_cycle";
-    const SOLVER_VERSION: &'static str = "cam_cycle-7";
+    const SOLVER_VERSION: &'static str = "cam_cycle-8";
     const DESCRIPTION: &'static str = "Cam–follower pair over one revolution: kinematics, loads, Hertz contact, \
         lubricant film, friction and power loss, roller slip (steady or startup) and flash temperature \
         (fidelity fast: closed forms; accurate: numerical line-contact EHL with squeeze at every angle; auto: \
         closed forms where their estimated error is within tolerance).";
-    const TABLES: &'static [&'static str] = &["series"];
+    const TABLES: &'static [&'static str] = &["series", "run_up"];
     type Spec = CamCycleSpec;
     type Output = CamCycleResult;
 
@@ -252,7 +252,7 @@ impl Kind for CamCycle {
 }
 
 fn validate_dynamic(spec: &CamCycleSpec, d: &DynamicLoadSpec, limits: &Limits, v: &mut Validation) {
-    v.check(matches!(spec.follower, FollowerSpec::FlatFaced { .. }), "/follower", "a dynamic load models the direct-acting flat follower (seed 003)");
+    v.check(matches!(spec.follower, FollowerSpec::FlatFaced { .. }), "/follower", "a dynamic load models a flat follower (seed 003; on a rocker or finger: its pad)");
     v.check(spec.operation.startup.is_none(), "/operation/startup", "a dynamic load needs steady running");
     v.in_range("/load/spring_preload", d.spring_preload, 1e-3, 1e7);
     let sp = &d.spring;
@@ -264,7 +264,32 @@ fn validate_dynamic(spec: &CamCycleSpec, d: &DynamicLoadSpec, limits: &Limits, v
     v.in_range("/load/spring/density", sp.density, 1.0, 1e5);
     v.count_in_range("/load/spring/elements", sp.elements, 0, 64);
     v.in_range("/load/spring/damping_ratio", sp.damping_ratio, 0.0, 10.0);
-    v.in_range("/load/follower_mass", d.follower_mass, 1e-6, 1e3);
+    let lever = match d.arrangement {
+        None | Some(ArrangementSpec::Direct) => None,
+        Some(ArrangementSpec::Rocker { cam_arm, valve_arm, inertia, pushrod }) => {
+            if let Some(p) = pushrod {
+                v.in_range("/load/arrangement/pushrod/mass", p.mass, 0.0, 1e3);
+                v.in_range("/load/arrangement/pushrod/stiffness", p.stiffness, 1.0, 1e13);
+                v.in_range("/load/arrangement/pushrod/damping_ratio", p.damping_ratio, 0.0, 10.0);
+                // Both ends of the pushrod are lumped bodies.
+                v.check(d.follower_mass + 0.5 * p.mass > 0.0, "/load/follower_mass", "the tappet under a pushrod needs mass (follower_mass or the pushrod's)");
+            }
+            Some((cam_arm, valve_arm, inertia))
+        }
+        Some(ArrangementSpec::Finger { cam_arm, valve_arm, inertia }) => {
+            v.check(cam_arm < valve_arm, "/load/arrangement/cam_arm", "a finger follower's cam contact lies between its pivot and the valve pad (cam_arm < valve_arm)");
+            Some((cam_arm, valve_arm, inertia))
+        }
+    };
+    if let Some((cam_arm, valve_arm, inertia)) = lever {
+        v.in_range("/load/arrangement/cam_arm", cam_arm, 1e-4, 1.0);
+        v.in_range("/load/arrangement/valve_arm", valve_arm, 1e-4, 1.0);
+        v.in_range("/load/arrangement/inertia", inertia, 0.0, 1.0);
+        v.in_range("/load/follower_mass", d.follower_mass, 0.0, 1e3);
+        v.check(d.follower_mass > 0.0 || inertia > 0.0, "/load/arrangement/inertia", "the cam-side body needs mass: follower_mass or the lever's inertia");
+    } else {
+        v.in_range("/load/follower_mass", d.follower_mass, 1e-6, 1e3);
+    }
     v.in_range("/load/valve_mass", d.valve_mass, 0.0, 1e3);
     if let Some(k) = d.train_stiffness {
         v.in_range("/load/train_stiffness", k, 1.0, 1e13);

@@ -299,7 +299,8 @@ pub struct CamSummary {
     pub contact_stiffness: Option<f64>,
     /// `dynamic` load: the rigid train's separation ("jump") speed, rpm — the closed form
     /// `min √((P + k s)/(m (−s'')))` over the decelerating lift, `m` the follower, valve and a
-    /// third of the spring's mass. The dynamic train's jump speed (the lowest speed with a
+    /// third of the spring's mass (with a lever: `P`, `k`, `m` reduced to the cam side,
+    /// `r P`, `r² k` and `equivalent_mass`). The dynamic train's jump speed (the lowest speed with a
     /// non-empty `separation`) is found by a `sweep` over `/operation/speed_rpm` with the
     /// quantity `/summary/separation_duration` (README: jump speed); compliance and surge usually
     /// put it below this figure.
@@ -308,6 +309,18 @@ pub struct CamSummary {
     /// `dynamic` load with `run_up`: cam speed at the first loss of contact on the ramp, rpm.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub run_up_first_separation_rpm: Option<f64>,
+    /// `dynamic` load with `run_up`: integrator steps accepted over the ramp.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub run_up_steps: Option<usize>,
+    /// `dynamic` load: the rigid train's moving mass reduced to the cam contact, kg —
+    /// `m_f + m_v + m_s/3` direct-acting; with a lever of ratio r,
+    /// `m_f + m_pushrod + I/cam_arm² + r² (m_v + m_s/3)` (the quasi-static load is
+    /// `r P + r² k s + this × acceleration`).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub equivalent_mass: Option<f64>,
+    /// `dynamic` load with a rocker or finger: the lever ratio `valve_arm/cam_arm`.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub lever_ratio: Option<f64>,
 }
 
 /// Events of the cycle.
@@ -317,6 +330,10 @@ pub struct CamEvents {
     pub zero_entrainment_angles_deg: Vec<f64>,
     /// Angle ranges `[start, end]` (degrees) where the follower would leave the cam.
     pub separation_ranges_deg: Vec<[f64; 2]>,
+    /// `dynamic` load with `run_up`: intervals `[start, end]` of the cam angle from the start of
+    /// the ramp (degrees, as `run_up.angle_deg`) without contact.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub run_up_separation_deg: Option<Vec<[f64; 2]>>,
 }
 
 /// Pressure and film along the rolling direction at one cam angle.
@@ -361,7 +378,8 @@ pub struct CamCycleResult {
     /// of the state between revolutions.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub dynamics_convergence: Option<Convergence>,
-    /// `dynamic` load with `run_up`: the train over the speed ramp.
+    /// `dynamic` load with `run_up`: the train over the speed ramp (a table: CSV with
+    /// `?table=run_up`; its separation intervals are `events.run_up_separation_deg`).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub run_up: Option<RunUpTable>,
 }
@@ -380,12 +398,5 @@ pub struct RunUpTable {
     pub valve_velocity: Vec<f64>,
     /// Spring force at the fixed end, N.
     pub spring_force_fixed_end: Vec<f64>,
-    /// Intervals `[start, end]` of the cam angle from the start (degrees) without contact.
-    pub separation: Vec<[f64; 2]>,
-    /// Cam speed at the first loss of contact, rpm (absent: contact kept throughout).
-    #[serde(skip_serializing_if = "Option::is_none")]
-    pub first_separation_rpm: Option<f64>,
-    /// Integrator steps accepted over the ramp.
-    pub steps: usize,
 }
 

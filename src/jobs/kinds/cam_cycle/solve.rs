@@ -13,8 +13,8 @@ use std::collections::BTreeMap;
 use crate::physics::roller::pin_finite::roller_cooled_area;
 use crate::physics::roller::{Crown, FinitePin, PinFriction, PinTable, PinThermal, RollerParams};
 use crate::physics::valvetrain::{
-    damping_from_ratio, line_contact_stiffness, periodic_response, run_up, Drive, DynamicsOptions, HelicalSpring, Link, PeriodicResponse,
-    RunUpResponse, Seat, SpringChain, ValveTrain,
+    damping_from_ratio, line_contact_stiffness, periodic_response, run_up, Drive, DynamicsOptions, HelicalSpring, Lever, Link,
+    PeriodicResponse, Pushrod, RunUpResponse, Seat, SpringChain, ValveTrain,
 };
 use crate::physics::{Observer, SolveError};
 use std::f64::consts::PI;
@@ -237,24 +237,72 @@ pub fn valve_train(d: &DynamicLoadSpec, cycle: &CycleSpec) -> ValveTrain {
         FollowerKind::Flat { contact_length } | FollowerKind::Roller { contact_length, .. } => contact_length,
         FollowerKind::Spherical { .. } => 0.0,
     };
+    let lever = match d.arrangement {
+        None | Some(ArrangementSpec::Direct) => None,
+        Some(ArrangementSpec::Rocker { cam_arm, valve_arm, inertia, pushrod }) => Some((cam_arm, valve_arm, inertia, pushrod)),
+        Some(ArrangementSpec::Finger { cam_arm, valve_arm, inertia }) => Some((cam_arm, valve_arm, inertia, None)),
+    };
+    let ratio = lever.map_or(1.0, |(lc, lv, _, _)| lv / lc);
     let kc = d.contact_stiffness.unwrap_or_else(|| {
-        line_contact_stiffness(d.spring_preload, length, cycle.profile.base_radius(), cycle.contact_modulus)
+        line_contact_stiffness(ratio * d.spring_preload, length, cycle.profile.base_radius(), cycle.contact_modulus)
     });
     let rigid = d.train_stiffness.is_none();
-    let follower_side = if rigid { d.follower_mass + d.valve_mass } else { d.follower_mass };
+    let reduced = |a: f64, b: f64| if a + b > 0.0 { a * b / (a + b) } else { 0.0 };
+    let spring = SpringChain { rate: coil.rate(), mass: coil.active_mass(), elements: d.spring.elements, damping_ratio: d.spring.damping_ratio };
+    let Some((cam_arm, valve_arm, inertia, pushrod)) = lever else {
+        // Direct-acting.
+        let follower_side = if rigid { d.follower_mass + d.valve_mass } else { d.follower_mass };
+        return ValveTrain {
+            follower_mass: d.follower_mass,
+            valve_mass: d.valve_mass,
+            train: d.train_stiffness.map(|k| Link { stiffness: k, damping: damping_from_ratio(d.train_damping_ratio, k, reduced(d.follower_mass, d.valve_mass)) }),
+            spring,
+            preload: d.spring_preload,
+            contact: Link { stiffness: kc, damping: damping_from_ratio(d.contact_damping_ratio, kc, follower_side) },
+            seat: d.seat.map(|st| Seat {
+                link: Link { stiffness: st.stiffness, damping: damping_from_ratio(st.damping_ratio, st.stiffness, d.valve_mass.max(follower_side)) },
+                gap: st.gap,
+            }),
+            lever: None,
+        };
+    };
+    // A lever: masses reduced to the cam side (valve side × r², the lever I/l_c²; module docs of
+    // `physics::valvetrain::model`). Each damping ratio acts on the mass its link carries.
+    let r2 = ratio * ratio;
+    let lever_mass = inertia / (cam_arm * cam_arm);
+    let valve_cam_side = if rigid { r2 * d.valve_mass } else { 0.0 };
+    // The lever's body (cam side) and the tappet under a pushrod.
+    let (tappet, lever_body) = match pushrod {
+        Some(p) => (d.follower_mass + 0.5 * p.mass, lever_mass + 0.5 * p.mass),
+        None => (0.0, d.follower_mass + lever_mass),
+    };
+    let contact_mass = match pushrod {
+        Some(_) => tappet,
+        None => lever_body + valve_cam_side,
+    };
     ValveTrain {
         follower_mass: d.follower_mass,
         valve_mass: d.valve_mass,
-        train: d.train_stiffness.map(|k| {
-            let reduced = d.follower_mass * d.valve_mass / (d.follower_mass + d.valve_mass);
-            Link { stiffness: k, damping: damping_from_ratio(d.train_damping_ratio, k, reduced) }
-        }),
-        spring: SpringChain { rate: coil.rate(), mass: coil.active_mass(), elements: d.spring.elements, damping_ratio: d.spring.damping_ratio },
+        // Valve side: the lever's body reduced to the valve side against the valve.
+        train: d.train_stiffness.map(|k| Link { stiffness: k, damping: damping_from_ratio(d.train_damping_ratio, k, reduced(lever_body / r2, d.valve_mass)) }),
+        spring,
         preload: d.spring_preload,
-        contact: Link { stiffness: kc, damping: damping_from_ratio(d.contact_damping_ratio, kc, follower_side) },
+        contact: Link { stiffness: kc, damping: damping_from_ratio(d.contact_damping_ratio, kc, contact_mass) },
         seat: d.seat.map(|st| Seat {
-            link: Link { stiffness: st.stiffness, damping: damping_from_ratio(st.damping_ratio, st.stiffness, d.valve_mass.max(follower_side)) },
+            link: Link {
+                stiffness: st.stiffness,
+                damping: damping_from_ratio(st.damping_ratio, st.stiffness, if rigid { d.valve_mass + lever_body / r2 } else { d.valve_mass }),
+            },
             gap: st.gap,
+        }),
+        lever: Some(Lever {
+            cam_arm,
+            valve_arm,
+            inertia,
+            pushrod: pushrod.map(|p| Pushrod {
+                mass: p.mass,
+                link: Link { stiffness: p.stiffness, damping: damping_from_ratio(p.damping_ratio, p.stiffness, reduced(tappet, lever_body + valve_cam_side)) },
+            }),
         }),
     }
 }
@@ -415,6 +463,7 @@ pub(super) fn solve_spec(spec: &CamCycleSpec, observer: &dyn Observer) -> Result
         events: CamEvents {
             zero_entrainment_angles_deg: degs(&out.events.zero_entrainment),
             separation_ranges_deg: out.events.separation.iter().map(|(a, b)| [a.to_degrees(), b.to_degrees()]).collect(),
+            run_up_separation_deg: None,
         },
         profiles,
         convergence: out.convergence,
@@ -454,6 +503,8 @@ fn add_dynamics(result: &mut CamCycleResult, train: &ValveTrain, r: PeriodicResp
     summary.spring_surge_frequency = Some(0.5 * (train.spring.rate / train.spring.mass).sqrt()).filter(|f| f.is_finite());
     summary.contact_stiffness = Some(train.contact.stiffness);
     summary.rigid_jump_speed_rpm = r.rigid_jump_speed.map(|w| w * 30.0 / std::f64::consts::PI).filter(|w| w.is_finite());
+    summary.equivalent_mass = Some(train.quasi_static_equivalent().2);
+    summary.lever_ratio = train.lever.map(|l| l.ratio());
     result.dynamics_convergence = Some(r.convergence);
 }
 
@@ -463,6 +514,10 @@ fn add_run_up(result: &mut CamCycleResult, u: RunUpResponse) {
     let rpm = |w: f64| w * 30.0 / PI;
     let first = u.first_separation_speed.map(rpm);
     result.summary.run_up_first_separation_rpm = first;
+    result.summary.run_up_steps = Some(u.stats.accepted);
+    // The table holds the per-sample columns only (servable as CSV); the irregular list of
+    // intervals goes to the events.
+    result.events.run_up_separation_deg = Some(u.separation.iter().map(|(a, b)| [a.to_degrees(), b.to_degrees()]).collect());
     result.run_up = Some(RunUpTable {
         angle_deg: u.angle.iter().map(|a| a.to_degrees()).collect(),
         speed_rpm: u.speed.iter().map(|&w| rpm(w)).collect(),
@@ -470,9 +525,6 @@ fn add_run_up(result: &mut CamCycleResult, u: RunUpResponse) {
         valve_lift: u.valve_lift,
         valve_velocity: u.valve_velocity,
         spring_force_fixed_end: u.spring_force_fixed,
-        separation: u.separation.iter().map(|(a, b)| [a.to_degrees(), b.to_degrees()]).collect(),
-        first_separation_rpm: first,
-        steps: u.stats.accepted,
     });
 }
 

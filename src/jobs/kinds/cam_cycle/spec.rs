@@ -280,11 +280,12 @@ pub enum LoadSpec {
         #[serde(default, skip_serializing_if = "Option::is_none")]
         external: Option<ForceTable>,
     },
-    /// Valve-train dynamics (direct-acting flat follower, seed 003's arrangement): the contact
-    /// load comes from a lumped multibody model — follower, valve, follower–valve link, the valve
-    /// spring as a chain of masses (surge), a unilateral compliant cam contact and an optional
-    /// valve seat — integrated to its periodic steady state (`physics::valvetrain`). The spring
-    /// preload is carried by the cam on the base circle (as in `valve_train`). Steady running
+    /// Valve-train dynamics (flat follower; direct-acting as in seed 003, or through a rocker arm
+    /// or finger follower: `arrangement`): the contact load comes from a lumped multibody model —
+    /// follower, (pushrod, lever,) valve, the train's links, the valve spring as a chain of masses
+    /// (surge), a unilateral compliant cam contact and an optional valve seat — integrated to its
+    /// periodic steady state (`physics::valvetrain`). The spring preload is carried by the cam on
+    /// the base circle (as in `valve_train`; times the lever ratio with a lever). Steady running
     /// only. The result adds the valve's motion, the spring forces at both ends, and
     /// `summary.separation` / `seating_velocity` / bounce.
     Dynamic(DynamicLoadSpec),
@@ -399,6 +400,63 @@ pub struct RunUpSpec {
     pub samples_per_revolution: usize,
 }
 
+fn default_pushrod_damping() -> f64 {
+    0.05
+}
+
+/// A pushrod between the tappet (the follower) and the rocker (overhead-valve train).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, ToSchema)]
+#[serde(deny_unknown_fields)]
+pub struct PushrodSpec {
+    /// Pushrod mass, kg (lumped half on the tappet, half on the rocker's cam-side end).
+    pub mass: f64,
+    /// Axial stiffness (E A / length for a tube), N/m.
+    pub stiffness: f64,
+    /// Damping ratio of the pushrod on the reduced mass of the bodies it joins. Default 0.05.
+    #[serde(default = "default_pushrod_damping")]
+    pub damping_ratio: f64,
+}
+
+/// How the cam drives the valve. With a lever (`rocker`, `finger`) of ratio
+/// `r = valve_arm/cam_arm`, the load's `follower_mass` is what moves with the cam's lift outside
+/// the lever (the tappet; 0 when the cam acts on the lever's own pad or roller, whose mass is
+/// then in `inertia`), and `valve_mass`, `train_stiffness` (the lever–valve link: arm bending
+/// and valve stem), `spring`, `spring_preload` and `seat` are on the valve side. The ratio is
+/// constant (first order in the lever's angle: arms perpendicular to the lines of action at
+/// mid-lift err by at most `1 − cos(φ_max/2) ≈ φ_max²/8` in the ratio, `φ_max` = cam lift /
+/// `cam_arm`; pad travel along the arm is not modelled). The cam's lift is that of a
+/// translating flat follower. `series.follower_displacement` is the cam side, `valve_*` and the
+/// spring forces the valve side.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, ToSchema)]
+#[serde(tag = "type", rename_all = "snake_case", deny_unknown_fields)]
+pub enum ArrangementSpec {
+    /// Direct-acting follower (bucket tappet) on the valve axis, seed 003's arrangement.
+    Direct,
+    /// Rocker arm pivoted between its cam side and its valve side; the cam acts through a
+    /// `pushrod` (overhead valve) or directly on the rocker's pad or roller (overhead cam).
+    Rocker {
+        /// Pivot to the cam side's line of action (the pushrod's or the cam contact's), m.
+        cam_arm: f64,
+        /// Pivot to the valve's line of action, m.
+        valve_arm: f64,
+        /// Rocker's moment of inertia about its pivot, kg·m².
+        inertia: f64,
+        /// Pushrod from the tappet to the rocker. Absent: the cam acts on the rocker.
+        #[serde(default, skip_serializing_if = "Option::is_none")]
+        pushrod: Option<PushrodSpec>,
+    },
+    /// End-pivot finger follower: pivot (lash adjuster) at one end, valve pad at the other, the
+    /// cam's slipper or roller in between (`cam_arm < valve_arm`).
+    Finger {
+        /// Pivot to the cam contact, m.
+        cam_arm: f64,
+        /// Pivot to the valve pad, m.
+        valve_arm: f64,
+        /// Finger's moment of inertia about its pivot (roller included), kg·m².
+        inertia: f64,
+    },
+}
+
 /// The valve train of a `dynamic` load.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize, ToSchema)]
 #[serde(deny_unknown_fields)]
@@ -406,21 +464,27 @@ pub struct DynamicLoadSpec {
     /// Spring force at zero lift, N (> 0).
     pub spring_preload: f64,
     pub spring: ValveSpringSpec,
-    /// Mass of the part the cam touches (tappet; seed 003: the retainer), kg.
+    /// Arrangement of the train. Absent: `direct`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub arrangement: Option<ArrangementSpec>,
+    /// Mass of the part the cam touches (tappet; seed 003: the retainer), kg. With a lever: the
+    /// part moving with the cam's lift outside the lever (the tappet under a pushrod; ≥ 0).
     pub follower_mass: f64,
     /// Mass of the valve with what moves rigidly with it (retainer, keepers), kg.
     pub valve_mass: f64,
-    /// Stiffness of the follower–valve link, N/m. Absent: rigid (one body).
+    /// Stiffness of the follower–valve link (with a lever: the lever–valve link on the valve
+    /// side), N/m. Absent: rigid (one body).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub train_stiffness: Option<f64>,
     /// Damping ratio of that link on the reduced mass. Default 0.05.
     #[serde(default = "default_train_damping")]
     pub train_damping_ratio: f64,
     /// Cam–follower contact stiffness, N/m. Default: the line contact's secant stiffness at the
-    /// spring preload on the base circle (seed 003 eq. 6).
+    /// spring preload (times the lever ratio) on the base circle (seed 003 eq. 6).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub contact_stiffness: Option<f64>,
-    /// Damping ratio of the contact on the follower mass (the oil film's damping). Default 0.1.
+    /// Damping ratio of the contact on the mass it carries (the follower, rigid train or lever
+    /// with the valve side reduced to the cam side; the oil film's damping). Default 0.1.
     #[serde(default = "default_contact_damping")]
     pub contact_damping_ratio: f64,
     /// Valve seat. Absent: no seat (the valve may swing below its closed position).
