@@ -252,7 +252,11 @@ impl Kind for CamCycle {
 }
 
 fn validate_dynamic(spec: &CamCycleSpec, d: &DynamicLoadSpec, limits: &Limits, v: &mut Validation) {
-    v.check(matches!(spec.follower, FollowerSpec::FlatFaced { .. }), "/follower", "a dynamic load models a flat follower (seed 003; on a rocker or finger: its pad)");
+    v.check(
+        matches!(spec.follower, FollowerSpec::FlatFaced { .. } | FollowerSpec::Roller { .. }),
+        "/follower",
+        "a dynamic load models a flat or roller follower (seed 003; on a rocker or finger: its pad or roller)",
+    );
     v.check(spec.operation.startup.is_none(), "/operation/startup", "a dynamic load needs steady running");
     v.in_range("/load/spring_preload", d.spring_preload, 1e-3, 1e7);
     let sp = &d.spring;

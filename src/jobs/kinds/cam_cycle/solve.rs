@@ -233,9 +233,13 @@ pub fn valve_train(d: &DynamicLoadSpec, cycle: &CycleSpec) -> ValveTrain {
         shear_modulus: d.spring.shear_modulus,
         density: d.spring.density,
     };
-    let length = match cycle.follower {
-        FollowerKind::Flat { contact_length } | FollowerKind::Roller { contact_length, .. } => contact_length,
-        FollowerKind::Spherical { .. } => 0.0,
+    // The contact on the base circle: a flat face against the base radius, a roller against it
+    // with the reduced radius of the two cylinders.
+    let base = cycle.profile.base_radius();
+    let (length, radius) = match &cycle.follower {
+        FollowerKind::Flat { contact_length } => (*contact_length, base),
+        FollowerKind::Roller { contact_length, roller, .. } => (*contact_length, base * roller.radius / (base + roller.radius)),
+        FollowerKind::Spherical { .. } => (0.0, base),
     };
     let lever = match d.arrangement {
         None | Some(ArrangementSpec::Direct) => None,
@@ -244,7 +248,7 @@ pub fn valve_train(d: &DynamicLoadSpec, cycle: &CycleSpec) -> ValveTrain {
     };
     let ratio = lever.map_or(1.0, |(lc, lv, _, _)| lv / lc);
     let kc = d.contact_stiffness.unwrap_or_else(|| {
-        line_contact_stiffness(ratio * d.spring_preload, length, cycle.profile.base_radius(), cycle.contact_modulus)
+        line_contact_stiffness(ratio * d.spring_preload, length, radius, cycle.contact_modulus)
     });
     let rigid = d.train_stiffness.is_none();
     let reduced = |a: f64, b: f64| if a + b > 0.0 { a * b / (a + b) } else { 0.0 };

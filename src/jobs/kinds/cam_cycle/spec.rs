@@ -280,7 +280,8 @@ pub enum LoadSpec {
         #[serde(default, skip_serializing_if = "Option::is_none")]
         external: Option<ForceTable>,
     },
-    /// Valve-train dynamics (flat follower; direct-acting as in seed 003, or through a rocker arm
+    /// Valve-train dynamics (flat or roller follower, whose `follower_mass` includes the roller;
+    /// direct-acting as in seed 003, or through a rocker arm
     /// or finger follower: `arrangement`): the contact load comes from a lumped multibody model —
     /// follower, (pushrod, lever,) valve, the train's links, the valve spring as a chain of masses
     /// (surge), a unilateral compliant cam contact and an optional valve seat — integrated to its
@@ -425,7 +426,8 @@ pub struct PushrodSpec {
 /// constant (first order in the lever's angle: arms perpendicular to the lines of action at
 /// mid-lift err by at most `1 − cos(φ_max/2) ≈ φ_max²/8` in the ratio, `φ_max` = cam lift /
 /// `cam_arm`; pad travel along the arm is not modelled). The cam's lift is that of a
-/// translating flat follower. `series.follower_displacement` is the cam side, `valve_*` and the
+/// translating flat or roller follower (a finger's roller moving on its arc is taken as
+/// translating, within the same bound). `series.follower_displacement` is the cam side, `valve_*` and the
 /// spring forces the valve side.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, ToSchema)]
 #[serde(tag = "type", rename_all = "snake_case", deny_unknown_fields)]
@@ -479,8 +481,11 @@ pub struct DynamicLoadSpec {
     /// Damping ratio of that link on the reduced mass. Default 0.05.
     #[serde(default = "default_train_damping")]
     pub train_damping_ratio: f64,
-    /// Cam–follower contact stiffness, N/m. Default: the line contact's secant stiffness at the
-    /// spring preload (times the lever ratio) on the base circle (seed 003 eq. 6).
+    /// Cam–follower contact stiffness along the follower axis, N/m. Default: the line contact's
+    /// secant stiffness at the spring preload (times the lever ratio) on the base circle (seed 003
+    /// eq. 6; a roller: with the reduced radius of base circle and roller). The stiffness is taken
+    /// constant along the axis (the normal stiffness projected by cos² of the pressure angle is
+    /// not modelled).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub contact_stiffness: Option<f64>,
     /// Damping ratio of the contact on the mass it carries (the follower, rigid train or lever
