@@ -118,11 +118,17 @@ pub struct Ehl2dOptions {
     pub near_field: usize,
     /// Return the pressure and film fields.
     pub fields: bool,
+    /// Largest accepted estimate of the central film's discretisation error: its relative change
+    /// from the grid with half the intervals ([`Ehl2dSolution::grid_error`]; the minimum film's
+    /// change may be three times larger). A solution above it, or whose film pinches below
+    /// [`solver::PINCH`] of the central film, is refused with `SolveError::InvalidInput` naming
+    /// `Ehl2dOptions.nx` (the grid does not resolve the film).
+    pub grid_tolerance: f64,
 }
 
 impl Default for Ehl2dOptions {
     fn default() -> Self {
-        Ehl2dOptions { nx: 65, ny: 65, tolerance: 1e-7, max_iterations: 40, inlet: None, outlet: None, side: None, near_field: 1, fields: false }
+        Ehl2dOptions { nx: 65, ny: 65, tolerance: 1e-7, max_iterations: 40, inlet: None, outlet: None, side: None, near_field: 1, fields: false, grid_tolerance: 0.05 }
     }
 }
 
@@ -175,6 +181,11 @@ pub struct Ehl2dSolution {
     pub nx: usize,
     pub ny: usize,
     pub fields: Option<Fields2d>,
+    /// Estimated relative discretisation error of the central film: its relative change from the
+    /// grid with half the intervals (the nested
+    /// iteration's previous level, or a check solve started from the solution); `None` when that
+    /// grid is too small (< 9 nodes) or its solve did not converge.
+    pub grid_error: Option<f64>,
     pub convergence: Convergence,
 }
 
