@@ -31,6 +31,18 @@ fn main() {
     let args: Vec<String> = std::env::args().collect();
     let with_513 = args.iter().any(|a| a == "513");
     let roller_only = args.iter().any(|a| a == "roller");
+    if args.iter().any(|a| a == "probe") {
+        // Truncation error of coarser grids against the solution on `fine=N` (default 257).
+        let fine = args.iter().find_map(|a| a.strip_prefix("fine=")).and_then(|v| v.parse().ok()).unwrap_or(257);
+        let lub = Lubricant { viscosity: 0.04, pressure_viscosity: 2e-8, ..Lubricant::SEED000 };
+        let input = Ehl2dInput { load: 100.0, geometry: Geometry2d::Point { rx: 0.01, ry: 0.01 }, effective_modulus: E_PRIME, entrainment_velocity: 1.0, lubricant: lub, temperature: 313.0 };
+        let o = Ehl2dOptions { nx: fine, ny: fine, inlet: Some(3.5), outlet: Some(1.5), side: Some(2.0), ..Default::default() };
+        let strides: Vec<usize> = [2, 4, 8].into_iter().filter(|s| (fine - 1) / s >= 16).collect();
+        if let Err(e) = tribod::physics::ehl::twod::solver::truncation_probe(&input, &o, &strides) {
+            println!("probe failed: {e}");
+        }
+        return;
+    }
     if !roller_only {
         let lub = Lubricant { viscosity: 0.04, pressure_viscosity: 2e-8, ..Lubricant::SEED000 };
         let input = Ehl2dInput { load: 100.0, geometry: Geometry2d::Point { rx: 0.01, ry: 0.01 }, effective_modulus: E_PRIME, entrainment_velocity: 1.0, lubricant: lub, temperature: 313.0 };

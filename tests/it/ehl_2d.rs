@@ -59,6 +59,7 @@ fn ehl2d_dry_limit_is_hertz_for_a_circular_contact() {
 }
 
 #[test]
+#[ignore = "issue 16: 318 s in the dev profile (282 Newton steps: at α p0 ≈ 27, Barus, the continuation from arithmetic to geometric face means needs pseudo-time steps); measured h_c −0.7 % against Nijenbanning, +14 % against Hamrock–Dowson"]
 fn ehl2d_circular_film_against_hamrock_dowson_and_nijenbanning() {
     // F = 100 N, R = 10 mm, u_m = 1 m/s, η0 = 0.04 Pa·s, α = 2e-8 1/Pa (Barus, incompressible:
     // the conditions of both formulas).
@@ -71,15 +72,18 @@ fn ehl2d_circular_film_against_hamrock_dowson_and_nijenbanning() {
     let (hd_c, hd_m) = hamrock_dowson_point(w, u, 2e-8 * E_PRIME, ellipticity(0.01, 0.01));
     let nvm = nijenbanning_central_film(100.0, 0.01, 0.01, E_PRIME, 1.0, 0.04, 2e-8);
     println!("M {} L {} hc {} (HD {} NVM {}) hmin {:?} (HD {}) {:?} in {:?}", s.moes_m, s.moes_l, s.central_film, hd_c * 0.01, nvm, s.min_film, hd_m * 0.01, s.convergence, t.elapsed());
-    // Measured (97², M ≈ 300, L ≈ 11): central −0.6 % against Hamrock–Dowson, −13.6 % against
-    // the (unverified, see `ehl::formulas`) Nijenbanning transcription; minimum film −31 %
-    // against Hamrock–Dowson's (BENCHMARKS.md, issue 16, explains both).
-    assert!(rel(s.central_film, hd_c * 0.01) < 0.02, "central {} vs HD {}", s.central_film, hd_c * 0.01);
-    assert!(rel(s.central_film, nvm) < 0.15, "central {} vs NVM {nvm}", s.central_film);
-    assert!(rel(s.min_film.value, hd_m * 0.01) < 0.35, "min {} vs HD {}", s.min_film.value, hd_m * 0.01);
+    // Measured (97², M ≈ 300, L ≈ 11, geometric face means): central 270.9 nm, −0.7 % against
+    // the Nijenbanning transcription (272.7 nm) and +14.4 % against Hamrock–Dowson (236.8 nm);
+    // minimum 112.3 nm, −17 % against Hamrock–Dowson's 135.7 nm (BENCHMARKS.md, issue 16). With
+    // the arithmetic means (grid error −10…−20 % at 97²) the central film had matched
+    // Hamrock–Dowson to 0.6 % by accident.
+    assert!(rel(s.central_film, nvm) < 0.03, "central {} vs NVM {nvm}", s.central_film);
+    assert!(rel(s.central_film, hd_c * 0.01) < 0.17, "central {} vs HD {}", s.central_film, hd_c * 0.01);
+    assert!(rel(s.min_film.value, hd_m * 0.01) < 0.2, "min {} vs HD {}", s.min_film.value, hd_m * 0.01);
 }
 
 #[test]
+#[ignore = "issue 16: refused on 97² by the resolution check (the central film changes by 7.4 % from 49²; R_y = 4 R_x widens the domain across); a finer grid not yet measured"]
 fn ehl2d_elliptic_film_against_hamrock_dowson_and_nijenbanning() {
     // R_x = 10 mm, R_y = 40 mm (the ellipse's major axis across the entrainment, k ≈ 2.4).
     let lub = barus_incompressible(0.04, 2e-8);
@@ -148,23 +152,53 @@ fn ehl2d_long_straight_roller_mid_section_matches_the_line_solution() {
     assert!(rel(s.central_film, l1.central_film) < 0.01, "{} vs {}", s.central_film, l1.central_film);
 }
 
+/// Grid convergence in each direction on the bench's circular contact (M ≈ 300, L ≈ 11, Roelands
+/// + Dowson–Higginson; domain −3.5…1.5 a × ±2 a): the central film on 65, 129, 257 nodes along x
+/// (33 across, which the film hardly feels) and on 33, 65, 129 across (65 along x). The observed
+/// order `log2(|h1 − h2| / |h2 − h3|)` is that of a second-order scheme not yet asymptotic in x
+/// (measured 1.5, the inlet's pressure rise into the contact is a few cells wide) and 2 across;
+/// the last change is below 2 % (x) and 0.5 % (y).
 #[test]
-#[ignore = "issue 16: one grid of the series stalls at 1.2e-5 (tolerance 1e-7) (see BENCHMARKS.md, Finite-length and point EHL)"]
 fn ehl2d_grid_convergence_in_both_directions() {
-    let lub = barus_incompressible(0.04, 2e-8);
-    let input = point(100.0, 0.01, 0.01, 1.0, lub);
+    let lub = oil(0.04, 2e-8);
+    let input = Ehl2dInput { temperature: 313.0, ..point(100.0, 0.01, 0.01, 1.0, lub) };
     let hc = |nx: usize, ny: usize| {
-        let o = Ehl2dOptions { inlet: Some(3.5), outlet: Some(1.5), side: Some(2.0), ..opts(nx, ny) };
-        solve(&input, &o, &Silent).unwrap().central_film
+        let o = Ehl2dOptions { inlet: Some(3.5), outlet: Some(1.5), side: Some(2.0), grid_tolerance: 1.0, ..opts(nx, ny) };
+        let s = solve(&input, &o, &Silent).unwrap();
+        println!("{nx}×{ny}: hc {:.5e} hmin {:.5e} grid error {:?}", s.central_film, s.min_film.value, s.grid_error);
+        s.central_film
     };
-    let (x1, x2, x3) = (hc(33, 65), hc(65, 65), hc(129, 65));
-    let (y1, y2, y3) = (hc(65, 33), x2, hc(65, 129));
-    println!("x: {x1} {x2} {x3}; y: {y1} {y2} {y3}");
-    // Changes shrink under refinement in each direction, and the last is below 2 %.
-    assert!((x3 - x2).abs() < (x2 - x1).abs(), "x: {x1} {x2} {x3}");
-    assert!(rel(x2, x3) < 0.02, "x: {x2} {x3}");
-    assert!((y3 - y2).abs() <= (y2 - y1).abs() + 1e-3 * y3, "y: {y1} {y2} {y3}");
-    assert!(rel(y2, y3) < 0.02, "y: {y2} {y3}");
+    let x = [hc(65, 33), hc(129, 33), hc(257, 33)];
+    let y = [x[0], hc(65, 65), hc(65, 129)];
+    for (dir, h, orders, last) in [("x", x, 1.2..=3.0, 0.02), ("y", y, 1.5..=3.0, 0.005)] {
+        let order = ((h[0] - h[1]).abs() / (h[1] - h[2]).abs()).log2();
+        println!("{dir}: {h:?}, observed order {order:.2}, last change {:.2} %", 100.0 * rel(h[1], h[2]));
+        assert!(orders.contains(&order), "{dir}: {h:?} order {order}");
+        assert!(rel(h[1], h[2]) < last, "{dir}: {h:?}");
+    }
+}
+
+/// A grid that does not resolve the film is refused, not reported as converged: the bench's
+/// circular contact on 33² changes its films by more than the 5 % grid tolerance from 17²
+/// (`SolveError::InvalidInput` naming `Ehl2dOptions.nx`), on 65² it is accepted with its
+/// estimate below the tolerance.
+#[test]
+fn ehl2d_under_resolved_grid_is_refused() {
+    let lub = oil(0.04, 2e-8);
+    let input = Ehl2dInput { temperature: 313.0, ..point(100.0, 0.01, 0.01, 1.0, lub) };
+    let o = |n: usize| Ehl2dOptions { inlet: Some(3.5), outlet: Some(1.5), side: Some(2.0), ..opts(n, n) };
+    match solve(&input, &o(33), &Silent) {
+        Err(tribod::physics::SolveError::InvalidInput { field, message }) => {
+            println!("33²: {message}");
+            assert_eq!(field, "Ehl2dOptions.nx");
+            assert!(message.contains("does not resolve the film"), "{message}");
+        }
+        other => panic!("33² accepted: {other:?}"),
+    }
+    let s = solve(&input, &o(65), &Silent).unwrap();
+    println!("65²: hc {} grid error {:?}", s.central_film, s.grid_error);
+    let e = s.grid_error.expect("65² has the 33² level");
+    assert!(e > 0.0 && e < 0.05, "{e}");
 }
 
 /// Seed 000 Table 1 roller (L = 14 mm, L1 = 12 mm, h_td = 4.5 µm, R_d = 12.5 mm; E' = 210 GPa,
@@ -242,6 +276,8 @@ mod stability {
                 }
                 Err(SolveError::NotConverged { residual, .. }) => prop_assert!(!residual.is_nan()),
                 Err(SolveError::Physical { .. }) => {}
+                // The grid does not resolve the film (`twod::Ehl2dOptions::grid_tolerance`).
+                Err(SolveError::InvalidInput { field, .. }) if field == "Ehl2dOptions.nx" => {}
                 Err(e) => prop_assert!(false, "unexpected error {e}"),
             }
         }

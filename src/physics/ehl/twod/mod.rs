@@ -23,34 +23,33 @@
 //!
 //! # Method
 //! A uniform `nx × ny` grid; second-order upwind wedge term (first order next to the inlet
-//! boundary), central Poiseuille terms; the deflection by DC-FFT ([`elastic`]). The discrete
-//! system — one complementarity function `min(P, −F/|J_ii|)` per interior node and the load
-//! balance, unknowns `P` and `H0` — is solved by a damped semismooth Newton method
-//! ([`solver`]) whose steps are computed by restarted GMRES with the exact Jacobian product
-//! (two FFTs) and a sparse preconditioner: the Jacobian with the elastic kernel truncated to a
-//! `(2r+1)²` near field, factorised by faer's sparse LU (the `H0` border by its Schur
-//! complement). Nested iteration from the coarsest grid that resolves the film and, when Newton
-//! fails, pseudo-time continuation: backward-Euler steps of the transient problem (squeeze term)
-//! with a growing step.
+//! boundary), central Poiseuille terms with the face coefficient the geometric mean of the two
+//! nodes' `ε` (`solver::face_of`: the arithmetic mean's error where the pressure rises into the
+//! contact was the cause of the slow grid convergence, measured); the deflection by DC-FFT
+//! ([`elastic`]). The discrete system — one complementarity function `min(P, −F/|J_ii|)` per
+//! interior node and the load balance, unknowns `P` and `H0` — is solved by a damped semismooth
+//! Newton method ([`solver`]) whose steps are computed by restarted GMRES with the exact Jacobian
+//! product (two FFTs) and a sparse preconditioner: the Jacobian with the elastic kernel truncated
+//! to a `(2r+1)²` near field, factorised by faer's sparse LU (the `H0` border by its Schur
+//! complement). Nested iteration from the coarsest grid that resolves the film; on each grid the
+//! arithmetic-mean problem first, then continuation in the weight of the geometric mean; when
+//! Newton fails, pseudo-time continuation: backward-Euler steps of the transient problem (squeeze
+//! term) with a growing step.
 //!
-//! # Status (issue 16, work in progress)
-//! Measured (`TRIBOD_EHL2D_TRACE=1`, `BENCHMARKS.md`, "Finite-length and point EHL"): the
-//! preconditioner now factorises only the pressure block and takes the `H0` border by its Schur
-//! complement (the bordered LU filled in: 35 s → 0.2 s per factorisation at 97², dev build), and
-//! the nested iteration starts on the coarsest grid that resolves the film (`h² ≤ 0.3 H_est`):
-//! on 25² at M ≈ 300 the discrete film pinches to zero at a node and Newton (also pseudo-time
-//! stepping) stalls, on 49² the cold Hertzian start converges in 9–12 Newton steps. The circular
-//! (M ≈ 300, L ≈ 11) and elliptic (M ≈ 610) contacts on 97² and the seed 000 nose roller on
-//! 65×129 converge to 1e-7 in 9–24 Newton steps; central films are within 0.6 % and 3.6 % of
-//! Hamrock–Dowson. Still failing (`NotConverged`, typed): near-dry (M ≈ 3000), 1.7 GPa on 65²,
-//! the 129×65 long straight roller and one grid of the convergence series — the line search
-//! stalls at 1e-5–6e-2 while the film at one node shrinks geometrically (fraction-to-boundary
-//! rule). Pseudo-time continuation with the squeeze term ([`solver`], `march`) is the fallback
-//! when Newton fails; it did not rescue those cases. Next: a film floor with a collapse report,
-//! or Venner–Lubrecht line relaxation as the smoother. Caution (release bench): the films
-//! converge slowly with the grid (−28 % at 65², −7 % at 129², −1.8 % at 257² against a
-//! Richardson value) and a 33² solve "converges" to a pinched 5 nm film; grid grading in x is
-//! needed before the 2-D films can be trusted to a few percent.
+//! # Resolution check
+//! A converged solution is refused (`SolveError::InvalidInput` naming `Ehl2dOptions.nx`, "the
+//! grid does not resolve the film") when its minimum film is below `solver::PINCH` of the
+//! central film, or when the central film changes by more than `Ehl2dOptions::grid_tolerance`
+//! (the minimum film by more than three times that) from the grid with half the intervals (the
+//! nested iteration's previous level, or a check solve from the injected solution). The change
+//! is reported as [`Ehl2dSolution::grid_error`].
+//!
+//! # Status (issue 16)
+//! Grid convergence (`BENCHMARKS.md`, "Finite-length and point EHL"): on the circular M ≈ 300,
+//! L ≈ 11 contact the central film is within −5 % (65²), −1.6 % (129²), −0.4 % (257²) of the
+//! Richardson value (arithmetic means before: −28 %, −7 %, −1.8 %); observed order 1.5 along x on
+//! 65…257 nodes, 2 across. Still failing (`NotConverged`, typed, tests ignored): near-dry
+//! (M ≈ 3000), 1.7 GPa on 65², the 129×65 long straight roller.
 //!
 //! # Not modelled
 //! Transient (squeeze) terms, thermal and non-Newtonian effects, grid grading and mixed
@@ -118,11 +117,17 @@ pub struct Ehl2dOptions {
     pub near_field: usize,
     /// Return the pressure and film fields.
     pub fields: bool,
+    /// Largest accepted estimate of the central film's discretisation error: its relative change
+    /// from the grid with half the intervals ([`Ehl2dSolution::grid_error`]; the minimum film's
+    /// change may be three times larger). A solution above it, or whose film pinches below
+    /// [`solver::PINCH`] of the central film, is refused with `SolveError::InvalidInput` naming
+    /// `Ehl2dOptions.nx` (the grid does not resolve the film).
+    pub grid_tolerance: f64,
 }
 
 impl Default for Ehl2dOptions {
     fn default() -> Self {
-        Ehl2dOptions { nx: 65, ny: 65, tolerance: 1e-7, max_iterations: 40, inlet: None, outlet: None, side: None, near_field: 1, fields: false }
+        Ehl2dOptions { nx: 65, ny: 65, tolerance: 1e-7, max_iterations: 40, inlet: None, outlet: None, side: None, near_field: 1, fields: false, grid_tolerance: 0.05 }
     }
 }
 
@@ -175,6 +180,11 @@ pub struct Ehl2dSolution {
     pub nx: usize,
     pub ny: usize,
     pub fields: Option<Fields2d>,
+    /// Estimated relative discretisation error of the central film: its relative change from the
+    /// grid with half the intervals (the nested
+    /// iteration's previous level, or a check solve started from the solution); `None` when that
+    /// grid is too small (< 9 nodes) or its solve did not converge.
+    pub grid_error: Option<f64>,
     pub convergence: Convergence,
 }
 
