@@ -372,9 +372,21 @@ impl Level {
         self.kernel::<{ Self::MINUS_SUB }>(v, out, &self.interior, &self.src);
     }
 
-    /// `out = A v` restricted to the free nodes (0 at fixed nodes).
-    fn apply_free(&self, v: &[f64], out: &mut [f64]) {
-        self.kernel::<{ Self::PLAIN }>(v, out, &self.mask, &self.src);
+    /// `out = A v` restricted to the free nodes (0 at fixed nodes), and `v·out` in the same pass
+    /// (summed in index order, as [`dot`]).
+    fn apply_free_dot(&self, v: &[f64], out: &mut [f64]) -> f64 {
+        let nt = self.nt;
+        out[..nt].fill(0.0);
+        out[(self.nz - 1) * nt..].fill(0.0);
+        let mut s = 0.0;
+        for j in 1..self.nz - 1 {
+            self.kernel_row::<{ Self::PLAIN }>(j, v, out, &self.mask, &self.src);
+            let row = j * nt;
+            for (a, b) in v[row..row + nt].iter().zip(&out[row..row + nt]) {
+                s += a * b;
+            }
+        }
+        s
     }
 
     /// `out = f − A v` at the free nodes, 0 at fixed nodes.
@@ -383,23 +395,61 @@ impl Level {
     }
 
     /// Red–black Gauss–Seidel on the free nodes for `A x = b`; `reverse` swaps the colour order
-    /// (the post-smoother of a symmetric cycle). The two colours are fused in one pass over
-    /// memory: row `j` of the first colour, then row `j − 1` of the second.
-    fn smooth(&mut self, sweeps: usize, reverse: bool) {
-        let nt = self.nt;
+    /// (the post-smoother of a symmetric cycle). All `2·sweeps` half-sweeps are pipelined in one
+    /// pass over memory: at step `j` half-sweep `s` updates row `j − s`, so every row sees its
+    /// neighbours exactly as in sweep after sweep (the same arithmetic, bit for bit) while the
+    /// rows in flight stay in cache. `from_zero`: `x` is taken as 0 on entry (its old values are
+    /// never read: the first half-sweep sets `x = b/d` on its colour, and a Gauss–Seidel update
+    /// does not read the node's own value). `residual`: also `r = b − A x` at the free nodes (0
+    /// at fixed ones), each row as soon as its neighbours are final.
+    fn smooth_pass(&mut self, sweeps: usize, reverse: bool, from_zero: bool, residual: bool) {
         let nz = self.nz;
         let first = if reverse { 1 } else { 0 };
-        for _ in 0..sweeps {
-            for j in 1..nz {
-                if j < nz - 1 {
-                    self.smooth_row(j, first);
-                }
-                if j >= 2 {
-                    self.smooth_row(j - 1, 1 - first);
+        let stages = 2 * sweeps;
+        let last = if residual { nz - 2 + stages } else { nz - 2 + stages - 1 };
+        if residual {
+            let nt = self.nt;
+            self.r[..nt].fill(0.0);
+            self.r[(nz - 1) * nt..].fill(0.0);
+        }
+        for j in 1..=last {
+            for s in 0..stages {
+                if j > s && j - s <= nz - 2 {
+                    let color = if s % 2 == 0 { first } else { 1 - first };
+                    if s == 0 && from_zero {
+                        self.smooth_row_zero(j, color);
+                    } else {
+                        self.smooth_row(j - s, color);
+                    }
                 }
             }
+            if residual && j > stages && j - stages <= nz - 2 {
+                self.residual_row(j - stages);
+            }
         }
-        let _ = nt;
+    }
+
+    /// The first half-sweep from `x = 0`: `x = b/d` on the nodes of colour `color` in row `j`.
+    #[inline(always)]
+    fn smooth_row_zero(&mut self, j: usize, color: usize) {
+        let nt = self.nt;
+        let row = j * nt;
+        let inv = &self.inv_d[row..row + nt];
+        let b = &self.b[row..row + nt];
+        let cur = &mut self.x[row..row + nt];
+        let mut i = (color + j) % 2;
+        while i < nt {
+            cur[i] = b[i] * inv[i];
+            i += 2;
+        }
+    }
+
+    /// `r = b − A x` on row `j` (free nodes; 0 at fixed ones).
+    #[inline(always)]
+    fn residual_row(&mut self, j: usize) {
+        let mut r = std::mem::take(&mut self.r);
+        self.kernel_row::<{ Self::SUB_MINUS }>(j, &self.x, &mut r, &self.mask, &self.b);
+        self.r = r;
     }
 
     /// Gauss–Seidel update of the nodes of colour `color` (`(i + j) % 2`) in row `j`.
@@ -448,13 +498,6 @@ impl Level {
         }
     }
 
-    /// `r = b − A x` at free nodes, 0 at fixed nodes.
-    fn residual_into_r(&mut self) {
-        let mut r = std::mem::take(&mut self.r);
-        self.kernel::<{ Self::SUB_MINUS }>(&self.x, &mut r, &self.mask, &self.b);
-        self.r = r;
-    }
-
     const PLAIN: u8 = 0;
     const MINUS_SUB: u8 = 1;
     const SUB_MINUS: u8 = 2;
@@ -466,6 +509,14 @@ impl Level {
         let nt = self.nt;
         out[..nt].fill(0.0);
         out[(self.nz - 1) * nt..].fill(0.0);
+        for j in 1..self.nz - 1 {
+            self.kernel_row::<MODE>(j, v, out, mask, sub);
+        }
+    }
+
+    /// Row `j` (not an edge row) of [`Level::kernel`].
+    #[inline(always)]
+    fn kernel_row<const MODE: u8>(&self, j: usize, v: &[f64], out: &mut [f64], mask: &[f64], sub: &[f64]) {
         #[inline(always)]
         fn finish<const MODE: u8>(m: f64, a: f64, s: f64) -> f64 {
             match MODE {
@@ -474,31 +525,30 @@ impl Level {
                 _ => m * (s - a),
             }
         }
-        for j in 1..self.nz - 1 {
-            let row = j * nt;
-            let ce = &self.ce[row..row + nt];
-            let cs = &self.cn[row - nt..row];
-            let cnn = &self.cn[row..row + nt];
-            let d = &self.diag[row..row + nt];
-            let m = &mask[row..row + nt];
-            let sb = &sub[row..row + nt];
-            let vb = &v[row - nt..row];
-            let vc = &v[row..row + nt];
-            let va = &v[row + nt..row + 2 * nt];
-            let o = &mut out[row..row + nt];
-            let a0 = d[0] * vc[0] - ce[0] * vc[1] - ce[nt - 1] * vc[nt - 1] - cnn[0] * va[0] - cs[0] * vb[0];
-            let an = d[nt - 1] * vc[nt - 1] - ce[nt - 1] * vc[0] - ce[nt - 2] * vc[nt - 2] - cnn[nt - 1] * va[nt - 1] - cs[nt - 1] * vb[nt - 1];
-            o[0] = finish::<MODE>(m[0], a0, sb[0]);
-            o[nt - 1] = finish::<MODE>(m[nt - 1], an, sb[nt - 1]);
-            let n = nt - 2;
-            let (d1, ce0, ce1, cn1, cs1) = (&d[1..n + 1], &ce[0..n], &ce[1..n + 1], &cnn[1..n + 1], &cs[1..n + 1]);
-            let (vw, vcc, ve, va1, vb1) = (&vc[0..n], &vc[1..n + 1], &vc[2..n + 2], &va[1..n + 1], &vb[1..n + 1]);
-            let (m1, s1) = (&m[1..n + 1], &sb[1..n + 1]);
-            let o1 = &mut o[1..n + 1];
-            for i in 0..n {
-                let a = d1[i] * vcc[i] - ce1[i] * ve[i] - ce0[i] * vw[i] - cn1[i] * va1[i] - cs1[i] * vb1[i];
-                o1[i] = finish::<MODE>(m1[i], a, s1[i]);
-            }
+        let nt = self.nt;
+        let row = j * nt;
+        let ce = &self.ce[row..row + nt];
+        let cs = &self.cn[row - nt..row];
+        let cnn = &self.cn[row..row + nt];
+        let d = &self.diag[row..row + nt];
+        let m = &mask[row..row + nt];
+        let sb = &sub[row..row + nt];
+        let vb = &v[row - nt..row];
+        let vc = &v[row..row + nt];
+        let va = &v[row + nt..row + 2 * nt];
+        let o = &mut out[row..row + nt];
+        let a0 = d[0] * vc[0] - ce[0] * vc[1] - ce[nt - 1] * vc[nt - 1] - cnn[0] * va[0] - cs[0] * vb[0];
+        let an = d[nt - 1] * vc[nt - 1] - ce[nt - 1] * vc[0] - ce[nt - 2] * vc[nt - 2] - cnn[nt - 1] * va[nt - 1] - cs[nt - 1] * vb[nt - 1];
+        o[0] = finish::<MODE>(m[0], a0, sb[0]);
+        o[nt - 1] = finish::<MODE>(m[nt - 1], an, sb[nt - 1]);
+        let n = nt - 2;
+        let (d1, ce0, ce1, cn1, cs1) = (&d[1..n + 1], &ce[0..n], &ce[1..n + 1], &cnn[1..n + 1], &cs[1..n + 1]);
+        let (vw, vcc, ve, va1, vb1) = (&vc[0..n], &vc[1..n + 1], &vc[2..n + 2], &va[1..n + 1], &vb[1..n + 1]);
+        let (m1, s1) = (&m[1..n + 1], &sb[1..n + 1]);
+        let o1 = &mut o[1..n + 1];
+        for i in 0..n {
+            let a = d1[i] * vcc[i] - ce1[i] * ve[i] - ce0[i] * vw[i] - cn1[i] * va1[i] - cs1[i] * vb1[i];
+            o1[i] = finish::<MODE>(m1[i], a, s1[i]);
         }
     }
 }
@@ -518,7 +568,7 @@ pub struct Hierarchy {
     /// nodes (instead of only once it changes none): saves the loose solve of a step that
     /// rarely moves the set again. Off by default (it changes the last digits of a solve).
     pub eager_tight: bool,
-    scratch: [Vec<f64>; 5],
+    scratch: [Vec<f64>; 3],
 }
 
 /// Outcome of one LCP solve on one level.
@@ -631,7 +681,7 @@ impl Hierarchy {
         let mut steps = 0;
         let mut cycles = 0;
         let mut converged = false;
-        let mut lam = std::mem::take(&mut self.scratch[4]);
+        let mut lam = std::mem::take(&mut self.scratch[2]);
         lam.resize(self.levels[k].u.len(), 0.0);
         // Inexact steps while the active set still moves: a linear solve to `loose` is enough
         // to decide the next active set; the last solve (set unchanged) is taken to `tol`.
@@ -680,7 +730,7 @@ impl Hierarchy {
                 break;
             }
         }
-        self.scratch[4] = lam;
+        self.scratch[2] = lam;
         // the pressure is non-negative by construction up to the linear tolerance
         let l = &mut self.levels[k];
         for v in &mut l.u {
@@ -698,43 +748,47 @@ impl Hierarchy {
     /// `levels[k].u`, preconditioned by one symmetric V-cycle. Returns (iterations, converged).
     fn pcg(&mut self, k: usize, tol: f64, max_iter: u32) -> (u32, bool) {
         let n = self.levels[k].u.len();
-        let [mut r, mut p, mut q, mut z, lam] = std::mem::take(&mut self.scratch);
-        for v in [&mut r, &mut p, &mut q, &mut z] {
+        let [mut p, mut q, lam] = std::mem::take(&mut self.scratch);
+        for v in [&mut p, &mut q] {
             if v.len() < n {
                 v.resize(n, 0.0);
             }
         }
-        let out = self.pcg_inner(k, tol, max_iter, &mut r[..n], &mut p[..n], &mut q[..n], &mut z[..n]);
-        self.scratch = [r, p, q, z, lam];
+        let out = self.pcg_inner(k, tol, max_iter, &mut p[..n], &mut q[..n]);
+        self.scratch = [p, q, lam];
         out
     }
 
-    #[allow(clippy::too_many_arguments)]
-    fn pcg_inner(&mut self, k: usize, tol: f64, max_iter: u32, r: &mut [f64], p: &mut [f64], q: &mut [f64], z: &mut [f64]) -> (u32, bool) {
-        let l = &self.levels[k];
+    /// The CG iteration. The residual lives in the level's `b` (the V-cycle's right-hand side)
+    /// and the preconditioned residual in its `x` (the V-cycle's result), so the preconditioner
+    /// copies nothing.
+    fn pcg_inner(&mut self, k: usize, tol: f64, max_iter: u32, p: &mut [f64], q: &mut [f64]) -> (u32, bool) {
+        let l = &mut self.levels[k];
         // r = f − A u on free nodes
-        l.residual_free(&l.u, r);
+        let mut r = std::mem::take(&mut l.b);
+        l.residual_free(&l.u, &mut r);
         let fnorm = l.src.iter().zip(&l.mask).map(|(f, m)| m * f * f).sum::<f64>().sqrt().max(1e-300);
-        let mut rnorm = dot(r, r).sqrt();
+        let mut rnorm = dot(&r, &r).sqrt();
+        l.b = r;
         if rnorm <= tol * fnorm {
             return (0, true);
         }
-        self.precondition(k, r, z);
-        p.copy_from_slice(z);
-        let mut rz = dot(r, z);
+        self.vcycle(k);
+        let l = &self.levels[k];
+        p.copy_from_slice(&l.x);
+        let mut rz = dot(&l.b, &l.x);
         let mut it = 0;
         while it < max_iter {
             it += 1;
             let l = &self.levels[k];
-            l.apply_free(p, q);
-            let pq = dot(p, q);
+            let pq = l.apply_free_dot(p, q);
             if pq <= 0.0 {
                 break;
             }
             let a = rz / pq;
             let l = &mut self.levels[k];
             let mut rr = 0.0;
-            for (((u, r), p), q) in l.u.iter_mut().zip(r.iter_mut()).zip(p.iter()).zip(q.iter()) {
+            for (((u, r), p), q) in l.u.iter_mut().zip(l.b.iter_mut()).zip(p.iter()).zip(q.iter()) {
                 *u += a * p;
                 *r -= a * q;
                 rr += *r * *r;
@@ -743,29 +797,20 @@ impl Hierarchy {
             if rnorm <= tol * fnorm {
                 return (it, true);
             }
-            self.precondition(k, r, z);
-            let rz_new = dot(r, z);
+            self.vcycle(k);
+            let l = &self.levels[k];
+            let rz_new = dot(&l.b, &l.x);
             let beta = rz_new / rz;
             rz = rz_new;
-            for (p, z) in p.iter_mut().zip(z.iter()) {
+            for (p, z) in p.iter_mut().zip(l.x.iter()) {
                 *p = z + beta * *p;
             }
         }
         (it, rnorm <= tol * fnorm)
     }
 
-    /// `z ≈ A_II⁻¹ r` by one symmetric V-cycle from zero.
-    fn precondition(&mut self, k: usize, r: &[f64], z: &mut [f64]) {
-        {
-            let l = &mut self.levels[k];
-            l.b.copy_from_slice(r);
-            l.x.fill(0.0);
-        }
-        self.vcycle(k);
-        z.copy_from_slice(&self.levels[k].x);
-    }
-
-    /// One symmetric correction-scheme V-cycle on level `k` for `A x = b` (free nodes).
+    /// One symmetric correction-scheme V-cycle on level `k` for `A x = b` (free nodes), from
+    /// `x = 0` (the old `x` is not read).
     fn vcycle(&mut self, k: usize) {
         let last = self.levels.len() - 1;
         if k == last {
@@ -776,9 +821,10 @@ impl Hierarchy {
             if l.chol.is_some() || l.factor_dense() {
                 l.solve_dense();
             } else {
+                l.x.fill(0.0);
                 for _ in 0..200 {
-                    l.smooth(1, false);
-                    l.smooth(1, true);
+                    l.smooth_pass(1, false, false, false);
+                    l.smooth_pass(1, true, false, false);
                 }
             }
             return;
@@ -788,16 +834,15 @@ impl Hierarchy {
             let (head, tail) = self.levels.split_at_mut(k + 1);
             let fine = &mut head[k];
             let coarse = &mut tail[0];
-            fine.smooth(nu, false);
-            fine.residual_into_r();
+            // pre-smoothing from zero and the residual in one pass
+            fine.smooth_pass(nu, false, true, true);
             restrict(fine, coarse);
-            coarse.x.fill(0.0);
         }
         self.vcycle(k + 1);
         {
             let (head, tail) = self.levels.split_at_mut(k + 1);
             prolong_add(&tail[0], &mut head[k]);
-            head[k].smooth(nu, true);
+            head[k].smooth_pass(nu, true, false, false);
         }
     }
 
