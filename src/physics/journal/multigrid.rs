@@ -228,27 +228,44 @@ impl Level {
         }
         let ke = dz / dt;
         let kn = alpha * dt / dz;
+        let mut prev: Option<(super::film::Row, super::film::Row)> = None;
         for j in 0..nz {
             let z = j as f64 * dz;
             let r = film.row(z);
             let rn = film.row((z + 0.5 * dz).min(1.0));
+            let row = j * nt;
+            if j + 1 < nz && prev == Some((r, rn)) {
+                // the same film data as the row below (an aligned film, or the unprofiled middle
+                // of a profiled one): the same coefficients
+                for v in [&mut self.ce, &mut self.h, &mut self.cn, &mut self.src] {
+                    v.copy_within(row - nt..row, row);
+                }
+                continue;
+            }
+            prev = (j + 1 < nz).then_some((r, rn));
             let base = 1.0 + r.gamma;
             let base_n = 1.0 + rn.gamma;
-            let row = j * nt;
+            let ce = &mut self.ce[row..row + nt];
+            let h = &mut self.h[row..row + nt];
             for i in 0..nt {
-                let k = row + i;
                 let he = base + r.x * cos_f[i] + r.y * sin_f[i];
-                self.ce[k] = he * he * he * ke;
-                self.h[k] = base + r.x * self.cos_n[i] + r.y * self.sin_n[i];
-                if j + 1 < nz {
+                ce[i] = he * he * he * ke;
+                h[i] = base + r.x * self.cos_n[i] + r.y * self.sin_n[i];
+            }
+            let cn = &mut self.cn[row..row + nt];
+            if j + 1 < nz {
+                for i in 0..nt {
                     let hn = base_n + rn.x * self.cos_n[i] + rn.y * self.sin_n[i];
-                    self.cn[k] = hn * hn * hn * kn;
-                } else {
-                    self.cn[k] = 0.0;
+                    cn[i] = hn * hn * hn * kn;
                 }
-                let iw = if i == 0 { nt - 1 } else { i - 1 };
-                // f = −∂H/∂θ ΔθΔZ in flux form (faces): the profile Γ(Z) drops out.
-                self.src[k] = -dz * (r.x * (cos_f[i] - cos_f[iw]) + r.y * (sin_f[i] - sin_f[iw]));
+            } else {
+                cn.fill(0.0);
+            }
+            // f = −∂H/∂θ ΔθΔZ in flux form (faces): the profile Γ(Z) drops out.
+            let src = &mut self.src[row..row + nt];
+            src[0] = -dz * (r.x * (cos_f[0] - cos_f[nt - 1]) + r.y * (sin_f[0] - sin_f[nt - 1]));
+            for i in 1..nt {
+                src[i] = -dz * (r.x * (cos_f[i] - cos_f[i - 1]) + r.y * (sin_f[i] - sin_f[i - 1]));
             }
         }
         for j in 0..nz {
