@@ -39,7 +39,15 @@ struct Transfer1D {
     s_lo: Vec<usize>,
     s_hi: Vec<usize>,
     s_w: Vec<f64>,
+    /// `IDENTITY`, `HALF` (periodic, the coarse grid every other fine node: fine node `2m` is
+    /// coarse node `m`, `2m + 1` the mean of `m` and `m + 1`) or `GENERAL`; the first two take
+    /// loops without index gathers (the same arithmetic).
+    kind: u8,
 }
+
+const GENERAL: u8 = 0;
+const IDENTITY: u8 = 1;
+const HALF: u8 = 2;
 
 impl Transfer1D {
     fn identity(n: usize) -> Self {
@@ -51,6 +59,7 @@ impl Transfer1D {
             s_lo: idx.clone(),
             s_hi: idx,
             s_w: vec![0.0; n],
+            kind: IDENTITY,
         }
     }
 
@@ -71,7 +80,8 @@ impl Transfer1D {
         };
         let (p_lo, p_hi, p_w) = map(nf, nc);
         let (s_lo, s_hi, s_w) = map(nc, nf);
-        Transfer1D { p_lo, p_hi, p_w, s_lo, s_hi, s_w }
+        let kind = if nf == 2 * nc { HALF } else { GENERAL };
+        Transfer1D { p_lo, p_hi, p_w, s_lo, s_hi, s_w, kind }
     }
 
     /// `nf` fine and `nc` coarse nodes on a closed interval (both ends are nodes).
@@ -91,7 +101,68 @@ impl Transfer1D {
         };
         let (p_lo, p_hi, p_w) = map(nf, nc);
         let (s_lo, s_hi, s_w) = map(nc, nf);
-        Transfer1D { p_lo, p_hi, p_w, s_lo, s_hi, s_w }
+        Transfer1D { p_lo, p_hi, p_w, s_lo, s_hi, s_w, kind: GENERAL }
+    }
+
+    /// `out[i] = (1 − w_i) c[lo_i] + w_i c[hi_i]`: interpolation of the coarse row `c` to the
+    /// fine row `out`.
+    #[inline]
+    fn prolong_row(&self, c: &[f64], out: &mut [f64]) {
+        match self.kind {
+            // (1 − 0)·c + 0·c = c exactly
+            IDENTITY => out.copy_from_slice(c),
+            HALF => {
+                let nc = c.len();
+                for m in 0..nc {
+                    let hi = if m + 1 == nc { c[0] } else { c[m + 1] };
+                    out[2 * m] = c[m];
+                    out[2 * m + 1] = 0.5 * c[m] + 0.5 * hi;
+                }
+            }
+            _ => {
+                for i in 0..out.len() {
+                    let w = self.p_w[i];
+                    out[i] = (1.0 - w) * c[self.p_lo[i]] + w * c[self.p_hi[i]];
+                }
+            }
+        }
+    }
+
+    /// `out += Pᵀ t` for the fine row `t` (`out` the coarse row, zero on entry), in the order
+    /// of the general loop over the fine nodes.
+    #[inline]
+    fn restrict_row(&self, t: &[f64], out: &mut [f64]) {
+        match self.kind {
+            IDENTITY => {
+                for (o, v) in out.iter_mut().zip(t) {
+                    *o += v;
+                }
+            }
+            HALF => {
+                let nc = out.len();
+                let nf = t.len();
+                // coarse node 0 takes fine nodes 0 and 1 first and fine node nf − 1 last
+                out[0] += t[0];
+                out[0] += 0.5 * t[1];
+                for m in 1..nc {
+                    let mut v = out[m];
+                    v += 0.5 * t[2 * m - 1];
+                    v += t[2 * m];
+                    v += 0.5 * t[2 * m + 1];
+                    out[m] = v;
+                }
+                out[0] += 0.5 * t[nf - 1];
+            }
+            _ => {
+                for i in 0..t.len() {
+                    let w = self.p_w[i];
+                    out[self.p_lo[i]] += (1.0 - w) * t[i];
+                    if w != 0.0 {
+                        out[self.p_hi[i]] += w * t[i];
+                    }
+                }
+            }
+        }
     }
 }
 
@@ -913,10 +984,7 @@ impl Hierarchy {
         for a in 0..coarse.nz {
             let c = &coarse.u[a * ntc..(a + 1) * ntc];
             let out = &mut tmp[a * ntf..(a + 1) * ntf];
-            for i in 0..ntf {
-                let w = tt.p_w[i];
-                out[i] = (1.0 - w) * c[tt.p_lo[i]] + w * c[tt.p_hi[i]];
-            }
+            tt.prolong_row(c, out);
         }
         for j in 0..fine.nz {
             let (a, b, w) = (tz.p_lo[j], tz.p_hi[j], tz.p_w[j]);
@@ -1049,13 +1117,7 @@ fn restrict(fine: &mut Level, coarse: &mut Level) {
     for a in 0..coarse.nz {
         let t = &tmp[a * ntf..(a + 1) * ntf];
         let out = &mut coarse.b[a * ntc..(a + 1) * ntc];
-        for i in 0..ntf {
-            let w = tt.p_w[i];
-            out[tt.p_lo[i]] += (1.0 - w) * t[i];
-            if w != 0.0 {
-                out[tt.p_hi[i]] += w * t[i];
-            }
-        }
+        tt.restrict_row(t, out);
     }
     for (v, f) in coarse.b.iter_mut().zip(&coarse.fixed) {
         if *f != FREE {
@@ -1074,10 +1136,7 @@ fn prolong_add(coarse: &Level, fine: &mut Level) {
     for a in 0..coarse.nz {
         let c = &coarse.x[a * ntc..(a + 1) * ntc];
         let out = &mut tmp[a * ntf..(a + 1) * ntf];
-        for i in 0..ntf {
-            let w = tt.p_w[i];
-            out[i] = (1.0 - w) * c[tt.p_lo[i]] + w * c[tt.p_hi[i]];
-        }
+        tt.prolong_row(c, out);
     }
     for j in 1..nzf - 1 {
         let (a, b, w) = (tz.p_lo[j], tz.p_hi[j], tz.p_w[j]);
