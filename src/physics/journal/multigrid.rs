@@ -460,14 +460,26 @@ impl Level {
         self.kernel::<{ Self::MINUS_SUB }>(v, out, &self.interior, &self.src);
     }
 
-    /// `out = A v` restricted to the free nodes (0 at fixed nodes), and `v·out` in the same pass
-    /// (summed in index order, as [`dot`]).
-    fn apply_free_dot(&self, v: &[f64], out: &mut [f64]) -> f64 {
+    /// The CG direction and its image in one pass: with `beta`, first `v = z + β v` (each row
+    /// one row ahead of its use); then `out = A v` restricted to the free nodes (0 at fixed
+    /// nodes), and returns `v·out` (summed in index order, as [`dot`]).
+    fn apply_free_dot(&self, z: &[f64], beta: Option<f64>, v: &mut [f64], out: &mut [f64]) -> f64 {
         let nt = self.nt;
+        let nz = self.nz;
+        let update = |v: &mut [f64], j: usize| {
+            if let Some(beta) = beta {
+                for (p, z) in v[j * nt..(j + 1) * nt].iter_mut().zip(&z[j * nt..(j + 1) * nt]) {
+                    *p = z + beta * *p;
+                }
+            }
+        };
+        update(v, 0);
+        update(v, 1);
         out[..nt].fill(0.0);
-        out[(self.nz - 1) * nt..].fill(0.0);
+        out[(nz - 1) * nt..].fill(0.0);
         let mut s = 0.0;
-        for j in 1..self.nz - 1 {
+        for j in 1..nz - 1 {
+            update(v, j + 1);
             self.kernel_row::<{ Self::PLAIN }>(j, v, out, &self.mask, &self.src);
             let row = j * nt;
             for (a, b) in v[row..row + nt].iter().zip(&out[row..row + nt]) {
@@ -489,18 +501,28 @@ impl Level {
     /// rows in flight stay in cache. `from_zero`: `x` is taken as 0 on entry (its old values are
     /// never read: the first half-sweep sets `x = b/d` on its colour, and a Gauss–Seidel update
     /// does not read the node's own value). `residual`: also `r = b − A x` at the free nodes (0
-    /// at fixed ones), each row as soon as its neighbours are final.
-    fn smooth_pass(&mut self, sweeps: usize, reverse: bool, from_zero: bool, residual: bool) {
+    /// at fixed ones), each row as soon as its neighbours are final. `dot`: returns `b·x` summed
+    /// over the rows as they become final (in index order, as [`dot`]; the edge rows are 0).
+    /// `prolong`: first `x += P·(coarse correction)` from the circumferentially interpolated rows
+    /// in `tmp` ([`prolong_theta`]), each row just before the first half-sweep needs it.
+    fn smooth_pass(&mut self, sweeps: usize, reverse: bool, from_zero: bool, residual: bool, want_dot: bool, prolong: bool) -> f64 {
         let nz = self.nz;
         let first = if reverse { 1 } else { 0 };
         let stages = 2 * sweeps;
         let last = if residual { nz - 2 + stages } else { nz - 2 + stages - 1 };
+        let mut acc = 0.0;
         if residual {
             let nt = self.nt;
             self.r[..nt].fill(0.0);
             self.r[(nz - 1) * nt..].fill(0.0);
         }
+        if prolong {
+            self.prolong_row_z(1);
+        }
         for j in 1..=last {
+            if prolong && j + 1 <= nz - 2 {
+                self.prolong_row_z(j + 1);
+            }
             for s in 0..stages {
                 if j > s && j - s <= nz - 2 {
                     let color = if s % 2 == 0 { first } else { 1 - first };
@@ -514,6 +536,28 @@ impl Level {
             if residual && j > stages && j - stages <= nz - 2 {
                 self.residual_row(j - stages);
             }
+            if want_dot && j >= stages && j + 1 - stages <= nz - 2 {
+                let row = (j + 1 - stages) * self.nt;
+                for (b, x) in self.b[row..row + self.nt].iter().zip(&self.x[row..row + self.nt]) {
+                    acc += b * x;
+                }
+            }
+        }
+        acc
+    }
+
+    /// `x += mask·(z-interpolation of the rows of tmp)` on row `j`.
+    #[inline(always)]
+    fn prolong_row_z(&mut self, j: usize) {
+        let tz = self.tz.as_ref().unwrap();
+        let nt = self.nt;
+        let (a, b, w) = (tz.p_lo[j], tz.p_hi[j], tz.p_w[j]);
+        let row = j * nt;
+        let (ta, tb) = (&self.tmp[a * nt..(a + 1) * nt], &self.tmp[b * nt..(b + 1) * nt]);
+        let m = &self.mask[row..row + nt];
+        let x = &mut self.x[row..row + nt];
+        for i in 0..nt {
+            x[i] += m[i] * ((1.0 - w) * ta[i] + w * tb[i]);
         }
     }
 
@@ -861,15 +905,14 @@ impl Hierarchy {
         if rnorm <= tol * fnorm {
             return (0, true);
         }
-        self.vcycle(k);
-        let l = &self.levels[k];
-        p.copy_from_slice(&l.x);
-        let mut rz = dot(&l.b, &l.x);
+        let mut rz = self.vcycle(k);
+        p.copy_from_slice(&self.levels[k].x);
+        let mut beta = None;
         let mut it = 0;
         while it < max_iter {
             it += 1;
             let l = &self.levels[k];
-            let pq = l.apply_free_dot(p, q);
+            let pq = l.apply_free_dot(&l.x, beta, p, q);
             if pq <= 0.0 {
                 break;
             }
@@ -885,21 +928,21 @@ impl Hierarchy {
             if rnorm <= tol * fnorm {
                 return (it, true);
             }
-            self.vcycle(k);
-            let l = &self.levels[k];
-            let rz_new = dot(&l.b, &l.x);
-            let beta = rz_new / rz;
+            let rz_new = self.vcycle(k);
+            beta = Some(rz_new / rz);
             rz = rz_new;
-            for (p, z) in p.iter_mut().zip(l.x.iter()) {
-                *p = z + beta * *p;
-            }
         }
         (it, rnorm <= tol * fnorm)
     }
 
     /// One symmetric correction-scheme V-cycle on level `k` for `A x = b` (free nodes), from
-    /// `x = 0` (the old `x` is not read).
-    fn vcycle(&mut self, k: usize) {
+    /// `x = 0` (the old `x` is not read). Returns `b·x` (computed in the last smoothing pass).
+    fn vcycle(&mut self, k: usize) -> f64 {
+        self.vcycle_inner(k, k)
+    }
+
+    /// [`Hierarchy::vcycle`] on level `k` of a cycle that started on level `top`.
+    fn vcycle_inner(&mut self, k: usize, top: usize) -> f64 {
         let last = self.levels.len() - 1;
         if k == last {
             let l = &mut self.levels[last];
@@ -911,11 +954,11 @@ impl Hierarchy {
             } else {
                 l.x.fill(0.0);
                 for _ in 0..200 {
-                    l.smooth_pass(1, false, false, false);
-                    l.smooth_pass(1, true, false, false);
+                    l.smooth_pass(1, false, false, false, false, false);
+                    l.smooth_pass(1, true, false, false, false, false);
                 }
             }
-            return;
+            return if k == top { dot(&l.b, &l.x) } else { 0.0 };
         }
         let nu = self.sweeps;
         {
@@ -923,14 +966,15 @@ impl Hierarchy {
             let fine = &mut head[k];
             let coarse = &mut tail[0];
             // pre-smoothing from zero and the residual in one pass
-            fine.smooth_pass(nu, false, true, true);
+            fine.smooth_pass(nu, false, true, true, false, false);
             restrict(fine, coarse);
         }
-        self.vcycle(k + 1);
+        self.vcycle_inner(k + 1, top);
         {
             let (head, tail) = self.levels.split_at_mut(k + 1);
-            prolong_add(&tail[0], &mut head[k]);
-            head[k].smooth_pass(nu, true, false, false);
+            // the coarse correction, prolonged row by row inside the post-smoothing pass
+            prolong_theta(&tail[0], &mut head[k]);
+            head[k].smooth_pass(nu, true, false, false, k == top, true)
         }
     }
 
@@ -1126,27 +1170,18 @@ fn restrict(fine: &mut Level, coarse: &mut Level) {
     }
 }
 
-/// `fine.x += P coarse.x` at the free fine nodes.
-fn prolong_add(coarse: &Level, fine: &mut Level) {
+/// The circumferential half of `fine.x += P coarse.x`: `fine.tmp` row `a` = the coarse
+/// correction's row `a` interpolated around the circumference (the axial half and the addition
+/// are [`Level::prolong_row_z`]).
+fn prolong_theta(coarse: &Level, fine: &mut Level) {
     let tt = fine.tt.as_ref().unwrap();
-    let tz = fine.tz.as_ref().unwrap();
-    let (ntf, nzf) = (fine.nt, fine.nz);
+    let ntf = fine.nt;
     let ntc = coarse.nt;
     let tmp = &mut fine.tmp;
     for a in 0..coarse.nz {
         let c = &coarse.x[a * ntc..(a + 1) * ntc];
         let out = &mut tmp[a * ntf..(a + 1) * ntf];
         tt.prolong_row(c, out);
-    }
-    for j in 1..nzf - 1 {
-        let (a, b, w) = (tz.p_lo[j], tz.p_hi[j], tz.p_w[j]);
-        let row = j * ntf;
-        let (ta, tb) = (&tmp[a * ntf..(a + 1) * ntf], &tmp[b * ntf..(b + 1) * ntf]);
-        let m = &fine.mask[row..row + ntf];
-        let x = &mut fine.x[row..row + ntf];
-        for i in 0..ntf {
-            x[i] += m[i] * ((1.0 - w) * ta[i] + w * tb[i]);
-        }
     }
 }
 
