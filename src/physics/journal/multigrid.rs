@@ -339,19 +339,27 @@ impl Level {
                 src[i] = -dz * (r.x * (cos_f[i] - cos_f[i - 1]) + r.y * (sin_f[i] - sin_f[i - 1]));
             }
         }
-        for j in 0..nz {
+        // the diagonal on the interior rows (on slices, so that the loop vectorises), then the
+        // boundary nodes (edge rows, supply lines) set to the identity row
+        for j in 1..nz - 1 {
             let row = j * nt;
-            for i in 0..nt {
-                let k = row + i;
-                if self.fixed[k] == BOUNDARY {
-                    self.diag[k] = 1.0;
-                    self.inv_diag[k] = 1.0;
-                    self.src[k] = 0.0;
-                    continue;
-                }
-                let kw = if i == 0 { row + nt - 1 } else { k - 1 };
-                self.diag[k] = self.ce[k] + self.ce[kw] + self.cn[k] + self.cn[k - nt];
-                self.inv_diag[k] = 1.0 / self.diag[k];
+            let ce = &self.ce[row..row + nt];
+            let cn = &self.cn[row..row + nt];
+            let cs = &self.cn[row - nt..row];
+            let d = &mut self.diag[row..row + nt];
+            let inv = &mut self.inv_diag[row..row + nt];
+            d[0] = ce[0] + ce[nt - 1] + cn[0] + cs[0];
+            inv[0] = 1.0 / d[0];
+            for i in 1..nt {
+                d[i] = ce[i] + ce[i - 1] + cn[i] + cs[i];
+                inv[i] = 1.0 / d[i];
+            }
+        }
+        for k in 0..self.fixed.len() {
+            if self.fixed[k] == BOUNDARY {
+                self.diag[k] = 1.0;
+                self.inv_diag[k] = 1.0;
+                self.src[k] = 0.0;
             }
         }
         self.cos_f = cos_f;
@@ -362,10 +370,10 @@ impl Level {
     /// Recompute `mask` and `inv_d` from `fixed` and `diag`.
     fn refresh_masks(&mut self) {
         self.chol = None;
-        for k in 0..self.fixed.len() {
-            let free = self.fixed[k] == FREE;
-            self.mask[k] = if free { 1.0 } else { 0.0 };
-            self.inv_d[k] = if free { self.inv_diag[k] } else { 0.0 };
+        for (((m, inv), f), id) in self.mask.iter_mut().zip(self.inv_d.iter_mut()).zip(&self.fixed).zip(&self.inv_diag) {
+            let free = *f == FREE;
+            *m = if free { 1.0 } else { 0.0 };
+            *inv = if free { *id } else { 0.0 };
         }
     }
 
