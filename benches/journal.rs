@@ -200,7 +200,7 @@ fn main() {
         } else {
             (seed_case(), 0.557045, settings(361, 181))
         };
-        let n = if which == "prof-ross" { 2000 } else { 100 };
+        let n = std::env::var("PROF_N").ok().and_then(|v| v.parse().ok()).unwrap_or(if which == "prof-ross" { 2000 } else { 100 });
         let (c, _, _) = best_of(1, || {
             let sweeps: usize = std::env::var("SWEEPS").ok().and_then(|v| v.parse().ok()).unwrap_or(2);
             for _ in 0..n {

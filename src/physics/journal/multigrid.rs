@@ -39,7 +39,15 @@ struct Transfer1D {
     s_lo: Vec<usize>,
     s_hi: Vec<usize>,
     s_w: Vec<f64>,
+    /// `IDENTITY`, `HALF` (periodic, the coarse grid every other fine node: fine node `2m` is
+    /// coarse node `m`, `2m + 1` the mean of `m` and `m + 1`) or `GENERAL`; the first two take
+    /// loops without index gathers (the same arithmetic).
+    kind: u8,
 }
+
+const GENERAL: u8 = 0;
+const IDENTITY: u8 = 1;
+const HALF: u8 = 2;
 
 impl Transfer1D {
     fn identity(n: usize) -> Self {
@@ -51,6 +59,7 @@ impl Transfer1D {
             s_lo: idx.clone(),
             s_hi: idx,
             s_w: vec![0.0; n],
+            kind: IDENTITY,
         }
     }
 
@@ -71,7 +80,8 @@ impl Transfer1D {
         };
         let (p_lo, p_hi, p_w) = map(nf, nc);
         let (s_lo, s_hi, s_w) = map(nc, nf);
-        Transfer1D { p_lo, p_hi, p_w, s_lo, s_hi, s_w }
+        let kind = if nf == 2 * nc { HALF } else { GENERAL };
+        Transfer1D { p_lo, p_hi, p_w, s_lo, s_hi, s_w, kind }
     }
 
     /// `nf` fine and `nc` coarse nodes on a closed interval (both ends are nodes).
@@ -91,7 +101,68 @@ impl Transfer1D {
         };
         let (p_lo, p_hi, p_w) = map(nf, nc);
         let (s_lo, s_hi, s_w) = map(nc, nf);
-        Transfer1D { p_lo, p_hi, p_w, s_lo, s_hi, s_w }
+        Transfer1D { p_lo, p_hi, p_w, s_lo, s_hi, s_w, kind: GENERAL }
+    }
+
+    /// `out[i] = (1 − w_i) c[lo_i] + w_i c[hi_i]`: interpolation of the coarse row `c` to the
+    /// fine row `out`.
+    #[inline]
+    fn prolong_row(&self, c: &[f64], out: &mut [f64]) {
+        match self.kind {
+            // (1 − 0)·c + 0·c = c exactly
+            IDENTITY => out.copy_from_slice(c),
+            HALF => {
+                let nc = c.len();
+                for m in 0..nc {
+                    let hi = if m + 1 == nc { c[0] } else { c[m + 1] };
+                    out[2 * m] = c[m];
+                    out[2 * m + 1] = 0.5 * c[m] + 0.5 * hi;
+                }
+            }
+            _ => {
+                for i in 0..out.len() {
+                    let w = self.p_w[i];
+                    out[i] = (1.0 - w) * c[self.p_lo[i]] + w * c[self.p_hi[i]];
+                }
+            }
+        }
+    }
+
+    /// `out += Pᵀ t` for the fine row `t` (`out` the coarse row, zero on entry), in the order
+    /// of the general loop over the fine nodes.
+    #[inline]
+    fn restrict_row(&self, t: &[f64], out: &mut [f64]) {
+        match self.kind {
+            IDENTITY => {
+                for (o, v) in out.iter_mut().zip(t) {
+                    *o += v;
+                }
+            }
+            HALF => {
+                let nc = out.len();
+                let nf = t.len();
+                // coarse node 0 takes fine nodes 0 and 1 first and fine node nf − 1 last
+                out[0] += t[0];
+                out[0] += 0.5 * t[1];
+                for m in 1..nc {
+                    let mut v = out[m];
+                    v += 0.5 * t[2 * m - 1];
+                    v += t[2 * m];
+                    v += 0.5 * t[2 * m + 1];
+                    out[m] = v;
+                }
+                out[0] += 0.5 * t[nf - 1];
+            }
+            _ => {
+                for i in 0..t.len() {
+                    let w = self.p_w[i];
+                    out[self.p_lo[i]] += (1.0 - w) * t[i];
+                    if w != 0.0 {
+                        out[self.p_hi[i]] += w * t[i];
+                    }
+                }
+            }
+        }
     }
 }
 
@@ -228,42 +299,67 @@ impl Level {
         }
         let ke = dz / dt;
         let kn = alpha * dt / dz;
+        let mut prev: Option<(super::film::Row, super::film::Row)> = None;
         for j in 0..nz {
             let z = j as f64 * dz;
             let r = film.row(z);
             let rn = film.row((z + 0.5 * dz).min(1.0));
+            let row = j * nt;
+            if j + 1 < nz && prev == Some((r, rn)) {
+                // the same film data as the row below (an aligned film, or the unprofiled middle
+                // of a profiled one): the same coefficients
+                for v in [&mut self.ce, &mut self.h, &mut self.cn, &mut self.src] {
+                    v.copy_within(row - nt..row, row);
+                }
+                continue;
+            }
+            prev = (j + 1 < nz).then_some((r, rn));
             let base = 1.0 + r.gamma;
             let base_n = 1.0 + rn.gamma;
-            let row = j * nt;
+            let ce = &mut self.ce[row..row + nt];
+            let h = &mut self.h[row..row + nt];
             for i in 0..nt {
-                let k = row + i;
                 let he = base + r.x * cos_f[i] + r.y * sin_f[i];
-                self.ce[k] = he * he * he * ke;
-                self.h[k] = base + r.x * self.cos_n[i] + r.y * self.sin_n[i];
-                if j + 1 < nz {
+                ce[i] = he * he * he * ke;
+                h[i] = base + r.x * self.cos_n[i] + r.y * self.sin_n[i];
+            }
+            let cn = &mut self.cn[row..row + nt];
+            if j + 1 < nz {
+                for i in 0..nt {
                     let hn = base_n + rn.x * self.cos_n[i] + rn.y * self.sin_n[i];
-                    self.cn[k] = hn * hn * hn * kn;
-                } else {
-                    self.cn[k] = 0.0;
+                    cn[i] = hn * hn * hn * kn;
                 }
-                let iw = if i == 0 { nt - 1 } else { i - 1 };
-                // f = −∂H/∂θ ΔθΔZ in flux form (faces): the profile Γ(Z) drops out.
-                self.src[k] = -dz * (r.x * (cos_f[i] - cos_f[iw]) + r.y * (sin_f[i] - sin_f[iw]));
+            } else {
+                cn.fill(0.0);
+            }
+            // f = −∂H/∂θ ΔθΔZ in flux form (faces): the profile Γ(Z) drops out.
+            let src = &mut self.src[row..row + nt];
+            src[0] = -dz * (r.x * (cos_f[0] - cos_f[nt - 1]) + r.y * (sin_f[0] - sin_f[nt - 1]));
+            for i in 1..nt {
+                src[i] = -dz * (r.x * (cos_f[i] - cos_f[i - 1]) + r.y * (sin_f[i] - sin_f[i - 1]));
             }
         }
-        for j in 0..nz {
+        // the diagonal on the interior rows (on slices, so that the loop vectorises), then the
+        // boundary nodes (edge rows, supply lines) set to the identity row
+        for j in 1..nz - 1 {
             let row = j * nt;
-            for i in 0..nt {
-                let k = row + i;
-                if self.fixed[k] == BOUNDARY {
-                    self.diag[k] = 1.0;
-                    self.inv_diag[k] = 1.0;
-                    self.src[k] = 0.0;
-                    continue;
-                }
-                let kw = if i == 0 { row + nt - 1 } else { k - 1 };
-                self.diag[k] = self.ce[k] + self.ce[kw] + self.cn[k] + self.cn[k - nt];
-                self.inv_diag[k] = 1.0 / self.diag[k];
+            let ce = &self.ce[row..row + nt];
+            let cn = &self.cn[row..row + nt];
+            let cs = &self.cn[row - nt..row];
+            let d = &mut self.diag[row..row + nt];
+            let inv = &mut self.inv_diag[row..row + nt];
+            d[0] = ce[0] + ce[nt - 1] + cn[0] + cs[0];
+            inv[0] = 1.0 / d[0];
+            for i in 1..nt {
+                d[i] = ce[i] + ce[i - 1] + cn[i] + cs[i];
+                inv[i] = 1.0 / d[i];
+            }
+        }
+        for k in 0..self.fixed.len() {
+            if self.fixed[k] == BOUNDARY {
+                self.diag[k] = 1.0;
+                self.inv_diag[k] = 1.0;
+                self.src[k] = 0.0;
             }
         }
         self.cos_f = cos_f;
@@ -274,10 +370,10 @@ impl Level {
     /// Recompute `mask` and `inv_d` from `fixed` and `diag`.
     fn refresh_masks(&mut self) {
         self.chol = None;
-        for k in 0..self.fixed.len() {
-            let free = self.fixed[k] == FREE;
-            self.mask[k] = if free { 1.0 } else { 0.0 };
-            self.inv_d[k] = if free { self.inv_diag[k] } else { 0.0 };
+        for (((m, inv), f), id) in self.mask.iter_mut().zip(self.inv_d.iter_mut()).zip(&self.fixed).zip(&self.inv_diag) {
+            let free = *f == FREE;
+            *m = if free { 1.0 } else { 0.0 };
+            *inv = if free { *id } else { 0.0 };
         }
     }
 
@@ -372,9 +468,33 @@ impl Level {
         self.kernel::<{ Self::MINUS_SUB }>(v, out, &self.interior, &self.src);
     }
 
-    /// `out = A v` restricted to the free nodes (0 at fixed nodes).
-    fn apply_free(&self, v: &[f64], out: &mut [f64]) {
-        self.kernel::<{ Self::PLAIN }>(v, out, &self.mask, &self.src);
+    /// The CG direction and its image in one pass: with `beta`, first `v = z + β v` (each row
+    /// one row ahead of its use); then `out = A v` restricted to the free nodes (0 at fixed
+    /// nodes), and returns `v·out` (summed in index order, as [`dot`]).
+    fn apply_free_dot(&self, z: &[f64], beta: Option<f64>, v: &mut [f64], out: &mut [f64]) -> f64 {
+        let nt = self.nt;
+        let nz = self.nz;
+        let update = |v: &mut [f64], j: usize| {
+            if let Some(beta) = beta {
+                for (p, z) in v[j * nt..(j + 1) * nt].iter_mut().zip(&z[j * nt..(j + 1) * nt]) {
+                    *p = z + beta * *p;
+                }
+            }
+        };
+        update(v, 0);
+        update(v, 1);
+        out[..nt].fill(0.0);
+        out[(nz - 1) * nt..].fill(0.0);
+        let mut s = 0.0;
+        for j in 1..nz - 1 {
+            update(v, j + 1);
+            self.kernel_row::<{ Self::PLAIN }>(j, v, out, &self.mask, &self.src);
+            let row = j * nt;
+            for (a, b) in v[row..row + nt].iter().zip(&out[row..row + nt]) {
+                s += a * b;
+            }
+        }
+        s
     }
 
     /// `out = f − A v` at the free nodes, 0 at fixed nodes.
@@ -383,23 +503,93 @@ impl Level {
     }
 
     /// Red–black Gauss–Seidel on the free nodes for `A x = b`; `reverse` swaps the colour order
-    /// (the post-smoother of a symmetric cycle). The two colours are fused in one pass over
-    /// memory: row `j` of the first colour, then row `j − 1` of the second.
-    fn smooth(&mut self, sweeps: usize, reverse: bool) {
-        let nt = self.nt;
+    /// (the post-smoother of a symmetric cycle). All `2·sweeps` half-sweeps are pipelined in one
+    /// pass over memory: at step `j` half-sweep `s` updates row `j − s`, so every row sees its
+    /// neighbours exactly as in sweep after sweep (the same arithmetic, bit for bit) while the
+    /// rows in flight stay in cache. `from_zero`: `x` is taken as 0 on entry (its old values are
+    /// never read: the first half-sweep sets `x = b/d` on its colour, and a Gauss–Seidel update
+    /// does not read the node's own value). `residual`: also `r = b − A x` at the free nodes (0
+    /// at fixed ones), each row as soon as its neighbours are final. `dot`: returns `b·x` summed
+    /// over the rows as they become final (in index order, as [`dot`]; the edge rows are 0).
+    /// `prolong`: first `x += P·(coarse correction)` from the circumferentially interpolated rows
+    /// in `tmp` ([`prolong_theta`]), each row just before the first half-sweep needs it.
+    fn smooth_pass(&mut self, sweeps: usize, reverse: bool, from_zero: bool, residual: bool, want_dot: bool, prolong: bool) -> f64 {
         let nz = self.nz;
         let first = if reverse { 1 } else { 0 };
-        for _ in 0..sweeps {
-            for j in 1..nz {
-                if j < nz - 1 {
-                    self.smooth_row(j, first);
+        let stages = 2 * sweeps;
+        let last = if residual { nz - 2 + stages } else { nz - 2 + stages - 1 };
+        let mut acc = 0.0;
+        if residual {
+            let nt = self.nt;
+            self.r[..nt].fill(0.0);
+            self.r[(nz - 1) * nt..].fill(0.0);
+        }
+        if prolong {
+            self.prolong_row_z(1);
+        }
+        for j in 1..=last {
+            if prolong && j + 1 <= nz - 2 {
+                self.prolong_row_z(j + 1);
+            }
+            for s in 0..stages {
+                if j > s && j - s <= nz - 2 {
+                    let color = if s % 2 == 0 { first } else { 1 - first };
+                    if s == 0 && from_zero {
+                        self.smooth_row_zero(j, color);
+                    } else {
+                        self.smooth_row(j - s, color);
+                    }
                 }
-                if j >= 2 {
-                    self.smooth_row(j - 1, 1 - first);
+            }
+            if residual && j > stages && j - stages <= nz - 2 {
+                self.residual_row(j - stages);
+            }
+            if want_dot && j >= stages && j + 1 - stages <= nz - 2 {
+                let row = (j + 1 - stages) * self.nt;
+                for (b, x) in self.b[row..row + self.nt].iter().zip(&self.x[row..row + self.nt]) {
+                    acc += b * x;
                 }
             }
         }
-        let _ = nt;
+        acc
+    }
+
+    /// `x += mask·(z-interpolation of the rows of tmp)` on row `j`.
+    #[inline(always)]
+    fn prolong_row_z(&mut self, j: usize) {
+        let tz = self.tz.as_ref().unwrap();
+        let nt = self.nt;
+        let (a, b, w) = (tz.p_lo[j], tz.p_hi[j], tz.p_w[j]);
+        let row = j * nt;
+        let (ta, tb) = (&self.tmp[a * nt..(a + 1) * nt], &self.tmp[b * nt..(b + 1) * nt]);
+        let m = &self.mask[row..row + nt];
+        let x = &mut self.x[row..row + nt];
+        for i in 0..nt {
+            x[i] += m[i] * ((1.0 - w) * ta[i] + w * tb[i]);
+        }
+    }
+
+    /// The first half-sweep from `x = 0`: `x = b/d` on the nodes of colour `color` in row `j`.
+    #[inline(always)]
+    fn smooth_row_zero(&mut self, j: usize, color: usize) {
+        let nt = self.nt;
+        let row = j * nt;
+        let inv = &self.inv_d[row..row + nt];
+        let b = &self.b[row..row + nt];
+        let cur = &mut self.x[row..row + nt];
+        let mut i = (color + j) % 2;
+        while i < nt {
+            cur[i] = b[i] * inv[i];
+            i += 2;
+        }
+    }
+
+    /// `r = b − A x` on row `j` (free nodes; 0 at fixed ones).
+    #[inline(always)]
+    fn residual_row(&mut self, j: usize) {
+        let mut r = std::mem::take(&mut self.r);
+        self.kernel_row::<{ Self::SUB_MINUS }>(j, &self.x, &mut r, &self.mask, &self.b);
+        self.r = r;
     }
 
     /// Gauss–Seidel update of the nodes of colour `color` (`(i + j) % 2`) in row `j`.
@@ -448,13 +638,6 @@ impl Level {
         }
     }
 
-    /// `r = b − A x` at free nodes, 0 at fixed nodes.
-    fn residual_into_r(&mut self) {
-        let mut r = std::mem::take(&mut self.r);
-        self.kernel::<{ Self::SUB_MINUS }>(&self.x, &mut r, &self.mask, &self.b);
-        self.r = r;
-    }
-
     const PLAIN: u8 = 0;
     const MINUS_SUB: u8 = 1;
     const SUB_MINUS: u8 = 2;
@@ -466,6 +649,14 @@ impl Level {
         let nt = self.nt;
         out[..nt].fill(0.0);
         out[(self.nz - 1) * nt..].fill(0.0);
+        for j in 1..self.nz - 1 {
+            self.kernel_row::<MODE>(j, v, out, mask, sub);
+        }
+    }
+
+    /// Row `j` (not an edge row) of [`Level::kernel`].
+    #[inline(always)]
+    fn kernel_row<const MODE: u8>(&self, j: usize, v: &[f64], out: &mut [f64], mask: &[f64], sub: &[f64]) {
         #[inline(always)]
         fn finish<const MODE: u8>(m: f64, a: f64, s: f64) -> f64 {
             match MODE {
@@ -474,31 +665,30 @@ impl Level {
                 _ => m * (s - a),
             }
         }
-        for j in 1..self.nz - 1 {
-            let row = j * nt;
-            let ce = &self.ce[row..row + nt];
-            let cs = &self.cn[row - nt..row];
-            let cnn = &self.cn[row..row + nt];
-            let d = &self.diag[row..row + nt];
-            let m = &mask[row..row + nt];
-            let sb = &sub[row..row + nt];
-            let vb = &v[row - nt..row];
-            let vc = &v[row..row + nt];
-            let va = &v[row + nt..row + 2 * nt];
-            let o = &mut out[row..row + nt];
-            let a0 = d[0] * vc[0] - ce[0] * vc[1] - ce[nt - 1] * vc[nt - 1] - cnn[0] * va[0] - cs[0] * vb[0];
-            let an = d[nt - 1] * vc[nt - 1] - ce[nt - 1] * vc[0] - ce[nt - 2] * vc[nt - 2] - cnn[nt - 1] * va[nt - 1] - cs[nt - 1] * vb[nt - 1];
-            o[0] = finish::<MODE>(m[0], a0, sb[0]);
-            o[nt - 1] = finish::<MODE>(m[nt - 1], an, sb[nt - 1]);
-            let n = nt - 2;
-            let (d1, ce0, ce1, cn1, cs1) = (&d[1..n + 1], &ce[0..n], &ce[1..n + 1], &cnn[1..n + 1], &cs[1..n + 1]);
-            let (vw, vcc, ve, va1, vb1) = (&vc[0..n], &vc[1..n + 1], &vc[2..n + 2], &va[1..n + 1], &vb[1..n + 1]);
-            let (m1, s1) = (&m[1..n + 1], &sb[1..n + 1]);
-            let o1 = &mut o[1..n + 1];
-            for i in 0..n {
-                let a = d1[i] * vcc[i] - ce1[i] * ve[i] - ce0[i] * vw[i] - cn1[i] * va1[i] - cs1[i] * vb1[i];
-                o1[i] = finish::<MODE>(m1[i], a, s1[i]);
-            }
+        let nt = self.nt;
+        let row = j * nt;
+        let ce = &self.ce[row..row + nt];
+        let cs = &self.cn[row - nt..row];
+        let cnn = &self.cn[row..row + nt];
+        let d = &self.diag[row..row + nt];
+        let m = &mask[row..row + nt];
+        let sb = &sub[row..row + nt];
+        let vb = &v[row - nt..row];
+        let vc = &v[row..row + nt];
+        let va = &v[row + nt..row + 2 * nt];
+        let o = &mut out[row..row + nt];
+        let a0 = d[0] * vc[0] - ce[0] * vc[1] - ce[nt - 1] * vc[nt - 1] - cnn[0] * va[0] - cs[0] * vb[0];
+        let an = d[nt - 1] * vc[nt - 1] - ce[nt - 1] * vc[0] - ce[nt - 2] * vc[nt - 2] - cnn[nt - 1] * va[nt - 1] - cs[nt - 1] * vb[nt - 1];
+        o[0] = finish::<MODE>(m[0], a0, sb[0]);
+        o[nt - 1] = finish::<MODE>(m[nt - 1], an, sb[nt - 1]);
+        let n = nt - 2;
+        let (d1, ce0, ce1, cn1, cs1) = (&d[1..n + 1], &ce[0..n], &ce[1..n + 1], &cnn[1..n + 1], &cs[1..n + 1]);
+        let (vw, vcc, ve, va1, vb1) = (&vc[0..n], &vc[1..n + 1], &vc[2..n + 2], &va[1..n + 1], &vb[1..n + 1]);
+        let (m1, s1) = (&m[1..n + 1], &sb[1..n + 1]);
+        let o1 = &mut o[1..n + 1];
+        for i in 0..n {
+            let a = d1[i] * vcc[i] - ce1[i] * ve[i] - ce0[i] * vw[i] - cn1[i] * va1[i] - cs1[i] * vb1[i];
+            o1[i] = finish::<MODE>(m1[i], a, s1[i]);
         }
     }
 }
@@ -518,7 +708,7 @@ pub struct Hierarchy {
     /// nodes (instead of only once it changes none): saves the loose solve of a step that
     /// rarely moves the set again. Off by default (it changes the last digits of a solve).
     pub eager_tight: bool,
-    scratch: [Vec<f64>; 5],
+    scratch: [Vec<f64>; 3],
 }
 
 /// Outcome of one LCP solve on one level.
@@ -631,7 +821,7 @@ impl Hierarchy {
         let mut steps = 0;
         let mut cycles = 0;
         let mut converged = false;
-        let mut lam = std::mem::take(&mut self.scratch[4]);
+        let mut lam = std::mem::take(&mut self.scratch[2]);
         lam.resize(self.levels[k].u.len(), 0.0);
         // Inexact steps while the active set still moves: a linear solve to `loose` is enough
         // to decide the next active set; the last solve (set unchanged) is taken to `tol`.
@@ -680,7 +870,7 @@ impl Hierarchy {
                 break;
             }
         }
-        self.scratch[4] = lam;
+        self.scratch[2] = lam;
         // the pressure is non-negative by construction up to the linear tolerance
         let l = &mut self.levels[k];
         for v in &mut l.u {
@@ -698,43 +888,46 @@ impl Hierarchy {
     /// `levels[k].u`, preconditioned by one symmetric V-cycle. Returns (iterations, converged).
     fn pcg(&mut self, k: usize, tol: f64, max_iter: u32) -> (u32, bool) {
         let n = self.levels[k].u.len();
-        let [mut r, mut p, mut q, mut z, lam] = std::mem::take(&mut self.scratch);
-        for v in [&mut r, &mut p, &mut q, &mut z] {
+        let [mut p, mut q, lam] = std::mem::take(&mut self.scratch);
+        for v in [&mut p, &mut q] {
             if v.len() < n {
                 v.resize(n, 0.0);
             }
         }
-        let out = self.pcg_inner(k, tol, max_iter, &mut r[..n], &mut p[..n], &mut q[..n], &mut z[..n]);
-        self.scratch = [r, p, q, z, lam];
+        let out = self.pcg_inner(k, tol, max_iter, &mut p[..n], &mut q[..n]);
+        self.scratch = [p, q, lam];
         out
     }
 
-    #[allow(clippy::too_many_arguments)]
-    fn pcg_inner(&mut self, k: usize, tol: f64, max_iter: u32, r: &mut [f64], p: &mut [f64], q: &mut [f64], z: &mut [f64]) -> (u32, bool) {
-        let l = &self.levels[k];
+    /// The CG iteration. The residual lives in the level's `b` (the V-cycle's right-hand side)
+    /// and the preconditioned residual in its `x` (the V-cycle's result), so the preconditioner
+    /// copies nothing.
+    fn pcg_inner(&mut self, k: usize, tol: f64, max_iter: u32, p: &mut [f64], q: &mut [f64]) -> (u32, bool) {
+        let l = &mut self.levels[k];
         // r = f − A u on free nodes
-        l.residual_free(&l.u, r);
+        let mut r = std::mem::take(&mut l.b);
+        l.residual_free(&l.u, &mut r);
         let fnorm = l.src.iter().zip(&l.mask).map(|(f, m)| m * f * f).sum::<f64>().sqrt().max(1e-300);
-        let mut rnorm = dot(r, r).sqrt();
+        let mut rnorm = dot(&r, &r).sqrt();
+        l.b = r;
         if rnorm <= tol * fnorm {
             return (0, true);
         }
-        self.precondition(k, r, z);
-        p.copy_from_slice(z);
-        let mut rz = dot(r, z);
+        let mut rz = self.vcycle(k);
+        p.copy_from_slice(&self.levels[k].x);
+        let mut beta = None;
         let mut it = 0;
         while it < max_iter {
             it += 1;
             let l = &self.levels[k];
-            l.apply_free(p, q);
-            let pq = dot(p, q);
+            let pq = l.apply_free_dot(&l.x, beta, p, q);
             if pq <= 0.0 {
                 break;
             }
             let a = rz / pq;
             let l = &mut self.levels[k];
             let mut rr = 0.0;
-            for (((u, r), p), q) in l.u.iter_mut().zip(r.iter_mut()).zip(p.iter()).zip(q.iter()) {
+            for (((u, r), p), q) in l.u.iter_mut().zip(l.b.iter_mut()).zip(p.iter()).zip(q.iter()) {
                 *u += a * p;
                 *r -= a * q;
                 rr += *r * *r;
@@ -743,30 +936,21 @@ impl Hierarchy {
             if rnorm <= tol * fnorm {
                 return (it, true);
             }
-            self.precondition(k, r, z);
-            let rz_new = dot(r, z);
-            let beta = rz_new / rz;
+            let rz_new = self.vcycle(k);
+            beta = Some(rz_new / rz);
             rz = rz_new;
-            for (p, z) in p.iter_mut().zip(z.iter()) {
-                *p = z + beta * *p;
-            }
         }
         (it, rnorm <= tol * fnorm)
     }
 
-    /// `z ≈ A_II⁻¹ r` by one symmetric V-cycle from zero.
-    fn precondition(&mut self, k: usize, r: &[f64], z: &mut [f64]) {
-        {
-            let l = &mut self.levels[k];
-            l.b.copy_from_slice(r);
-            l.x.fill(0.0);
-        }
-        self.vcycle(k);
-        z.copy_from_slice(&self.levels[k].x);
+    /// One symmetric correction-scheme V-cycle on level `k` for `A x = b` (free nodes), from
+    /// `x = 0` (the old `x` is not read). Returns `b·x` (computed in the last smoothing pass).
+    fn vcycle(&mut self, k: usize) -> f64 {
+        self.vcycle_inner(k, k)
     }
 
-    /// One symmetric correction-scheme V-cycle on level `k` for `A x = b` (free nodes).
-    fn vcycle(&mut self, k: usize) {
+    /// [`Hierarchy::vcycle`] on level `k` of a cycle that started on level `top`.
+    fn vcycle_inner(&mut self, k: usize, top: usize) -> f64 {
         let last = self.levels.len() - 1;
         if k == last {
             let l = &mut self.levels[last];
@@ -776,28 +960,29 @@ impl Hierarchy {
             if l.chol.is_some() || l.factor_dense() {
                 l.solve_dense();
             } else {
+                l.x.fill(0.0);
                 for _ in 0..200 {
-                    l.smooth(1, false);
-                    l.smooth(1, true);
+                    l.smooth_pass(1, false, false, false, false, false);
+                    l.smooth_pass(1, true, false, false, false, false);
                 }
             }
-            return;
+            return if k == top { dot(&l.b, &l.x) } else { 0.0 };
         }
         let nu = self.sweeps;
         {
             let (head, tail) = self.levels.split_at_mut(k + 1);
             let fine = &mut head[k];
             let coarse = &mut tail[0];
-            fine.smooth(nu, false);
-            fine.residual_into_r();
+            // pre-smoothing from zero and the residual in one pass
+            fine.smooth_pass(nu, false, true, true, false, false);
             restrict(fine, coarse);
-            coarse.x.fill(0.0);
         }
-        self.vcycle(k + 1);
+        self.vcycle_inner(k + 1, top);
         {
             let (head, tail) = self.levels.split_at_mut(k + 1);
-            prolong_add(&tail[0], &mut head[k]);
-            head[k].smooth(nu, true);
+            // the coarse correction, prolonged row by row inside the post-smoothing pass
+            prolong_theta(&tail[0], &mut head[k]);
+            head[k].smooth_pass(nu, true, false, false, k == top, true)
         }
     }
 
@@ -851,10 +1036,7 @@ impl Hierarchy {
         for a in 0..coarse.nz {
             let c = &coarse.u[a * ntc..(a + 1) * ntc];
             let out = &mut tmp[a * ntf..(a + 1) * ntf];
-            for i in 0..ntf {
-                let w = tt.p_w[i];
-                out[i] = (1.0 - w) * c[tt.p_lo[i]] + w * c[tt.p_hi[i]];
-            }
+            tt.prolong_row(c, out);
         }
         for j in 0..fine.nz {
             let (a, b, w) = (tz.p_lo[j], tz.p_hi[j], tz.p_w[j]);
@@ -987,13 +1169,7 @@ fn restrict(fine: &mut Level, coarse: &mut Level) {
     for a in 0..coarse.nz {
         let t = &tmp[a * ntf..(a + 1) * ntf];
         let out = &mut coarse.b[a * ntc..(a + 1) * ntc];
-        for i in 0..ntf {
-            let w = tt.p_w[i];
-            out[tt.p_lo[i]] += (1.0 - w) * t[i];
-            if w != 0.0 {
-                out[tt.p_hi[i]] += w * t[i];
-            }
-        }
+        tt.restrict_row(t, out);
     }
     for (v, f) in coarse.b.iter_mut().zip(&coarse.fixed) {
         if *f != FREE {
@@ -1002,30 +1178,18 @@ fn restrict(fine: &mut Level, coarse: &mut Level) {
     }
 }
 
-/// `fine.x += P coarse.x` at the free fine nodes.
-fn prolong_add(coarse: &Level, fine: &mut Level) {
+/// The circumferential half of `fine.x += P coarse.x`: `fine.tmp` row `a` = the coarse
+/// correction's row `a` interpolated around the circumference (the axial half and the addition
+/// are [`Level::prolong_row_z`]).
+fn prolong_theta(coarse: &Level, fine: &mut Level) {
     let tt = fine.tt.as_ref().unwrap();
-    let tz = fine.tz.as_ref().unwrap();
-    let (ntf, nzf) = (fine.nt, fine.nz);
+    let ntf = fine.nt;
     let ntc = coarse.nt;
     let tmp = &mut fine.tmp;
     for a in 0..coarse.nz {
         let c = &coarse.x[a * ntc..(a + 1) * ntc];
         let out = &mut tmp[a * ntf..(a + 1) * ntf];
-        for i in 0..ntf {
-            let w = tt.p_w[i];
-            out[i] = (1.0 - w) * c[tt.p_lo[i]] + w * c[tt.p_hi[i]];
-        }
-    }
-    for j in 1..nzf - 1 {
-        let (a, b, w) = (tz.p_lo[j], tz.p_hi[j], tz.p_w[j]);
-        let row = j * ntf;
-        let (ta, tb) = (&tmp[a * ntf..(a + 1) * ntf], &tmp[b * ntf..(b + 1) * ntf]);
-        let m = &fine.mask[row..row + ntf];
-        let x = &mut fine.x[row..row + ntf];
-        for i in 0..ntf {
-            x[i] += m[i] * ((1.0 - w) * ta[i] + w * tb[i]);
-        }
+        tt.prolong_row(c, out);
     }
 }
 
