@@ -2,7 +2,7 @@
 //! 4–5, 7–9): the isothermal limit, the energy balance, the thermal film reduction against the
 //! Gupta et al. (1992) correction, the thermal traction maximum, and grid convergence.
 
-use tribod::physics::ehl::thermal::{self, ThermalBodies, ThermalInput, ThermalOptions, ThermalSolution};
+use tribod::physics::ehl::thermal::{self, EnergyIteration, ThermalBodies, ThermalInput, ThermalOptions, ThermalSolution};
 use tribod::physics::ehl::*;
 use tribod::physics::lubricant::Lubricant;
 use tribod::physics::Silent;
@@ -145,6 +145,34 @@ fn grid_convergence_in_x_and_z() {
     assert!(rel(c128.1, fine.1) > rel(c256.1, fine.1) && rel(c256.1, fine.1) > rel(c512.1, fine.1), "x convergence of the temperature");
     let c9 = run(512, 9);
     assert!(rel(c9.2, fine.2) < 0.01 && rel(c512.2, fine.2) < 0.02, "traction: 512 × 9 {c9:?}, 512 × 7 {c512:?} vs {fine:?}");
+}
+
+/// The two energy iterations (`EnergyIteration::Sweeps`, the default, and `Anderson`) on one
+/// traction curve around the thermal maximum (seed 000 oil, w' = 1e5 N/m, u_m = 2 m/s, 96 nodes)
+/// and on the heavily sheared contact of the energy balance (w' = 2e5, u_m = 5, S = 0.3, 122 K):
+/// the same films, traction and heat to 1e-4 where both converge.
+#[test]
+fn energy_iterations_agree() {
+    let lub = Lubricant::SEED000;
+    let run = |iteration: EnergyIteration, w: f64, um: f64, srr: f64, nodes: usize| {
+        let opts = ThermalOptions { iteration, max_iterations: 60, ..Default::default() };
+        solve_thermal(input(w, 0.014, um, srr, lub), nodes, opts)
+    };
+    for k in 0..5 {
+        let srr = 0.16 + 0.02 * k as f64;
+        let (a, b) = (run(EnergyIteration::Sweeps, 1e5, 2.0, srr, 96), run(EnergyIteration::Anderson, 1e5, 2.0, srr, 96));
+        let (ma, mb) = (a.ehl.traction.friction_coefficient, b.ehl.traction.friction_coefficient);
+        println!("S {srr:.2}: μ {ma:.6} / {mb:.6}, hc {:.5e} / {:.5e}", a.ehl.central_film, b.ehl.central_film);
+        assert!(rel(mb, ma) < 1e-4 && rel(b.ehl.central_film, a.ehl.central_film) < 1e-4, "S {srr}");
+    }
+    let (a, b) = (run(EnergyIteration::Sweeps, 2e5, 5.0, 0.3, 256), run(EnergyIteration::Anderson, 2e5, 5.0, 0.3, 256));
+    println!(
+        "w' 2e5, u_m 5, S 0.3: heat {:.1} / {:.1} W/m, balance {:.2e} / {:.2e}, μ {:.6} / {:.6}",
+        a.summary.heat_generated, b.summary.heat_generated, a.summary.energy_balance_error, b.summary.energy_balance_error,
+        a.ehl.traction.friction_coefficient, b.ehl.traction.friction_coefficient
+    );
+    assert!(rel(b.summary.heat_generated, a.summary.heat_generated) < 1e-3);
+    assert!(b.summary.energy_balance_error < 0.01);
 }
 
 mod stability {

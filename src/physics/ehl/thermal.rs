@@ -105,11 +105,35 @@ pub struct ThermalOptions {
     /// temperature. The far inlet of a thick film (the Newton domain reaches 40 half-widths
     /// upstream) only recirculates heat: measured effect on the films below 0.1 % at 10.
     pub film_extent: f64,
+    /// How the nonlinear energy equations are iterated (see [`EnergyIteration`]).
+    pub iteration: EnergyIteration,
+}
+
+/// The iteration of the energy equations' nonlinearity (viscosity, velocities and heating
+/// depend on the temperature).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+pub enum EnergyIteration {
+    /// Gauss–Seidel sweeps updating the film's properties column by column, frozen after
+    /// [`FREEZE_AFTER`] sweeps (stops on a noise floor of ≈ 2 % of the rise where the heating
+    /// feeds back strongly).
+    Sweeps,
+    /// Outer fixed-point iteration on the temperature field with Anderson mixing (Walker & Ni,
+    /// SIAM J. Numer. Anal. 49 (2011), type II, depth [`ANDERSON_DEPTH`]): each outer step
+    /// updates every column's properties once at the current field and solves the then linear
+    /// equations by sweeps (shear heating linearised about the outer iterate); the mixing cures
+    /// the period-2 alternation of the hot mid-film and converges to the self-consistent field.
+    /// The inlet and exit columns hold their mass flow (see [`HOLD_FLOW_PRESSURE`]); a solve that
+    /// does not settle falls back to the sweeps. Not the default: on single contacts it agrees
+    /// with the sweeps to 1e-4 (`thermal_ehl::energy_iterations_agree`), but on the seed 000
+    /// cycle's traction tables (energy at a fixed pressure, other sliding) Newtonian layers in the
+    /// Hertzian zone run away (|u| up to 66 m/s with surfaces at ≈ 2.5 m/s) and most solves fell
+    /// back (BENCHMARKS.md, "Thermal EHL", issue 14 fourth session).
+    Anderson,
 }
 
 impl Default for ThermalOptions {
     fn default() -> Self {
-        ThermalOptions { film_points: 7, solid_points: 16, solid_depth: 3.15, tolerance: 1e-3, max_iterations: 40, max_sweeps: 200, sweep_tolerance: 1e-4, film_extent: 30.0 }
+        ThermalOptions { film_points: 7, solid_points: 16, solid_depth: 3.15, tolerance: 1e-3, max_iterations: 40, max_sweeps: 200, sweep_tolerance: 1e-4, film_extent: 30.0, iteration: EnergyIteration::Sweeps }
     }
 }
 
@@ -162,6 +186,23 @@ impl TemperatureField {
             }
         }
         out
+    }
+
+    /// All temperatures as one vector (body 1, film, body 2).
+    fn flat(&self) -> Vec<f64> {
+        let mut v = Vec::with_capacity(self.body_1.len() + self.film.len() + self.body_2.len());
+        v.extend_from_slice(&self.body_1);
+        v.extend_from_slice(&self.film);
+        v.extend_from_slice(&self.body_2);
+        v
+    }
+
+    /// The inverse of [`Self::flat`].
+    fn set_flat(&mut self, v: &[f64]) {
+        let (a, b) = (self.body_1.len(), self.film.len());
+        self.body_1.copy_from_slice(&v[..a]);
+        self.film.copy_from_slice(&v[a..a + b]);
+        self.body_2.copy_from_slice(&v[a + b..]);
     }
 
     /// Largest film temperature, K.
@@ -279,6 +320,67 @@ fn solid_depths(d: f64, ns: usize, penetration: f64) -> Vec<f64> {
 /// Sweeps after which an energy solve freezes the film's properties (see [`energy`]).
 const FREEZE_AFTER: u32 = 40;
 
+/// Mixing depth of [`EnergyIteration::Anderson`].
+const ANDERSON_DEPTH: usize = 5;
+/// Columns below this fraction of the peak pressure hold their mass flow (Anderson).
+const HOLD_FLOW_PRESSURE: f64 = 0.3;
+/// Share of `ThermalOptions::max_sweeps` an Anderson solve may use before the sweeps take over.
+const ANDERSON_SWEEP_SHARE: f64 = 0.5;
+/// Most linear sweeps of one Anderson outer step.
+const ANDERSON_INNER_SWEEPS: u32 = 30;
+
+/// Anderson mixing, type II (Walker & Ni 2011): from the last `depth + 1` pairs `(x_i, g_i =
+/// G(x_i))` with residuals `f_i = g_i − x_i`, `γ = argmin ‖f_k − ΔF γ‖₂` (column-pivoted QR,
+/// which also handles a rank-deficient history) and `x_{k+1} = g_k − ΔG γ`.
+struct AndersonMixer {
+    depth: usize,
+    g: std::collections::VecDeque<Vec<f64>>,
+    f: std::collections::VecDeque<Vec<f64>>,
+}
+
+impl AndersonMixer {
+    fn new(depth: usize) -> Self {
+        AndersonMixer { depth, g: Default::default(), f: Default::default() }
+    }
+
+    fn clear(&mut self) {
+        self.g.clear();
+        self.f.clear();
+    }
+
+    fn next(&mut self, x: &[f64], g: &[f64]) -> Vec<f64> {
+        use faer::linalg::solvers::SolveLstsq;
+        self.f.push_back(g.iter().zip(x).map(|(a, b)| a - b).collect());
+        self.g.push_back(g.to_vec());
+        if self.g.len() > self.depth + 1 {
+            self.g.pop_front();
+            self.f.pop_front();
+        }
+        let m = self.g.len() - 1;
+        if m == 0 {
+            return g.to_vec();
+        }
+        let n = g.len();
+        let fk = &self.f[m];
+        let df = faer::Mat::from_fn(n, m, |r, c| self.f[c + 1][r] - self.f[c][r]);
+        let rhs = faer::Mat::from_fn(n, 1, |r, _| fk[r]);
+        let gamma = df.col_piv_qr().solve_lstsq(&rhs);
+        let mut out = g.to_vec();
+        for c in 0..m {
+            let w = gamma[(c, 0)];
+            if !w.is_finite() {
+                // A degenerate history: plain fixed-point step, history restarted.
+                self.clear();
+                return g.to_vec();
+            }
+            for (r, o) in out.iter_mut().enumerate() {
+                *o -= w * (self.g[c + 1][r] - self.g[c][r]);
+            }
+        }
+        out
+    }
+}
+
 /// Thomas algorithm for `a_i x_{i−1} + b_i x_i + c_i x_{i+1} = r_i` (in place into `r`).
 fn thomas(a: &[f64], b: &mut [f64], c: &[f64], r: &mut [f64]) {
     let n = b.len();
@@ -294,7 +396,24 @@ fn thomas(a: &[f64], b: &mut [f64], c: &[f64], r: &mut [f64]) {
 }
 
 /// Solve the energy equations (seed 000 eq. 7–8) on the columns of `(x, p, h)` (m, Pa, m).
+/// With [`EnergyIteration::Anderson`], a solve that does not converge within
+/// [`ANDERSON_SWEEP_SHARE`] of `max_sweeps` (the mixing cycles, or a layer's flow runs away at
+/// the fixed pressure) is solved again from the same start by [`EnergyIteration::Sweeps`].
 pub fn energy(x: &[f64], p: &[f64], h: &[f64], input: &EnergyInput, options: &ThermalOptions) -> Result<EnergySolution, SolveError> {
+    if options.iteration != EnergyIteration::Anderson {
+        return energy_iterated(x, p, h, input, options);
+    }
+    let budget = ((options.max_sweeps as f64 * ANDERSON_SWEEP_SHARE) as u32).max(1);
+    match energy_iterated(x, p, h, input, &ThermalOptions { max_sweeps: budget, ..*options }) {
+        Ok(s) => Ok(s),
+        Err(SolveError::NotConverged { .. }) => {
+            energy_iterated(x, p, h, input, &ThermalOptions { iteration: EnergyIteration::Sweeps, ..*options })
+        }
+        Err(e) => Err(e),
+    }
+}
+
+fn energy_iterated(x: &[f64], p: &[f64], h: &[f64], input: &EnergyInput, options: &ThermalOptions) -> Result<EnergySolution, SolveError> {
     let n = x.len();
     let nz = options.film_points;
     let ns = options.solid_points;
@@ -338,6 +457,18 @@ pub fn energy(x: &[f64], p: &[f64], h: &[f64], input: &EnergyInput, options: &Th
     let mut columns: Vec<Column> = (0..n).map(|_| Column { eta: vec![1.0; nz], rho: vec![1.0; nz], u: vec![0.0; nz], tau: vec![0.0; nz], beta: vec![0.0; nz] }).collect();
     let mut eta_ref = vec![1.0; n];
     let relax_cell = std::cell::Cell::new(1.0f64);
+    // Columns below `HOLD_FLOW_PRESSURE` of the peak pressure (the inlet and the exit) hold their
+    // mass flow at its value when this solve first evaluates them (Anderson iteration only): at
+    // a fixed pressure gradient a heated layer at the exit would draw an unbounded Poiseuille flow
+    // (a runaway to 4× the surface speeds was measured at w' = 2e5 N/m, u_m = 5 m/s, S = 0.3),
+    // which the coupled Reynolds solution would not carry, and the inlet's backflow kept the
+    // mixing from settling. The gradient then follows the viscosity, never beyond the pressure's
+    // own (same sign, at most its size).
+    let p_peak = p.iter().fold(0.0f64, |m, &v| m.max(v));
+    let hold_flow = |i: usize| {
+        options.iteration == EnergyIteration::Anderson && p[i] < HOLD_FLOW_PRESSURE * p_peak
+    };
+    let flow_target: Vec<std::cell::Cell<f64>> = (0..n).map(|_| std::cell::Cell::new(f64::NAN)).collect();
 
     // Film properties of column i at its current temperatures (and the previous stresses for
     // the Eyring viscosity).
@@ -371,7 +502,25 @@ pub fn energy(x: &[f64], p: &[f64], h: &[f64], input: &EnergyInput, options: &Th
             f0[k] = f0[k - 1] + 0.5 * dz * (1.0 / col.eta[k - 1] + 1.0 / col.eta[k]);
             f1[k] = f1[k - 1] + 0.5 * dz * (dz * (k - 1) as f64 / col.eta[k - 1] + dz * k as f64 / col.eta[k]);
         }
-        let px = dpdx[i];
+        let mut px = dpdx[i];
+        if hold_flow(i) {
+            // Mass flow per unit width (trapezoidal over the levels, units ρ0·m²/s) as
+            // `A + px·B`: u_k = u1 + (u2 − u1) f0_k/f0_h + px (f1_k − f1_h f0_k/f0_h)/η_ref.
+            let (f0h, f1h) = (f0[nz - 1], f1[nz - 1]);
+            let (mut a, mut bcoef) = (0.0, 0.0);
+            for k in 0..nz {
+                let w = if k == 0 || k == nz - 1 { 0.5 * dz } else { dz };
+                a += w * col.rho[k] * (u1 + (u2 - u1) * f0[k] / f0h);
+                bcoef += w * col.rho[k] * (f1[k] - f1h * f0[k] / f0h) / *eta_ref;
+            }
+            let target = flow_target[i].get();
+            if target.is_nan() {
+                flow_target[i].set(a + px * bcoef);
+            } else if bcoef.abs() > 0.0 {
+                let want = (target - a) / bcoef;
+                px = if px > 0.0 { want.clamp(0.0, px) } else { want.clamp(px, 0.0) };
+            }
+        }
         // Dimensional: F0 = f0/η_ref, F1 = f1/η_ref.
         let tau1 = ((u2 - u1) * *eta_ref - px * f1[nz - 1]) / f0[nz - 1];
         for k in 0..nz {
@@ -385,6 +534,15 @@ pub fn energy(x: &[f64], p: &[f64], h: &[f64], input: &EnergyInput, options: &Th
     let mut last_change = f64::INFINITY;
     let mut relax: f64 = 1.0;
     let mut same_direction = f64::INFINITY;
+    // Anderson iteration state: the outer iterate x_k the current linear sweeps started from (its
+    // temperatures linearise the shear heating), the sweeps of the current outer step and their
+    // tolerance, the mixing history.
+    let anderson = options.iteration == EnergyIteration::Anderson;
+    let mut outer_start: Option<TemperatureField> = None;
+    let mut inner_sweeps = 0u32;
+    let mut inner_tolerance = 0.1;
+    let mut mixer = AndersonMixer::new(ANDERSON_DEPTH);
+    let mut best_residual = f64::INFINITY;
     let scale_rise = |f: &TemperatureField| (f.film_max() - t0).abs().max(1e-3);
     // Tridiagonal work arrays.
     let mut za = vec![0.0; nn];
@@ -443,12 +601,27 @@ pub fn energy(x: &[f64], p: &[f64], h: &[f64], input: &EnergyInput, options: &Th
     while sweeps < options.max_sweeps {
         let forward = sweeps % 2 == 0;
         sweeps += 1;
+        if anderson && outer_start.is_none() {
+            // A new outer step: the film's properties once at the current field, then frozen.
+            for i in 0..n {
+                let temps: Vec<f64> = field.film_column(i).to_vec();
+                update_column(i, &temps, &mut columns[i], &mut eta_ref[i]);
+            }
+            outer_start = Some(field.clone());
+            inner_sweeps = 0;
+        }
         for i in 0..n {
+            if anderson && inner_sweeps > 0 {
+                break;
+            }
             for j in 0..nn {
                 q[i * nn + j] = cap_of(&columns, i, j) * velocity_of(&columns, i, j);
             }
         }
         for i in 0..n {
+            if anderson && inner_sweeps > 0 {
+                break;
+            }
             let mut acc = 0.0;
             for j in i_film0..=i_film1 {
                 let gl = if i == 0 { q[j] } else { 0.5 * (q[(i - 1) * nn + j] + q[i * nn + j]) };
@@ -474,7 +647,7 @@ pub fn energy(x: &[f64], p: &[f64], h: &[f64], input: &EnergyInput, options: &Th
             // After FREEZE_AFTER sweeps the film's properties and velocities stay as they are:
             // the remaining problem is linear and the sweeps converge (a limit cycle of the
             // upwind directions in the inlet's recirculation can otherwise persist).
-            if sweeps <= FREEZE_AFTER {
+            if !anderson && sweeps <= FREEZE_AFTER {
                 update_column(i, &temps[i_film0..i_film0 + nz], &mut columns[i], &mut eta_ref[i]);
             }
             let col = &columns[i];
@@ -527,7 +700,13 @@ pub fn energy(x: &[f64], p: &[f64], h: &[f64], input: &EnergyInput, options: &Th
                 // Linearised source S* + S'(T − T*), S' ≤ 0, over the half cells.
                 let slope = dsl * 0.5 * a + dsu * 0.5 * c;
                 zb[j] -= slope;
-                zr[j] = sl * 0.5 * a + su * 0.5 * c - slope * temps[j];
+                // Sweeps: about the current temperature (a stabiliser; the fixed point has the
+                // frozen source). Anderson: about the outer iterate (a Newton-like linearisation).
+                let t_lin = match &outer_start {
+                    Some(x) => node_temperature(x, i, j, ns, nz, i_film0, i_film1),
+                    None => temps[j],
+                };
+                zr[j] = sl * 0.5 * a + su * 0.5 * c - slope * t_lin;
                 // Horizontal inflows (donor cell).
                 let qj = q[i * nn + j];
                 let g_left = if i == 0 { qj } else { 0.5 * (q[(i - 1) * nn + j] + qj) };
@@ -592,6 +771,41 @@ pub fn energy(x: &[f64], p: &[f64], h: &[f64], input: &EnergyInput, options: &Th
                 field.film[i * nz + k] = zr[i_film0 + k];
             }
         }
+        if anderson {
+            inner_sweeps += 1;
+            if change >= inner_tolerance && inner_sweeps < ANDERSON_INNER_SWEEPS {
+                continue;
+            }
+            // The outer step ends: G(x_k) = the field now; residual relative to the rise.
+            let start = outer_start.take().expect("set at the outer step's start");
+            let x = start.flat();
+            let g = field.flat();
+            let rise = scale_rise(&field);
+            let residual = x.iter().zip(&g).fold(0.0f64, |m, (a, b)| m.max((b - a).abs())) / rise;
+            last_change = residual;
+            if residual < options.sweep_tolerance {
+                converged = true;
+                break;
+            }
+            // A step that grows the residual well past the best restarts the mixing from G.
+            // (The reference then restarts at this residual.)
+            if residual > 4.0 * best_residual {
+                mixer.clear();
+                best_residual = residual;
+            }
+            best_residual = best_residual.min(residual);
+            let mut next = mixer.next(&x, &g);
+            // Keep the mixed field within the range G spans (with a margin): an extrapolating
+            // mix must not leave the physical range.
+            let (lo, hi) = g.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(l, u), &v| (l.min(v), u.max(v)));
+            let margin = 0.25 * (hi - lo).max(1e-3);
+            for v in next.iter_mut() {
+                *v = v.clamp(lo - margin, hi + margin);
+            }
+            field.set_flat(&next);
+            inner_tolerance = (0.01 * residual).max(0.01 * options.sweep_tolerance);
+            continue;
+        }
         // Adaptive under-relaxation of the viscosity: a sweep that changes more than the last
         // one reduces the step (strong shear heating localises in the hot mid-film and can
         // oscillate).
@@ -613,7 +827,9 @@ pub fn energy(x: &[f64], p: &[f64], h: &[f64], input: &EnergyInput, options: &Th
     // A stall within 500× the tolerance is accepted (reported in the summary): the inlet's
     // recirculating backflow can keep a sweep-to-sweep wobble of a fraction of a kelvin far
     // upstream, where it does not move the films.
-    let stalled = !converged && last_change < 500.0 * options.sweep_tolerance;
+    // (Anderson: within 10× the tolerance; beyond, `energy` falls back to the sweeps.)
+    let stall_factor = if anderson { 10.0 } else { 500.0 };
+    let stalled = !converged && last_change < stall_factor * options.sweep_tolerance;
     if !converged && !stalled {
         return Err(SolveError::NotConverged {
             solver: "thermal ehl energy equation (Gauss–Seidel)",
