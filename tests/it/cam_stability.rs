@@ -314,7 +314,7 @@ proptest! {
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig { cases: 12, .. ProptestConfig::default() })]
+    #![proptest_config(ProptestConfig { cases: 24, .. ProptestConfig::default() })]
 
     /// The mixed `cam_point` at fidelity `accurate` (issue 15 item 7): λ = h_min/σ from 0.1 to
     /// 10 (σ set from the smooth film of the same point), p0 ≈ 0.5–2 GPa, cam speeds 0.2–10 m/s,
