@@ -287,7 +287,7 @@ fn auto_tables() {
     println!("\n## Closed-form traction against the numerical model's nodes (256 nodes): T_closed/T_num − 1 (%)\n");
     let ms = [0.5, 1.0, 2.0, 5.0, 10.0, 30.0, 100.0, 300.0];
     let rough = Roughness { sigma: 0.0, eta_beta_sigma: 0.04, sigma_over_beta: 0.001, plastic_limit: f64::INFINITY, curve: None };
-    let asp = AsperityFriction { coefficient: 0.1, model: AsperityModel::Coulomb };
+    let asp = AsperityFriction { coefficient: 0.1, model: AsperityModel::Coulomb, map: None };
     let fast = ClosedForm { formula: FilmFormula::PanHamrock, squeeze: false };
     let num = Numerical::new(EhlOptions { nodes: 256, tolerance: 1e-8, ..Default::default() }, fast);
     for (label, law) in [

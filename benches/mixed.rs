@@ -98,7 +98,7 @@ fn point_table() {
     // The fast closed form at the same point.
     let (l, r) = (lub(), rough(0.3e-6));
     let law_t = TractionLaw { rheology: Shear::Eyring { tau0: 5e6 }, limiting_shear_coefficient: None };
-    let asp = AsperityFriction { coefficient: 0.12, model: AsperityModel::Coulomb };
+    let asp = AsperityFriction { coefficient: 0.12, model: AsperityModel::Coulomb, map: None };
     let c = ContactInput {
         load: 12_500.0,
         shape: ContactShape::Line { reduced_radius: 0.0105, length: 0.021 },

@@ -177,7 +177,7 @@ proptest! {
                               density: 870.0, viscosity_model: ViscosityModel::Roelands, density_model: DensityModel::DowsonHigginson };
         let rough = Roughness { sigma, eta_beta_sigma: 0.05, sigma_over_beta: 0.001, plastic_limit: f64::INFINITY, curve: None };
         let law = TractionLaw { rheology: if newtonian { Rheology::Newtonian } else { Rheology::Eyring { tau0: 5e6 } }, limiting_shear_coefficient: None };
-        let asp = AsperityFriction { coefficient: 0.1, model: AsperityModel::Carter };
+        let asp = AsperityFriction { coefficient: 0.1, model: AsperityModel::Carter, map: None };
         let input = ContactInput {
             load: w * 0.01, shape: ContactShape::Line { reduced_radius: r, length: 0.01 }, entrainment_velocity: ue,
             sliding_velocity: us, time: 0.0, time_step: 1e-4, contact_modulus: 1.15e11, temperature: 313.0,
@@ -280,7 +280,7 @@ proptest! {
                               density_model: DensityModel::DowsonHigginson };
         let rough = Roughness { sigma, eta_beta_sigma: 0.05, sigma_over_beta: 0.001, plastic_limit: f64::INFINITY, curve: None };
         let law = TractionLaw { rheology: Rheology::Eyring { tau0: 5e6 }, limiting_shear_coefficient: None };
-        let asp = AsperityFriction { coefficient: 0.1, model: AsperityModel::Coulomb };
+        let asp = AsperityFriction { coefficient: 0.1, model: AsperityModel::Coulomb, map: None };
         let fast = ClosedForm { formula: FilmFormula::PanHamrock, squeeze: false };
         let numerical = Numerical::new(EhlOptions { nodes: 64, tolerance: 1e-6, ..EhlOptions::default() }, fast);
         let model: Box<dyn FilmModel> = if auto { Box::new(Auto { fast, numerical, tolerance: 0.05, thermal: None }) } else { Box::new(numerical) };
@@ -309,6 +309,64 @@ proptest! {
                 Err(SolveError::Physical { .. } | SolveError::NotConverged { .. } | SolveError::NonFinite { .. } | SolveError::InvalidInput { .. }) => break,
                 Err(e) => prop_assert!(false, "{e}"),
             }
+        }
+    }
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 24, .. ProptestConfig::default() })]
+
+    /// The mixed `cam_point` at fidelity `accurate` (issue 15 item 7): λ = h_min/σ from 0.1 to
+    /// 10 (σ set from the smooth film of the same point), p0 ≈ 0.5–2 GPa, cam speeds 0.2–10 m/s,
+    /// the three asperity laws (micro-slip with a two-row map along the contact): a finite result
+    /// whose SRR grows with the pin friction, or a typed error.
+    #[test]
+    fn accurate_mixed_point_analyses(
+        p0 in 0.5e9f64..2e9,
+        uc in 0.2f64..10.0,
+        lambda in (0.1f64).ln()..(10f64).ln(),
+        law in 0usize..3,
+        d0 in 10e-9f64..200e-9,
+        n0 in 2.0f64..6.0,
+    ) {
+        let (r, len, es) = (0.0105, 0.02, 200e9 / (2.0 * 0.91));
+        let load = std::f64::consts::PI * r * p0 * p0 / es * len;
+        let base = json!({
+            "load": load, "reduced_radius": r, "cam_surface_velocity": uc, "contact_length": len,
+            "roller": {"radius": 0.018, "pin_radius": 0.009},
+            "pin_friction": [0.002, 0.02],
+            "cam": {"material": {"youngs_modulus": 200e9}}, "follower": {"material": {"youngs_modulus": 200e9}},
+            "lubricant": {"viscosity": 0.013, "pressure_viscosity": 1.84e-8},
+            "fidelity": "accurate", "ehl": {"nodes": 96},
+        });
+        let smooth = registry::find("cam_point").unwrap().prepare(&base, &Limits::default()).unwrap().run(&Silent);
+        let Ok(smooth) = smooth else { return Ok(()) };
+        let hmin = smooth["summary"]["film_min"].as_f64().unwrap();
+        let rq = hmin / lambda.exp() / 2f64.sqrt();
+        let mut spec = base.clone();
+        spec["cam"]["roughness_rq"] = json!(rq);
+        spec["follower"]["roughness_rq"] = json!(rq);
+        spec["asperities"] = match law {
+            0 => json!({"model": "coulomb", "plastic_limit": 6e9}),
+            1 => json!({"model": "carter", "plastic_limit": 6e9}),
+            _ => json!({"model": "micro_slip", "plastic_limit": 6e9, "micro_slip_map": {
+                "film": [0.5 * hmin, 2.0 * hmin], "gross_sliding_displacement": [d0, 0.5 * d0], "exponent": [n0, 2.0]}}),
+        };
+        let prepared = registry::find("cam_point").unwrap().prepare(&spec, &Limits::default());
+        let prepared = match prepared {
+            Ok(p) => p,
+            Err(p) => return Err(TestCaseError::fail(format!("refused: {p}\n{spec}"))),
+        };
+        match prepared.run(&Silent) {
+            Ok(out) => {
+                check_finite(&out).map_err(|e| TestCaseError::fail(format!("{e}\n{spec}")))?;
+                let srr: Vec<f64> = out["rows"].as_array().unwrap().iter().map(|r| r["slide_roll_ratio"].as_f64().unwrap()).collect();
+                prop_assert!(srr[1] >= srr[0], "{srr:?}\n{spec}");
+                let fa = out["summary"]["asperity_load_fraction"].as_f64().unwrap();
+                prop_assert!((0.0..1.0).contains(&fa), "{fa}");
+            }
+            Err(SolveError::Physical { .. } | SolveError::InvalidInput { .. } | SolveError::NotConverged { .. }) => {}
+            Err(e) => return Err(TestCaseError::fail(format!("{e}\n{spec}"))),
         }
     }
 }

@@ -532,6 +532,20 @@ fn seed001_chain_surface_to_micro_slip_roller() {
     println!("chain: SRR {srr:?}, share {}", out["summary"]["asperity_load_fraction"]);
     assert!(srr.iter().all(|s| *s > 0.0));
     assert_eq!(out["summary"]["first_sliding_pin_friction"], json!(0.001));
+    // The map along the contact: `micro_slip_map` as reported, exponents held at 2 where the fit
+    // falls below; it is what `examples/seed001_micro_slip_map.json` carries (pasted).
+    let map = &rc["micro_slip_map"];
+    let n: Vec<f64> = map["exponent"].as_array().unwrap().iter().map(|v| v.as_f64().unwrap()).collect();
+    assert!(n.iter().all(|v| (2.0..=8.0).contains(v)) && n.len() == films.iter().filter(|r| r["mean_pressure"].as_f64().unwrap() > 0.0).count());
+    let pasted = &example("seed001_micro_slip_map")["asperities"];
+    for column in ["film", "gross_sliding_displacement", "exponent"] {
+        let (a, b) = (map[column].as_array().unwrap(), pasted["micro_slip_map"][column].as_array().unwrap());
+        assert_eq!(a.len(), b.len());
+        for (x, y) in a.iter().zip(b) {
+            assert!(close(x.as_f64().unwrap(), y.as_f64().unwrap(), 1e-12), "{column}: {x} vs {y}");
+        }
+    }
+    assert_eq!(pasted["pressure_gap_curve"], rc["pressure_gap_curve"]);
 }
 
 // ------------------------------------------------------------------ errors and limits

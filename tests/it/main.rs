@@ -22,6 +22,7 @@ mod journal_examples;
 mod journal_kinds;
 mod journal_stability;
 mod journal_validation;
+mod micro_slip_map;
 mod mixed_lubrication;
 mod multi_instance;
 mod openapi_drift;

@@ -150,7 +150,7 @@ fn contact<'a>(u: f64, lub: &'a Lubricant, rough: &'a Roughness, law: &'a Tracti
 fn fast_load_sharing_matches_the_numerical_one() {
     let lub = oil();
     let law = TractionLaw { rheology: Shear::Eyring { tau0: 5e6 }, limiting_shear_coefficient: None };
-    let asp = AsperityFriction { coefficient: 0.12, model: AsperityModel::Coulomb };
+    let asp = AsperityFriction { coefficient: 0.12, model: AsperityModel::Coulomb, map: None };
     let fast = ClosedForm { formula: FilmFormula::PanHamrock, squeeze: false };
     let num = Numerical::new(EhlOptions { nodes: 256, ..Default::default() }, fast);
     for sigma in [0.1e-6, 0.207e-6, 0.5e-6, 1.0e-6] {

@@ -143,10 +143,13 @@ pub enum AsperityModelSpec {
     /// Partial slip of the asperity share by Carter's creep law (gross sliding at creep μ_b b/R).
     Carter,
     /// Seed 001's micro-slip map (eq. 14–23): every point of the contact is displaced by
-    /// `δx = SRR (x + a)` since the inlet, its asperities stick–slip below the rough surface's
-    /// gross-sliding displacement `gross_sliding_displacement` and slide beyond it; integrated
-    /// over the contact (no traction jump at zero sliding; `slip_regime` is `gross_sliding` from
-    /// 99 % of the limiting asperity traction).
+    /// `δx = SRR (x − x_in)` since the inlet, its asperities stick–slip below the rough surface's
+    /// gross-sliding displacement (`gross_sliding_displacement`, or `micro_slip_map` per film)
+    /// and slide beyond it; integrated over the contact (no traction jump at zero sliding;
+    /// `slip_regime` is `gross_sliding` from 99 % of the limiting asperity traction). Fidelity
+    /// `accurate` integrates over the solved asperity pressure node by node, each node with its
+    /// own film (`x_in` where the asperity pressure first reaches 1e-3 of its peak); the closed
+    /// forms over a semi-elliptic pressure on the Hertz width (`x_in = −a`) at the central film.
     MicroSlip,
 }
 
@@ -197,6 +200,12 @@ pub struct AsperitySpec {
     /// BENCHMARKS.md, "Mixed lubrication: the micro-slip map").
     #[serde(default = "default_micro_slip_exponent", skip_serializing_if = "is_default_micro_slip_exponent")]
     pub micro_slip_exponent: f64,
+    /// The micro-slip map per film (seed 001 eq. 19, 23): gross-sliding displacement and shape
+    /// exponent against film, in place of `gross_sliding_displacement` and `micro_slip_exponent`
+    /// (`micro_slip` only). A `rough_contact` job with `friction_limit` reports it as
+    /// `micro_slip_map`: paste it here.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub micro_slip_map: Option<MicroSlipMapSpec>,
     /// Plastic limit of the asperity contact pressure, Pa (seed 001 Table 1: 6e9). Absent:
     /// elastic asperities.
     #[serde(default, skip_serializing_if = "Option::is_none")]
@@ -220,6 +229,26 @@ pub struct PressureGapSpec {
     pub pressure: Vec<f64>,
 }
 
+/// `δx_gs(h)` and `n(h)` of the micro-slip law: `film` strictly ascending (m), 1 to 1000 rows;
+/// `gross_sliding_displacement` in [1e-12, 1e-3] m and `exponent` in [2, 8] per film. Between
+/// films `ln δx_gs` and `n` are linear in the film; beyond the ends the end rows hold.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, ToSchema)]
+#[serde(deny_unknown_fields)]
+pub struct MicroSlipMapSpec {
+    /// Films (mean gaps), m.
+    pub film: Vec<f64>,
+    /// Gross-sliding displacement δx_gs at each film, m.
+    pub gross_sliding_displacement: Vec<f64>,
+    /// Exponent n of `μ_a/μ_lim = 1 − (1 − δx/δx_gs)^n` at each film.
+    pub exponent: Vec<f64>,
+}
+
+impl MicroSlipMapSpec {
+    pub fn to_physics(&self) -> Result<crate::physics::friction::MicroSlipMap, (&'static str, String)> {
+        crate::physics::friction::MicroSlipMap::new(self.film.clone(), self.gross_sliding_displacement.clone(), self.exponent.clone())
+    }
+}
+
 impl Default for AsperitySpec {
     fn default() -> Self {
         AsperitySpec {
@@ -229,6 +258,7 @@ impl Default for AsperitySpec {
             model: AsperityModelSpec::Coulomb,
             gross_sliding_displacement: None,
             micro_slip_exponent: default_micro_slip_exponent(),
+            micro_slip_map: None,
             plastic_limit: None,
             pressure_gap_curve: None,
         }
@@ -261,24 +291,45 @@ impl AsperitySpec {
                     exponent: self.micro_slip_exponent,
                 },
             },
+            map: match self.model {
+                AsperityModelSpec::MicroSlip => self.micro_slip_map.as_ref().and_then(|m| m.to_physics().ok()).map(std::sync::Arc::new),
+                _ => None,
+            },
         }
     }
     pub fn validate(&self, path: &str, v: &mut Validation) {
         v.in_range(&format!("{path}/eta_beta_sigma"), self.eta_beta_sigma, 0.0, 1.0);
         v.in_range(&format!("{path}/sigma_over_beta"), self.sigma_over_beta, 0.0, 1.0);
         v.in_range(&format!("{path}/boundary_friction"), self.boundary_friction, 0.0, 2.0);
-        match (self.model, self.gross_sliding_displacement) {
-            (AsperityModelSpec::MicroSlip, None) => {
-                v.check(false, &format!("{path}/gross_sliding_displacement"), "required by model micro_slip");
+        match (self.model, self.gross_sliding_displacement, &self.micro_slip_map) {
+            (AsperityModelSpec::MicroSlip, None, None) => {
+                v.check(false, &format!("{path}/gross_sliding_displacement"), "required by model micro_slip (or a micro_slip_map)");
             }
-            (AsperityModelSpec::MicroSlip, Some(d)) => {
+            (AsperityModelSpec::MicroSlip, Some(_), Some(_)) => {
+                v.check(false, &format!("{path}/gross_sliding_displacement"), "give either gross_sliding_displacement or micro_slip_map");
+            }
+            (AsperityModelSpec::MicroSlip, Some(d), None) => {
                 v.in_range(&format!("{path}/gross_sliding_displacement"), d, 1e-12, 1e-3);
                 v.in_range(&format!("{path}/micro_slip_exponent"), self.micro_slip_exponent, 2.0, 8.0);
             }
-            (_, Some(_)) => {
-                v.check(false, &format!("{path}/gross_sliding_displacement"), "only used by model micro_slip");
+            (AsperityModelSpec::MicroSlip, None, Some(m)) => {
+                v.check(
+                    is_default_micro_slip_exponent(&self.micro_slip_exponent),
+                    &format!("{path}/micro_slip_exponent"),
+                    "the micro_slip_map gives the exponent per film",
+                );
+                if let Err((column, rule)) = m.to_physics() {
+                    v.check(false, &format!("{path}/micro_slip_map/{column}"), rule);
+                }
             }
-            _ => {}
+            (_, d, m) => {
+                if d.is_some() {
+                    v.check(false, &format!("{path}/gross_sliding_displacement"), "only used by model micro_slip");
+                }
+                if m.is_some() {
+                    v.check(false, &format!("{path}/micro_slip_map"), "only used by model micro_slip");
+                }
+            }
         }
         if let Some(p) = self.plastic_limit {
             v.in_range(&format!("{path}/plastic_limit"), p, 1e6, 1e11);

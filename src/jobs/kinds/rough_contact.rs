@@ -107,6 +107,19 @@ pub struct GapCurve {
     pub pressure: Vec<f64>,
 }
 
+/// The micro-slip map in the form `asperities.micro_slip_map` of the cam kinds takes (with
+/// `friction_limit`): the touching films' gross-sliding displacements and exponents, the
+/// exponents held to the cam kinds' range 2–8 (below 2, at thick films where few asperities
+/// touch, the local law's curvature is unbounded; `rows` keep the fitted values).
+#[derive(Debug, Clone, PartialEq, Serialize, ToSchema)]
+pub struct GapMap {
+    /// m.
+    pub film: Vec<f64>,
+    /// m.
+    pub gross_sliding_displacement: Vec<f64>,
+    pub exponent: Vec<f64>,
+}
+
 /// Surface statistics.
 #[derive(Debug, Clone, PartialEq, Serialize, ToSchema)]
 pub struct SurfaceStats {
@@ -129,6 +142,9 @@ pub struct RoughContactResult {
     pub rows: Vec<GapRow>,
     /// Paste into `asperities.pressure_gap_curve` (films where the asperities touch).
     pub pressure_gap_curve: GapCurve,
+    /// Paste into `asperities.micro_slip_map` (with `friction_limit`).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub micro_slip_map: Option<GapMap>,
     pub convergence: Convergence,
 }
 
@@ -142,7 +158,7 @@ fn grid(spec: &RoughContactSpec) -> (usize, usize) {
 
 impl Kind for RoughContact {
     const NAME: &'static str = "rough_contact";
-    const SOLVER_VERSION: &'static str = "rough_contact-2";
+    const SOLVER_VERSION: &'static str = "rough_contact-3";
     const DESCRIPTION: &'static str = "Dry contact of a rough surface pair (generated Gaussian or measured heights): \
         the asperity pressure–gap curve of mixed lubrication with contact and plastic area fractions (seed 001 eq. 8–12).";
     const TABLES: &'static [&'static str] = &["rows"];
@@ -261,7 +277,19 @@ impl Kind for RoughContact {
                 curve.pressure.push(r.mean_pressure);
             }
         }
+        let mut map = GapMap { film: Vec::new(), gross_sliding_displacement: Vec::new(), exponent: Vec::new() };
+        for r in &rows {
+            if let (Some(d), Some(n), true) = (r.gross_sliding_displacement, r.micro_slip_exponent, r.mean_pressure > 0.0) {
+                if (1e-12..=1e-3).contains(&d) && n.is_finite() {
+                    map.film.push(r.film);
+                    map.gross_sliding_displacement.push(d);
+                    map.exponent.push(n.clamp(2.0, 8.0));
+                }
+            }
+        }
+        let micro_slip_map = (spec.friction_limit.is_some() && !map.film.is_empty()).then_some(map);
         Ok(RoughContactResult {
+            micro_slip_map,
             surface: SurfaceStats { rq: summary.rq, ra: summary.ra, rms_slope: summary.rms_slope, peak: summary.peak },
             contact_modulus: material.contact_modulus(),
             rows,

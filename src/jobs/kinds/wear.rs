@@ -890,7 +890,7 @@ fn solve_irgashev(spec: &WearSpec, observer: &dyn Observer) -> Result<WearResult
 
 impl Kind for Wear {
     const NAME: &'static str = "wear";
-    const SOLVER_VERSION: &'static str = "wear-6";
+    const SOLVER_VERSION: &'static str = "wear-7";
     const DESCRIPTION: &'static str = "Cam wear over running hours: Archard wear over the cam cycle (asperity load share in \
         mixed lubrication, roller slip) with worn-profile evolution, or seed 004's method (model irgashev).";
     const TABLES: &'static [&'static str] = &["series", "rows", "history", "follower_face"];

@@ -421,7 +421,7 @@ pub fn run_cycle(spec: &CycleSpec, needs: Needs, model: &dyn FilmModel, observer
                 speed.push(s.omega);
                 srr.push(slide_roll_ratio(k.cam_surface_velocity, uf));
                 pins.push(s.pin_torque);
-                regime.push(spec.asperity_friction.regime(&s.film.asperity, series.sliding_velocity[i], series.entrainment_velocity[i]));
+                regime.push(spec.asperity_friction.regime(&s.film.asperity, &s.film.asperity_nodes, series.sliding_velocity[i], series.entrainment_velocity[i]));
             }
             series.roller_speed = Some(speed);
             series.slide_roll_ratio = Some(srr);

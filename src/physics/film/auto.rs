@@ -354,7 +354,7 @@ mod tests {
                 None => Rheology::Newtonian,
             };
             let law = TractionLaw { rheology, limiting_shear_coefficient: None };
-            let asp = AsperityFriction { coefficient: 0.1, model: AsperityModel::Coulomb };
+            let asp = AsperityFriction { coefficient: 0.1, model: AsperityModel::Coulomb, map: None };
             let mut input = seed001_nose(lub, &rough, &law, &asp);
             input.sliding_velocity = slide;
             let cf = ClosedForm { formula: FilmFormula::PanHamrock, squeeze: false };

@@ -15,7 +15,7 @@
 use super::formulas::{self, LineGroups};
 use super::{ContactInput, ContactShape, FilmModel, FilmModelId, FilmSolution, Regime};
 use crate::physics::contact::{hertz_line, hertz_point};
-use crate::physics::friction::{AsperityContact, TractionNode};
+use crate::physics::friction::TractionNode;
 use crate::physics::{ensure_finite, SolveError};
 use serde::{Deserialize, Serialize};
 use utoipa::ToSchema;
@@ -198,10 +198,8 @@ impl FilmModel for ClosedForm {
             }
             _ => 0.0,
         };
-        let asperity = AsperityContact {
-            load: w_a,
-            gross_sliding_creep: input.asperity_friction.creep_scale(b, r_roll),
-        };
+        // The micro-slip map's δx_gs and n at the central film (semi-elliptic asperity pressure).
+        let asperity = input.asperity_friction.contact(w_a, b, r_roll, hc);
         ensure_finite("closed-form film", [&hc, &hm, &p0, &b, &area, &w_a, &rolling_force])?;
         ensure_finite("traction nodes", nodes.iter().flat_map(|n| [&n.area, &n.pressure, &n.viscosity]))?;
         Ok(FilmSolution {
@@ -216,6 +214,7 @@ impl FilmModel for ClosedForm {
             half_width: b,
             contact_area: area,
             asperity,
+            asperity_nodes: Vec::new(),
             lambda,
             regime,
             nodes,
@@ -282,7 +281,7 @@ mod tests {
         let lub = oil();
         let rough = Roughness { sigma: 0.0, eta_beta_sigma: 0.04, sigma_over_beta: 0.001, plastic_limit: f64::INFINITY, curve: None };
         let law = TractionLaw { rheology: Rheology::Newtonian, limiting_shear_coefficient: None };
-        let asp = AsperityFriction { coefficient: 0.12, model: AsperityModel::Coulomb };
+        let asp = AsperityFriction { coefficient: 0.12, model: AsperityModel::Coulomb, map: None };
         let input = seed001_nose(&lub, &rough, &law, &asp);
         let f = ClosedForm { formula: FilmFormula::PanHamrock, squeeze: false }.solve(&input, None).unwrap();
         let area: f64 = f.nodes.iter().map(|n| n.area).sum();
@@ -305,7 +304,7 @@ mod tests {
         let lub = oil();
         let rough = Roughness { sigma: 0.3e-6, eta_beta_sigma: 0.05, sigma_over_beta: 0.001, plastic_limit: f64::INFINITY, curve: None };
         let law = TractionLaw { rheology: Rheology::Eyring { tau0: 5e6 }, limiting_shear_coefficient: None };
-        let asp = AsperityFriction { coefficient: 0.12, model: AsperityModel::Coulomb };
+        let asp = AsperityFriction { coefficient: 0.12, model: AsperityModel::Coulomb, map: None };
         let input = seed001_nose(&lub, &rough, &law, &asp);
         let model = ClosedForm { formula: FilmFormula::PanHamrock, squeeze: false };
         let f = model.solve(&input, None).unwrap();
@@ -325,7 +324,7 @@ mod tests {
         let lub = oil();
         let rough = Roughness { sigma: 0.0, eta_beta_sigma: 0.04, sigma_over_beta: 0.001, plastic_limit: f64::INFINITY, curve: None };
         let law = TractionLaw { rheology: Rheology::Newtonian, limiting_shear_coefficient: None };
-        let asp = AsperityFriction { coefficient: 0.1, model: AsperityModel::Coulomb };
+        let asp = AsperityFriction { coefficient: 0.1, model: AsperityModel::Coulomb, map: None };
         let mut input = seed001_nose(&lub, &rough, &law, &asp);
         input.load = 2000.0;
         let model = ClosedForm { formula: FilmFormula::Seed003, squeeze: true };

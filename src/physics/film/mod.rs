@@ -47,7 +47,7 @@ pub use numerical::Numerical;
 pub use thermal::{FilmThermal, ThermalFilmSettings, ThermalNumerical};
 
 use crate::physics::friction::{
-    viscous_traction_local, AsperityContact, AsperityFriction, Roughness, TractionLaw, TractionNode,
+    viscous_traction_local, AsperityContact, AsperityFriction, AsperityNode, Roughness, TractionLaw, TractionNode,
 };
 use crate::physics::lubricant::{Lubricant, ViscosityLaw};
 use crate::physics::SolveError;
@@ -201,6 +201,10 @@ pub struct FilmSolution {
     pub contact_area: f64,
     /// The asperity-borne part of the load.
     pub asperity: AsperityContact,
+    /// The solved asperity pressure node by node, for the local micro-slip map (numerical mixed
+    /// films with `AsperityModel::MicroSlip`; empty otherwise: the asperity traction then takes
+    /// a semi-elliptic pressure, [`crate::physics::friction::micro_slip_share`]).
+    pub asperity_nodes: Vec<AsperityNode>,
     /// Film parameter λ = h_min/σ (absent for smooth surfaces).
     pub lambda: Option<f64>,
     /// Validity indicators of closed forms (line contacts).
@@ -276,8 +280,8 @@ pub trait FilmModel: Send + Sync {
     /// `film.asperity`.
     fn traction_local(&self, film: &FilmSolution, input: &ContactInput, sliding: f64) -> (Traction, (f64, f64)) {
         let v = viscous_traction_local(&film.nodes, input.traction_law, sliding);
-        let (asp, aslope) = input.asperity_friction.traction(&film.asperity, sliding, input.entrainment_velocity);
-        let (acurv, areach) = input.asperity_friction.curvature(&film.asperity, sliding, input.entrainment_velocity);
+        let (asp, aslope, (acurv, areach)) =
+            input.asperity_friction.traction_local(&film.asperity, &film.asperity_nodes, sliding, input.entrainment_velocity);
         let traction = Traction {
             force: v.force + film.rolling_force + asp,
             slope: v.slope + aslope,

@@ -29,7 +29,7 @@ use crate::physics::contact::hertz_line;
 use crate::physics::ehl::grid::cells;
 use super::mixed::LoadSharingLaw;
 use crate::physics::ehl::{AsperityPressure, EhlInput, EhlOptions, EhlState, Extrapolation, ReusableSolver, Rheology, Transient};
-use crate::physics::friction::{AsperityContact, TractionNode};
+use crate::physics::friction::TractionNode;
 use crate::physics::{ensure_finite, Silent, SolveError};
 use std::sync::Mutex;
 
@@ -125,6 +125,8 @@ impl FilmModel for Numerical {
         let w_a = (s.asperity_load_per_length * length).clamp(0.0, load);
         let t = input.temperature;
         let nodes = traction_nodes(input, st, &cell, length, 1.0, t);
+        // The local micro-slip map (seed 001 eq. 22–23): the solved p_a(x) with its own film.
+        let asperity_nodes = input.asperity_friction.asperity_nodes(&st.x, &st.film, &st.asperity_pressure, &cell, length, input.entrainment_velocity);
         let hz = hertz_line(w, r, es);
         let eta0 = input.lubricant.viscosity_at(0.0, t);
         let g = LineGroups::new(w, r, input.entrainment_velocity, eta0, input.lubricant.pressure_viscosity, 2.0 * es);
@@ -142,7 +144,8 @@ impl FilmModel for Numerical {
             exit_film: Some(s.exit_film),
             half_width: hz.half_width,
             contact_area: 2.0 * hz.half_width * length,
-            asperity: AsperityContact { load: w_a, gross_sliding_creep: input.asperity_friction.creep_scale(hz.half_width, r) },
+            asperity: input.asperity_friction.contact(w_a, hz.half_width, r, s.central_film),
+            asperity_nodes,
             lambda: (sigma > 0.0).then(|| s.min_film / sigma),
             regime,
             nodes,
@@ -242,7 +245,7 @@ mod tests {
         let lub = Lubricant { viscosity: 0.013, pressure_viscosity: 1.84e-8, ..Lubricant::SEED000 };
         let rough = Roughness { sigma: 0.0, eta_beta_sigma: 0.04, sigma_over_beta: 0.001, plastic_limit: f64::INFINITY, curve: None };
         let law = TractionLaw { rheology: Shear::Eyring { tau0: 5e6 }, limiting_shear_coefficient: None };
-        let asp = AsperityFriction { coefficient: 0.1, model: AsperityModel::Coulomb };
+        let asp = AsperityFriction { coefficient: 0.1, model: AsperityModel::Coulomb, map: None };
         // Seed 001 nose (12.5 kN over 21 mm, R = 10.5 mm, 3.98 m/s).
         let input = ContactInput {
             load: 12_500.0,
@@ -290,7 +293,7 @@ mod tests {
         let lub = oil();
         let rough = Roughness { sigma: 0.0, eta_beta_sigma: 0.04, sigma_over_beta: 0.001, plastic_limit: f64::INFINITY, curve: None };
         let law = TractionLaw { rheology: Shear::Newtonian, limiting_shear_coefficient: None };
-        let asp = AsperityFriction { coefficient: 0.1, model: AsperityModel::Coulomb };
+        let asp = AsperityFriction { coefficient: 0.1, model: AsperityModel::Coulomb, map: None };
         let nose = seed001_nose(&lub, &rough, &law, &asp);
         let numerical = Numerical::new(EhlOptions { nodes: 384, tolerance: 1e-9, ..EhlOptions::default() }, ClosedForm { formula: FilmFormula::PanHamrock, squeeze: false });
         let closed = ClosedForm { formula: FilmFormula::PanHamrock, squeeze: false };

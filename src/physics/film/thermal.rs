@@ -41,7 +41,7 @@ use crate::physics::contact::hertz_line;
 use crate::physics::ehl::grid::cells;
 use crate::physics::ehl::thermal::{energy, EnergyInput, TemperatureField, ThermalBodies, ThermalEngine, ThermalFactors, ThermalInput, ThermalOptions, ThermalSummary};
 use crate::physics::ehl::{EhlInput, EhlOptions, Rheology, Transient};
-use crate::physics::friction::{AsperityContact, Rheology as Shear};
+use crate::physics::friction::Rheology as Shear;
 use crate::physics::{ensure_finite, Silent, SolveError};
 use std::sync::Mutex;
 
@@ -175,7 +175,9 @@ impl ThermalNumerical {
             exit_film: k.exit_film.map(|h| h * film_ratio),
             half_width: hz.half_width,
             contact_area: 2.0 * hz.half_width * length,
-            asperity: AsperityContact { load: w_a, gross_sliding_creep: input.asperity_friction.creep_scale(hz.half_width, r) },
+            asperity: input.asperity_friction.contact(w_a, hz.half_width, r, k.central_film * film_ratio),
+            // The thermal model keeps the post-hoc asperity share: semi-elliptic micro-slip.
+            asperity_nodes: Vec::new(),
             lambda: (sigma > 0.0).then(|| min_film / sigma),
             regime: None,
             nodes: cf.nodes,
@@ -298,7 +300,9 @@ impl ThermalNumerical {
             exit_film: Some(s.exit_film),
             half_width: hz.half_width,
             contact_area: 2.0 * hz.half_width * length,
-            asperity: AsperityContact { load: w_a, gross_sliding_creep: input.asperity_friction.creep_scale(hz.half_width, r) },
+            asperity: input.asperity_friction.contact(w_a, hz.half_width, r, s.central_film),
+            // The thermal model keeps the post-hoc asperity share: semi-elliptic micro-slip.
+            asperity_nodes: Vec::new(),
             lambda: (sigma > 0.0).then(|| s.min_film / sigma),
             regime: None,
             nodes,

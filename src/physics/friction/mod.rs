@@ -19,9 +19,11 @@
 
 pub mod curve;
 pub mod greenwood_tripp;
+pub mod micro_slip;
 
 pub use curve::PressureGapCurve;
 pub use greenwood_tripp::{f52, Roughness};
+pub use micro_slip::{AsperityNode, MicroSlipMap};
 
 /// Shear law of the lubricant film.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -144,7 +146,10 @@ pub enum AsperityModel {
     /// (eq. 22), and its asperities carry `μ_a/μ_lim = g(δx/δx_gs)` of their limiting friction,
     /// sticking–slipping below the gross-sliding displacement `δx_gs` of the rough surface
     /// (eq. 19, 23) and sliding beyond it. Integrated over a semi-elliptic asperity pressure
-    /// (eq. 25's asperity term) — see [`micro_slip_share`].
+    /// (eq. 25's asperity term) — see [`micro_slip_share`] — by the closed forms; over the solved
+    /// asperity pressure `p_a(x)` node by node (each with its own film) by the numerical film
+    /// ([`micro_slip`]). With [`AsperityFriction::map`] the two constants below give way to the
+    /// map's `δx_gs(h)` and `n(h)`.
     MicroSlip {
         /// Gross-sliding displacement `δx_gs` of the asperity contact, m (e.g. from a
         /// `rough_contact` job's tangential solution at the working film).
@@ -246,11 +251,14 @@ pub enum SlipRegime {
 pub const FULL_FILM_SKID_SRR: f64 = 0.01;
 
 /// Asperity friction parameters.
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, PartialEq)]
 pub struct AsperityFriction {
     /// Boundary (asperity) friction coefficient μ_b.
     pub coefficient: f64,
     pub model: AsperityModel,
+    /// [`AsperityModel::MicroSlip`]: `δx_gs(h)` and `n(h)` per film (seed 001 eq. 19, 23), in
+    /// place of the model's constants. `None`: the constants.
+    pub map: Option<std::sync::Arc<MicroSlipMap>>,
 }
 
 /// The asperity part of a contact's traction at one instant.
@@ -261,9 +269,61 @@ pub struct AsperityContact {
     /// Creep scale of the partial-slip law ([`AsperityFriction::creep_scale`]): Carter's
     /// gross-sliding creep ξ_c = μ_b b/R, the micro-slip map's δx_gs/b.
     pub gross_sliding_creep: f64,
+    /// Local shape exponent `n` of [`AsperityModel::MicroSlip`] at this contact's film (0 for the
+    /// other laws).
+    pub exponent: f64,
 }
 
 impl AsperityFriction {
+    /// A law without a micro-slip map.
+    pub fn new(coefficient: f64, model: AsperityModel) -> Self {
+        AsperityFriction { coefficient, model, map: None }
+    }
+
+    /// `(δx_gs, n)` of [`AsperityModel::MicroSlip`] at film `h` (m): the map's, or the model's
+    /// constants; `None` for the other laws.
+    pub fn micro_slip_at(&self, film: f64) -> Option<(f64, f64)> {
+        match self.model {
+            AsperityModel::MicroSlip { gross_sliding_displacement, exponent } => {
+                Some(self.map.as_ref().map_or((gross_sliding_displacement, exponent), |m| m.at(film)))
+            }
+            _ => None,
+        }
+    }
+
+    /// The asperity contact of a film carrying `load` (N) with half-width `half_width` and reduced
+    /// radius `radius` (m) in the rolling direction and (central) film `film` (m):
+    /// [`Self::creep_scale`] and the micro-slip exponent at that film.
+    pub fn contact(&self, load: f64, half_width: f64, radius: f64, film: f64) -> AsperityContact {
+        match self.micro_slip_at(film) {
+            Some((d, n)) => AsperityContact { load, gross_sliding_creep: if half_width > 0.0 { d / half_width } else { 0.0 }, exponent: n },
+            None => AsperityContact { load, gross_sliding_creep: self.creep_scale(half_width, radius), exponent: 0.0 },
+        }
+    }
+
+    /// The nodes of a solved asperity pressure for the local micro-slip map
+    /// ([`micro_slip::asperity_nodes`]; `x`, `film`, `pressure`, `cell` per grid node, m, m, Pa,
+    /// m): empty for the laws other than [`AsperityModel::MicroSlip`], which use the load alone.
+    pub fn asperity_nodes(&self, x: &[f64], film: &[f64], pressure: &[f64], cell: &[f64], length: f64, entrainment: f64) -> Vec<AsperityNode> {
+        if self.micro_slip_at(0.0).is_none() || pressure.is_empty() {
+            return Vec::new();
+        }
+        micro_slip::asperity_nodes(x, film, pressure, cell, length, entrainment, |h| self.micro_slip_at(h).expect("micro-slip"))
+    }
+
+    /// Traction (N, sign of `u_s`), slope (N·s/m) and `(|d²Q_a/du_s²| bound, reach)` of the
+    /// asperities for sliding `u_s` and entrainment `u_e`: over the solved `nodes` when there are
+    /// any ([`micro_slip::nodal_traction`]), else [`Self::traction`] and [`Self::curvature`] of
+    /// `contact`.
+    pub fn traction_local(&self, contact: &AsperityContact, nodes: &[AsperityNode], sliding: f64, entrainment: f64) -> (f64, f64, (f64, f64)) {
+        if !nodes.is_empty() && matches!(self.model, AsperityModel::MicroSlip { .. }) {
+            let (f, s, bound, reach) = micro_slip::nodal_traction(nodes, self.coefficient, sliding, entrainment);
+            return (f, s, (bound, reach));
+        }
+        let (f, s) = self.traction(contact, sliding, entrainment);
+        (f, s, self.curvature(contact, sliding, entrainment))
+    }
+
     /// Traction (N, sign of `u_s`) and slope (N·s/m) for sliding `u_s` and entrainment `u_e`.
     /// For [`AsperityModel::Coulomb`] at `u_s = 0` the value is 0: the caller treats the jump of
     /// height `±μ_b W_a` there ([`Self::stick_limit`]).
@@ -274,8 +334,8 @@ impl AsperityFriction {
                 AsperityModel::Carter if entrainment.abs() > 0.0 && contact.gross_sliding_creep > 0.0 => {
                     2.0 * q / (contact.gross_sliding_creep * entrainment.abs())
                 }
-                AsperityModel::MicroSlip { exponent, .. } if entrainment.abs() > 0.0 && contact.gross_sliding_creep > 0.0 => {
-                    exponent * q / (contact.gross_sliding_creep * entrainment.abs())
+                AsperityModel::MicroSlip { .. } if entrainment.abs() > 0.0 && contact.gross_sliding_creep > 0.0 => {
+                    contact.exponent * q / (contact.gross_sliding_creep * entrainment.abs())
                 }
                 _ => 0.0,
             };
@@ -283,12 +343,12 @@ impl AsperityFriction {
         }
         match self.model {
             AsperityModel::Coulomb => (q * sliding.signum(), 0.0),
-            AsperityModel::MicroSlip { exponent, .. } => {
+            AsperityModel::MicroSlip { .. } => {
                 let scale = contact.gross_sliding_creep * entrainment.abs();
                 if !(scale > 0.0) {
                     return (q * sliding.signum(), 0.0);
                 }
-                let (phi, dphi, _) = micro_slip_share(sliding / scale, exponent);
+                let (phi, dphi, _) = micro_slip_share(sliding / scale, contact.exponent);
                 (q * sliding.signum() * phi, q * dphi / scale)
             }
             AsperityModel::Carter => {
@@ -324,16 +384,17 @@ impl AsperityFriction {
             }
             // |Φ''| ≤ (5/4) n(n − 1) everywhere ([`micro_slip_share`]); the sign of the
             // curvature flips at u_s = 0, so the reach stops there.
-            AsperityModel::MicroSlip { exponent, .. } if ue > 0.0 && xc > 0.0 => {
-                (micro_slip_share(0.0, exponent).2 * q / (xc * ue).powi(2), sliding.abs())
+            AsperityModel::MicroSlip { .. } if ue > 0.0 && xc > 0.0 => {
+                (micro_slip_share(0.0, contact.exponent).2 * q / (xc * ue).powi(2), sliding.abs())
             }
             _ => (0.0, sliding.abs()),
         }
     }
 
     /// The slip regime at sliding `u_s` and entrainment `u_e` ([`SlipRegime`]); the
-    /// slide-to-roll ratio is `u_s/u_e`.
-    pub fn regime(&self, contact: &AsperityContact, sliding: f64, entrainment: f64) -> SlipRegime {
+    /// slide-to-roll ratio is `u_s/u_e`. With solved `nodes` (the local micro-slip map) the
+    /// share is that of their [`micro_slip::nodal_capacity`].
+    pub fn regime(&self, contact: &AsperityContact, nodes: &[AsperityNode], sliding: f64, entrainment: f64) -> SlipRegime {
         if sliding == 0.0 {
             return SlipRegime::Rolling;
         }
@@ -346,9 +407,14 @@ impl AsperityFriction {
             AsperityModel::Carter => {
                 if srr < contact.gross_sliding_creep { SlipRegime::MicroSlip } else { SlipRegime::GrossSliding }
             }
-            AsperityModel::MicroSlip { exponent, .. } => {
+            AsperityModel::MicroSlip { .. } if !nodes.is_empty() => {
+                let cap = micro_slip::nodal_capacity(nodes, 1.0);
+                let q = micro_slip::nodal_traction(nodes, 1.0, srr, 1.0).0;
+                if cap > 0.0 && q < MICRO_SLIP_GROSS_SHARE * cap { SlipRegime::MicroSlip } else { SlipRegime::GrossSliding }
+            }
+            AsperityModel::MicroSlip { .. } => {
                 let xm = contact.gross_sliding_creep;
-                if xm > 0.0 && micro_slip_share(srr / xm, exponent).0 < MICRO_SLIP_GROSS_SHARE { SlipRegime::MicroSlip } else { SlipRegime::GrossSliding }
+                if xm > 0.0 && micro_slip_share(srr / xm, contact.exponent).0 < MICRO_SLIP_GROSS_SHARE { SlipRegime::MicroSlip } else { SlipRegime::GrossSliding }
             }
         }
     }
@@ -473,8 +539,8 @@ mod tests {
         // n = 2, small creep: Φ = 2t − 5t²/4; Φ → 1 like 1 − O(t^−3/2).
         assert!((micro_slip_share(0.2, 2.0).0 - (0.4 - 1.25 * 0.04)).abs() < 1e-13);
         assert!(micro_slip_share(1e4, 3.0).0 > 0.9999);
-        let a = AsperityFriction { coefficient: 0.12, model: AsperityModel::MicroSlip { gross_sliding_displacement: 0.2e-6, exponent: 3.0 } };
-        let c = AsperityContact { load: 1000.0, gross_sliding_creep: a.creep_scale(2e-4, 0.01) };
+        let a = AsperityFriction::new(0.12, AsperityModel::MicroSlip { gross_sliding_displacement: 0.2e-6, exponent: 3.0 });
+        let c = a.contact(1000.0, 2e-4, 0.01, 0.3e-6);
         assert!((c.gross_sliding_creep - 1e-3).abs() < 1e-15);
         let ue = 4.0;
         // Initial slope n μ W_a/(ξ_m u_e) (∫ y w dX = 1); odd in u_s.
@@ -482,14 +548,14 @@ mod tests {
         assert!((a.traction(&c, 1e-9, ue).1 / a.traction(&c, 0.0, ue).1 - 1.0).abs() < 1e-4);
         let (q, _) = a.traction(&c, 1e-3 * ue, ue);
         assert_eq!(a.traction(&c, -1e-3 * ue, ue).0, -q);
-        assert!(a.stick_limit(&c) == 0.0 && a.regime(&c, 0.5e-3 * ue, ue) == SlipRegime::MicroSlip);
-        assert_eq!(a.regime(&c, 0.5 * ue, ue), SlipRegime::GrossSliding);
+        assert!(a.stick_limit(&c) == 0.0 && a.regime(&c, &[], 0.5e-3 * ue, ue) == SlipRegime::MicroSlip);
+        assert_eq!(a.regime(&c, &[], 0.5 * ue, ue), SlipRegime::GrossSliding);
     }
 
     #[test]
     fn carter_creep_curve() {
-        let a = AsperityFriction { coefficient: 0.12, model: AsperityModel::Carter };
-        let c = AsperityContact { load: 1000.0, gross_sliding_creep: 0.003 };
+        let a = AsperityFriction::new(0.12, AsperityModel::Carter);
+        let c = AsperityContact { load: 1000.0, gross_sliding_creep: 0.003, exponent: 0.0 };
         let ue = 4.0;
         // Half the gross-sliding creep: 1 − (1/2)² = 3/4 of μ_b W_a.
         let (q, _) = a.traction(&c, 0.5 * 0.003 * ue, ue);
@@ -498,7 +564,7 @@ mod tests {
         assert_eq!(a.traction(&c, -0.01 * ue, ue).0, -120.0);
         // Initial slope 2 μ_b W_a/(ξ_c u_e).
         assert!((a.traction(&c, 0.0, ue).1 - 2.0 * 120.0 / (0.003 * ue)).abs() < 1e-9);
-        let coulomb = AsperityFriction { model: AsperityModel::Coulomb, ..a };
+        let coulomb = AsperityFriction { model: AsperityModel::Coulomb, ..a.clone() };
         assert_eq!(coulomb.stick_limit(&c), 120.0);
         assert_eq!(a.stick_limit(&c), 0.0);
         // Curvature: −2 μ_b W_a/(ξ_c u_e)² inside, 0 beyond; the reach stops at the kinks.

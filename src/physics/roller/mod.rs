@@ -392,7 +392,7 @@ mod tests {
             (AsperityModel::Coulomb, pins[2].clone(), 0.0, 12_500.0),
             (AsperityModel::Carter, pins[2].clone(), 0.0, 3_000.0),
         ] {
-            let asp = AsperityFriction { coefficient: 0.12, model: asp_model };
+            let asp = AsperityFriction { coefficient: 0.12, model: asp_model, map: None };
             let input = ContactInput { load, ..seed001_nose(&lub, &rough, &law, &asp) };
             let film = model.solve(&input, None).unwrap();
             let roller = RollerParams { radius: 0.0125, inertia, pin };
@@ -450,7 +450,7 @@ mod tests {
             let rough = Roughness { sigma: rq, eta_beta_sigma: 0.05, sigma_over_beta: 0.001, plastic_limit: f64::INFINITY, curve: None };
             let law = TractionLaw { rheology: Rheology::Eyring { tau0 }, limiting_shear_coefficient: None };
             let model = ClosedForm { formula: FilmFormula::PanHamrock, squeeze: false };
-            let asp = AsperityFriction { coefficient: 0.12, model: if carter { AsperityModel::Carter } else { AsperityModel::Coulomb } };
+            let asp = AsperityFriction { coefficient: 0.12, model: if carter { AsperityModel::Carter } else { AsperityModel::Coulomb }, map: None };
             let input = ContactInput { load, entrainment_velocity: 0.5 * uc, ..seed001_nose(&lub, &rough, &law, &asp) };
             let film = model.solve(&input, None).unwrap();
             let pin = if coulomb_pin {

@@ -18,6 +18,7 @@
 
 use super::monotone_root;
 use crate::physics::film::{ContactInput, FilmModel, FilmSolution, Traction};
+use crate::physics::friction::micro_slip::nodal_saturation_creep;
 use crate::physics::friction::{micro_slip_share, AsperityModel, MICRO_SLIP_GROSS_SHARE};
 use crate::physics::SolveError;
 
@@ -104,7 +105,7 @@ impl PointCase<'_> {
             traction.force = required;
         }
         let ur = uc - us;
-        let regime = self.input.asperity_friction.regime(&film.asperity, us, uc - 0.5 * us);
+        let regime = self.input.asperity_friction.regime(&film.asperity, &film.asperity_nodes, us, uc - 0.5 * us);
         Ok(PointBalance {
             pin_friction: mu_rp,
             sliding_velocity: us,
@@ -132,9 +133,13 @@ impl PointCase<'_> {
             AsperityModel::Coulomb => self.input.asperity_friction.coefficient * film.asperity.load + self.model.traction(&film, &self.input_at(0.0), 0.0).force,
             AsperityModel::Carter | AsperityModel::MicroSlip { .. } => {
                 // Carter saturates at SRR = ξ_c; the micro-slip map reaches the gross-sliding
-                // share (99 %) at SRR = t99 ξ_m.
+                // share (99 %) at SRR = t99 ξ_m (semi-elliptic), or where the solved nodes
+                // transmit 99 % of what they can (the local map).
                 let xc = match self.input.asperity_friction.model {
-                    AsperityModel::MicroSlip { exponent, .. } => micro_slip_gross_creep(exponent) * film.asperity.gross_sliding_creep,
+                    AsperityModel::MicroSlip { .. } if !film.asperity_nodes.is_empty() => {
+                        nodal_saturation_creep(&film.asperity_nodes, MICRO_SLIP_GROSS_SHARE).unwrap_or(0.0)
+                    }
+                    AsperityModel::MicroSlip { .. } => micro_slip_gross_creep(film.asperity.exponent) * film.asperity.gross_sliding_creep,
                     _ => film.asperity.gross_sliding_creep,
                 };
                 let us = xc * self.cam_surface_velocity / (1.0 + 0.5 * xc);
