@@ -23,6 +23,10 @@
 //!   squeeze term ∂(ρh)/∂t and a warm start, fills `pressure_spike`, `exit_film` and `profile`,
 //!   and returns its grid nodes with positive pressure as traction nodes. Point contacts (the
 //!   spherical tappet) keep the closed form: the solver is one-dimensional.
+//! * [`Finite`] — fidelity `accurate` with `ehl.geometry: finite`: the 2-D finite-length / point
+//!   EHL solver ([`crate::physics::ehl::twod`]) at every point with entrainment, warm-started
+//!   from the previous point's 2-D solution ([`finite`]); [`AutoFinite`] with `auto`: the 2-D
+//!   model where [`finite::ends_matter`], the line-contact [`Auto`] elsewhere.
 //! * [`Auto`] — fidelity `auto`: per point, the closed form where [`closed_form_error`] (the one
 //!   place the decision is made; measured rules in [`auto`]) is within the tolerance, else
 //!   [`Numerical`]. After closed-form points the numerical model has no history: its first point
