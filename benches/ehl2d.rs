@@ -6,6 +6,14 @@
 //! against the Richardson extrapolation (second order) of the two finest grids. Then the seed 000
 //! crowned roller at the cam nose (`-- roller`). Times are the best of a few repetitions, one
 //! thread for the solver's own work (faer's sparse LU may use the rayon pool).
+//!
+//! `-- cycle [angles=360] [nx=65] [ny=129] [stride=30] [reference]`: the seed 000 roller cycle
+//! (`examples/seed000_roller_accurate.json`) with `ehl.geometry: finite` through the `cam_cycle`
+//! kind — wall time, Newton steps per angle, warm/cold solves; then the film model alone along the
+//! cycle's contact points (smooth surfaces): the warm-started chain against cold solves at every
+//! `stride`-th angle (Newton steps and time saved by the warm start); with `reference` the films
+//! at the largest-load, nose and base-circle angles against the Richardson extrapolation of this
+//! grid and the one with twice the intervals (cold solves).
 
 use std::time::Instant;
 use tribod::physics::ehl::twod::{solve, Ehl2dInput, Ehl2dOptions, Geometry2d};
@@ -29,6 +37,10 @@ fn best_of<T>(reps: usize, mut f: impl FnMut() -> T) -> (f64, T) {
 
 fn main() {
     let args: Vec<String> = std::env::args().collect();
+    if args.iter().any(|a| a == "cycle") {
+        cycle(&args);
+        return;
+    }
     let with_513 = args.iter().any(|a| a == "513");
     let roller_only = args.iter().any(|a| a == "roller");
     if args.iter().any(|a| a == "probe") {
@@ -92,5 +104,147 @@ fn main() {
         };
         let edge = s.edge_pressure_peak.map_or("none".to_string(), |e| format!("{:.3} at {:.2}", e.value * 1e-9, e.y * 1e3));
         println!("| {nx}×{ny} | {t:.3} | {:.4} | {:.4} at {:.2} | {:.3} | {edge} |", s.central_film * 1e6, s.min_film.value * 1e6, s.min_film.y * 1e3, s.max_pressure.value * 1e-9);
+    }
+}
+
+fn arg<T: std::str::FromStr>(args: &[String], name: &str, default: T) -> T {
+    args.iter().find_map(|a| a.strip_prefix(&format!("{name}="))).and_then(|v| v.parse().ok()).unwrap_or(default)
+}
+
+/// The seed 000 cycle with the finite-length model (see the module docs).
+fn cycle(args: &[String]) {
+    use serde_json::{json, Value};
+    use tribod::jobs::{registry, Limits};
+    use tribod::physics::film::{ClosedForm, ContactInput, ContactShape, Finite, FilmFormula, FilmModel};
+    use tribod::physics::friction::{AsperityFriction, AsperityModel, Rheology, Roughness, TractionLaw};
+    let angles: usize = arg(args, "angles", 360);
+    let nx: usize = arg(args, "nx", 65);
+    let ny: usize = arg(args, "ny", 129);
+    let stride: usize = arg(args, "stride", 30);
+    let text = std::fs::read_to_string("examples/seed000_roller_accurate.json").expect("example");
+    let mut spec: Value = serde_json::from_str::<Value>(&text).unwrap()["spec"].clone();
+    spec["angles"] = json!(angles);
+    spec["ehl"] = json!({"geometry": "finite", "nx": nx, "ny": ny, "tolerance": 1e-6});
+    let kind = registry::find("cam_cycle").unwrap();
+    let prepared = kind.prepare(&spec, &Limits::default()).expect("valid spec");
+    let t = Instant::now();
+    let out = prepared.run(&Silent);
+    let wall = t.elapsed().as_secs_f64();
+    let out = match out {
+        Ok(v) => v,
+        Err(e) => {
+            println!("cycle failed after {wall:.1} s: {e}");
+            return;
+        }
+    };
+    let series = &out["series"];
+    let col = |name: &str| -> Vec<f64> { series[name].as_array().map(|a| a.iter().map(|v| v.as_f64().unwrap_or(f64::NAN)).collect()).unwrap_or_default() };
+    let steps = col("newton_steps");
+    let (hc, hm, load, rx, ue) = (col("film_central"), col("film_min"), col("contact_load"), col("reduced_radius"), col("entrainment_velocity"));
+    let edge = col("edge_pressure_peak");
+    let ymin = col("min_film_axial_position");
+    let total_steps: f64 = steps.iter().sum();
+    println!("seed 000 cycle, ehl.geometry finite {nx}×{ny}, {angles} angles: {wall:.2} s ({:.3} s per angle), Newton steps {total_steps} in the stored solutions (mean {:.2}), fidelity_used {}", wall / angles as f64, total_steps / angles as f64, out["summary"]["fidelity_used"]);
+    let imax = (0..load.len()).max_by(|&a, &b| load[a].total_cmp(&load[b])).unwrap_or(0);
+    let inose = angles * 127 / 360;
+    let ibase = angles * 300 / 360;
+    for (what, i) in [("max load", imax), ("nose 127°", inose), ("base circle 300°", ibase)] {
+        println!("  {what} (angle {i}): load {:.1} N, u_e {:.3} m/s, h_c {:.4} µm, h_min {:.4} µm at y = {:.2} mm, edge peak {:.3} GPa", load[i], ue[i], hc[i] * 1e6, hm[i] * 1e6, ymin[i] * 1e3, edge[i] * 1e-9);
+    }
+    // The film model alone along the cycle's contact points: warm chain against cold solves.
+    let crown = Crown { length: 0.014, middle_length: 0.012, crown_height: 4.5e-6, end_radius: 0.0125 };
+    let lub = Lubricant { viscosity: 0.152, pressure_viscosity: 2.2e-8, ..Lubricant::SEED000 };
+    let rough = Roughness { sigma: 0.0, eta_beta_sigma: 0.04, sigma_over_beta: 0.001, plastic_limit: f64::INFINITY, curve: None };
+    let law = TractionLaw { rheology: Rheology::Newtonian, limiting_shear_coefficient: None };
+    let asp = AsperityFriction { coefficient: 0.1, model: AsperityModel::Coulomb };
+    let es = 1.911e11 / (2.0 * (1.0 - 0.09));
+    let input = |i: usize| ContactInput {
+        load: load[i],
+        shape: ContactShape::Line { reduced_radius: rx[i], length: 0.014 },
+        entrainment_velocity: ue[i],
+        sliding_velocity: 0.0,
+        time: 0.0,
+        time_step: 0.0,
+        contact_modulus: es,
+        temperature: 313.0,
+        lubricant: &lub,
+        roughness: &rough,
+        traction_law: &law,
+        asperity_friction: &asp,
+    };
+    let fallback = ClosedForm { formula: FilmFormula::PanHamrock, squeeze: false };
+    let options = Ehl2dOptions { nx, ny, tolerance: 1e-6, max_iterations: 60, ..Default::default() };
+    let warm_model = Finite::new(options, Some(crown), fallback).check_first_only();
+    let cold_model = Finite::new(options, Some(crown), fallback);
+    let (mut warm_steps, mut warm_time, mut cold_steps, mut cold_time, mut n_cold, mut warm_at_cold, mut warm_time_at_cold) = (0u32, 0.0, 0u32, 0.0, 0, 0u32, 0.0);
+    let mut prev = None;
+    let mut fails = 0;
+    let mut worst: f64 = 0.0;
+    for i in 0..angles {
+        let t = Instant::now();
+        let w = warm_model.solve(&input(i), prev.as_ref());
+        let tw = t.elapsed().as_secs_f64();
+        let Ok(w) = w else {
+            fails += 1;
+            prev = None;
+            continue;
+        };
+        let sw = w.iterations.unwrap_or(0);
+        warm_steps += sw;
+        warm_time += tw;
+        if i % stride == 0 {
+            let t = Instant::now();
+            if let Ok(c) = cold_model.solve(&input(i), None) {
+                cold_time += t.elapsed().as_secs_f64();
+                cold_steps += c.iterations.unwrap_or(0);
+                n_cold += 1;
+                warm_at_cold += sw;
+                warm_time_at_cold += tw;
+                worst = worst.max((w.central_film / c.central_film - 1.0).abs()).max((w.min_film / c.min_film - 1.0).abs());
+            }
+        }
+        prev = Some(w);
+    }
+    println!("film model alone, {angles} angles (smooth, no torque balance): warm chain {warm_time:.2} s ({:.3} s/angle), {warm_steps} Newton steps ({:.2}/angle); {fails} failed", warm_time / angles as f64, warm_steps as f64 / angles as f64);
+    if n_cold > 0 {
+        println!(
+            "  at {n_cold} angles (every {stride}th): cold {:.3} s and {:.1} Newton steps per angle (nested grids + check) against warm {:.3} s and {:.1}; films warm vs cold within {:.2e}",
+            cold_time / n_cold as f64,
+            cold_steps as f64 / n_cold as f64,
+            warm_time_at_cold / n_cold as f64,
+            warm_at_cold as f64 / n_cold as f64,
+            worst
+        );
+    }
+    if args.iter().any(|a| a == "reference") {
+        let fine = Ehl2dOptions { nx: 2 * nx - 1, ny: 2 * ny - 1, ..options };
+        let fine_model = Finite::new(fine, Some(crown), fallback);
+        for (what, i) in [("max load", imax), ("nose 127°", inose), ("base circle 300°", ibase)] {
+            let t = Instant::now();
+            let (c, f) = (cold_model.solve(&input(i), None), fine_model.solve(&input(i), None));
+            match (c, f) {
+                (Ok(c), Ok(f)) => {
+                    let rich = |a: f64, b: f64| b + (b - a) / 3.0;
+                    let (rc, rm) = (rich(c.central_film, f.central_film), rich(c.min_film, f.min_film));
+                    println!(
+                        "  {what}: {nx}×{ny} h_c {:.4} µm ({:+.2} %), h_min {:.4} µm ({:+.2} %); {}×{} h_c {:.4} ({:+.2} %), h_min {:.4} ({:+.2} %); Richardson {:.4} / {:.4} µm ({:.1} s)",
+                        c.central_film * 1e6,
+                        100.0 * (c.central_film / rc - 1.0),
+                        c.min_film * 1e6,
+                        100.0 * (c.min_film / rm - 1.0),
+                        fine.nx,
+                        fine.ny,
+                        f.central_film * 1e6,
+                        100.0 * (f.central_film / rc - 1.0),
+                        f.min_film * 1e6,
+                        100.0 * (f.min_film / rm - 1.0),
+                        rc * 1e6,
+                        rm * 1e6,
+                        t.elapsed().as_secs_f64()
+                    );
+                }
+                (c, f) => println!("  {what}: reference failed: {:?} / {:?}", c.err(), f.err()),
+            }
+        }
     }
 }

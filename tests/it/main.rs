@@ -14,6 +14,7 @@ mod cam_validation;
 mod ehl_stability;
 mod ehl_validation;
 mod ehl_2d;
+mod ehl_2d_cam;
 mod examples_run;
 mod house;
 mod http_api;

@@ -48,6 +48,10 @@ pub struct PointRoller {
     /// Roller angular acceleration ω̇_r, rad/s². Default 0 (the inertia torque is I ω̇_r).
     #[serde(default)]
     pub angular_acceleration: f64,
+    /// Crowned roller profile over `contact_length` (seed 000 Table 1), used by the 2-D model
+    /// (`ehl.geometry: finite`). Absent: a straight roller of `contact_length`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub crown: Option<super::cam_cycle::CrownSpec>,
 }
 
 /// Spec of a `cam_point` job (SI units).
@@ -159,6 +163,18 @@ pub struct PointSummary {
     /// 0 when the film's rolling resistance alone exceeds the asperities' stick capacity).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub gross_sliding_pin_friction: Option<f64>,
+    /// `ehl.geometry: finite`: the edge pressure peak at pure rolling, Pa — the largest
+    /// off-centre maximum along the roller of `max_x p` above the centre value (absent when the
+    /// pressure falls monotonically from the centre, or with the line model).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub edge_pressure_peak: Option<f64>,
+    /// Its axial position, m from the roller centre.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub edge_pressure_peak_position: Option<f64>,
+    /// `ehl.geometry: finite`: where the minimum film sits along the roller axis, m from the
+    /// centre (0: on the centre line).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub min_film_axial_position: Option<f64>,
     /// Seed 001's procedure on the requested list: the first μ_rp with SRR > 0 …
     #[serde(skip_serializing_if = "Option::is_none")]
     pub first_sliding_pin_friction: Option<f64>,
@@ -225,6 +241,13 @@ impl Kind for CamPoint {
         v.check(!spec.film.squeeze, "/film/squeeze", "a point analysis is steady: no squeeze");
         spec.ehl.validate("/ehl", limits, v);
         v.check(spec.ehl.thermal.is_none() || spec.fidelity != Fidelity::Fast, "/ehl/thermal", "the thermal model runs with fidelity accurate or auto");
+        v.check(spec.ehl.geometry.is_line() || spec.fidelity != Fidelity::Fast, "/ehl/geometry", "finite is a model of the accurate and auto fidelities (fast keeps the closed form)");
+        if let Some(c) = spec.roller.crown {
+            v.check(c.middle_length > 0.0 && c.middle_length <= spec.contact_length, "/roller/crown/middle_length", "must be in (0, contact_length]");
+            v.in_range("/roller/crown/crown_height", c.crown_height, 0.0, 1e-3);
+            v.positive("/roller/crown/end_radius", c.end_radius);
+            v.check(!spec.ehl.geometry.is_line(), "/roller/crown", "the crown is a profile of the 2-D model: set ehl.geometry to finite");
+        }
     }
 
     fn solve(spec: &CamPointSpec, observer: &dyn Observer) -> Result<CamPointResult, SolveError> {
@@ -241,6 +264,9 @@ fn solve_point(spec: &CamPointSpec, observer: &dyn Observer) -> Result<CamPointR
     // A point analysis has no heat properties of its own: steel cam and follower (seed 000).
     let steel = crate::physics::thermal::ThermalSolid::STEEL;
     settings.thermal = spec.ehl.thermal.map(|t| t.settings(steel, steel));
+    if let (Some(f), Some(c)) = (settings.finite.as_mut(), spec.roller.crown) {
+        f.crown = Some(crate::physics::roller::Crown { length: spec.contact_length, middle_length: c.middle_length, crown_height: c.crown_height, end_radius: c.end_radius });
+    }
     let model = model_for(spec.fidelity, spec.film.to_physics(), settings);
     let lub = spec.lubricant.to_physics();
     let rough = spec.asperities.roughness(composite_sigma(spec.cam.roughness_rq, spec.follower.roughness_rq));
@@ -309,6 +335,9 @@ fn solve_point(spec: &CamPointSpec, observer: &dyn Observer) -> Result<CamPointR
         rolling_resistance: model.traction(&rolling, &input, 0.0).viscous,
         min_cam_roller_friction: case.min_cam_roller_friction()?,
         gross_sliding_pin_friction: case.gross_sliding_pin_friction()?,
+        edge_pressure_peak: rolling.finite.as_ref().and_then(|f| f.edge_pressure_peak).map(|e| e.0),
+        edge_pressure_peak_position: rolling.finite.as_ref().and_then(|f| f.edge_pressure_peak).map(|e| e.1),
+        min_film_axial_position: rolling.finite.as_ref().map(|f| f.min_film_position.1),
         first_sliding_pin_friction: first.map(|f| f.0),
         first_sliding_cam_roller_friction: first.map(|f| f.1),
     };

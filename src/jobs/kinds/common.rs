@@ -5,7 +5,8 @@
 use crate::jobs::kind::{Limits, Validation};
 use crate::physics::contact::Elastic;
 use crate::physics::ehl::{EhlOptions, Extrapolation};
-use crate::physics::film::{AccurateSettings, ClosedForm, FilmFormula};
+use crate::physics::ehl::twod::Ehl2dOptions;
+use crate::physics::film::{AccurateSettings, ClosedForm, FilmFormula, FiniteSettings};
 use crate::physics::ehl::thermal::{FilmHeat, ThermalBodies, ThermalOptions};
 use crate::physics::film::ThermalFilmSettings;
 use crate::physics::thermal::ThermalSolid;
@@ -488,6 +489,51 @@ pub struct EhlSpec {
     /// the model cannot settle fails with a typed `not_converged`. `cam_point` uses steel bodies.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub thermal: Option<EhlThermalSpec>,
+    /// The contact model of the numerical fidelities: `line` (default) the 1-D line-contact solver
+    /// above; `finite` the 2-D finite-length / point solver (`physics::ehl::twod`, isothermal,
+    /// steady, Newtonian): a roller follower as a finite line contact with its `crown` profile
+    /// (without a crown: a straight roller of the contact length), a spherical follower as a point
+    /// contact (which the line model leaves to the closed form). Each angle starts from the
+    /// previous angle's 2-D solution. Results gain the edge pressure peak along the roller and
+    /// where the minimum film sits (series `edge_pressure_peak`, `edge_pressure_peak_position`,
+    /// `min_film_axial_position`). With `auto` the 2-D model runs only where the contact's ends
+    /// matter (point contacts; a crowned roller whose loaded length reaches the crown transition;
+    /// `physics::film::finite::ends_matter`), the line-contact `auto` choice elsewhere. Not with
+    /// `thermal`, flat-faced followers or mixed-lubrication load sharing inside the solution (the
+    /// asperity load is evaluated from the smooth film). Cost: BENCHMARKS.md, issue 16.
+    #[serde(default, skip_serializing_if = "EhlGeometry::is_line")]
+    pub geometry: EhlGeometry,
+    /// `finite`: grid nodes along the rolling direction, 17–513 (odd numbers `2^k + 1` allow the
+    /// resolution check and the nested start). Default 65.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub nx: Option<usize>,
+    /// `finite`: grid nodes across the rolling direction (along the roller), 17–513. Default 129
+    /// for a roller, 65 for a point contact.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub ny: Option<usize>,
+    /// `finite`: the resolution check's tolerance — the largest accepted change of the central
+    /// film from the grid with half the intervals (the minimum film may change three times as
+    /// much), checked at the first angle; a grid above it is refused naming `/ehl/nx`. 0.005–0.5,
+    /// default 0.05 (seed 000's roller: 33×65 changes by 6.8 % from 17×33, 65×129 by ≈ 3 %).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub grid_tolerance: Option<f64>,
+}
+
+/// The contact model of the numerical fidelities (see [`EhlSpec::geometry`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize, ToSchema)]
+#[serde(rename_all = "snake_case")]
+pub enum EhlGeometry {
+    /// 1-D line contact (default).
+    #[default]
+    Line,
+    /// 2-D finite-length roller or point contact.
+    Finite,
+}
+
+impl EhlGeometry {
+    pub fn is_line(&self) -> bool {
+        *self == EhlGeometry::Line
+    }
 }
 
 /// The thermal EHL model's oil properties and resolution.
@@ -571,6 +617,10 @@ impl Default for EhlSpec {
             auto_tolerance: default_auto_tolerance(),
             extrapolation: ExtrapolationSpec::default(),
             thermal: None,
+            geometry: EhlGeometry::Line,
+            nx: None,
+            ny: None,
+            grid_tolerance: None,
         }
     }
 }
@@ -590,8 +640,22 @@ impl EhlSpec {
                 ExtrapolationSpec::None => Extrapolation::None,
             },
             thermal: None,
+            finite: (self.geometry == EhlGeometry::Finite).then(|| FiniteSettings { options: self.grid_options(false), crown: None }),
         }
     }
+
+    /// The 2-D solver's options of `geometry: finite` (`point`: a point contact's default grid).
+    pub fn grid_options(&self, point: bool) -> Ehl2dOptions {
+        Ehl2dOptions {
+            nx: self.nx.unwrap_or(65),
+            ny: self.ny.unwrap_or(if point { 65 } else { 129 }),
+            tolerance: self.tolerance,
+            max_iterations: self.max_iterations,
+            grid_tolerance: self.grid_tolerance.unwrap_or(0.05),
+            ..Ehl2dOptions::default()
+        }
+    }
+
     pub fn validate(&self, path: &str, limits: &Limits, v: &mut Validation) {
         v.count_in_range(&format!("{path}/nodes"), self.nodes, 32, 1 << 16);
         v.limit(&format!("{path}/nodes"), self.nodes, limits.max_grid_nodes, "the number of EHL grid nodes");
@@ -601,6 +665,19 @@ impl EhlSpec {
         v.in_range(&format!("{path}/auto_tolerance"), self.auto_tolerance, 0.0, 10.0);
         if let Some(t) = &self.thermal {
             t.validate(&format!("{path}/thermal"), v);
+        }
+        if self.geometry == EhlGeometry::Finite {
+            v.check(self.thermal.is_none(), &format!("{path}/geometry"), "the finite-length / point model is isothermal: not with ehl.thermal");
+            let o = self.grid_options(false);
+            if let Some(t) = self.grid_tolerance {
+                v.in_range(&format!("{path}/grid_tolerance"), t, 0.005, 0.5);
+            }
+            v.count_in_range(&format!("{path}/nx"), o.nx, 17, 513);
+            v.count_in_range(&format!("{path}/ny"), o.ny, 17, 513);
+            v.limit(&format!("{path}/nx"), o.nx * o.ny, limits.max_grid_nodes, "the number of 2-D grid nodes (nx·ny)");
+            v.memory(&format!("{path}/nx"), crate::physics::ehl::twod::memory_bytes(o.nx, o.ny), limits, "the 2-D EHL solver");
+        } else {
+            v.check(self.nx.is_none() && self.ny.is_none() && self.grid_tolerance.is_none(), &format!("{path}/nx"), "nx, ny and grid_tolerance set the grid of geometry finite");
         }
     }
 }
@@ -621,6 +698,9 @@ pub fn cam_spec_path(field: &str) -> Option<String> {
     let path = match field {
         "EhlOptions.nodes" => "/ehl/nodes",
         "EhlOptions.tolerance" => "/ehl/tolerance",
+        "Ehl2dOptions.nx" => "/ehl/nx",
+        "Ehl2dOptions.ny" => "/ehl/ny",
+        "Ehl2dOptions.tolerance" => "/ehl/tolerance",
         "EhlInput.lubricant.viscosity" => "/lubricant/viscosity",
         "EhlInput.lubricant.pressure_viscosity" => "/lubricant/pressure_viscosity",
         "EhlInput.lubricant.density" => "/lubricant/density",

@@ -929,6 +929,7 @@ impl Kind for Wear {
             );
             v.check(spec.cycle.profile_angles_deg.is_empty(), "/profile_angles_deg", "wear keeps no pressure profiles: leave it out");
             v.check(spec.cycle.ehl.thermal.is_none(), "/ehl/thermal", "the wear model does not run the thermal EHL model yet");
+            v.check(spec.cycle.ehl.geometry.is_line(), "/ehl/geometry", "the wear model reads line-contact pressure profiles: geometry finite is not supported");
             v.check(spec.cycle.thermal == ThermalPair::default(), "/thermal", "wear computes no temperatures: leave `thermal` out");
         });
         if spec.cycle.fidelity != Fidelity::Fast {

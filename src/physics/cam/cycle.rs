@@ -145,6 +145,10 @@ pub struct CycleSeries {
     /// Exit pressure spike height and position (present when any angle resolved one; `None` at
     /// the angles without).
     pub pressure_spike: Option<Vec<Option<(f64, f64)>>>,
+    /// Edge pressure peak (Pa, axial position m) of the 2-D finite model, and where its minimum
+    /// film sits axially (m); present when that model ran at any angle.
+    pub edge_pressure_peak: Option<Vec<Option<(f64, f64)>>>,
+    pub min_film_axial_position: Option<Vec<Option<f64>>>,
     /// Newton steps of the numerical model at each angle (present when it ran at any angle).
     pub newton_steps: Option<Vec<u32>>,
     pub lambda: Option<Vec<f64>>,
@@ -384,6 +388,11 @@ pub fn run_cycle(spec: &CycleSpec, needs: Needs, model: &dyn FilmModel, observer
         series.pressure_spike = Some(
             states.iter().map(|s| s.film.pressure_spike.zip(s.film.pressure_spike_position)).collect(),
         );
+    }
+    if states.iter().any(|s| s.film.finite.is_some()) {
+        let edge: Vec<Option<(f64, f64)>> = states.iter().map(|s| s.film.finite.as_ref().and_then(|f| f.edge_pressure_peak)).collect();
+        series.edge_pressure_peak = edge.iter().any(Option::is_some).then_some(edge);
+        series.min_film_axial_position = Some(states.iter().map(|s| s.film.finite.as_ref().map(|f| f.min_film_position.1)).collect());
     }
     if states.iter().any(|s| s.film.thermal.is_some()) {
         let pick = |f: fn(&crate::physics::ehl::thermal::ThermalSummary) -> f64| -> Vec<f64> {

@@ -223,6 +223,7 @@ impl FilmModel for ClosedForm {
             profile: None,
             iterations: None,
             thermal: None,
+            finite: None,
         })
     }
 }

@@ -23,6 +23,10 @@
 //!   squeeze term ∂(ρh)/∂t and a warm start, fills `pressure_spike`, `exit_film` and `profile`,
 //!   and returns its grid nodes with positive pressure as traction nodes. Point contacts (the
 //!   spherical tappet) keep the closed form: the solver is one-dimensional.
+//! * [`Finite`] — fidelity `accurate` with `ehl.geometry: finite`: the 2-D finite-length / point
+//!   EHL solver ([`crate::physics::ehl::twod`]) at every point with entrainment, warm-started
+//!   from the previous point's 2-D solution ([`finite`]); [`AutoFinite`] with `auto`: the 2-D
+//!   model where [`finite::ends_matter`], the line-contact [`Auto`] elsewhere.
 //! * [`Auto`] — fidelity `auto`: per point, the closed form where [`closed_form_error`] (the one
 //!   place the decision is made; measured rules in [`auto`]) is within the tolerance, else
 //!   [`Numerical`]. After closed-form points the numerical model has no history: its first point
@@ -36,6 +40,7 @@
 
 pub mod auto;
 pub mod closed_form;
+pub mod finite;
 pub mod formulas;
 pub mod mixed;
 pub mod numerical;
@@ -43,6 +48,7 @@ pub mod thermal;
 
 pub use auto::{closed_form_error, Auto, ClosedFormError, ErrorRule};
 pub use closed_form::{ClosedForm, FilmFormula};
+pub use finite::{AutoFinite, Finite, FiniteFilm};
 pub use numerical::Numerical;
 pub use thermal::{FilmThermal, ThermalFilmSettings, ThermalNumerical};
 
@@ -116,6 +122,8 @@ pub enum FilmModelId {
     HamrockDowsonMixed,
     /// The numerical EHL solver with the asperity pressure in its load balance and deflection.
     NumericalMixed,
+    /// The finite-length / point 2-D EHL solver (`physics::ehl::twod`, `ehl.geometry: finite`).
+    Finite,
 }
 
 impl FilmModelId {
@@ -134,6 +142,7 @@ impl FilmModelId {
             FilmModelId::Seed003Mixed => "seed003_mixed",
             FilmModelId::HamrockDowsonMixed => "hamrock_dowson_mixed",
             FilmModelId::NumericalMixed => "numerical_mixed",
+            FilmModelId::Finite => "finite",
         }
     }
 
@@ -227,6 +236,9 @@ pub struct FilmSolution {
     pub iterations: Option<u32>,
     /// Temperatures, factors and the traction table of the thermal model.
     pub thermal: Option<Box<FilmThermal>>,
+    /// Edge pressure peak, where the minimum film sits and the warm start of the finite-length /
+    /// point 2-D model ([`Finite`]).
+    pub finite: Option<Box<FiniteFilm>>,
 }
 
 /// Traction at one contact point for one sliding velocity.
@@ -324,14 +336,41 @@ pub struct AccurateSettings {
     pub extrapolation: crate::physics::ehl::Extrapolation,
     /// The thermal model (`accurate` only): `None` is isothermal.
     pub thermal: Option<ThermalFilmSettings>,
+    /// The finite-length / point 2-D model instead of the line contact (`ehl.geometry: finite`;
+    /// isothermal only): its grid and options, and the roller's crown.
+    pub finite: Option<FiniteSettings>,
+}
+
+/// Settings of the finite-length / point 2-D model ([`Finite`]).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct FiniteSettings {
+    pub options: crate::physics::ehl::twod::Ehl2dOptions,
+    /// The roller's axial profile (`None`: a straight roller of the contact length, or a point
+    /// contact).
+    pub crown: Option<crate::physics::roller::Crown>,
 }
 
 /// The film model for a fidelity: `fast` the closed form; `accurate` the numerical EHL solver on
 /// line contacts ([`Numerical`]; point contacts keep the closed form); `auto` the closed form
 /// where [`closed_form_error`] is within `settings.auto_tolerance`, the numerical solver elsewhere
 /// ([`Auto`]).
+///
+/// With `settings.finite` (`ehl.geometry: finite`): `accurate` runs the 2-D model ([`Finite`]) at
+/// every point with entrainment, `auto` where [`finite::ends_matter`] and the 1-D `auto` choice
+/// elsewhere ([`AutoFinite`]).
 pub fn model_for(fidelity: Fidelity, fast: ClosedForm, settings: AccurateSettings) -> Box<dyn FilmModel> {
     let numerical = Numerical::new(settings.options, fast).with_extrapolation(settings.extrapolation);
+    if let Some(f) = settings.finite {
+        let finite = Finite::new(f.options, f.crown, fast).check_first_only();
+        match fidelity {
+            Fidelity::Fast => {}
+            Fidelity::Accurate => return Box::new(finite),
+            Fidelity::Auto => {
+                let auto = Auto { fast, numerical, tolerance: settings.auto_tolerance, thermal: None };
+                return Box::new(AutoFinite { auto, finite });
+            }
+        }
+    }
     match fidelity {
         Fidelity::Fast => Box::new(fast),
         Fidelity::Accurate => match settings.thermal {

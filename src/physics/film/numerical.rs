@@ -161,6 +161,7 @@ impl FilmModel for Numerical {
             })),
             iterations: Some(s.convergence.iterations),
             thermal: None,
+            finite: None,
         })
     }
 }

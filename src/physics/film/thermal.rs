@@ -188,6 +188,7 @@ impl ThermalNumerical {
             profile: None,
             iterations: Some(0),
             thermal: Some(Box::new(FilmThermal { sliding, force_per_length: force, ..kth.clone() })),
+            finite: None,
         })
     }
 
@@ -324,6 +325,7 @@ impl ThermalNumerical {
                 sliding,
                 force_per_length: force,
             })),
+            finite: None,
         })
     }
 }

@@ -72,6 +72,11 @@ impl Kind for CamCycle {
             v.check(spec.fidelity != Fidelity::Fast, "/ehl/thermal", "the thermal model runs with fidelity accurate or auto");
             v.check(!matches!(spec.follower, FollowerSpec::Spherical { .. }), "/ehl/thermal", "the thermal model is a line-contact model: not for a spherical follower");
         }
+        if !spec.ehl.geometry.is_line() {
+            v.check(spec.fidelity != Fidelity::Fast, "/ehl/geometry", "finite is a model of the accurate and auto fidelities (fast keeps the closed forms)");
+            v.check(!matches!(spec.follower, FollowerSpec::FlatFaced { .. }), "/ehl/geometry", "finite needs a roller (finite line contact) or a spherical follower (point contact): a flat-faced follower is a line contact across the cam width");
+            v.check(!spec.outputs.contains(&CamOutput::Profiles), "/outputs", "profiles are line-contact profiles: not with ehl.geometry finite");
+        }
         if spec.outputs.contains(&CamOutput::Profiles) {
             v.check(spec.fidelity != Fidelity::Fast, "/outputs", "profiles need fidelity accurate or auto (the closed forms have none)");
             v.check(!spec.profile_angles_deg.is_empty(), "/profile_angles_deg", "the profiles output needs at least one angle");

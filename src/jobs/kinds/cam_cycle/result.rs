@@ -92,6 +92,20 @@ pub struct CamSeries {
     /// positive entrainment velocity; `null` where `pressure_spike` is.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub pressure_spike_position: Option<Vec<Option<f64>>>,
+    /// `ehl.geometry: finite` on a roller: the edge pressure peak, Pa — the largest off-centre
+    /// maximum along the roller of the pressure (`max_x p`) above the centre value, typically at a
+    /// crown transition. Present when the 2-D model found one at any angle; `null` where it did
+    /// not run or the pressure falls monotonically from the centre (and for point contacts).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub edge_pressure_peak: Option<Vec<Option<f64>>>,
+    /// Its axial position, m from the roller centre; `null` where `edge_pressure_peak` is.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub edge_pressure_peak_position: Option<Vec<Option<f64>>>,
+    /// `ehl.geometry: finite`: where the minimum film sits across the rolling direction (along a
+    /// roller's axis), m from the contact centre (0: on the centre line). Present when the 2-D model
+    /// ran at any angle; `null` where it did not.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub min_film_axial_position: Option<Vec<Option<f64>>>,
     /// Newton steps of the numerical EHL solver at each angle (0 at closed-form angles). Present
     /// when the numerical model ran.
     #[serde(skip_serializing_if = "Option::is_none")]

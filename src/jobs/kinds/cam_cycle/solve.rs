@@ -371,6 +371,17 @@ pub(super) fn solve_spec(spec: &CamCycleSpec, observer: &dyn Observer) -> Result
     };
     let mut settings = spec.ehl.to_physics();
     settings.thermal = spec.ehl.thermal.map(|t| t.settings(spec.thermal.cam.to_physics(), spec.thermal.follower.to_physics()));
+    if let Some(f) = settings.finite.as_mut() {
+        // The roller's crown (the whole roller: the cam's width does not cut a crowned contact,
+        // as in the slice model), or a point contact's grid.
+        match &spec.follower {
+            FollowerSpec::Roller { length, crown: Some(c), .. } => {
+                f.crown = Some(Crown { length: *length, middle_length: c.middle_length, crown_height: c.crown_height, end_radius: c.end_radius });
+            }
+            FollowerSpec::Spherical { .. } => f.options = spec.ehl.grid_options(true),
+            _ => {}
+        }
+    }
     let model = needs.film.then(|| model_for(spec.fidelity, spec.film.to_physics(), settings));
     let fast = crate::physics::film::ClosedForm { formula: spec.film.formula, squeeze: spec.film.squeeze };
     let out = run_cycle(&cycle, needs, model.as_deref().unwrap_or(&fast), observer)?;
@@ -444,6 +455,9 @@ pub(super) fn solve_spec(spec: &CamCycleSpec, observer: &dyn Observer) -> Result
             exit_film: s.exit_film,
             pressure_spike: spike,
             pressure_spike_position: spike_position,
+            edge_pressure_peak: s.edge_pressure_peak.as_ref().map(|v| v.iter().map(|e| e.map(|e| e.0)).collect()),
+            edge_pressure_peak_position: s.edge_pressure_peak.as_ref().map(|v| v.iter().map(|e| e.map(|e| e.1)).collect()),
+            min_film_axial_position: s.min_film_axial_position,
             newton_steps: s.newton_steps.map(|v| v.into_iter().map(f64::from).collect()),
             lambda: s.lambda,
             asperity_load_fraction: s.asperity_load_fraction,

@@ -59,7 +59,7 @@ pub mod elastic;
 mod geometry;
 pub mod solver;
 
-pub use solver::solve;
+pub use solver::{solve, solve_from};
 
 use crate::physics::lubricant::Lubricant;
 use crate::physics::roller::Crown;
@@ -123,11 +123,20 @@ pub struct Ehl2dOptions {
     /// [`solver::PINCH`] of the central film, is refused with `SolveError::InvalidInput` naming
     /// `Ehl2dOptions.nx` (the grid does not resolve the film).
     pub grid_tolerance: f64,
+    /// Run the resolution check's solve on the grid with half the intervals also after a warm
+    /// start ([`solve_from`]; a cold solve always checks). Default true; a cam cycle may check
+    /// its first angle only.
+    #[serde(default = "yes")]
+    pub grid_check: bool,
+}
+
+fn yes() -> bool {
+    true
 }
 
 impl Default for Ehl2dOptions {
     fn default() -> Self {
-        Ehl2dOptions { nx: 65, ny: 65, tolerance: 1e-7, max_iterations: 40, inlet: None, outlet: None, side: None, near_field: 1, fields: false, grid_tolerance: 0.05 }
+        Ehl2dOptions { nx: 65, ny: 65, tolerance: 1e-7, max_iterations: 40, inlet: None, outlet: None, side: None, near_field: 1, fields: false, grid_tolerance: 0.05, grid_check: true }
     }
 }
 
@@ -185,7 +194,24 @@ pub struct Ehl2dSolution {
     /// iteration's previous level, or a check solve started from the solution); `None` when that
     /// grid is too small (< 9 nodes) or its solve did not converge.
     pub grid_error: Option<f64>,
+    /// Whether the warm start of [`solve_from`] converged (false: the cold nested iteration ran).
+    pub warm_started: bool,
     pub convergence: Convergence,
+}
+
+/// A converged solution kept as the warm start of a neighbouring problem ([`solve_from`]): the
+/// dimensionless pressure `P = p/p_ref` on the nodes `X = x/a`, `Y = y/a` (the solver's frame:
+/// inlet at negative `X`), the length scale `a` (m), the central film and the closed-form film
+/// estimate in units of `a²/R_x`, and whether it is a finite line contact.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Warm2d {
+    pub x: Vec<f64>,
+    pub y: Vec<f64>,
+    pub pressure: Vec<f64>,
+    pub a: f64,
+    pub central: f64,
+    pub h_est: f64,
+    pub finite: bool,
 }
 
 /// Memory estimate of a solve on `nx × ny` nodes, bytes: about 40 node arrays, the padded FFT

@@ -9,7 +9,7 @@
 
 use super::elastic::Deflection;
 use super::geometry::{domain, scales, side_gap, Domain, Scales};
-use super::{Ehl2dInput, Ehl2dOptions, Ehl2dSolution, Fields2d, Geometry2d, Located};
+use super::{Ehl2dInput, Ehl2dOptions, Ehl2dSolution, Fields2d, Geometry2d, Located, Warm2d};
 use crate::physics::ehl::rheology::PressureRheology;
 use crate::physics::{Convergence, Observer, SolveError, Termination};
 use faer::prelude::Solve;
@@ -896,11 +896,59 @@ fn prolong(prob: &Problem, cx: &[f64], cy: &[f64], cp: &[f64]) -> Vec<f64> {
 
 /// Solve one 2-D EHL problem. Polls `observer` once per Newton step.
 pub fn solve(input: &Ehl2dInput, options: &Ehl2dOptions, observer: &dyn Observer) -> Result<Ehl2dSolution, SolveError> {
+    solve_from(input, options, None, observer).map(|(s, _)| s)
+}
+
+/// Solve one 2-D EHL problem starting from `warm` (a neighbouring problem's converged solution,
+/// e.g. the previous cam angle's) when given: its dimensionless pressure is interpolated onto this
+/// problem's grid in the new Hertzian scales (along a roller by the physical axial position, the
+/// crown being fixed in space; elsewhere by `x/a`, `y/a`) and scaled to the load, and `H0` is set
+/// so that the central film is the warm start's central film times the change of the closed-form
+/// estimate. Newton then runs on the finest grid directly (geometric face means; the continuation
+/// from the arithmetic means when that fails); when the warm start fails altogether the cold nested
+/// iteration runs. Returns the solution and its own warm start for the next problem. The
+/// resolution check runs as in [`solve`] (with a warm start: always a check solve on the grid with
+/// half the intervals, unless `options.grid_check` is off).
+pub fn solve_from(input: &Ehl2dInput, options: &Ehl2dOptions, warm: Option<&Warm2d>, observer: &dyn Observer) -> Result<(Ehl2dSolution, Warm2d), SolveError> {
     validate(input, options)?;
     let s = scales(input)?;
     let d = domain(input, options, &s);
-    let (mut prob, p, h0, total, residual, coarse) = solve_levels(input, options, &s, d, observer)?;
+    let finite = matches!(input.geometry, Geometry2d::Finite { .. });
+    let mut warm_run = None;
+    let mut failed_steps = 0;
+    if let Some(w) = warm.filter(|w| w.finite == finite && w.central > 0.0 && w.h_est > 0.0) {
+        let mut prob = Problem::new(input, &s, d, options.nx, options.ny, options.near_field);
+        let mut p = vec![0.0; options.nx * options.ny];
+        let axial = if finite { s.a / w.a } else { 1.0 };
+        for &k in &prob.nodes {
+            p[k] = bilinear(&w.x, &w.y, &w.pressure, prob.x[k % prob.nx], prob.y[k / prob.nx] * axial).max(0.0);
+        }
+        let sum: f64 = p.iter().sum::<f64>() * prob.dx * prob.dy;
+        if sum > 0.0 {
+            p.iter_mut().for_each(|v| *v *= prob.load / sum);
+            let mut h0 = h0_for(&mut prob, &p, w.central * s.h_est / w.h_est);
+            let run = solve_level(&mut prob, &mut p, &mut h0, options.tolerance, options.max_iterations.min(NESTED_ITER), options.max_iterations, DT_NESTED, true, observer)?;
+            if run.converged {
+                warm_run = Some((prob, p, h0, run.iterations, run.residual));
+            } else {
+                failed_steps = run.iterations;
+            }
+        }
+    }
+    let (mut prob, p, h0, total, residual, coarse, warm_used) = match warm_run {
+        Some((prob, p, h0, its, res)) => (prob, p, h0, its, res, None, true),
+        None => {
+            let (prob, p, h0, its, res, coarse) = solve_levels(input, options, &s, d, observer)?;
+            (prob, p, h0, its + failed_steps, res, coarse, false)
+        }
+    };
     let mut sol = finish(input, options, &s, &mut prob, &p, h0, total, residual)?;
+    sol.warm_started = warm_used;
+    let next = {
+        let mut v = Fields::default();
+        let hc = if prob.evaluate(&p, h0, &mut v) { bilinear(&prob.x, &prob.y, &v.h, 0.0, 0.0) } else { sol.central_film * s.rx / (s.a * s.a) };
+        Warm2d { x: prob.x.clone(), y: prob.y.clone(), pressure: p.clone(), a: s.a, central: hc, h_est: s.h_est, finite }
+    };
     let unresolved = |what: String| SolveError::invalid("Ehl2dOptions.nx", format!("the {}×{} grid does not resolve the film: {what}; refine the grid (nx, ny)", prob.nx, prob.ny));
     // A film pinched at a node is the discrete problem's, not the contact's (seed-free check:
     // smooth EHL films keep h_min/h_c ≳ 0.3).
@@ -909,7 +957,8 @@ pub fn solve(input: &Ehl2dInput, options: &Ehl2dOptions, observer: &dyn Observer
     }
     let coarse = match coarse {
         Some(c) => Some(c),
-        None => check_half(&s, d, input, options, &p, h0, observer)?,
+        None if options.grid_check || !warm_used => check_half(&s, d, input, options, &p, h0, observer)?,
+        None => None,
     };
     if let Some((hc, hm, cnx, cny)) = coarse {
         let film_scale = s.a * s.a / s.rx;
@@ -927,7 +976,7 @@ pub fn solve(input: &Ehl2dInput, options: &Ehl2dOptions, observer: &dyn Observer
             )));
         }
     }
-    Ok(sol)
+    Ok((sol, next))
 }
 
 /// Smallest accepted ratio of the minimum to the central film: below it the film is pinched at a
@@ -1097,6 +1146,7 @@ fn finish(input: &Ehl2dInput, options: &Ehl2dOptions, s: &Scales, prob: &mut Pro
         ny,
         fields,
         grid_error: None,
+        warm_started: false,
         convergence: Convergence { iterations, residual, tolerance: options.tolerance, termination: Termination::Converged },
     };
     let scalars = [sol.central_film, sol.min_film.value, sol.max_pressure.value, sol.load, residual];

@@ -1,0 +1,312 @@
+//! The finite-length / point film model (`ehl.geometry: finite`): the 2-D isothermal EHL solver
+//! ([`crate::physics::ehl::twod`], seed 000 eq. 2–6 over `x` and `y`) at every contact point.
+//!
+//! * **Roller followers**: the finite line contact of the roller's axial profile (the crowned
+//!   roller of seed 000 eq. 3 when the follower has a crown; otherwise a straight roller of the
+//!   contact length with square ends), reduced radius from the input's shape.
+//! * **Spherical followers**: the elliptic point contact `R_x`, `R_y` of the input's shape.
+//! * **No entrainment** (a contact at rest): the steady 2-D film needs entrainment; the closed
+//!   form answers, as for the 1-D [`super::Numerical`].
+//!
+//! Warm start: each point starts from the previous point's converged 2-D pressure (carried in
+//! [`FilmSolution::finite`]) rescaled to the new Hertzian scales ([`twod::solve_from`]); the
+//! cold nested iteration runs only at the first point or when the warm start fails. The model is
+//! steady (no squeeze term) and Newtonian; its film does not depend on the sliding velocity or on
+//! the previous point beyond the Newton tolerance, so it is history-free (a dwell reuses a film).
+//!
+//! From the converged fields: central film (centre of the contact), minimum film and where it
+//! sits (axial position `y`), the exit film (the smallest film on the centre line), peak pressure,
+//! the edge pressure peak of a finite roller (`max_x p` along the roller, its largest off-centre
+//! maximum above the centre value) and its axial position, and traction nodes (every grid node
+//! with positive pressure: cell area `Δx Δy`, pressure, viscosity, film, Poiseuille stress
+//! `−(h/2) ∂p/∂x`, seed 001 eq. 24). Rough surfaces: the asperity load is the Greenwood–Tripp
+//! pressure of the local film summed over the grid *after* the smooth solve (not in its load
+//! balance, unlike the 1-D `numerical_mixed`), capped at the load; the fluid nodes then carry the
+//! remaining share.
+
+use super::closed_form::{ClosedForm, FILM_FLOOR, VISCOSITY_CAP};
+use super::formulas::LineGroups;
+use super::{ContactInput, ContactShape, FilmModel, FilmModelId, FilmSolution, Regime};
+use crate::physics::ehl::twod::{self, Ehl2dInput, Ehl2dOptions, Geometry2d, Warm2d};
+use crate::physics::friction::{AsperityContact, TractionNode};
+use crate::physics::roller::Crown;
+use crate::physics::{ensure_finite, Silent, SolveError};
+use std::sync::atomic::{AtomicBool, Ordering};
+
+/// What the 2-D model adds to a [`FilmSolution`].
+#[derive(Debug, Clone, PartialEq)]
+pub struct FiniteFilm {
+    /// Largest off-centre maximum of the pressure along the roller (finite line contacts):
+    /// `(pressure Pa, axial position m from the roller centre)`; `None` when the pressure falls
+    /// monotonically from the centre or for point contacts.
+    pub edge_pressure_peak: Option<(f64, f64)>,
+    /// Where the minimum film sits: `(x, y)`, m from the contact centre (`x` along the rolling
+    /// direction, positive downstream; `y` along the roller axis / across the rolling).
+    pub min_film_position: (f64, f64),
+    /// Grid `nx × ny`.
+    pub grid: (usize, usize),
+    /// The resolution check's estimate of the central film's discretisation error, when it ran.
+    pub grid_error: Option<f64>,
+    /// Whether the warm start from the previous point converged (false: cold nested solve).
+    pub warm_started: bool,
+    /// The converged pressure in the solver's scales: the next point's warm start.
+    pub warm: Warm2d,
+}
+
+/// The finite-length / point film model. See the module docs.
+#[derive(Debug)]
+pub struct Finite {
+    /// Grid, tolerance, iteration cap and resolution check of the 2-D solver.
+    pub options: Ehl2dOptions,
+    /// The roller's axial profile (`None`: a straight roller of the input's contact length).
+    pub crown: Option<Crown>,
+    /// The closed form for a contact at rest and for `steady_central_film`.
+    pub fallback: ClosedForm,
+    /// Run the resolution check at the first solve only (then `options.grid_check` is cleared
+    /// for warm-started solves): a cycle's grid is checked where it starts. False: every solve
+    /// as `options` say.
+    pub check_first_only: bool,
+    checked: AtomicBool,
+}
+
+impl Finite {
+    pub fn new(options: Ehl2dOptions, crown: Option<Crown>, fallback: ClosedForm) -> Self {
+        Finite { options, crown, fallback, check_first_only: false, checked: AtomicBool::new(false) }
+    }
+
+    /// The same model checking the grid at its first solve only.
+    pub fn check_first_only(self) -> Self {
+        Finite { check_first_only: true, ..self }
+    }
+
+    /// The 2-D geometry of `input` (`None`: no 2-D problem — zero entrainment).
+    pub fn geometry(&self, input: &ContactInput) -> Geometry2d {
+        match input.shape {
+            ContactShape::Line { reduced_radius, length } => {
+                let crown = self.crown.unwrap_or(Crown { length, middle_length: length, crown_height: 0.0, end_radius: 1.0 });
+                Geometry2d::Finite { rx: reduced_radius, crown }
+            }
+            ContactShape::Point { rx, ry } => Geometry2d::Point { rx, ry },
+        }
+    }
+}
+
+impl FilmModel for Finite {
+    /// 1e-3: the film moves by < 1e-3 relative (∝ u^0.7), against the 2-D grid's discretisation
+    /// error of ≈ 1–5 % (BENCHMARKS.md, issue 16).
+    fn entrainment_tolerance(&self) -> f64 {
+        1e-3
+    }
+
+    /// Steady and Newtonian: the film depends on load, shape and entrainment alone (the warm start
+    /// changes it by less than the Newton tolerance).
+    fn history_free(&self) -> bool {
+        true
+    }
+
+    fn solve(&self, input: &ContactInput, previous: Option<&FilmSolution>) -> Result<FilmSolution, SolveError> {
+        let load = input.load;
+        if !(load > 0.0 && load.is_finite()) {
+            return Err(SolveError::physical(crate::physics::PhysicalFailure::NoContactLoad, format!("contact load {load} N is not positive")));
+        }
+        if input.entrainment_velocity == 0.0 {
+            return self.fallback.solve(input, previous);
+        }
+        let es = input.contact_modulus;
+        let geometry = self.geometry(input);
+        let ehl = Ehl2dInput {
+            load,
+            geometry,
+            effective_modulus: 2.0 * es,
+            entrainment_velocity: input.entrainment_velocity,
+            lubricant: *input.lubricant,
+            temperature: input.temperature,
+        };
+        let warm = previous.and_then(|p| p.finite.as_deref()).map(|f| &f.warm);
+        let first = !self.checked.swap(true, Ordering::Relaxed);
+        let grid_check = self.options.grid_check && (!self.check_first_only || first || warm.is_none());
+        let options = Ehl2dOptions { fields: true, grid_check, ..self.options };
+        let (s, next) = twod::solve_from(&ehl, &options, warm, &Silent)?;
+        let f = s.fields.as_ref().ok_or_else(|| SolveError::NonFinite { quantity: "2-D EHL fields".into() })?;
+        let (nx, ny) = (f.x.len(), f.y.len());
+        let dx = (f.x[1] - f.x[0]).abs();
+        let dy = f.y[1] - f.y[0];
+        let cell = dx * dy;
+        // Rough surfaces: Greenwood–Tripp of the local film over the grid, after the smooth solve.
+        let sigma = input.roughness.sigma;
+        let w_a = if sigma > 0.0 { (f.film.iter().map(|h| input.roughness.asperity_pressure(*h, es)).sum::<f64>() * cell).min(load) } else { 0.0 };
+        let fluid_share = 1.0 - w_a / load;
+        let t = input.temperature;
+        let law = input.lubricant.viscosity_law(t);
+        let mut nodes = Vec::new();
+        let mut area = 0.0;
+        for j in 1..ny - 1 {
+            for i in 1..nx - 1 {
+                let k = j * nx + i;
+                let p = f.pressure[k];
+                if p <= 0.0 {
+                    continue;
+                }
+                area += cell;
+                // x is signed with the entrainment (positive downstream of positive u_m).
+                let dpdx = fluid_share * (f.pressure[k + 1] - f.pressure[k - 1]) / (f.x[i + 1] - f.x[i - 1]);
+                let film = f.film[k].max(FILM_FLOOR);
+                nodes.push(TractionNode {
+                    area: cell,
+                    pressure: fluid_share * p,
+                    viscosity: law.at(p).min(VISCOSITY_CAP),
+                    film,
+                    poiseuille: -0.5 * film * dpdx,
+                });
+            }
+        }
+        let centre_row = (ny - 1) / 2;
+        let exit_film = (0..nx).map(|i| f.film[centre_row * nx + i]).fold(f64::INFINITY, f64::min);
+        let steady = self.fallback.solve(input, None)?.steady_central_film;
+        let regime = match input.shape {
+            ContactShape::Line { reduced_radius, length } => {
+                let eta0 = input.lubricant.viscosity_at(0.0, t);
+                let g = LineGroups::new(load / length, reduced_radius, input.entrainment_velocity, eta0, input.lubricant.pressure_viscosity, 2.0 * es);
+                (g.speed > 0.0).then(|| Regime { viscous: g.viscous_parameter(), elastic: g.elastic_parameter() })
+            }
+            ContactShape::Point { .. } => None,
+        };
+        let r_roll = match geometry {
+            Geometry2d::Finite { rx, .. } | Geometry2d::Point { rx, .. } => rx,
+        };
+        ensure_finite("2-D film", [&s.central_film, &s.min_film.value, &exit_film, &s.max_pressure.value, &w_a, &area])?;
+        ensure_finite("traction nodes", nodes.iter().flat_map(|n| [&n.area, &n.pressure, &n.viscosity, &n.film, &n.poiseuille]))?;
+        Ok(FilmSolution {
+            model: FilmModelId::Finite,
+            central_film: s.central_film,
+            min_film: s.min_film.value,
+            steady_central_film: steady,
+            max_pressure: s.max_pressure.value,
+            pressure_spike: None,
+            pressure_spike_position: None,
+            exit_film: Some(exit_film),
+            half_width: s.hertz_half_width,
+            contact_area: area,
+            asperity: AsperityContact { load: w_a, gross_sliding_creep: input.asperity_friction.creep_scale(s.hertz_half_width, r_roll) },
+            lambda: (sigma > 0.0).then(|| s.min_film.value / sigma),
+            regime,
+            nodes,
+            rolling_force: 0.0,
+            viscosity_law: None,
+            profile: None,
+            iterations: Some(s.convergence.iterations),
+            thermal: None,
+            finite: Some(Box::new(FiniteFilm {
+                edge_pressure_peak: s.edge_pressure_peak.map(|e| (e.value, e.y)),
+                min_film_position: (s.min_film.x, s.min_film.y),
+                grid: (s.nx, s.ny),
+                grid_error: s.grid_error,
+                warm_started: s.warm_started,
+                warm: next,
+            })),
+        })
+    }
+}
+
+/// Whether the contact's ends matter at `input` — where `auto` with `ehl.geometry: finite` runs
+/// the 2-D model ([`AutoFinite`]). An estimate (issue 16):
+/// * point contacts: always (the 1-D model does not apply; the closed form has no pressure field);
+/// * a crowned roller: when the slice model's loaded length (`Crown::distribute`, the thin-slice
+///   estimate of how far the load spreads along the roller) reaches within two Hertzian
+///   half-widths of the crown transition `L1/2` — there the axial slope of the profile jumps and
+///   the edge pressure peak forms (seed 000); also when it reaches the roller's ends;
+/// * a straight roller (no crown): when twice the Hertzian half-width is more than
+///   `tolerance` of the contact length (the end zones, a few half-widths long, are then a
+///   noticeable part of the contact).
+pub fn ends_matter(crown: Option<&Crown>, input: &ContactInput, tolerance: f64) -> bool {
+    let es = input.contact_modulus;
+    match input.shape {
+        ContactShape::Point { .. } => true,
+        ContactShape::Line { reduced_radius, length } => match crown {
+            Some(c) => {
+                let cc = c.distribute(input.load, reduced_radius, es);
+                let b = crate::physics::contact::hertz_line(cc.peak_load_per_length.max(input.load / c.length), reduced_radius, es).half_width;
+                let reach = 0.5 * cc.effective_length + 2.0 * b;
+                (c.crown_height > 0.0 && c.middle_length < c.length && reach >= 0.5 * c.middle_length) || reach >= 0.5 * c.length
+            }
+            None => {
+                let b = crate::physics::contact::hertz_line(input.load / length, reduced_radius, es).half_width;
+                2.0 * b > tolerance * length
+            }
+        },
+    }
+}
+
+/// `auto` with `ehl.geometry: finite`: the 2-D model where [`ends_matter`], elsewhere the 1-D
+/// `auto` choice (closed form or numerical line contact, [`super::Auto`]).
+pub struct AutoFinite {
+    pub auto: super::Auto,
+    pub finite: Finite,
+}
+
+impl FilmModel for AutoFinite {
+    fn entrainment_tolerance(&self) -> f64 {
+        self.auto.entrainment_tolerance()
+    }
+
+    fn solve(&self, input: &ContactInput, previous: Option<&FilmSolution>) -> Result<FilmSolution, SolveError> {
+        if input.entrainment_velocity != 0.0 && ends_matter(self.finite.crown.as_ref(), input, self.auto.tolerance) {
+            self.finite.solve(input, previous)
+        } else {
+            self.auto.solve(input, previous)
+        }
+    }
+
+    fn traction_local(&self, film: &FilmSolution, input: &ContactInput, sliding: f64) -> (super::Traction, (f64, f64)) {
+        if film.finite.is_some() {
+            self.finite.traction_local(film, input, sliding)
+        } else {
+            self.auto.traction_local(film, input, sliding)
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::physics::friction::{AsperityFriction, AsperityModel, Rheology, Roughness, TractionLaw};
+    use crate::physics::lubricant::Lubricant;
+
+    /// The `auto` estimate on seed 000's crowned roller (L = 14 mm, L1 = 12 mm, h_td = 4.5 µm,
+    /// R_d = 12.5 mm; R = 10.37 mm, E* = 105 GPa): the load reaches the crown transition at the
+    /// cycle's peak loads (`ends_matter`), not at light loads; a long straight roller's ends
+    /// do not matter, a point contact's always do. Run with `--nocapture` for the loaded lengths.
+    #[test]
+    fn ends_matter_on_the_seed000_roller_at_heavy_loads_only() {
+        let lub = Lubricant::SEED000;
+        let rough = Roughness { sigma: 0.0, eta_beta_sigma: 0.04, sigma_over_beta: 0.001, plastic_limit: f64::INFINITY, curve: None };
+        let law = TractionLaw { rheology: Rheology::Newtonian, limiting_shear_coefficient: None };
+        let asp = AsperityFriction { coefficient: 0.1, model: AsperityModel::Coulomb };
+        let es = 1.911e11 / (2.0 * 0.91);
+        let crown = Crown { length: 0.014, middle_length: 0.012, crown_height: 4.5e-6, end_radius: 0.0125 };
+        let input = |load: f64, shape: ContactShape| ContactInput {
+            load,
+            shape,
+            entrainment_velocity: 2.77,
+            sliding_velocity: 0.0,
+            time: 0.0,
+            time_step: 0.0,
+            contact_modulus: es,
+            temperature: 313.0,
+            lubricant: &lub,
+            roughness: &rough,
+            traction_law: &law,
+            asperity_friction: &asp,
+        };
+        let line = ContactShape::Line { reduced_radius: 0.01037, length: 0.014 };
+        for load in [100.0, 600.0, 954.0, 2241.0] {
+            let cc = crown.distribute(load, 0.01037, es);
+            println!("{load} N: loaded length {:.3} mm, ends matter {}", cc.effective_length * 1e3, ends_matter(Some(&crown), &input(load, line), 0.05));
+        }
+        assert!(!ends_matter(Some(&crown), &input(100.0, line), 0.05));
+        assert!(ends_matter(Some(&crown), &input(2241.0, line), 0.05));
+        // A straight roller 150 half-widths long: its ends do not matter; a point contact's do.
+        assert!(!ends_matter(None, &input(1000.0, line), 0.05));
+        assert!(ends_matter(None, &input(100.0, ContactShape::Point { rx: 0.01, ry: 0.01 }), 0.05));
+    }
+}

@@ -1,0 +1,142 @@
+//! The finite-length / point 2-D EHL model inside the cam kinds (`ehl.geometry: finite`, issue 16):
+//! `cam_point` on a long roller against the line model, a short seed 000 cycle with the finite
+//! model (converges, warm starts, films beside the line model's), and bad input.
+
+use crate::in_process::{example, run, Failure};
+use serde_json::{json, Value};
+
+fn with(spec: &Value, f: impl Fn(&mut Value)) -> Value {
+    let mut s = spec.clone();
+    f(&mut s);
+    s
+}
+
+fn rel(a: f64, b: f64) -> f64 {
+    (a / b - 1.0).abs()
+}
+
+fn col(out: &Value, name: &str) -> Vec<Option<f64>> {
+    out["series"][name].as_array().unwrap_or_else(|| panic!("series {name}")).iter().map(|v| v.as_f64()).collect()
+}
+
+/// A long straight roller in pure rolling (seed 000's oil and steel, 1 kN on 14 mm, R = 10.37 mm,
+/// u = 2.77 m/s: L ≈ 150 Hertzian half-widths) straight over 10 mm with gently rounded ends
+/// (`crown_height` 0, `end_radius` 50 mm: no square-edge singularity, and the end zone spans
+/// several grid cells). The minimum film where the ends begin is not grid-converged on 65×129
+/// (measured with 5 mm end radii: 31 % change from 33×65), so the resolution check is relaxed
+/// to 12 % here; the central film changes by ≈ 3 %.
+fn long_roller(geometry: &str) -> Value {
+    let mut s = json!({
+        "load": 1000.0, "reduced_radius": 0.01037, "cam_surface_velocity": 2.77, "contact_length": 0.014,
+        "roller": {"radius": 0.0255, "pin_radius": 0.016},
+        "pin_friction": [0.002],
+        "cam": {"material": {"youngs_modulus": 1.911e11, "poisson_ratio": 0.3}},
+        "follower": {"material": {"youngs_modulus": 1.911e11, "poisson_ratio": 0.3}},
+        "lubricant": {"viscosity": 0.152, "pressure_viscosity": 2.2e-8, "temperature_viscosity": 0.042, "reference_temperature": 313.0, "density": 870.0},
+        "fidelity": "accurate",
+        "ehl": {"tolerance": 1e-7}
+    });
+    if geometry == "finite" {
+        s["ehl"] = json!({"geometry": "finite", "nx": 65, "ny": 129, "tolerance": 1e-7, "grid_tolerance": 0.12});
+        s["roller"]["crown"] = json!({"middle_length": 0.010, "crown_height": 0.0, "end_radius": 0.05});
+    }
+    s
+}
+
+/// `cam_point` with `ehl.geometry: finite` on the long roller against the line model at the same
+/// peak load per length (the line contact's length is the slice model's equivalent length
+/// `F/w'_max` of the rounded roller): central film within 4 % (the 2-D grid's own error is
+/// ≈ 1–3 %), minimum film within 15 % (the 2-D minimum may sit where the rounded ends begin, the
+/// 1-D one in the exit constriction; not grid-converged).
+#[test]
+fn finite_cam_point_on_a_long_roller_matches_the_line_model() {
+    use tribod::physics::roller::Crown;
+    let t = std::time::Instant::now();
+    let finite = run("cam_point", &long_roller("finite")).unwrap();
+    let crown = Crown { length: 0.014, middle_length: 0.010, crown_height: 0.0, end_radius: 0.05 };
+    let es = 1.911e11 / (2.0 * 0.91);
+    let eq = crown.distribute(1000.0, 0.01037, es).equivalent_length;
+    let line = run("cam_point", &with(&long_roller("line"), |s| s["contact_length"] = json!(eq))).unwrap();
+    let (f, l) = (&finite["summary"], &line["summary"]);
+    let get = |v: &Value, k: &str| v[k].as_f64().unwrap_or_else(|| panic!("{k}: {v}"));
+    println!(
+        "finite: h_c {:.4} µm, h_min {:.4} µm at y = {:?} m, p_max {:.3} GPa, edge {:?}; line (L_eq {:.3} mm): h_c {:.4} µm, h_min {:.4} µm, p_max {:.3} GPa; model {} / {} ({:?})",
+        get(f, "film_central") * 1e6,
+        get(f, "film_min") * 1e6,
+        f["min_film_axial_position"],
+        get(f, "max_pressure") * 1e-9,
+        f["edge_pressure_peak"],
+        eq * 1e3,
+        get(l, "film_central") * 1e6,
+        get(l, "film_min") * 1e6,
+        get(l, "max_pressure") * 1e-9,
+        finite["film_model"],
+        line["film_model"],
+        t.elapsed()
+    );
+    assert_eq!(finite["film_model"], "finite");
+    assert_eq!(line["film_model"], "numerical");
+    assert!(rel(get(f, "film_central"), get(l, "film_central")) < 0.04, "central film");
+    assert!(rel(get(f, "film_min"), get(l, "film_min")) < 0.15, "minimum film");
+    assert!(f["min_film_axial_position"].as_f64().is_some());
+    // The traction nodes carry the load: the slip balance ran on them.
+    assert!(finite["rows"][0]["film_central"].as_f64().unwrap() > 0.0);
+}
+
+/// The seed 000 cycle at 8 angles with the finite model (33×65 with the resolution check relaxed
+/// to 8 %: it changes the central film by 6.8 % from 17×33; the example's rough surfaces): it
+/// converges, every angle ran the 2-D model, the films are positive with the minimum below the
+/// central film, the series carry the minimum film's axial position and the Newton steps, and on
+/// the base circle (600 N: the loaded length, 9.8 mm, stays inside the 12 mm middle) the central
+/// film is within 10 % of the line model's (`accurate`, 192 nodes; measured on 65×129 at 24
+/// angles: −5.0 %, of which the 2-D grid's own error is ≈ −1.3 … −3 %; on 33×65 ≈ −5 % more).
+#[test]
+fn finite_seed000_short_cycle_converges_beside_the_line_model() {
+    let base = with(&example("seed000_roller_accurate"), |s| s["angles"] = json!(8));
+    let t = std::time::Instant::now();
+    let finite = run("cam_cycle", &with(&base, |s| s["ehl"] = json!({"geometry": "finite", "nx": 33, "ny": 65, "grid_tolerance": 0.08}))).unwrap();
+    let tf = t.elapsed();
+    let line = run("cam_cycle", &base).unwrap();
+    let (hc, hm) = (col(&finite, "film_central"), col(&finite, "film_min"));
+    let (lc, lm) = (col(&line, "film_central"), col(&line, "film_min"));
+    let steps = col(&finite, "newton_steps");
+    let ypos = col(&finite, "min_film_axial_position");
+    for i in 0..hc.len() {
+        println!("{:3} h_c {:.4} / line {:.4} µm, h_min {:.4} / {:.4} µm at y {:?}, steps {:?}", i * 45, hc[i].unwrap() * 1e6, lc[i].unwrap() * 1e6, hm[i].unwrap() * 1e6, lm[i].unwrap() * 1e6, ypos[i], steps[i]);
+    }
+    println!("finite cycle in {tf:?}; fidelity_used {}", finite["summary"]["fidelity_used"]);
+    assert_eq!(finite["summary"]["fidelity_used"], json!({"finite": 8}));
+    for i in 0..hc.len() {
+        let (c, m) = (hc[i].unwrap(), hm[i].unwrap());
+        assert!(c > 0.0 && m > 0.0 && m <= c, "{i}: {c} {m}");
+        assert!(ypos[i].is_some() && steps[i].is_some());
+    }
+    // Base circle (270°, index 6).
+    let i = 6;
+    assert!(rel(hc[i].unwrap(), lc[i].unwrap()) < 0.10, "base circle: {} vs {}", hc[i].unwrap(), lc[i].unwrap());
+}
+
+/// Bad input is refused naming the field: finite on a flat-faced follower, with `fast`, with the
+/// thermal model; a grid outside 17–513; `nx` without finite.
+#[test]
+fn finite_geometry_bad_input_names_the_field() {
+    let flat = with(&example("seed003_cycloidal_flat"), |s| s["fidelity"] = json!("accurate"));
+    let cases: Vec<(&str, Value, &str)> = vec![
+        ("cam_cycle", with(&flat, |s| s["ehl"] = json!({"geometry": "finite"})), "/ehl/geometry"),
+        ("cam_point", with(&long_roller("finite"), |s| s["fidelity"] = json!("fast")), "/ehl/geometry"),
+        ("cam_point", with(&long_roller("finite"), |s| s["ehl"]["nx"] = json!(9)), "/ehl/nx"),
+        ("cam_point", with(&long_roller("line"), |s| s["ehl"]["ny"] = json!(65)), "/ehl/nx"),
+        ("cam_point", with(&long_roller("line"), |s| s["roller"]["crown"] = json!({"middle_length": 0.010, "crown_height": 0.0, "end_radius": 0.05})), "/roller/crown"),
+        ("cam_point", with(&long_roller("finite"), |s| s["ehl"]["grid_tolerance"] = json!(0.9)), "/ehl/grid_tolerance"),
+        ("cam_point", with(&long_roller("finite"), |s| s["ehl"]["thermal"] = json!({})), "/ehl/geometry"),
+    ];
+    for (kind, spec, path) in cases {
+        match run(kind, &spec) {
+            Err(Failure::Spec(p)) => {
+                assert_eq!(p.status, 422, "{p:?}");
+                assert!(p.errors.iter().any(|e| e.path == path), "{path}: {:?}", p.errors);
+            }
+            other => panic!("{kind} {path}: {other:?}"),
+        }
+    }
+}
