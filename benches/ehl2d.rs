@@ -156,7 +156,7 @@ fn cycle(args: &[String]) {
     let lub = Lubricant { viscosity: 0.152, pressure_viscosity: 2.2e-8, ..Lubricant::SEED000 };
     let rough = Roughness { sigma: 0.0, eta_beta_sigma: 0.04, sigma_over_beta: 0.001, plastic_limit: f64::INFINITY, curve: None };
     let law = TractionLaw { rheology: Rheology::Newtonian, limiting_shear_coefficient: None };
-    let asp = AsperityFriction { coefficient: 0.1, model: AsperityModel::Coulomb };
+    let asp = AsperityFriction { coefficient: 0.1, model: AsperityModel::Coulomb, map: None };
     let es = 1.911e11 / (2.0 * (1.0 - 0.09));
     let input = |i: usize| ContactInput {
         load: load[i],

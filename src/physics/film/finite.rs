@@ -28,7 +28,7 @@ use super::closed_form::{ClosedForm, FILM_FLOOR, VISCOSITY_CAP};
 use super::formulas::LineGroups;
 use super::{ContactInput, ContactShape, FilmModel, FilmModelId, FilmSolution, Regime};
 use crate::physics::ehl::twod::{self, Ehl2dInput, Ehl2dOptions, Geometry2d, Warm2d};
-use crate::physics::friction::{AsperityContact, TractionNode};
+use crate::physics::friction::TractionNode;
 use crate::physics::roller::Crown;
 use crate::physics::{ensure_finite, Silent, SolveError};
 use std::sync::atomic::{AtomicBool, Ordering};
@@ -187,7 +187,8 @@ impl FilmModel for Finite {
             exit_film: Some(exit_film),
             half_width: s.hertz_half_width,
             contact_area: area,
-            asperity: AsperityContact { load: w_a, gross_sliding_creep: input.asperity_friction.creep_scale(s.hertz_half_width, r_roll) },
+            asperity: input.asperity_friction.contact(w_a, s.hertz_half_width, r_roll, s.central_film),
+            asperity_nodes: Vec::new(),
             lambda: (sigma > 0.0).then(|| s.min_film.value / sigma),
             regime,
             nodes,
@@ -281,7 +282,7 @@ mod tests {
         let lub = Lubricant::SEED000;
         let rough = Roughness { sigma: 0.0, eta_beta_sigma: 0.04, sigma_over_beta: 0.001, plastic_limit: f64::INFINITY, curve: None };
         let law = TractionLaw { rheology: Rheology::Newtonian, limiting_shear_coefficient: None };
-        let asp = AsperityFriction { coefficient: 0.1, model: AsperityModel::Coulomb };
+        let asp = AsperityFriction { coefficient: 0.1, model: AsperityModel::Coulomb, map: None };
         let es = 1.911e11 / (2.0 * 0.91);
         let crown = Crown { length: 0.014, middle_length: 0.012, crown_height: 4.5e-6, end_radius: 0.0125 };
         let input = |load: f64, shape: ContactShape| ContactInput {
