@@ -1249,6 +1249,32 @@ mod tests {
     }
 
     #[test]
+    fn projected_sweeps_keep_the_lcp_solution_and_settle_an_interpolated_start() {
+        // the converged LCP solution is a fixed point of the projected sweeps
+        let mut h = aligned_hierarchy(144, 49, 1.0, 0.6);
+        let rep = h.nested_solve(0, 1e-13, 30, 400);
+        assert!(rep.converged);
+        let u0 = h.levels[0].u.clone();
+        let m = u0.iter().fold(0.0f64, |a, b| a.max(*b));
+        h.projected_sweeps(0, 3);
+        for (a, b) in u0.iter().zip(&h.levels[0].u) {
+            assert!((a - b).abs() < 1e-9 * m, "{a} {b}");
+        }
+        // from the coarser grid's solution interpolated, two sweeps reduce the complementarity
+        // residual, and the active-set solve still reaches the same solution
+        h.interpolate_up(0);
+        let r0 = h.lcp_residual(0);
+        h.projected_sweeps(0, 2);
+        let r1 = h.lcp_residual(0);
+        assert!(r1 < 0.5 * r0, "{r0} {r1}");
+        let rep = h.solve_lcp(0, 1e-13, 30, 400);
+        assert!(rep.converged);
+        for (a, b) in u0.iter().zip(&h.levels[0].u) {
+            assert!((a - b).abs() < 1e-9 * m, "{a} {b}");
+        }
+    }
+
+    #[test]
     fn active_set_matches_projected_gauss_seidel() {
         // The same discrete LCP solved by plain projected Gauss–Seidel to round-off.
         let mut h = aligned_hierarchy(48, 17, 1.0, 0.7);
