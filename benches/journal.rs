@@ -189,6 +189,73 @@ fn speed_section(reps: usize) {
     println!("L9 ({ev} analyses, 2 threads): {:.1} ms wall, {:.1} ms CPU over both threads (best of {reps})", wall * 1e3, cpu * 1e3);
 }
 
+/// Records every `check()` of a solve: (rayon worker, wall s since start, the thread's CPU s), and
+/// the progress stages. `cargo bench --bench journal -- l9-timeline`: when each worker of the L9
+/// pool worked, and how much CPU it got while it did.
+struct Timeline {
+    t0: Instant,
+    events: std::sync::Mutex<Vec<(Option<usize>, f64, f64, String)>>,
+}
+
+impl tribod::physics::Observer for Timeline {
+    fn progress(&self, _fraction: f64, stage: &str) {
+        let e = (rayon::current_thread_index(), self.t0.elapsed().as_secs_f64(), thread_cpu(), stage.to_string());
+        self.events.lock().unwrap().push(e);
+    }
+    fn check(&self) -> Result<(), tribod::physics::Interrupt> {
+        let e = (rayon::current_thread_index(), self.t0.elapsed().as_secs_f64(), thread_cpu(), String::new());
+        self.events.lock().unwrap().push(e);
+        Ok(())
+    }
+}
+
+fn l9_timeline() {
+    let spec_json = serde_json::json!({
+        "base": {
+            "geometry": {"length_to_diameter": 1.25},
+            "load": {"aligned_eccentricity_ratio": 0.6},
+            "misalignment": {"vertical": 0.56, "horizontal": 0.56},
+            "grid": {"circumferential": 361, "axial": 181}
+        },
+        "method": "taguchi_l9",
+        "factors": {"order": [1, 2, 3], "height": [0.1, 0.4, 1.0], "length_fraction": [0.01, 0.2, 0.4]},
+        "continuous": {"enabled": false}
+    });
+    let spec: OptimisationSpec = serde_json::from_value(spec_json).unwrap();
+    let threads: usize = std::env::var("L9_THREADS").ok().and_then(|v| v.parse().ok()).unwrap_or(2);
+    let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().unwrap();
+    for rep in 0..3 {
+        let obs = Timeline { t0: Instant::now(), events: std::sync::Mutex::new(Vec::new()) };
+        let c0 = process_cpu();
+        let r = pool.install(|| BearingOptimisation::solve(&spec, &obs).unwrap());
+        let wall = obs.t0.elapsed().as_secs_f64();
+        let cpu = process_cpu() - c0;
+        let ev = obs.events.into_inner().unwrap();
+        println!("\nrun {rep}: {} analyses, {:.1} ms wall, {:.1} ms CPU (all threads)", r.evaluations, wall * 1e3, cpu * 1e3);
+        for e in ev.iter().filter(|e| !e.3.is_empty()) {
+            println!("  stage '{}' at {:.1} ms on {:?}", e.3, e.1 * 1e3, e.0);
+        }
+        let mut ids: Vec<Option<usize>> = ev.iter().map(|e| e.0).collect();
+        ids.sort();
+        ids.dedup();
+        for id in ids {
+            let mine: Vec<&(Option<usize>, f64, f64, String)> = ev.iter().filter(|e| e.0 == id).collect();
+            let (a, b) = (mine[0], mine[mine.len() - 1]);
+            // gaps of more than 2 ms between successive checks of one thread
+            let mut gaps = Vec::new();
+            for w in mine.windows(2) {
+                if w[1].1 - w[0].1 > 2e-3 {
+                    gaps.push(format!("{:.0}-{:.0} ({:.0} cpu)", w[0].1 * 1e3, w[1].1 * 1e3, (w[1].2 - w[0].2) * 1e3));
+                }
+            }
+            println!(
+                "  thread {id:?}: {} checks, {:.1}–{:.1} ms wall, CPU over that span {:.1} ms; spans > 2 ms: {}",
+                mine.len(), a.1 * 1e3, b.1 * 1e3, (b.2 - a.2) * 1e3, gaps.join(", ")
+            );
+        }
+    }
+}
+
 fn main() {
     let quick = std::env::args().any(|a| a == "--quick");
     let reps = if quick { 2 } else { 5 };
@@ -210,6 +277,10 @@ fn main() {
             }
         });
         println!("{which}: {:.3} ms CPU per analysis", c * 1e3 / n as f64);
+        return;
+    }
+    if std::env::args().any(|a| a == "l9-timeline") {
+        l9_timeline();
         return;
     }
     if std::env::args().any(|a| a == "speed") {

@@ -888,6 +888,16 @@ pub fn resolve_load(
     spec: &BearingSpec,
     observer: &dyn Observer,
 ) -> Result<(Operating, Option<Guess>, Option<f64>), SolveError> {
+    resolve_load_in(spec, None, observer)
+}
+
+/// [`resolve_load`] with a workspace for the reference analysis (the grids are reused; the
+/// result does not depend on what the workspace held).
+pub fn resolve_load_in(
+    spec: &BearingSpec,
+    workspace: Option<&mut Workspace>,
+    observer: &dyn Observer,
+) -> Result<(Operating, Option<Guess>, Option<f64>), SolveError> {
     let l = &spec.load;
     if let Some(e) = l.eccentricity_ratio {
         return Ok(match l.attitude_angle_deg {
@@ -896,7 +906,7 @@ pub fn resolve_load(
         });
     }
     if let Some(e) = l.aligned_eccentricity_ratio {
-        let (w, guess) = aligned_reference(spec, e, observer)?;
+        let (w, guess) = aligned_reference_in(spec, e, workspace, observer)?;
         return Ok((Operating::Load(w), Some(guess), Some(w)));
     }
     if let Some(f) = l.force {
@@ -914,10 +924,14 @@ pub fn resolve_load(
 /// The load (W̄) an aligned, unprofiled bearing with the spec's L/D, supply and grid carries at
 /// eccentricity ratio `e`, and its position.
 pub fn aligned_reference(spec: &BearingSpec, e: f64, observer: &dyn Observer) -> Result<(f64, Guess), SolveError> {
+    aligned_reference_in(spec, e, None, observer)
+}
+
+fn aligned_reference_in(spec: &BearingSpec, e: f64, workspace: Option<&mut Workspace>, observer: &dyn Observer) -> Result<(f64, Guess), SolveError> {
     let mut b = spec.bearing();
     b.misalignment = Misalignment::default();
     b.profile = None;
-    let a = journal::analyse(&b, &Operating::Eccentricity(e), &spec.settings(), None, None, false, observer)?;
+    let a = journal::analyse(&b, &Operating::Eccentricity(e), &spec.settings(), workspace, None, false, observer)?;
     Ok((a.load, Guess { eccentricity: a.eccentricity, attitude: a.attitude }))
 }
 
@@ -1022,7 +1036,7 @@ pub fn solve_spec(
 
 impl Kind for BearingKind {
     const NAME: &'static str = "bearing";
-    const SOLVER_VERSION: &'static str = "bearing-3";
+    const SOLVER_VERSION: &'static str = "bearing-4";
     const DESCRIPTION: &'static str = "Finite-length hydrodynamic journal bearing (seed 002): Reynolds \
         equation with Reynolds cavitation solved as a complementarity problem (active set + multigrid), \
         misalignment, axial edge profiles, load balance; Raimondi–Boyd figures and SI values; optional \

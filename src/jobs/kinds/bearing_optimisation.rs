@@ -10,12 +10,14 @@
 //! read by the `bearing` kind (`friction: seed002`, default) or Raimondi & Boyd's journal friction. S/N ratios are larger-the-better, `20 log10(score)`, dB; the best
 //! level of each factor is the one with the largest mean S/N.
 
-use super::bearing::{resolve_load, solve_spec, validate_bearing, BearingSpec, BearingProfileSpec};
+use super::bearing::{resolve_load_in, solve_spec, validate_bearing, BearingSpec, BearingProfileSpec};
 use crate::jobs::kind::{Kind, Limits, Validation};
 use crate::physics::journal::taguchi::{level_means, nelder_mead, sn_larger_better, Array, Criteria, Reference, Weights};
 use crate::physics::journal::{Guess, Operating, Workspace};
 use crate::physics::{Convergence, Observer, SolveError, Termination};
 use rayon::prelude::*;
+use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
+use std::sync::Mutex;
 use serde::{Deserialize, Serialize};
 use serde_json::{json, Value};
 use utoipa::ToSchema;
@@ -289,7 +291,7 @@ fn criteria(d: &Design) -> Criteria {
 
 impl Kind for BearingOptimisation {
     const NAME: &'static str = "bearing_optimisation";
-    const SOLVER_VERSION: &'static str = "bearing_optimisation-3";
+    const SOLVER_VERSION: &'static str = "bearing_optimisation-4";
     const DESCRIPTION: &'static str = "Axial edge profile design of a journal bearing (seed 002): Taguchi \
         L4/L9/L27 array with the weighted-sum score of eq. (19), main effects and S/N ratios, then a \
         continuous Nelder–Mead search over height and length fraction for each profile order.";
@@ -363,7 +365,10 @@ impl Kind for BearingOptimisation {
 fn optimise(spec: &OptimisationSpec, observer: &dyn Observer) -> Result<OptimisationResult, SolveError> {
     let base = &spec.base;
     observer.progress(0.0, "reference load");
-    let (op, guess, target) = resolve_load(base, observer)?;
+    // one workspace (the grids of the base) serves the reference, a worker of the array and
+    // the confirmation run
+    let mut ws0 = Workspace::new(&base.bearing(), &base.settings());
+    let (op, guess, target) = resolve_load_in(base, Some(&mut ws0), observer)?;
     let mut evaluations = if base.load.aligned_eccentricity_ratio.is_some() { 1 } else { 0 };
     let load = target.unwrap_or(0.0);
     let ev = Evaluator { friction: spec.friction, op, guess };
@@ -372,17 +377,45 @@ fn optimise(spec: &OptimisationSpec, observer: &dyn Observer) -> Result<Optimisa
     let rows = array.rows();
     let f = &spec.factors;
     let profile = |r: &[usize; 3]| BearingProfileSpec { order: f.order[r[0]], height: f.height[r[1]], length_fraction: f.length_fraction[r[2]] };
-    // the unprofiled base and the runs in parallel; each worker keeps a workspace (grids)
-    // between its cases, and every case starts from the reference position
+    // the unprofiled base and the runs in parallel: one worker per thread of the pool, each
+    // with one workspace (grids) for all its cases, taking the next case from a shared counter
+    // (the cases differ in cost); every case starts from the reference position, so the results
+    // do not depend on which worker ran them
     let cases: Vec<Option<BearingProfileSpec>> = std::iter::once(None).chain(rows.iter().map(|r| Some(profile(r)))).collect();
-    let mut all: Vec<Design> = cases
-        .par_iter()
-        .map_init(|| None::<Workspace>, |ws, p| {
-            observer.check()?;
-            let w = ws.get_or_insert_with(|| Workspace::new(&base.bearing(), &base.settings()));
-            ev.design(base, *p, Some(w), observer).map(|d| d.0)
+    let workers = rayon::current_num_threads().clamp(1, cases.len());
+    let next = AtomicUsize::new(0);
+    let failed = AtomicBool::new(false);
+    let spare = Mutex::new(Some(ws0));
+    let done: Vec<(Vec<(usize, Design)>, Workspace)> = (0..workers)
+        .into_par_iter()
+        .map(|_| -> Result<(Vec<(usize, Design)>, Workspace), SolveError> {
+            let mut ws = spare.lock().ok().and_then(|mut s| s.take()).unwrap_or_else(|| Workspace::new(&base.bearing(), &base.settings()));
+            let mut out = Vec::new();
+            loop {
+                let i = next.fetch_add(1, Ordering::Relaxed);
+                if i >= cases.len() || failed.load(Ordering::Relaxed) {
+                    break;
+                }
+                let d = observer.check().map_err(SolveError::from).and_then(|_| ev.design(base, cases[i], Some(&mut ws), observer));
+                match d {
+                    Ok(d) => out.push((i, d.0)),
+                    Err(e) => {
+                        failed.store(true, Ordering::Relaxed);
+                        return Err(e);
+                    }
+                }
+            }
+            Ok((out, ws))
         })
         .collect::<Result<_, _>>()?;
+    let mut ws_confirm = None;
+    let mut indexed: Vec<(usize, Design)> = Vec::with_capacity(cases.len());
+    for (out, ws) in done {
+        indexed.extend(out);
+        ws_confirm.get_or_insert(ws);
+    }
+    indexed.sort_by_key(|p| p.0);
+    let mut all: Vec<Design> = indexed.into_iter().map(|p| p.1).collect();
     evaluations += all.len();
     let mut baseline = all.remove(0);
     let designs = all;
@@ -436,7 +469,7 @@ fn optimise(spec: &OptimisationSpec, observer: &dyn Observer) -> Result<Optimisa
         Some(i) => designs[i],
         None => {
             evaluations += 1;
-            ev.design(base, Some(profile(&best)), None, observer)?.0
+            ev.design(base, Some(profile(&best)), ws_confirm.as_mut(), observer)?.0
         }
     };
     let mut best_design = best_combo;

@@ -352,6 +352,15 @@ pub fn analyse(
             let (_, theta0) = bearing.groove_angle(beta);
             prob.h.set_film_from(k, &film, theta0);
             prob.h.interpolate_up(k);
+            if matches!(operating, Operating::Load(_)) {
+                // two projected Gauss–Seidel sweeps settle the interpolated free boundary: the
+                // first solve on this grid then takes fewer active-set steps and V-cycles
+                // (misaligned 361×181: finest 4 steps/7 cycles → 3/6, 181×91 3/7 → 2/5; ROSS
+                // 121×21 3/6 → 2/3; BENCHMARKS.md, speed fourth round). The fixed-eccentricity
+                // and fixed-position analyses keep the plain start (the roller–pin tables of
+                // the cam kinds are built on them).
+                prob.h.projected_sweeps(k, 2);
+            }
         }
         let cold = k == ks;
         // grids between the start grid and the finest only pass a start on (one solve and

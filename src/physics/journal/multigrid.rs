@@ -221,6 +221,9 @@ pub struct Level {
     /// only): the free node indices and the row-major lower factor; `None` when the
     /// coefficients or the free set changed since it was built.
     chol: Option<(Vec<usize>, Vec<f64>)>,
+    /// Film, `theta0` and `alpha` of the coefficients now held (a rebuild for the same ones is
+    /// skipped: it would produce the same numbers).
+    coeffs_of: Option<(Film, f64, f64)>,
 }
 
 const BOUNDARY: u8 = 2;
@@ -264,6 +267,7 @@ impl Level {
             tt: None,
             tz: None,
             chol: None,
+            coeffs_of: None,
         };
         for j in 0..nz {
             for i in 0..nt {
@@ -284,6 +288,12 @@ impl Level {
 
     /// Rebuild coefficients for `film` with node 0 at absolute angle `theta0`.
     fn set_film(&mut self, film: &Film, alpha: f64, theta0: f64) {
+        // the coefficients are a function of (film, alpha, theta0) only, and nothing else writes
+        // them; the masks are kept consistent with `fixed` by every change of it
+        if self.coeffs_of == Some((*film, alpha, theta0)) {
+            return;
+        }
+        self.coeffs_of = Some((*film, alpha, theta0));
         let (nt, nz, dt, dz) = (self.nt, self.nz, self.dt, self.dz);
         self.theta0 = theta0;
         let mut cos_f = std::mem::take(&mut self.cos_f);
@@ -1023,6 +1033,31 @@ impl Hierarchy {
         rep
     }
 
+    /// `sweeps` projected red–black Gauss–Seidel sweeps for the LCP on level `k`,
+    /// `P = max(0, (f + Σ c_nb P_nb)/d)` at every non-boundary node (Cryer's projected SOR at
+    /// ω = 1): after interpolation from a coarser grid they settle the free boundary locally
+    /// before the active-set steps classify the nodes.
+    pub fn projected_sweeps(&mut self, k: usize, sweeps: usize) {
+        let l = &mut self.levels[k];
+        let (nt, nz) = (l.nt, l.nz);
+        for _ in 0..sweeps {
+            for color in 0..2 {
+                for j in 1..nz - 1 {
+                    let row = j * nt;
+                    let mut i = (color + j) % 2;
+                    while i < nt {
+                        let k = row + i;
+                        let kw = if i == 0 { row + nt - 1 } else { k - 1 };
+                        let ke = if i + 1 == nt { row } else { k + 1 };
+                        let s = l.src[k] + l.ce[k] * l.u[ke] + l.ce[kw] * l.u[kw] + l.cn[k] * l.u[k + nt] + l.cn[k - nt] * l.u[k - nt];
+                        l.u[k] = (s * l.inv_diag[k]).max(0.0) * l.interior[k];
+                        i += 2;
+                    }
+                }
+            }
+        }
+    }
+
     /// `levels[k].u = max(0, P levels[k+1].u)`: the nested-iteration start on level `k`.
     pub fn interpolate_up(&mut self, k: usize) {
         let (head, tail) = self.levels.split_at_mut(k + 1);
@@ -1211,6 +1246,32 @@ mod tests {
         assert!(rep.converged, "{rep:?}");
         assert!(rep.residual < 1e-8, "{rep:?}");
         assert!(h.levels[0].u.iter().all(|p| *p >= 0.0));
+    }
+
+    #[test]
+    fn projected_sweeps_keep_the_lcp_solution_and_settle_an_interpolated_start() {
+        // the converged LCP solution is a fixed point of the projected sweeps
+        let mut h = aligned_hierarchy(144, 49, 1.0, 0.6);
+        let rep = h.nested_solve(0, 1e-13, 30, 400);
+        assert!(rep.converged);
+        let u0 = h.levels[0].u.clone();
+        let m = u0.iter().fold(0.0f64, |a, b| a.max(*b));
+        h.projected_sweeps(0, 3);
+        for (a, b) in u0.iter().zip(&h.levels[0].u) {
+            assert!((a - b).abs() < 1e-9 * m, "{a} {b}");
+        }
+        // from the coarser grid's solution interpolated, two sweeps reduce the complementarity
+        // residual, and the active-set solve still reaches the same solution
+        h.interpolate_up(0);
+        let r0 = h.lcp_residual(0);
+        h.projected_sweeps(0, 2);
+        let r1 = h.lcp_residual(0);
+        assert!(r1 < 0.5 * r0, "{r0} {r1}");
+        let rep = h.solve_lcp(0, 1e-13, 30, 400);
+        assert!(rep.converged);
+        for (a, b) in u0.iter().zip(&h.levels[0].u) {
+            assert!((a - b).abs() < 1e-9 * m, "{a} {b}");
+        }
     }
 
     #[test]
