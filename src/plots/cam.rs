@@ -18,9 +18,47 @@ static CAM_CYCLE: &[LineDef] = &[
     LineDef { name: "temperature", title: "Flash temperature rise", table: "series", x: ANGLE, y_label: "ΔT, K", series: &[col("flash_temperature", "flash temperature", 1.0)] },
 ];
 
-/// Cam cycle: kinematics, load and pressure, films and λ, friction and SRR, flash temperature.
+/// Cam cycle: kinematics, load and pressure, films and λ, friction and SRR, flash temperature;
+/// with the 2-D `fields` table, the pressure and film maps at each of its angles.
 pub(super) fn cam_cycle(result: &Value) -> Vec<Plot> {
-    line_plots(result, CAM_CYCLE)
+    let mut plots = line_plots(result, CAM_CYCLE);
+    if let Some(t) = result.get("fields") {
+        plots.extend(field_maps(t));
+    }
+    plots
+}
+
+/// Heat maps of the `fields` table (rows over `x` fastest, then `y`, then the angle): pressure
+/// (GPa) and film (µm) over the contact at each angle, `x` along the rolling direction and `y`
+/// along the roller axis, both in mm.
+fn field_maps(table: &Value) -> Vec<Plot> {
+    let cols = ["angle_deg", "x", "y", "pressure", "film"].map(|c| column(table, c, 1.0));
+    let [Some(angle), Some(x), Some(y), Some(p), Some(h)] = cols else { return Vec::new() };
+    let mut plots = Vec::new();
+    let mut start = 0;
+    while start < angle.len() {
+        let a = angle[start];
+        let end = (start..angle.len()).find(|&k| angle[k] != a).unwrap_or(angle.len());
+        // x repeats with period nx inside the block.
+        let nx = (start + 1..end).find(|&k| y[k] != y[start]).map_or(end - start, |k| k - start);
+        if nx == 0 || (end - start) % nx != 0 {
+            break;
+        }
+        let xs: Vec<f64> = x[start..start + nx].iter().map(|v| v * 1e3).collect();
+        let ys: Vec<f64> = (start..end).step_by(nx).map(|k| y[k] * 1e3).collect();
+        let grid = |v: &[f64], scale: f64| -> Vec<Vec<f64>> { v[start..end].chunks(nx).map(|r| r.iter().map(|z| z * scale).collect()).collect() };
+        for (name, title, z, label) in [("pressure_field", "Pressure", grid(&p, 1e-9), "pressure, GPa"), ("film_field", "Film thickness", grid(&h, 1e6), "film, µm")] {
+            plots.push(Plot {
+                name: format!("{name}_{}", short(a)),
+                title: format!("{title} over the contact at {}°", short(a)),
+                x_label: "x along the rolling direction, mm".into(),
+                y_label: "y along the roller axis, mm".into(),
+                chart: Chart::HeatMap { x: xs.clone(), y: ys.clone(), z, z_label: label.into() },
+            });
+        }
+        start = end;
+    }
+    plots
 }
 
 static WEAR: &[LineDef] = &[

@@ -33,7 +33,7 @@ fn texts(svg: &str) -> Vec<String> {
 /// Checks an SVG of `plot`: a document, the title, both axis labels, and what its chart draws —
 /// one polyline and legend entry per curve, one filled rectangle per bar or field cell, one
 /// panel title per factor.
-fn check_svg(what: &str, plot: &Plot, svg: &str) {
+pub(crate) fn check_svg(what: &str, plot: &Plot, svg: &str) {
     assert!(svg.trim_start().starts_with("<svg") && svg.trim_end().ends_with("</svg>"), "{what}: not an SVG document");
     let labels = texts(svg);
     // Panels carry their own x labels (checked below).

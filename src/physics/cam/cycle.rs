@@ -14,6 +14,7 @@ use super::loads::{FollowerLoad, LoadModel};
 use super::profile::CamProfile;
 use crate::physics::contact::{hertz_line, hertz_point, line_stress_maxima};
 use crate::physics::film::{ContactInput, ContactShape, FilmModel, FilmModelId, FilmProfile, FilmSolution, Traction};
+use crate::physics::ehl::twod::Fields2d;
 use crate::physics::friction::{AsperityFriction, Roughness, TractionLaw};
 use crate::physics::lubricant::Lubricant;
 use crate::physics::roller::{pin_torque, Crown, RollerParams, SlipStep};
@@ -195,6 +196,9 @@ pub struct CycleOutput {
     pub duration: f64,
     /// Film profiles at [`CycleSpec::profile_angles`] where the model has one: `(index, profile)`.
     pub profiles: Vec<(usize, FilmProfile)>,
+    /// 2-D pressure and film fields at [`CycleSpec::profile_angles`] where the finite-length/point
+    /// model ran: `(index, fields)`.
+    pub fields: Vec<(usize, Fields2d)>,
 }
 
 /// Kinematics of every angle (no contact): cheap, always computed.
@@ -250,7 +254,7 @@ pub fn run_cycle(spec: &CycleSpec, needs: Needs, model: &dyn FilmModel, observer
     series.sliding_velocity = column(&|k| k.cam_surface_velocity - rolling_uf(k));
     if !needs.loads {
         events.zero_entrainment = sign_changes(&series.angle, &series.entrainment_velocity);
-        return Ok(CycleOutput { series, events, convergence, duration, profiles: Vec::new() });
+        return Ok(CycleOutput { series, events, convergence, duration, profiles: Vec::new(), fields: Vec::new() });
     }
 
     // Loads and separation.
@@ -263,7 +267,7 @@ pub fn run_cycle(spec: &CycleSpec, needs: Needs, model: &dyn FilmModel, observer
     ensure_finite("follower loads", series.contact_load.as_ref().unwrap())?;
     if !needs.contact {
         events.zero_entrainment = sign_changes(&series.angle, &series.entrainment_velocity);
-        return Ok(CycleOutput { series, events, convergence, duration, profiles: Vec::new() });
+        return Ok(CycleOutput { series, events, convergence, duration, profiles: Vec::new(), fields: Vec::new() });
     }
     if let Some(&(a, b)) = events.separation.first() {
         let worst = loads.iter().map(|l| l.contact).fold(f64::INFINITY, f64::min);
@@ -355,7 +359,7 @@ pub fn run_cycle(spec: &CycleSpec, needs: Needs, model: &dyn FilmModel, observer
     series.max_shear_depth = depths;
     if !needs.film {
         events.zero_entrainment = sign_changes(&series.angle, &series.entrainment_velocity);
-        return Ok(CycleOutput { series, events, convergence, duration, profiles: Vec::new() });
+        return Ok(CycleOutput { series, events, convergence, duration, profiles: Vec::new(), fields: Vec::new() });
     }
 
     // Film, traction, slip.
@@ -482,6 +486,17 @@ pub fn run_cycle(spec: &CycleSpec, needs: Needs, model: &dyn FilmModel, observer
             series.flash_temperature = Some(flash);
         }
     }
+    // The 2-D fields at the requested angles (only what is asked for: the model keeps no fields).
+    let mut fields = Vec::new();
+    for &i in &spec.profile_angles {
+        if let Some(s) = states.get(i).filter(|s| s.film.finite.is_some()) {
+            let input = ctx.input(i, series.entrainment_velocity[i], series.sliding_velocity[i], kin[i].speed.time, 0.0);
+            if let Some(f) = model.fields(&s.film, &input)? {
+                ensure_finite("2-D fields", f.pressure.iter().chain(&f.film))?;
+                fields.push((i, f));
+            }
+        }
+    }
     events.zero_entrainment = sign_changes(&series.angle, &series.entrainment_velocity);
     for v in [
         &series.film_central, &series.film_min, &series.friction_force, &series.power_loss,
@@ -493,7 +508,7 @@ pub fn run_cycle(spec: &CycleSpec, needs: Needs, model: &dyn FilmModel, observer
         ensure_finite("cam cycle series", v)?;
     }
     observer.progress(1.0, "done");
-    Ok(CycleOutput { series, events, convergence, duration, profiles })
+    Ok(CycleOutput { series, events, convergence, duration, profiles, fields })
 }
 
 

@@ -27,7 +27,7 @@
 use super::closed_form::{ClosedForm, FILM_FLOOR, VISCOSITY_CAP};
 use super::formulas::LineGroups;
 use super::{ContactInput, ContactShape, FilmModel, FilmModelId, FilmSolution, Regime};
-use crate::physics::ehl::twod::{self, Ehl2dInput, Ehl2dOptions, Geometry2d, Warm2d};
+use crate::physics::ehl::twod::{self, Ehl2dInput, Ehl2dOptions, Fields2d, Geometry2d, Warm2d};
 use crate::physics::friction::TractionNode;
 use crate::physics::roller::Crown;
 use crate::physics::{ensure_finite, Silent, SolveError};
@@ -49,6 +49,9 @@ pub struct FiniteFilm {
     pub grid_error: Option<f64>,
     /// Whether the warm start from the previous point converged (false: cold nested solve).
     pub warm_started: bool,
+    /// The entrainment velocity the film was solved at, m/s (the roller balance may report a
+    /// converged entrainment within the model's tolerance of it).
+    pub entrainment_velocity: f64,
     /// The converged pressure in the solver's scales: the next point's warm start.
     pub warm: Warm2d,
 }
@@ -79,7 +82,19 @@ impl Finite {
         Finite { check_first_only: true, ..self }
     }
 
-    /// The 2-D geometry of `input` (`None`: no 2-D problem — zero entrainment).
+    /// The 2-D problem of `input` (isothermal at the input's temperature, `E' = 2E*`).
+    fn problem(&self, input: &ContactInput) -> Ehl2dInput {
+        Ehl2dInput {
+            load: input.load,
+            geometry: self.geometry(input),
+            effective_modulus: 2.0 * input.contact_modulus,
+            entrainment_velocity: input.entrainment_velocity,
+            lubricant: *input.lubricant,
+            temperature: input.temperature,
+        }
+    }
+
+    /// The 2-D geometry of `input`.
     pub fn geometry(&self, input: &ContactInput) -> Geometry2d {
         match input.shape {
             ContactShape::Line { reduced_radius, length } => {
@@ -104,6 +119,15 @@ impl FilmModel for Finite {
         true
     }
 
+    /// Re-enters the converged solution (its warm start at its own problem: no Newton step moves
+    /// it) with the fields on.
+    fn fields(&self, film: &FilmSolution, input: &ContactInput) -> Result<Option<Fields2d>, SolveError> {
+        let Some(f) = film.finite.as_deref() else { return Ok(None) };
+        let ehl = Ehl2dInput { entrainment_velocity: f.entrainment_velocity, ..self.problem(input) };
+        let options = Ehl2dOptions { fields: true, grid_check: false, ..self.options };
+        Ok(twod::solve_from(&ehl, &options, Some(&f.warm), &Silent)?.0.fields)
+    }
+
     fn solve(&self, input: &ContactInput, previous: Option<&FilmSolution>) -> Result<FilmSolution, SolveError> {
         let load = input.load;
         if !(load > 0.0 && load.is_finite()) {
@@ -114,14 +138,7 @@ impl FilmModel for Finite {
         }
         let es = input.contact_modulus;
         let geometry = self.geometry(input);
-        let ehl = Ehl2dInput {
-            load,
-            geometry,
-            effective_modulus: 2.0 * es,
-            entrainment_velocity: input.entrainment_velocity,
-            lubricant: *input.lubricant,
-            temperature: input.temperature,
-        };
+        let ehl = self.problem(input);
         let warm = previous.and_then(|p| p.finite.as_deref()).map(|f| &f.warm);
         let first = !self.checked.swap(true, Ordering::Relaxed);
         let grid_check = self.options.grid_check && (!self.check_first_only || first || warm.is_none());
@@ -203,6 +220,7 @@ impl FilmModel for Finite {
                 grid: (s.nx, s.ny),
                 grid_error: s.grid_error,
                 warm_started: s.warm_started,
+                entrainment_velocity: input.entrainment_velocity,
                 warm: next,
             })),
         })
@@ -256,6 +274,10 @@ impl FilmModel for AutoFinite {
         } else {
             self.auto.solve(input, previous)
         }
+    }
+
+    fn fields(&self, film: &FilmSolution, input: &ContactInput) -> Result<Option<Fields2d>, SolveError> {
+        self.finite.fields(film, input)
     }
 
     fn traction_local(&self, film: &FilmSolution, input: &ContactInput, sliding: f64) -> (super::Traction, (f64, f64)) {

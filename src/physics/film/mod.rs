@@ -278,6 +278,14 @@ pub trait FilmModel: Send + Sync {
         false
     }
 
+    /// The 2-D pressure and film fields of `film` (which this model solved at `input`), for the
+    /// cycle's `profiles` output at chosen angles: a finite-length/point model re-enters its
+    /// converged solution (no Newton step moves it) and returns the fields it does not keep.
+    /// `None` for models without a 2-D field (the default).
+    fn fields(&self, _film: &FilmSolution, _input: &ContactInput) -> Result<Option<crate::physics::ehl::twod::Fields2d>, SolveError> {
+        Ok(None)
+    }
+
     /// Traction for sliding velocity `sliding` with the film of `film` (which was solved at
     /// `input`, possibly with a different sliding velocity): [`Self::traction_local`] without
     /// the curvature.

@@ -25,6 +25,9 @@ use serde_json::{json, Value};
 
 pub struct CamCycle;
 
+/// Most rows of the 2-D `fields` table (profile angles × nx × ny): ≈ 13 MB of JSON.
+pub const MAX_FIELD_ROWS: usize = 1 << 17;
+
 impl Kind for CamCycle {
     const NAME: &'static str = "cam_cycle";
     const SOLVER_VERSION: &'static str = "cam_cycle-9";
@@ -32,7 +35,7 @@ impl Kind for CamCycle {
         lubricant film, friction and power loss, roller slip (steady or startup) and flash temperature \
         (fidelity fast: closed forms; accurate: numerical line-contact EHL with squeeze at every angle; auto: \
         closed forms where their estimated error is within tolerance).";
-    const TABLES: &'static [&'static str] = &["series", "run_up"];
+    const TABLES: &'static [&'static str] = &["series", "run_up", "fields"];
     type Spec = CamCycleSpec;
     type Output = CamCycleResult;
 
@@ -60,7 +63,7 @@ impl Kind for CamCycle {
             OutputInfo { name: "friction", description: "traction, friction coefficient, camshaft friction torque, power loss" },
             OutputInfo { name: "slip", description: "roller speed, slide-to-roll ratio, pin torque (roller followers)" },
             OutputInfo { name: "temperature", description: "flash temperature rise (Blok/Jaeger)" },
-            OutputInfo { name: "profiles", description: "pressure and film profiles at profile_angles_deg (accurate/auto; not in the default list)" },
+            OutputInfo { name: "profiles", description: "pressure and film profiles at profile_angles_deg (accurate/auto; with ehl.geometry finite the 2-D fields table `fields`; not in the default list)" },
         ]
     }
 
@@ -75,7 +78,12 @@ impl Kind for CamCycle {
         if !spec.ehl.geometry.is_line() {
             v.check(spec.fidelity != Fidelity::Fast, "/ehl/geometry", "finite is a model of the accurate and auto fidelities (fast keeps the closed forms)");
             v.check(!matches!(spec.follower, FollowerSpec::FlatFaced { .. }), "/ehl/geometry", "finite needs a roller (finite line contact) or a spherical follower (point contact): a flat-faced follower is a line contact across the cam width");
-            v.check(!spec.outputs.contains(&CamOutput::Profiles), "/outputs", "profiles are line-contact profiles: not with ehl.geometry finite");
+            if spec.outputs.contains(&CamOutput::Profiles) {
+                // The 2-D fields table: one row per node and angle (bounds the result's size).
+                let o = spec.ehl.grid_options(matches!(spec.follower, FollowerSpec::Spherical { .. }));
+                let rows = spec.profile_angles_deg.len() * o.nx * o.ny;
+                v.check(rows <= MAX_FIELD_ROWS, "/profile_angles_deg", format!("the 2-D fields of {} angles on {}×{} nodes are {rows} rows: at most {MAX_FIELD_ROWS} (fewer angles or a coarser ehl.nx/ny)", spec.profile_angles_deg.len(), o.nx, o.ny));
+            }
         }
         if spec.outputs.contains(&CamOutput::Profiles) {
             v.check(spec.fidelity != Fidelity::Fast, "/outputs", "profiles need fidelity accurate or auto (the closed forms have none)");

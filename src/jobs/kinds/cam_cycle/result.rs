@@ -363,6 +363,24 @@ pub struct FilmProfileAtAngle {
     pub film: Vec<f64>,
 }
 
+/// The 2-D pressure and film fields of `ehl.geometry: finite` at the requested angles (output
+/// `profiles` with `profile_angles_deg`), one row per grid node and angle (columns of equal
+/// length; CSV with `?table=fields`). Rows run over `x` fastest, then `y`, then the angle.
+#[derive(Debug, Clone, PartialEq, Serialize, ToSchema)]
+pub struct FieldsTable {
+    /// Cam angle, degrees.
+    pub angle_deg: Vec<f64>,
+    /// Position along the rolling direction from the contact centre, m (positive in the
+    /// direction of positive entrainment).
+    pub x: Vec<f64>,
+    /// Position across the rolling direction (along the roller axis), m from the centre.
+    pub y: Vec<f64>,
+    /// Pressure, Pa.
+    pub pressure: Vec<f64>,
+    /// Film thickness, m.
+    pub film: Vec<f64>,
+}
+
 /// Result of a `cam_cycle` job.
 #[derive(Debug, Clone, PartialEq, Serialize, ToSchema)]
 pub struct CamCycleResult {
@@ -386,6 +404,10 @@ pub struct CamCycleResult {
     /// Profiles at the requested angles where the numerical model ran (output `profiles`).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub profiles: Option<Vec<FilmProfileAtAngle>>,
+    /// 2-D pressure and film fields at the requested angles where the finite-length/point model
+    /// ran (output `profiles` with `ehl.geometry: finite`).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub fields: Option<FieldsTable>,
     /// Periodicity of the roller speed (steady torque balance) or closed form.
     pub convergence: Convergence,
     /// `dynamic` load: revolutions integrated to the periodic steady state and the final change

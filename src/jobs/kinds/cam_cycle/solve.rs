@@ -417,6 +417,21 @@ pub(super) fn solve_spec(spec: &CamCycleSpec, observer: &dyn Observer) -> Result
             .map(|(i, p)| FilmProfileAtAngle { angle_deg: at(*i), x: p.x.clone(), pressure: p.pressure.clone(), film: p.film.clone() })
             .collect()
     });
+    let fields = (spec.outputs.contains(&CamOutput::Profiles) && !out.fields.is_empty()).then(|| {
+        let mut t = FieldsTable { angle_deg: Vec::new(), x: Vec::new(), y: Vec::new(), pressure: Vec::new(), film: Vec::new() };
+        for (i, f) in &out.fields {
+            for &y in &f.y {
+                for &x in &f.x {
+                    t.angle_deg.push(at(*i));
+                    t.x.push(x);
+                    t.y.push(y);
+                }
+            }
+            t.pressure.extend_from_slice(&f.pressure);
+            t.film.extend_from_slice(&f.film);
+        }
+        t
+    });
     let es = cycle.contact_modulus;
     let mut result = CamCycleResult {
         fidelity_used: spec.fidelity,
@@ -484,6 +499,7 @@ pub(super) fn solve_spec(spec: &CamCycleSpec, observer: &dyn Observer) -> Result
             run_up_separation_deg: None,
         },
         profiles,
+        fields,
         convergence: out.convergence,
         dynamics_convergence: None,
         run_up: None,
