@@ -16,6 +16,7 @@ use crate::physics::contact::{hertz_line, hertz_point, line_stress_maxima};
 use crate::physics::film::{ContactInput, ContactShape, FilmModel, FilmModelId, FilmProfile, FilmSolution, Traction};
 use crate::physics::friction::{AsperityFriction, Roughness, TractionLaw};
 use crate::physics::lubricant::Lubricant;
+use crate::physics::film::work;
 use crate::physics::roller::{pin_torque, Crown, RollerParams, SlipStep};
 use crate::physics::thermal::{flash_temperature, ThermalSolid};
 use crate::physics::{ensure_finite, Convergence, Observer, SolveError, Termination};
@@ -709,6 +710,12 @@ impl<'a> Context<'a> {
             // Start from the cached film of this angle (previous cycle) when there is one and the
             // guess's entrainment is within the tolerance of it; the film is re-solved when the
             // converged entrainment moved away from it.
+            // A history-free model's film depends on load, shape and entrainment alone: its
+            // neighbour in entrainment is this angle's own film (from a previous pass or cycle),
+            // which it can start from or rescale ([`crate::physics::film::Finite::rescaled`]);
+            // other models take the previous angle's film (their squeeze history).
+            let near = |cache: &[Option<(f64, FilmSolution)>]| if history_free && cache[i].is_some() { Some(i) } else { prev };
+            work::add(&work::MARCH_STEPS, 1);
             if cache[i].as_ref().is_none_or(|(ue, _)| !close(entrainment(guess), *ue)) {
                 let ue = entrainment(guess);
                 // On a stretch of unchanging conditions (a dwell) a history-free model's film at
@@ -719,10 +726,15 @@ impl<'a> Context<'a> {
                     .filter(|(ue_j, _)| close(ue, *ue_j))
                     .cloned();
                 cache[i] = Some(match reuse {
-                    Some(entry) => entry,
+                    Some(entry) => {
+                        work::add(&work::MARCH_FILM_DWELL, 1);
+                        entry
+                    }
                     None => {
+                        work::add(&work::MARCH_FILM_NEW, 1);
                         let input = self.input(i, ue, k.cam_surface_velocity - (rf * guess + k.follower_surface_base), t, dt);
-                        (ue, self.model.solve(&input, prev.and_then(|j| cache[j].as_ref().map(|c| &c.1)))?)
+                        let warm = near(cache);
+                        (ue, self.model.solve(&input, warm.and_then(|j| cache[j].as_ref().map(|c| &c.1)))?)
                     }
                 });
             }
@@ -744,6 +756,7 @@ impl<'a> Context<'a> {
                     pin_warm: std::cell::Cell::new(pin_warm.get()),
                 };
                 let sol = problem.solve(guess)?;
+                work::add(&work::MARCH_SLIP_SOLVES, 1);
                 pin_warm.set(problem.pin_warm.get());
                 let ue_sol = entrainment(sol.omega);
                 let done = close(ue_sol, film_ue) || pass == 5;
@@ -752,7 +765,9 @@ impl<'a> Context<'a> {
                     break;
                 }
                 let input = self.input(i, ue_sol, k.cam_surface_velocity - (rf * sol.omega + k.follower_surface_base), t, dt);
-                let film = self.model.solve(&input, prev.and_then(|j| cache[j].as_ref().map(|c| &c.1)))?;
+                work::add(&work::MARCH_FILM_PASS, 1);
+                let warm = near(cache);
+                let film = self.model.solve(&input, warm.and_then(|j| cache[j].as_ref().map(|c| &c.1)))?;
                 cache[i] = Some((ue_sol, film));
                 guess = sol.omega;
             }

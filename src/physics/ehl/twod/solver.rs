@@ -13,7 +13,7 @@ use super::{Ehl2dInput, Ehl2dOptions, Ehl2dSolution, Fields2d, Geometry2d, Locat
 use crate::physics::ehl::rheology::PressureRheology;
 use crate::physics::{Convergence, Observer, SolveError, Termination};
 use faer::prelude::Solve;
-use faer::sparse::linalg::solvers::Lu;
+use faer::sparse::linalg::solvers::{Lu, SymbolicLu};
 use faer::sparse::{SparseColMat, Triplet};
 
 /// Largest `ln(η/η0)` used (keeps `ε` finite at absurd trial pressures), as in the 1-D solver.
@@ -58,6 +58,11 @@ struct Problem {
     unk: Vec<usize>,
     /// Node of each unknown (interior nodes).
     nodes: Vec<usize>,
+    /// The preconditioner's symbolic LU (column ordering, elimination structure) and the sparsity
+    /// pattern it was computed for (column pointers, row indices): reused while the pattern stays
+    /// (the active set unchanged), which makes the factorisation bit-identical to a fresh one
+    /// without the ordering's cost (colamd was ≈ 25 % of a cam cycle's CPU, BENCHMARKS.md issue 16).
+    symbolic: std::cell::RefCell<Option<(Vec<usize>, Vec<usize>, SymbolicLu<usize>)>>,
 }
 
 /// The Poiseuille coefficient at a cell face from its two nodes' `ε = ρ̄H³/η̄`, with its
@@ -138,6 +143,7 @@ impl Problem {
             theta: 1.0,
             unk,
             nodes,
+            symbolic: std::cell::RefCell::new(None),
         }
     }
 
@@ -323,7 +329,20 @@ impl Problem {
         // complement: factorising it with the dense border made the sparse LU fill in (35 s at
         // 97², measured), the block `B` alone factorises in a fraction of a second.
         let mat = SparseColMat::<usize, f64>::try_new_from_triplets(m, m, &trip).ok()?;
-        let lu = mat.sp_lu().ok()?;
+        let lu = {
+            let sym = mat.symbolic();
+            let mut cache = self.symbolic.borrow_mut();
+            let reuse = cache.as_ref().filter(|(cp, ri, _)| cp.as_slice() == sym.col_ptr() && ri.as_slice() == sym.row_idx()).map(|c| c.2.clone());
+            let symbolic = match reuse {
+                Some(s) => s,
+                None => {
+                    let s = SymbolicLu::try_new(sym).ok()?;
+                    *cache = Some((sym.col_ptr().to_vec(), sym.row_idx().to_vec(), s.clone()));
+                    s
+                }
+            };
+            Lu::try_new_with_symbolic(symbolic, mat.as_ref()).ok()?
+        };
         let w = self.dx * self.dy / self.load;
         lu.solve_in_place(faer::MatMut::from_column_major_slice_mut(&mut ucol, m, 1));
         let schur = w * ucol.iter().sum::<f64>();
