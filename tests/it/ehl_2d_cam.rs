@@ -142,10 +142,11 @@ fn finite_geometry_bad_input_names_the_field() {
 }
 
 /// The entrainment rescale against Newton solves at the new entrainment (seed 000's crowned
-/// roller at the nose load, 954 N, u = 2.77 m/s, 33×65, tolerance 1e-9): at ±2 % (the range)
-/// the central and minimum films and the traction at 0.1 m/s sliding agree within 1e-3
-/// (measured: see `--nocapture`; `physics::film::finite::RESCALE_RANGE`); out of range, at another load, or without a previous film
-/// the model solves.
+/// roller at the nose load, 954 N, u = 2.77 m/s, 33×65, tolerance 1e-9) inside its ±0.5 % range
+/// (`physics::film::finite::RESCALE_RANGE`): central film within 5e-4, minimum film within 1.5e-3,
+/// viscous traction at 0.1 m/s sliding within 4e-3 (measured: `--nocapture`; the errors grow
+/// linearly with the change: 1.0e-3 / 3.2e-3 / 9e-3 at 1.9 %); a chain of rescales equals one;
+/// out of range or at another load the model solves.
 #[test]
 fn entrainment_rescale_matches_the_solve() {
     use tribod::physics::ehl::twod::Ehl2dOptions;
@@ -179,8 +180,7 @@ fn entrainment_rescale_matches_the_solve() {
     let exact = Finite::new(options, Some(crown), fallback).with_rescale_range(0.0);
     let base = model.solve(&input(954.0, 2.77), None).unwrap();
     assert!(base.iterations.unwrap() > 0);
-    let mut worst: f64 = 0.0;
-    for r in [0.981, 0.99, 1.01, 1.019] {
+    for r in [0.9951, 0.998, 1.002, 1.0049] {
         let u = 2.77 * r;
         let scaled = model.solve(&input(954.0, u), Some(&base)).unwrap();
         let solved = exact.solve(&input(954.0, u), Some(&base)).unwrap();
@@ -193,10 +193,9 @@ fn entrainment_rescale_matches_the_solve() {
         let (dc, dm, dt) = (rel(scaled.central_film, solved.central_film), rel(scaled.min_film, solved.min_film), rel(traction(&scaled), traction(&solved)));
         let dn = rel(base.central_film, solved.central_film);
         println!("u × {r}: rescaled against solved: central {dc:.2e}, minimum {dm:.2e}, traction at 0.1 m/s {dt:.2e} (the film itself moved by {dn:.2e})");
-        worst = worst.max(dc).max(dm).max(dt);
+        assert!(dc < 5e-4 && dm < 1.5e-3 && dt < 4e-3, "u × {r}: {dc:.2e} {dm:.2e} {dt:.2e}");
     }
-    assert!(worst < 1e-3, "{worst}");
-    // Not rescaled: out of range, another load, no previous film.
-    assert!(model.solve(&input(954.0, 2.77 * 1.03), Some(&base)).unwrap().iterations.unwrap() > 0);
+    // Not rescaled: out of range, another load.
+    assert!(model.solve(&input(954.0, 2.77 * 1.006), Some(&base)).unwrap().iterations.unwrap() > 0);
     assert!(model.solve(&input(950.0, 2.77), Some(&base)).unwrap().iterations.unwrap() > 0);
 }
