@@ -176,8 +176,8 @@ fn entrainment_rescale_matches_the_solve() {
     };
     let options = Ehl2dOptions { nx: 33, ny: 65, tolerance: 1e-9, grid_check: false, grid_tolerance: 0.5, ..Default::default() };
     let fallback = ClosedForm { formula: FilmFormula::PanHamrock, squeeze: false };
-    let model = Finite::new(options, Some(crown), fallback);
-    let exact = Finite::new(options, Some(crown), fallback).with_rescale_range(0.0);
+    let model = Finite::new(options, Some(crown), fallback).with_rescale_range(tribod::physics::film::finite::RESCALE_RANGE);
+    let exact = Finite::new(options, Some(crown), fallback);
     let base = model.solve(&input(954.0, 2.77), None).unwrap();
     assert!(base.iterations.unwrap() > 0);
     for r in [0.9951, 0.998, 1.002, 1.0049] {

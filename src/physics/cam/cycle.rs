@@ -710,11 +710,12 @@ impl<'a> Context<'a> {
             // Start from the cached film of this angle (previous cycle) when there is one and the
             // guess's entrainment is within the tolerance of it; the film is re-solved when the
             // converged entrainment moved away from it.
-            // A history-free model's film depends on load, shape and entrainment alone: its
-            // neighbour in entrainment is this angle's own film (from a previous pass or cycle),
-            // which it can start from or rescale ([`crate::physics::film::Finite::rescaled`]);
-            // other models take the previous angle's film (their squeeze history).
-            let near = |cache: &[Option<(f64, FilmSolution)>]| if history_free && cache[i].is_some() { Some(i) } else { prev };
+            // Every film starts from the previous angle's (the squeeze history of transient
+            // models; the warm start of the 2-D model). Starting a history-free model from this
+            // angle's own film of a previous pass or cycle instead was tried (`ehl2d-6`): the
+            // film then depends on the path at the Newton tolerance and the seed 000 finite
+            // cycle's periodic roller speed stalled at 1.2e-6 against 1e-8.
+            let near = |_: &[Option<(f64, FilmSolution)>]| prev;
             work::add(&work::MARCH_STEPS, 1);
             if cache[i].as_ref().is_none_or(|(ue, _)| !close(entrainment(guess), *ue)) {
                 let ue = entrainment(guess);

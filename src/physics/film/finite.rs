@@ -74,15 +74,18 @@ pub struct Finite {
     /// as `options` say.
     pub check_first_only: bool,
     /// Largest relative entrainment change taken by [`Finite::rescaled`] instead of a Newton
-    /// solve when the previous film has the same load and shape ([`RESCALE_RANGE`]; 0: always
-    /// solve).
+    /// solve when the previous film has the same load and shape (0, the default: always solve;
+    /// [`RESCALE_RANGE`] is the measured candidate — off by default because inside the cam
+    /// cycle a film that is sometimes rescaled and sometimes solved is not a smooth function of
+    /// the entrainment: at 0.5 % the seed 000 cycle's periodic roller speed stalled at a
+    /// residual of 1.5e-6 against 1e-8, BENCHMARKS.md issue 16, `ehl2d-6`).
     pub rescale_range: f64,
     checked: AtomicBool,
 }
 
 impl Finite {
     pub fn new(options: Ehl2dOptions, crown: Option<Crown>, fallback: ClosedForm) -> Self {
-        Finite { options, crown, fallback, check_first_only: false, rescale_range: RESCALE_RANGE, checked: AtomicBool::new(false) }
+        Finite { options, crown, fallback, check_first_only: false, rescale_range: 0.0, checked: AtomicBool::new(false) }
     }
 
     /// The same model with the entrainment rescale over `range` (0: off, every film solved).
@@ -198,7 +201,8 @@ impl FilmModel for Finite {
     }
 
     /// Steady and Newtonian: the film depends on load, shape and entrainment alone (the warm start
-    /// changes it by less than the Newton tolerance, the entrainment rescale by ≲ 1e-3, see [`RESCALE_RANGE`]).
+    /// changes it by less than the Newton tolerance; the optional entrainment rescale by ≲ 1e-3, see
+    /// [`RESCALE_RANGE`]).
     fn history_free(&self) -> bool {
         true
     }
