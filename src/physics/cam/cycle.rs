@@ -715,7 +715,6 @@ impl<'a> Context<'a> {
             // angle's own film of a previous pass or cycle instead was tried (`ehl2d-6`): the
             // film then depends on the path at the Newton tolerance and the seed 000 finite
             // cycle's periodic roller speed stalled at 1.2e-6 against 1e-8.
-            let near = |_: &[Option<(f64, FilmSolution)>]| prev;
             work::add(&work::MARCH_STEPS, 1);
             if cache[i].as_ref().is_none_or(|(ue, _)| !close(entrainment(guess), *ue)) {
                 let ue = entrainment(guess);
@@ -734,8 +733,7 @@ impl<'a> Context<'a> {
                     None => {
                         work::add(&work::MARCH_FILM_NEW, 1);
                         let input = self.input(i, ue, k.cam_surface_velocity - (rf * guess + k.follower_surface_base), t, dt);
-                        let warm = near(cache);
-                        (ue, self.model.solve(&input, warm.and_then(|j| cache[j].as_ref().map(|c| &c.1)))?)
+                        (ue, self.model.solve(&input, prev.and_then(|j| cache[j].as_ref().map(|c| &c.1)))?)
                     }
                 });
             }
@@ -767,8 +765,7 @@ impl<'a> Context<'a> {
                 }
                 let input = self.input(i, ue_sol, k.cam_surface_velocity - (rf * sol.omega + k.follower_surface_base), t, dt);
                 work::add(&work::MARCH_FILM_PASS, 1);
-                let warm = near(cache);
-                let film = self.model.solve(&input, warm.and_then(|j| cache[j].as_ref().map(|c| &c.1)))?;
+                let film = self.model.solve(&input, prev.and_then(|j| cache[j].as_ref().map(|c| &c.1)))?;
                 cache[i] = Some((ue_sol, film));
                 guess = sol.omega;
             }

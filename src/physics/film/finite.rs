@@ -13,6 +13,8 @@
 //! cold nested iteration runs only at the first point or when the warm start fails. The model is
 //! steady (no squeeze term) and Newtonian; its film does not depend on the sliding velocity or on
 //! the previous point beyond the Newton tolerance, so it is history-free (a dwell reuses a film).
+//! Optional (off by default, [`Finite::with_rescale_range`]): a film at the same load and shape
+//! and an entrainment within [`RESCALE_RANGE`] is rescaled `h ∝ u^0.69` instead of solved.
 //!
 //! From the converged fields: central film (centre of the contact), minimum film and where it
 //! sits (axial position `y`), the exit film (the smallest film on the centre line), peak pressure,
