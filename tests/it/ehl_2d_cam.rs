@@ -140,3 +140,62 @@ fn finite_geometry_bad_input_names_the_field() {
         }
     }
 }
+
+/// The entrainment rescale against Newton solves at the new entrainment (seed 000's crowned
+/// roller at the nose load, 954 N, u = 2.77 m/s, 33×65, tolerance 1e-9) inside its ±0.5 % range
+/// (`physics::film::finite::RESCALE_RANGE`): central film within 5e-4, minimum film within 1.5e-3,
+/// viscous traction at 0.1 m/s sliding within 4e-3 (measured: `--nocapture`; the errors grow
+/// linearly with the change: 1.0e-3 / 3.2e-3 / 9e-3 at 1.9 %); a chain of rescales equals one;
+/// out of range or at another load the model solves.
+#[test]
+fn entrainment_rescale_matches_the_solve() {
+    use tribod::physics::ehl::twod::Ehl2dOptions;
+    use tribod::physics::film::{ClosedForm, ContactInput, ContactShape, FilmFormula, FilmModel, FilmSolution, Finite};
+    use tribod::physics::friction::{AsperityFriction, AsperityModel, Rheology, Roughness, TractionLaw};
+    use tribod::physics::lubricant::Lubricant;
+    use tribod::physics::roller::Crown;
+    let lub = Lubricant::SEED000;
+    let rough = Roughness { sigma: 0.0, eta_beta_sigma: 0.04, sigma_over_beta: 0.001, plastic_limit: f64::INFINITY, curve: None };
+    let law = TractionLaw { rheology: Rheology::Newtonian, limiting_shear_coefficient: None };
+    let asp = AsperityFriction { coefficient: 0.1, model: AsperityModel::Coulomb, map: None };
+    let es = 1.911e11 / (2.0 * 0.91);
+    let crown = Crown { length: 0.014, middle_length: 0.012, crown_height: 4.5e-6, end_radius: 0.0125 };
+    let input = |load: f64, u: f64| ContactInput {
+        load,
+        shape: ContactShape::Line { reduced_radius: 0.01037, length: 0.014 },
+        entrainment_velocity: u,
+        sliding_velocity: 0.0,
+        time: 0.0,
+        time_step: 0.0,
+        contact_modulus: es,
+        temperature: 313.0,
+        lubricant: &lub,
+        roughness: &rough,
+        traction_law: &law,
+        asperity_friction: &asp,
+    };
+    let options = Ehl2dOptions { nx: 33, ny: 65, tolerance: 1e-9, grid_check: false, grid_tolerance: 0.5, ..Default::default() };
+    let fallback = ClosedForm { formula: FilmFormula::PanHamrock, squeeze: false };
+    let model = Finite::new(options, Some(crown), fallback).with_rescale_range(tribod::physics::film::finite::RESCALE_RANGE);
+    let exact = Finite::new(options, Some(crown), fallback);
+    let base = model.solve(&input(954.0, 2.77), None).unwrap();
+    assert!(base.iterations.unwrap() > 0);
+    for r in [0.9951, 0.998, 1.002, 1.0049] {
+        let u = 2.77 * r;
+        let scaled = model.solve(&input(954.0, u), Some(&base)).unwrap();
+        let solved = exact.solve(&input(954.0, u), Some(&base)).unwrap();
+        assert_eq!(scaled.iterations, Some(0), "rescaled, not solved");
+        assert!(solved.iterations.unwrap() > 0);
+        // A chain of rescales equals one from the solve.
+        let chained = model.solve(&input(954.0, u), Some(&model.solve(&input(954.0, 2.77 * (1.0 + r) / 2.0), Some(&base)).unwrap())).unwrap();
+        assert!(rel(chained.central_film, scaled.central_film) < 1e-12);
+        let traction = |f: &FilmSolution| model.traction(f, &input(954.0, u), 0.1).force;
+        let (dc, dm, dt) = (rel(scaled.central_film, solved.central_film), rel(scaled.min_film, solved.min_film), rel(traction(&scaled), traction(&solved)));
+        let dn = rel(base.central_film, solved.central_film);
+        println!("u × {r}: rescaled against solved: central {dc:.2e}, minimum {dm:.2e}, traction at 0.1 m/s {dt:.2e} (the film itself moved by {dn:.2e})");
+        assert!(dc < 5e-4 && dm < 1.5e-3 && dt < 4e-3, "u × {r}: {dc:.2e} {dm:.2e} {dt:.2e}");
+    }
+    // Not rescaled: out of range, another load.
+    assert!(model.solve(&input(954.0, 2.77 * 1.006), Some(&base)).unwrap().iterations.unwrap() > 0);
+    assert!(model.solve(&input(950.0, 2.77), Some(&base)).unwrap().iterations.unwrap() > 0);
+}

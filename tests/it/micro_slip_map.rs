@@ -73,7 +73,7 @@ impl Nose {
 
     /// SRR and slip regime at each pin friction, the roller of seed 001 Table 2.
     fn sweep(&self, model: &dyn FilmModel, asp: &AsperityFriction, pins: &[f64]) -> Vec<(f64, String)> {
-        let case = PointCase { model, input: self.input(asp), cam_surface_velocity: 3.98, roller_radius: 0.018, pin_radius: 0.0091, inertia_torque: 0.0 };
+        let case = PointCase { model, input: self.input(asp), cam_surface_velocity: 3.98, roller_radius: 0.018, pin_radius: 0.0091, inertia_torque: 0.0, rolling: None };
         pins.iter()
             .map(|&mu| {
                 let b = case.balance(mu).unwrap();

@@ -286,6 +286,7 @@ fn solve_point(spec: &CamPointSpec, observer: &dyn Observer) -> Result<CamPointR
         traction_law: &law,
         asperity_friction: &asp,
     };
+    let rolling = model.solve(&input, None)?;
     let case = PointCase {
         model: model.as_ref(),
         input,
@@ -293,8 +294,8 @@ fn solve_point(spec: &CamPointSpec, observer: &dyn Observer) -> Result<CamPointR
         roller_radius: spec.roller.radius,
         pin_radius: spec.roller.pin_radius,
         inertia_torque: spec.roller.inertia * spec.roller.angular_acceleration,
+        rolling: Some(&rolling),
     };
-    let rolling = model.solve(&input, None)?;
     let mut rows = Vec::with_capacity(spec.pin_friction.len());
     let mut first = None;
     for (i, &mu) in spec.pin_friction.iter().enumerate() {

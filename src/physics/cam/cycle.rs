@@ -17,6 +17,7 @@ use crate::physics::film::{ContactInput, ContactShape, FilmModel, FilmModelId, F
 use crate::physics::ehl::twod::Fields2d;
 use crate::physics::friction::{AsperityFriction, Roughness, TractionLaw};
 use crate::physics::lubricant::Lubricant;
+use crate::physics::film::work;
 use crate::physics::roller::{pin_torque, Crown, RollerParams, SlipStep};
 use crate::physics::thermal::{flash_temperature, ThermalSolid};
 use crate::physics::{ensure_finite, Convergence, Observer, SolveError, Termination};
@@ -724,6 +725,12 @@ impl<'a> Context<'a> {
             // Start from the cached film of this angle (previous cycle) when there is one and the
             // guess's entrainment is within the tolerance of it; the film is re-solved when the
             // converged entrainment moved away from it.
+            // Every film starts from the previous angle's (the squeeze history of transient
+            // models; the warm start of the 2-D model). Starting a history-free model from this
+            // angle's own film of a previous pass or cycle instead was tried (`ehl2d-6`): the
+            // film then depends on the path at the Newton tolerance and the seed 000 finite
+            // cycle's periodic roller speed stalled at 1.2e-6 against 1e-8.
+            work::add(&work::MARCH_STEPS, 1);
             if cache[i].as_ref().is_none_or(|(ue, _)| !close(entrainment(guess), *ue)) {
                 let ue = entrainment(guess);
                 // On a stretch of unchanging conditions (a dwell) a history-free model's film at
@@ -734,8 +741,12 @@ impl<'a> Context<'a> {
                     .filter(|(ue_j, _)| close(ue, *ue_j))
                     .cloned();
                 cache[i] = Some(match reuse {
-                    Some(entry) => entry,
+                    Some(entry) => {
+                        work::add(&work::MARCH_FILM_DWELL, 1);
+                        entry
+                    }
                     None => {
+                        work::add(&work::MARCH_FILM_NEW, 1);
                         let input = self.input(i, ue, k.cam_surface_velocity - (rf * guess + k.follower_surface_base), t, dt);
                         (ue, self.model.solve(&input, prev.and_then(|j| cache[j].as_ref().map(|c| &c.1)))?)
                     }
@@ -759,6 +770,7 @@ impl<'a> Context<'a> {
                     pin_warm: std::cell::Cell::new(pin_warm.get()),
                 };
                 let sol = problem.solve(guess)?;
+                work::add(&work::MARCH_SLIP_SOLVES, 1);
                 pin_warm.set(problem.pin_warm.get());
                 let ue_sol = entrainment(sol.omega);
                 let done = close(ue_sol, film_ue) || pass == 5;
@@ -767,6 +779,7 @@ impl<'a> Context<'a> {
                     break;
                 }
                 let input = self.input(i, ue_sol, k.cam_surface_velocity - (rf * sol.omega + k.follower_surface_base), t, dt);
+                work::add(&work::MARCH_FILM_PASS, 1);
                 let film = self.model.solve(&input, prev.and_then(|j| cache[j].as_ref().map(|c| &c.1)))?;
                 cache[i] = Some((ue_sol, film));
                 guess = sol.omega;

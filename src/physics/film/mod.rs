@@ -45,6 +45,7 @@ pub mod formulas;
 pub mod mixed;
 pub mod numerical;
 pub mod thermal;
+pub mod work;
 
 pub use auto::{closed_form_error, Auto, ClosedFormError, ErrorRule};
 pub use closed_form::{ClosedForm, FilmFormula};
@@ -299,16 +300,7 @@ pub trait FilmModel: Send + Sync {
     /// evaluation). Default: film shear over `film.nodes` plus the asperity friction of
     /// `film.asperity`.
     fn traction_local(&self, film: &FilmSolution, input: &ContactInput, sliding: f64) -> (Traction, (f64, f64)) {
-        let v = viscous_traction_local(&film.nodes, input.traction_law, sliding);
-        let (asp, aslope, (acurv, areach)) =
-            input.asperity_friction.traction_local(&film.asperity, &film.asperity_nodes, sliding, input.entrainment_velocity);
-        let traction = Traction {
-            force: v.force + film.rolling_force + asp,
-            slope: v.slope + aslope,
-            stick_limit: self.stick_limit(film, input),
-            viscous: v.force + film.rolling_force,
-        };
-        (traction, (1.5 * v.curvature + acurv, v.smooth_reach.min(areach)))
+        nodal_traction_local(film, input, sliding, self.stick_limit(film, input))
     }
 
     /// Half-height of the traction jump at zero sliding ([`Traction::stick_limit`]) without
@@ -316,6 +308,21 @@ pub trait FilmModel: Send + Sync {
     fn stick_limit(&self, film: &FilmSolution, input: &ContactInput) -> f64 {
         input.asperity_friction.stick_limit(&film.asperity)
     }
+}
+
+/// The default [`FilmModel::traction_local`]: film shear over `film.nodes` plus the asperity
+/// friction of `film.asperity`, with the model's `stick_limit`.
+pub fn nodal_traction_local(film: &FilmSolution, input: &ContactInput, sliding: f64, stick_limit: f64) -> (Traction, (f64, f64)) {
+    let v = viscous_traction_local(&film.nodes, input.traction_law, sliding);
+    let (asp, aslope, (acurv, areach)) =
+        input.asperity_friction.traction_local(&film.asperity, &film.asperity_nodes, sliding, input.entrainment_velocity);
+    let traction = Traction {
+        force: v.force + film.rolling_force + asp,
+        slope: v.slope + aslope,
+        stick_limit,
+        viscous: v.force + film.rolling_force,
+    };
+    (traction, (1.5 * v.curvature + acurv, v.smooth_reach.min(areach)))
 }
 
 /// Model fidelity requested by a spec.

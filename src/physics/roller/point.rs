@@ -36,6 +36,10 @@ pub struct PointCase<'a> {
     pub pin_radius: f64,
     /// Inertia torque I ω̇_r, N·m.
     pub inertia_torque: f64,
+    /// The film at zero sliding solved from cold (`model.solve` at `input` with the entrainment
+    /// `cam_surface_velocity`, no sliding, no time step, no previous solution), when the caller
+    /// has it: used instead of solving it again (`None`: solved where needed).
+    pub rolling: Option<&'a FilmSolution>,
 }
 
 /// The balance at one roller–pin friction coefficient.
@@ -59,6 +63,9 @@ impl PointCase<'_> {
     /// The film at sliding velocity `sliding`; `warm` (a solution at a nearby sliding velocity,
     /// no time step: not a squeeze history) lets a numerical model start from it.
     fn film_at(&self, sliding: f64, warm: Option<&FilmSolution>) -> Result<FilmSolution, SolveError> {
+        if let Some(rolling) = self.rolling.filter(|_| sliding == 0.0 && warm.is_none()) {
+            return Ok(rolling.clone());
+        }
         let mut input = self.input;
         input.entrainment_velocity = self.cam_surface_velocity - 0.5 * sliding;
         input.sliding_velocity = sliding;

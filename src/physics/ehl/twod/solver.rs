@@ -13,7 +13,7 @@ use super::{Ehl2dInput, Ehl2dOptions, Ehl2dSolution, Fields2d, Geometry2d, Locat
 use crate::physics::ehl::rheology::PressureRheology;
 use crate::physics::{Convergence, Observer, SolveError, Termination};
 use faer::prelude::Solve;
-use faer::sparse::linalg::solvers::Lu;
+use faer::sparse::linalg::solvers::{Lu, SymbolicLu};
 use faer::sparse::{SparseColMat, Triplet};
 
 /// Largest `ln(η/η0)` used (keeps `ε` finite at absurd trial pressures), as in the 1-D solver.
@@ -58,6 +58,11 @@ struct Problem {
     unk: Vec<usize>,
     /// Node of each unknown (interior nodes).
     nodes: Vec<usize>,
+    /// The preconditioner's symbolic LU (column ordering, elimination structure) and the sparsity
+    /// pattern it was computed for (column pointers, row indices): reused while the pattern stays
+    /// (the active set unchanged), which makes the factorisation bit-identical to a fresh one
+    /// without the ordering's cost (colamd was ≈ 25 % of a cam cycle's CPU, BENCHMARKS.md issue 16).
+    symbolic: std::cell::RefCell<Option<(Vec<usize>, Vec<usize>, SymbolicLu<usize>)>>,
 }
 
 /// The Poiseuille coefficient at a cell face from its two nodes' `ε = ρ̄H³/η̄`, with its
@@ -138,6 +143,7 @@ impl Problem {
             theta: 1.0,
             unk,
             nodes,
+            symbolic: std::cell::RefCell::new(None),
         }
     }
 
@@ -256,8 +262,9 @@ impl Problem {
         out[m] = sum * self.dx * self.dy / self.load;
     }
 
-    /// The near-field preconditioner (scaled like the Newton matrix) and the row scales `c`.
-    fn precondition(&self, p: &[f64], v: &Fields, active: &mut [bool], c: &mut [f64]) -> Option<Precond> {
+    /// The near-field preconditioner (scaled like the Newton matrix) and the row scales `c`;
+    /// `factor` false: the row scales and the active set only (`None`).
+    fn precondition(&self, p: &[f64], v: &Fields, active: &mut [bool], c: &mut [f64], factor: bool) -> Option<Precond> {
         let (nx, ny, dx2, dy2) = (self.nx, self.ny, self.dx * self.dx, self.dy * self.dy);
         let m = self.nodes.len();
         let r = self.near as isize;
@@ -307,6 +314,9 @@ impl Problem {
             let cu = 1.0 / diag.abs().max(1e-300);
             c[u] = cu;
             active[u] = p[k] <= -cu * v.f[k];
+            if !factor {
+                continue;
+            }
             if active[u] {
                 trip.push(Triplet::new(u, u, 1.0));
             } else {
@@ -322,8 +332,24 @@ impl Problem {
         // The bordered system `[B u; wᵀ 0]` (the `H0` column `u`, the load row `w`) by its Schur
         // complement: factorising it with the dense border made the sparse LU fill in (35 s at
         // 97², measured), the block `B` alone factorises in a fraction of a second.
+        if !factor {
+            return None;
+        }
         let mat = SparseColMat::<usize, f64>::try_new_from_triplets(m, m, &trip).ok()?;
-        let lu = mat.sp_lu().ok()?;
+        let lu = {
+            let sym = mat.symbolic();
+            let mut cache = self.symbolic.borrow_mut();
+            let reuse = cache.as_ref().filter(|(cp, ri, _)| cp.as_slice() == sym.col_ptr() && ri.as_slice() == sym.row_idx()).map(|c| c.2.clone());
+            let symbolic = match reuse {
+                Some(s) => s,
+                None => {
+                    let s = SymbolicLu::try_new(sym).ok()?;
+                    *cache = Some((sym.col_ptr().to_vec(), sym.row_idx().to_vec(), s.clone()));
+                    s
+                }
+            };
+            Lu::try_new_with_symbolic(symbolic, mat.as_ref()).ok()?
+        };
         let w = self.dx * self.dy / self.load;
         lu.solve_in_place(faer::MatMut::from_column_major_slice_mut(&mut ucol, m, 1));
         let schur = w * ucol.iter().sum::<f64>();
@@ -509,15 +535,19 @@ fn newton(prob: &mut Problem, p: &mut [f64], h0: &mut f64, tol: f64, max_iter: u
     let mut dpn = vec![0.0; p.len()];
     for iter in 0..=max_iter {
         observer.check()?;
-        let t_lu = std::time::Instant::now();
-        let lu = prob.precondition(p, &v, &mut active, &mut c);
-        let t_lu = t_lu.elapsed().as_secs_f64();
+        // Row scales and active set first: the residual needs them, the factorisation only an
+        // unconverged step (the last, converged evaluation of every solve factorised for nothing:
+        // ≈ 1 of 5 factorisations of a warm solve in the cam cycle, `ehl2d-6`).
+        prob.precondition(p, &v, &mut active, &mut c, false);
         prob.phi(p, &v, &c, &mut phi);
         let res = residual_norm(p, &phi, v.g);
         history.push(res);
         if res <= tol {
             return Ok(Run { iterations: iter, residual: res, history, converged: true, gmres: gm_total });
         }
+        let t_lu = std::time::Instant::now();
+        let lu = if iter < max_iter { prob.precondition(p, &v, &mut active, &mut c, true) } else { None };
+        let t_lu = t_lu.elapsed().as_secs_f64();
         let Some(lu) = lu else {
             return Ok(Run { iterations: iter, residual: res, history, converged: false, gmres: gm_total });
         };
