@@ -289,7 +289,8 @@ pub fn analyse(
     // nearly settles (`Hierarchy::eager_tight`); the fixed-eccentricity and fixed-position
     // analyses keep the plain active-set schedule (the roller–pin tables are built on them)
     ws.hierarchy.eager_tight = matches!(operating, Operating::Load(_));
-    let mut prob = BalanceSearch { bearing, settings, h: &mut ws.hierarchy, coarse_loose, start_level: ks };
+    let reuse_coarse = matches!(operating, Operating::Load(_));
+    let mut prob = BalanceSearch { bearing, settings, h: &mut ws.hierarchy, coarse_loose, start_level: ks, reuse_coarse };
     let mut steps_per_grid = Vec::new();
 
     // unknowns and starting point
