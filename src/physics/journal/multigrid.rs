@@ -1374,6 +1374,47 @@ mod tests {
     }
 
     #[test]
+    fn reported_residual_is_that_of_the_returned_pressure() {
+        // the residual of a converged solve comes from the λ of the last active-set check: it
+        // must equal the residual recomputed from the returned pressure, bit for bit
+        let mut h = aligned_hierarchy(96, 33, 1.0, 0.7);
+        h.eager_tight = true;
+        let rep = h.nested_solve(0, 1e-7, 30, 400);
+        assert!(rep.converged);
+        assert_eq!(rep.residual.to_bits(), h.lcp_residual(0).to_bits());
+        h.set_film(&Film::aligned(0.71, 0.02), 0.0);
+        let rep = h.solve_lcp(0, 1e-9, 30, 400);
+        assert!(rep.converged && rep.steps >= 1);
+        assert_eq!(rep.residual.to_bits(), h.lcp_residual(0).to_bits());
+    }
+
+    #[test]
+    fn coarse_operators_of_a_nearby_position_give_the_same_solution() {
+        // warm solve at a position 5e-4 away: with the coarse levels rebuilt, and with the
+        // coarse levels of the old position kept (they only precondition level 0)
+        let film = |e: f64| Film { misalignment: super::super::film::Misalignment { vertical: 0.3, horizontal: 0.2 }, ..Film::aligned(e, 0.4) };
+        let mut a = Hierarchy::new(120, 41, 0.25, true);
+        a.eager_tight = true;
+        a.set_film(&film(0.5), 0.0);
+        assert!(a.nested_solve(0, 1e-9, 30, 400).converged);
+        let mut b = a.clone();
+        a.set_film_from(0, &film(0.5005), 0.0);
+        b.set_film_near(0, &film(0.5005), 0.0, 1e-3);
+        // the coarse levels of `b` still hold the old position's coefficients
+        assert!(b.levels[1].coeffs_of.unwrap().0 == film(0.5));
+        assert!(a.levels[1].coeffs_of.unwrap().0 == film(0.5005));
+        let (ra, rb) = (a.solve_lcp(0, 1e-9, 30, 400), b.solve_lcp(0, 1e-9, 30, 400));
+        assert!(ra.converged && rb.converged, "{ra:?} {rb:?}");
+        let m = a.levels[0].u.iter().fold(0.0f64, |x, y| x.max(*y));
+        for (x, y) in a.levels[0].u.iter().zip(&b.levels[0].u) {
+            assert!((x - y).abs() < 1e-7 * m, "{x} {y}");
+        }
+        // a position farther than `near` rebuilds them
+        b.set_film_near(0, &film(0.52), 0.0, 1e-3);
+        assert!(b.levels[1].coeffs_of.unwrap().0 == film(0.52));
+    }
+
+    #[test]
     fn active_set_matches_projected_gauss_seidel() {
         // The same discrete LCP solved by plain projected Gauss–Seidel to round-off.
         let mut h = aligned_hierarchy(48, 17, 1.0, 0.7);
