@@ -1211,14 +1211,20 @@ impl Level {
         // derivatives of the face conductances
         let mut dce = vec![0.0; nt * nz];
         let mut dcn = vec![0.0; nt * nz];
+        // the face angles' cosines and sines, once per column (not per node)
+        let (cos_f, sin_f): (Vec<f64>, Vec<f64>) = (0..nt)
+            .map(|i| {
+                let tf = self.theta0 + (i as f64 + 0.5) * dt;
+                (tf.cos(), tf.sin())
+            })
+            .unzip();
         for j in 0..nz {
             let z = j as f64 * dz;
             let r = film.row(z);
             let rn = film.row((z + 0.5 * dz).min(1.0));
             for i in 0..nt {
                 let k = j * nt + i;
-                let tf = self.theta0 + (i as f64 + 0.5) * dt;
-                let he = 1.0 + r.gamma + r.x * tf.cos() + r.y * tf.sin();
+                let he = 1.0 + r.gamma + r.x * cos_f[i] + r.y * sin_f[i];
                 dce[k] = 3.0 * he * he * s_node[j] * g_f[i] * ke;
                 if j + 1 < nz {
                     let hn = 1.0 + rn.gamma + rn.x * self.cos_n[i] + rn.y * self.sin_n[i];
