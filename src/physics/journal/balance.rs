@@ -22,6 +22,11 @@ pub(super) struct BalanceSearch<'a> {
     /// The grid on which the position search starts (finite-difference Jacobians are taken
     /// there; the grids between it and the finest are reached by Broyden/secant updates).
     pub(super) start_level: usize,
+    /// Warm solves keep the coarser levels' coefficients of a position within 1e-3 (in `X`,
+    /// `Y`, and the angle of node 0) as the preconditioner instead of rebuilding them
+    /// ([`Hierarchy::set_film_near`]); the load balances set it, the fixed-eccentricity and
+    /// fixed-position analyses do not (the roller–pin tables of the cam kinds are built on them).
+    pub(super) reuse_coarse: bool,
 }
 
 impl BalanceSearch<'_> {
@@ -55,7 +60,13 @@ impl BalanceSearch<'_> {
     pub(super) fn eval_tol(&mut self, k: usize, eps: f64, beta: f64, cold: bool, tol: f64) -> Result<Eval, SolveError> {
         let film = self.bearing.film(eps, beta);
         let (_, theta0) = self.bearing.groove_angle(beta);
-        self.h.set_film_from(k, &film, theta0);
+        if cold || !self.reuse_coarse {
+            self.h.set_film_from(k, &film, theta0);
+        } else {
+            // the coarse levels only precondition the solve on level `k`: a nearby position's
+            // operators do (misaligned 361×181: 1 % fewer instructions, the same V-cycles)
+            self.h.set_film_near(k, &film, theta0, 1e-3);
+        }
         let rep = if cold {
             self.h.nested_solve(k, tol, 60, self.settings.max_cycles)
         } else {
@@ -278,8 +289,12 @@ pub(super) fn load_balance(
     // accepted point is then re-solved to the full tolerance before convergence is declared.
     let mut full = p.tol_at(k);
     let inexact = |err: f64, full: f64| (1e-3 * err).clamp(full, full.max(1e-5));
-    let mut ev = p.eval_tol(k, *eps, *beta, cold, if cold { full } else { inexact(1e-2, full) })?;
-    let mut exact = cold || inexact(1e-2, full) <= full;
+    // a grid that only predicts the next one's start (below) solves to 1e-4: its one Newton step
+    // steers the finest grid's start as well as from 1e-5 (misaligned 361×181: the same finest
+    // V-cycles, 2 % fewer instructions; BENCHMARKS.md, speed fifth round)
+    let t0 = if predict_only && jac.is_some() { full.max(1e-4) } else { inexact(1e-2, full) };
+    let mut ev = p.eval_tol(k, *eps, *beta, cold, if cold { full } else { t0 })?;
+    let mut exact = cold || t0 <= full;
     let mut r = load_residual(&ev, w);
     let mut err = relative_load_error(&ev, w);
     if predict_only {
