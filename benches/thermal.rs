@@ -83,10 +83,48 @@ fn cycle_table() {
     row("auto, carry_tolerance 0.05", &out, t);
 }
 
+/// Seed 000 Figs. 9 and 13 with the thermal model (`-- trends`): the SRR at the paper's angles
+/// (0°, 100°, 155°, 176°) and at the model's closing-flank extreme, against the oil viscosity η0
+/// and the modified load w1, for the thermal steady example with key points
+/// (`THERMAL_BENCH_CARRY`, default 0.02) at `THERMAL_BENCH_ANGLES` (default 360), and for the
+/// isothermal `fast` model of `seed000_roller_steady` beside it.
+fn trends() {
+    let angles = std::env::var("THERMAL_BENCH_ANGLES").ok().and_then(|a| a.parse::<u64>().ok()).unwrap_or(360);
+    let carry = std::env::var("THERMAL_BENCH_CARRY").ok().and_then(|a| a.parse::<f64>().ok()).unwrap_or(0.02);
+    let load = |name: &str| serde_json::from_str::<Value>(&std::fs::read_to_string(format!("examples/{name}.json")).unwrap()).unwrap()["spec"].clone();
+    let at = |a: &[f64], v: &[f64], deg: f64| v[(0..a.len()).min_by(|&i, &j| (a[i] - deg).abs().total_cmp(&(a[j] - deg).abs())).unwrap()];
+    for (model, base) in [("thermal (accurate, key points)", load("seed000_thermal_steady")), ("isothermal fast", load("seed000_roller_steady"))] {
+        println!("\n## Seed 000 trends, {model}, {angles} angles (carry_tolerance {carry})\n");
+        println!("| case | SRR 0° | 100° | 155° | 176° | closing-flank minimum (130–200°) | time, s |");
+        println!("|---|---:|---:|---:|---:|---|---:|");
+        let cases: Vec<(String, Box<dyn Fn(&mut Value)>)> = [0.08, 0.112, 0.152, 0.2]
+            .into_iter()
+            .map(|eta| (format!("η0 = {eta} Pa·s"), Box::new(move |s: &mut Value| s["lubricant"]["viscosity"] = eta.into()) as Box<dyn Fn(&mut Value)>))
+            .chain([0.0, 200.0, 400.0, 800.0].into_iter().map(|w1| (format!("w1 = {w1} N"), Box::new(move |s: &mut Value| s["load"]["offset"] = w1.into()) as Box<dyn Fn(&mut Value)>)))
+            .collect();
+        for (name, f) in &cases {
+            let mut s = base.clone();
+            s["angles"] = angles.into();
+            if s["ehl"]["thermal"].is_object() {
+                s["ehl"]["thermal"]["carry_tolerance"] = carry.into();
+            }
+            f(&mut s);
+            let (out, t) = cycle_job(&s);
+            let (a, v) = (series(&out, "angle_deg"), series(&out, "slide_roll_ratio"));
+            let k = (0..a.len()).filter(|&i| a[i] >= 130.0 && a[i] <= 200.0).min_by(|&i, &j| v[i].total_cmp(&v[j])).unwrap();
+            println!("| {name} | {:.5} | {:.5} | {:.5} | {:.5} | {:.5} at {:.1}° | {t:.1} |", at(&a, &v, 0.0), at(&a, &v, 100.0), at(&a, &v, 155.0), at(&a, &v, 176.0), v[k], a[k]);
+        }
+    }
+}
+
 fn main() {
     let args: Vec<String> = std::env::args().skip(1).filter(|a| !a.starts_with('-')).collect();
     if args.iter().any(|a| a == "cycle") {
         cycle_table();
+        return;
+    }
+    if args.iter().any(|a| a == "trends") {
+        trends();
         return;
     }
     faer::set_global_parallelism(faer::Par::Seq);
