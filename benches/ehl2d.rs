@@ -37,6 +37,10 @@ fn best_of<T>(reps: usize, mut f: impl FnMut() -> T) -> (f64, T) {
 
 fn main() {
     let args: Vec<String> = std::env::args().collect();
+    // `seq`: faer's kernels (the sparse LU) on the calling thread only.
+    if args.iter().any(|a| a == "seq") {
+        faer::set_global_parallelism(faer::Par::Seq);
+    }
     if args.iter().any(|a| a == "cycle") {
         cycle(&args);
         return;

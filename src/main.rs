@@ -188,6 +188,11 @@ enum RunFormat {
 
 fn main() -> ExitCode {
     let cli = Cli::parse();
+    // One job per worker thread: faer's kernels (sparse and dense LU) run on the job's own thread.
+    // Nested parallelism inside a job competes with the other workers and spins: measured on the
+    // seed 000 finite cycle, 36 angles, release, 22.9 → 17.9 s and kernel time 9.8 → 4.1 s
+    // (BENCHMARKS.md, issue 16). The benches run so too.
+    faer::set_global_parallelism(faer::Par::Seq);
     match cli.command {
         Command::Serve(args) => {
             init_tracing(cli.log_format);
