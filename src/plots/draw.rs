@@ -3,6 +3,8 @@
 use super::{Chart, Mark, Panel, Plot, PlotError, Series};
 use plotters::coord::Shift;
 use plotters::prelude::*;
+use plotters::coord::ranged1d::ValueFormatter;
+use plotters::coord::types::RangedCoordf64;
 use plotters::style::colors::colormaps::ViridisRGB;
 
 const SIZE: (u32, u32) = (900, 520);
@@ -45,6 +47,16 @@ fn range(values: impl Iterator<Item = f64>) -> (f64, f64) {
     }
 }
 
+/// An axis tick as plotters prints it, without the sign of a tick that rounds to zero (a key point
+/// at −1e-17 printed "-0.0" on the heat maps' x axis).
+fn tick(v: &f64) -> String {
+    let s = <RangedCoordf64 as ValueFormatter<f64>>::format(v);
+    match s.strip_prefix('-') {
+        Some(rest) if rest.chars().all(|c| c == '0' || c == '.') => rest.to_string(),
+        _ => s,
+    }
+}
+
 fn finite(points: &[(f64, f64)]) -> Vec<(f64, f64)> {
     points.iter().copied().filter(|(a, b)| a.is_finite() && b.is_finite()).collect()
 }
@@ -59,7 +71,7 @@ fn lines(area: &Area, plot: &Plot, series: &[Series], marks: &[Mark], markers: b
         .y_label_area_size(70)
         .build_cartesian_2d(x0..x1, y0..y1)
         .map_err(fail)?;
-    chart.configure_mesh().x_desc(&plot.x_label).y_desc(&plot.y_label).label_style(("sans-serif", 14)).draw().map_err(fail)?;
+    chart.configure_mesh().x_desc(&plot.x_label).y_desc(&plot.y_label).x_label_formatter(&tick).y_label_formatter(&tick).label_style(("sans-serif", 14)).draw().map_err(fail)?;
     for (i, s) in series.iter().enumerate() {
         let color = Palette99::pick(i).to_rgba();
         let points = finite(&s.points);
@@ -113,7 +125,7 @@ fn heat_map(area: &Area, plot: &Plot, x: &[f64], y: &[f64], z: &[Vec<f64>], z_la
         .y_label_area_size(70)
         .build_cartesian_2d(xe[0]..xe[xe.len() - 1], ye[0]..ye[ye.len() - 1])
         .map_err(fail)?;
-    chart.configure_mesh().disable_mesh().x_desc(&plot.x_label).y_desc(&plot.y_label).label_style(("sans-serif", 14)).draw().map_err(fail)?;
+    chart.configure_mesh().disable_mesh().x_desc(&plot.x_label).y_desc(&plot.y_label).x_label_formatter(&tick).y_label_formatter(&tick).label_style(("sans-serif", 14)).draw().map_err(fail)?;
     let cells = z.iter().enumerate().flat_map(|(j, row)| {
         let (xe, ye) = (&xe, &ye);
         row.iter().enumerate().filter(|(_, v)| v.is_finite()).map(move |(i, v)| {
@@ -135,6 +147,7 @@ fn heat_map(area: &Area, plot: &Plot, x: &[f64], y: &[f64], z: &[Vec<f64>], z_la
         .disable_mesh()
         .disable_x_axis()
         .y_desc(z_label)
+        .y_label_formatter(&tick)
         .label_style(("sans-serif", 12))
         .draw()
         .map_err(fail)?;
@@ -161,7 +174,7 @@ fn panels_chart(area: &Area, plot: &Plot, panels: &[Panel]) -> Result<(), PlotEr
             .build_cartesian_2d(x0..x1, y0..y1)
             .map_err(fail)?;
         let mut mesh = chart.configure_mesh();
-        mesh.x_desc(&panel.x_label).x_labels(5).label_style(("sans-serif", 13));
+        mesh.x_desc(&panel.x_label).x_labels(5).x_label_formatter(&tick).y_label_formatter(&tick).label_style(("sans-serif", 13));
         if k == 0 {
             mesh.y_desc(&plot.y_label);
         }
@@ -194,6 +207,7 @@ fn bars(area: &Area, plot: &Plot, labels: &[String], values: &[f64], highlight: 
         .x_label_formatter(&label_of)
         .x_desc(&plot.x_label)
         .y_desc(&plot.y_label)
+        .y_label_formatter(&tick)
         .label_style(("sans-serif", 14))
         .draw()
         .map_err(fail)?;
@@ -205,4 +219,31 @@ fn bars(area: &Area, plot: &Plot, labels: &[String], values: &[f64], highlight: 
         }))
         .map_err(fail)?;
     Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_tick_that_rounds_to_zero_has_no_sign() {
+        assert_eq!(tick(&-1e-17), "0.0");
+        assert_eq!(tick(&0.0), "0.0");
+        assert_eq!(tick(&-0.5), "-0.5");
+        assert_eq!(tick(&2.5), "2.5");
+        assert_eq!(tick(&-0.25), "-0.25");
+    }
+
+    /// A heat map over x ∈ [−0.3, 0.3]: plotters' key point near zero printed "-0.0".
+    #[test]
+    fn a_heat_map_over_a_symmetric_range_labels_zero_without_a_sign() {
+        let x: Vec<f64> = (0..13).map(|i| -0.3 + 0.05 * i as f64).collect();
+        let y: Vec<f64> = (0..9).map(|j| -2.0 + 0.5 * j as f64).collect();
+        let z: Vec<Vec<f64>> = y.iter().map(|yj| x.iter().map(|xi| (-(xi * xi) - yj * yj).exp()).collect()).collect();
+        let plot = Plot { name: "m".into(), title: "map".into(), x_label: "x".into(), y_label: "y".into(), chart: Chart::HeatMap { x, y, z, z_label: "p".into() } };
+        let doc = svg(&plot, "").unwrap();
+        let labels: Vec<&str> = doc.lines().map(str::trim).filter(|l| !l.starts_with('<')).collect();
+        assert!(!labels.iter().any(|l| *l == "-0.0" || *l == "-0"), "a signed zero tick: {labels:?}");
+        assert!(labels.iter().filter(|l| **l == "0.0").count() >= 2, "zero labelled on both axes: {labels:?}");
+    }
 }
