@@ -378,15 +378,15 @@ pub(super) fn load_balance(
         for _ in 0..40 {
             let (e1, b1) = (*eps + t * de, *beta + t * db);
             if e1 > 0.0 && p.feasible(e1, b1) {
-                if t == 1.0 {
-                    if let Some((pe, pb)) = prev {
-                        let (le, lb) = (*eps - pe, *beta - pb);
-                        let ll = le * le + lb * lb;
-                        let s = if ll > 0.0 { ((e1 - *eps) * le + (b1 - *beta) * lb) / ll } else { 0.0 };
-                        if s.is_finite() && s.abs() <= 1.0 && s != 0.0 {
-                            for (u, q) in p.h.levels[k].u.iter_mut().zip(&prev_u) {
-                                *u = (*u + s * (*u - q)).max(0.0);
-                            }
+                if t == 1.0
+                    && let Some((pe, pb)) = prev
+                {
+                    let (le, lb) = (*eps - pe, *beta - pb);
+                    let ll = le * le + lb * lb;
+                    let s = if ll > 0.0 { ((e1 - *eps) * le + (b1 - *beta) * lb) / ll } else { 0.0 };
+                    if s.is_finite() && s.abs() <= 1.0 && s != 0.0 {
+                        for (u, q) in p.h.levels[k].u.iter_mut().zip(&prev_u) {
+                            *u = (*u + s * (*u - q)).max(0.0);
                         }
                     }
                 }
