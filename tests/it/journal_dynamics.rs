@@ -147,6 +147,37 @@ fn damping_symmetric_dissipative_and_grid_converged() {
     }
 }
 
+/// The coefficients at the default tolerances against the same equilibrium position solved
+/// and linearised at a tight one (pressure 1e-12): the linear solves' tolerance moves every
+/// coefficient by far less than the grid does (~1e-3 of the largest at 121×41, BENCHMARKS.md).
+/// Plain L/D 0.5 at ε 0.5 and seed 002's misaligned profiled design, both load-balanced.
+#[test]
+fn coefficients_at_the_default_tolerance_match_a_tight_solve() {
+    let cases = [
+        (Bearing::plain(0.5), 0.5),
+        (
+            Bearing {
+                misalignment: Misalignment { vertical: 0.56, horizontal: 0.56 },
+                profile: Some(Profile { order: 2, height: 0.4, length_fraction: 0.2 }),
+                ..Bearing::plain(1.25)
+            },
+            0.6,
+        ),
+    ];
+    for (b, e) in cases {
+        let s = Settings { circumferential: 121, axial: 41, ..Settings::default() };
+        let w = analyse(&Bearing::plain(b.length_to_diameter), &Operating::Eccentricity(e), &s, None, None, false, &Silent).unwrap().load;
+        let (a, c) = solve(&b, Operating::Load(w), &s);
+        let tight = Settings { pressure_tolerance: 1e-12, load_tolerance: 1e-10, ..s };
+        let pos = Operating::Position { eccentricity: a.eccentricity, attitude: a.attitude };
+        let (_, ct) = solve(&b, pos, &tight);
+        let (ek, ec) = (max_err(&c.stiffness, &ct.stiffness), max_err(&c.damping, &ct.damping));
+        eprintln!("L/D {}: K {:?} tight {:?}; error K {ek:.2e}, C {ec:.2e}; {:?}", b.length_to_diameter, c.stiffness, ct.stiffness, c.convergence);
+        assert!(ek < 1e-5 && ec < 1e-5, "K {ek:e}, C {ec:e}");
+        assert!(c.convergence.residual <= c.convergence.tolerance);
+    }
+}
+
 /// The `bearing` kind's contract: `outputs: ["dynamic_coefficients"]` gives SI stiffness and
 /// damping consistent with the dimensionless ones (K = K̄ W/c, C = C̄ W/(cω)).
 #[test]

@@ -11,8 +11,11 @@
 //! Method: at the converged pressure `P0` the cavitation set is frozen (the pressurised nodes
 //! stay the unknowns) and four linear problems with the equilibrium's matrix give
 //! `∂P/∂X`, `∂P/∂Y` (displacements, `∂A/∂X` from `c = H³k` on the faces) and `∂P/∂X'`, `∂P/∂Y'`
-//! (velocities `X' = dX/d(ωt)`, the squeeze term). For the discrete complementarity problem with
-//! strict complementarity this is its exact derivative; in the continuous problem the moving
+//! (velocities `X' = dX/d(ωt)`, the squeeze term). Only the forces of these are needed, so they
+//! are computed through the adjoint: `A_II` is symmetric, and two solves `A_II y_i = g_i` with
+//! the force quadrature `g_i` (`F_i = g_iᵀ P`) give every coefficient as `−y_iᵀ b_j` for the four
+//! right-hand sides `b_j` — the same numbers, half the linear solves. For the discrete
+//! complementarity problem with strict complementarity this is its exact derivative; in the continuous problem the moving
 //! Reynolds boundary contributes nothing to first order (`P = ∂P/∂n = 0` there). A supply line
 //! stays where the equilibrium put it (a groove is fixed in the bearing). Caveat: a film
 //! *reformation* boundary (periodic supply, no groove) has `P = 0` but a non-zero gradient; its
@@ -38,7 +41,7 @@ pub struct Coefficients {
     pub stiffness: [[f64; 2]; 2],
     /// `[[cxx, cxy], [cyx, cyy]]`, `−∂F̄_i/∂X'_j`.
     pub damping: [[f64; 2]; 2],
-    /// The four linear solves: CG iterations (total), the largest relative residual, the tolerance.
+    /// The two adjoint linear solves: CG iterations (total), the largest relative residual, the tolerance.
     pub convergence: Convergence,
 }
 
@@ -109,49 +112,52 @@ pub fn coefficients(
     let n = l.u.len();
     let p0 = l.u.clone();
     let (nt, nz, ds) = (l.nt, l.nz, l.dt * l.dz);
-    let cos_n = l.cos_n.clone();
-    let sin_n = l.sin_n.clone();
-    // linear solves to the pressure tolerance (relative residual of each perturbed problem)
+    // The force is linear in the pressure, `F_i = g_iᵀ P` (seed 002 eq. (6)-(7) as quadrature
+    // over the interior rows), and the perturbed pressure is `δP = A_II⁻¹ b` for each of the
+    // four right-hand sides `b` (displacement and velocity in X and Y). `A_II` is symmetric
+    // (face conductances shared by both nodes), so `g_iᵀ A_II⁻¹ b = (A_II⁻¹ g_i)ᵀ b`: two
+    // adjoint solves `y_i = A_II⁻¹ g_i` (one per force component) give all eight coefficients
+    // as dot products — the same numbers as four forward solves, at half the linear solves.
+    let mut g = [vec![0.0; n], vec![0.0; n]];
+    for j in 1..nz - 1 {
+        for i in 0..nt {
+            g[0][j * nt + i] = l.cos_n[i] * ds;
+            g[1][j * nt + i] = l.sin_n[i] * ds;
+        }
+    }
+    // linear solves to the pressure tolerance (relative residual of each adjoint problem)
     let tol = settings.pressure_tolerance.max(1e-12);
     let one = |_: f64| 1.0;
-    let mut disp = vec![0.0; n];
-    let mut vel = vec![0.0; n];
-    let mut x = vec![0.0; n];
+    let mut disp = [vec![0.0; n], vec![0.0; n]];
+    let mut vel = [vec![0.0; n], vec![0.0; n]];
+    for dir in 0..2 {
+        let (d, v) = (&mut disp[dir], &mut vel[dir]);
+        h.levels[0].linearised_sources(&film, alpha, dir, &one, &p0, d, v);
+    }
+    let mut y = vec![0.0; n];
     let mut k = [[0.0; 2]; 2];
     let mut c = [[0.0; 2]; 2];
     let (mut iters, mut worst) = (0u32, 0.0f64);
-    let force = |p: &[f64]| {
-        let (mut fx, mut fy) = (0.0, 0.0);
-        for j in 1..nz - 1 {
-            let row = &p[j * nt..(j + 1) * nt];
-            for i in 0..nt {
-                fx += row[i] * cos_n[i];
-                fy += row[i] * sin_n[i];
-            }
+    let dot = |a: &[f64], b: &[f64]| a.iter().zip(b).map(|(x, y)| x * y).sum::<f64>();
+    for comp in 0..2 {
+        let (it, ok, res) = h.solve_free(0, &g[comp], &mut y, tol, settings.max_cycles);
+        iters += it;
+        worst = worst.max(res);
+        if !ok {
+            return Err(SolveError::NotConverged {
+                solver: "journal dynamic coefficients (linearised Reynolds, multigrid CG)",
+                iterations: it,
+                residual: res,
+                tolerance: tol,
+                history: vec![res],
+            });
         }
-        [fx * ds, fy * ds]
-    };
-    for dir in 0..2 {
-        h.levels[0].linearised_sources(&film, alpha, dir, &one, &p0, &mut disp, &mut vel);
-        for (rhs, out) in [(&disp, &mut k), (&vel, &mut c)] {
-            let (it, ok, res) = h.solve_free(0, rhs, &mut x, tol, settings.max_cycles);
-            iters += it;
-            worst = worst.max(res);
-            if !ok {
-                return Err(SolveError::NotConverged {
-                    solver: "journal dynamic coefficients (linearised Reynolds, multigrid CG)",
-                    iterations: it,
-                    residual: res,
-                    tolerance: tol,
-                    history: vec![res],
-                });
-            }
-            let f = force(&x);
-            // seed 002 eq. (6)-(7) differentiated: K_ij = −∂F_i/∂X_j
-            out[0][dir] = -f[0];
-            out[1][dir] = -f[1];
-            observer.check()?;
+        // K_ij = −∂F_i/∂X_j = −y_iᵀ b_j (the sources vanish at fixed nodes, `y` too)
+        for dir in 0..2 {
+            k[comp][dir] = -dot(&y, &disp[dir]);
+            c[comp][dir] = -dot(&y, &vel[dir]);
         }
+        observer.check()?;
     }
     ensure_finite("dynamic coefficients", k.iter().chain(c.iter()).flatten())?;
     Ok(Coefficients {
