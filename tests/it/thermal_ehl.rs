@@ -175,6 +175,67 @@ fn energy_iterations_agree() {
     assert!(b.summary.energy_balance_error < 0.01);
 }
 
+/// The seed 001 nose (1.41 GPa, w' = 595 kN/m on R = 10.5 mm, u_m = 3.98 m/s, η0 = 0.013 Pa·s,
+/// α = 1.84e-8 1/Pa) with seed 001's Eyring film (τ_E = 5 MPa) from rolling to S = 1, and the same
+/// contact loaded to p_h = 1.7 GPa: the thermal solve converges with bounded temperatures and a
+/// closed energy balance. Before the Eyring stress was solved per column every sliding case here
+/// ran away in the first energy sweep (typed error). At S = 2 (the roller at rest): converged or
+/// a typed runaway, never a NaN. Measured figures in
+/// BENCHMARKS.md (issue 14, "Eyring at seed 001 loads").
+#[test]
+fn seed001_nose_with_eyring_converges_under_sliding() {
+    let lub = Lubricant { viscosity: 0.013, pressure_viscosity: 1.84e-8, ..Lubricant::SEED000 };
+    let eyring = Rheology { eyring_stress: Some(5e6), ..Rheology::default() };
+    let e_prime = 200e9 / 0.91;
+    let case = |w: f64, srr: f64| EhlInput { effective_modulus: e_prime, rheology: eyring, ..input(w, 0.0105, 3.98, srr, lub) };
+    let iso = solve(&case(595_238.0, 0.0), &EhlOptions { nodes: 256, ..Default::default() }, &Silent).unwrap();
+    let mut rows = Vec::new();
+    for (w, srr) in [(595_238.0, 0.0), (595_238.0, 0.01), (595_238.0, 0.1), (595_238.0, 0.25), (595_238.0, 0.5), (595_238.0, 1.0), (867_700.0, 0.25)] {
+        let th = solve_thermal(case(w, srr), 256, ThermalOptions::default());
+        let rise = th.summary.film_temperature_max - 313.0;
+        println!(
+            "w' {w:.0} p_h {:.3} GPa S {srr}: hc {:.4e} (iso {:.4e}) hmin {:.4e} μ {:.4} Tmax {:.1} K surfaces {:.1}/{:.1} K balance {:.2e} coupling {} ({:?})",
+            th.ehl.hertz_pressure * 1e-9, th.ehl.central_film, iso.central_film, th.ehl.min_film, th.ehl.traction.friction_coefficient,
+            th.summary.film_temperature_max, th.summary.surface_temperature_max_1, th.summary.surface_temperature_max_2,
+            th.summary.energy_balance_error, th.convergence.iterations, th.convergence.termination
+        );
+        assert!(th.ehl.central_film.is_finite() && th.ehl.min_film > 0.0 && th.ehl.traction.friction_coefficient.is_finite());
+        // Measured ≤ 0.19 %.
+        assert!(th.summary.energy_balance_error < 0.01, "energy balance {}", th.summary.energy_balance_error);
+        assert!(rise > -0.5 && rise < thermal::MAX_TEMPERATURE_RISE, "rise {rise}");
+        // The thermal film stays within 12 % of the isothermal one at this load (measured
+        // −2.6 % in rolling — the compressive heating — to −9.4 % at S = 1).
+        if w < 6e5 {
+            assert!(rel(th.ehl.central_film, iso.central_film) < 0.12, "{} vs {}", th.ehl.central_film, iso.central_film);
+        }
+        rows.push((srr, th.ehl.traction.friction_coefficient, th.summary.film_temperature_max));
+    }
+    // Rolling: no heating beyond the compression's; the rise grows with sliding.
+    assert!(rows[0].2 - 313.0 < 5.0, "{rows:?}");
+    for k in 1..6 {
+        assert!(rows[k].2 > rows[k - 1].2, "Tmax grows with S: {rows:?}");
+    }
+    // Traction: the thermal maximum (measured μ 0.029, 0.034, 0.032, 0.027, 0.022 at S = 0.01,
+    // 0.1, 0.25, 0.5, 1) — the Eyring film's stress grows only logarithmically with the shear
+    // rate while the heating thins it.
+    assert!(rows[2].1 > rows[1].1 && rows[1].1 > 0.02, "{rows:?}");
+    for k in 3..6 {
+        assert!(rows[k].1 < rows[k - 1].1, "declines beyond the maximum: {rows:?}");
+    }
+    // The roller at rest (S = 2): converged or a typed runaway, never a NaN.
+    let tin = ThermalInput { ehl: case(595_238.0, 2.0), bodies: ThermalBodies::SEED000, previous_temperature: None };
+    match thermal::solve(&tin, &EhlOptions { nodes: 256, ..Default::default() }, &ThermalOptions::default(), &Silent) {
+        Ok(th) => {
+            println!("S 2: converged, Tmax {:.1} K μ {:.4}", th.summary.film_temperature_max, th.ehl.traction.friction_coefficient);
+            assert!(th.summary.film_temperature_max < 313.0 + thermal::MAX_TEMPERATURE_RISE && th.ehl.central_film.is_finite());
+        }
+        Err(e) => {
+            println!("S 2: {e}");
+            assert!(matches!(e, tribod::physics::SolveError::NotConverged { .. }), "{e:?}");
+        }
+    }
+}
+
 mod stability {
     //! Stability of the thermal model over seed 000/001 conditions: converged, or a typed error;
     //! never a NaN; temperatures above the inlet temperature less the exit's expansion cooling
@@ -240,19 +301,22 @@ mod seed000_cycle {
         println!("steady SRR: {:?}", a.iter().zip(&srr).map(|(a, s)| format!("{a:.0}:{s:.3}")).collect::<Vec<_>>());
         assert!(tmax.iter().all(|t| *t > 313.0 && *t < 400.0), "{tmax:?}");
         assert!(pin.iter().all(|t| *t > 313.0 && *t < 450.0), "{pin:?}");
-        // (1) Large and nearly constant on the base circle before the lift (0–50°).
+        // (1) Large and nearly constant on the base circle before the lift (0–50°). Measured
+        // 0.113–0.115 since the Eyring stress is solved per column (0.204–0.205 before, from a
+        // lagged Eyring iteration that cannot converge beyond τ = 1.9 τ_E and was frozen after 40
+        // sweeps; BENCHMARKS.md, "Eyring at seed 001 loads").
         let base: Vec<f64> = (0..a.len()).filter(|&i| a[i] <= 50.0).map(|i| srr[i]).collect();
         let (lo, hi) = base.iter().fold((f64::MAX, f64::MIN), |(l, h), &s| (l.min(s), h.max(s)));
-        assert!(lo > 0.15 && (hi - lo) / hi < 0.02, "base circle {base:?}");
+        assert!(lo > 0.1 && (hi - lo) / hi < 0.03, "base circle {base:?}");
         // (2) A sharp drop at the opening ramp (60°).
         assert!(at(&a, &srr, 60.0) < 0.6 * lo, "opening ramp");
         // (3) Paper: the rise near 100° does not exceed the base-circle level. Model: it does
-        // (0.30 against 0.205).
+        // (0.228 against 0.114).
         assert!(at(&a, &srr, 100.0) > hi, "measured: the rise near 100° exceeds the base circle");
-        // (4) Paper: almost zero at the nose (127°). Model: 0.12–0.22 at 120–130°.
+        // (4) Paper: almost zero at the nose (127°). Model: 0.190 at 120°, 0.093 at 130°.
         assert!(at(&a, &srr, 130.0) > 0.05, "measured: the nose keeps sliding");
         // (5) Negative on the closing ramp with a local negative extreme: model 160–190°, the
-        // extreme −0.027 at 180° (paper: near 155°, |SRR| < 0.003).
+        // extreme −0.026 at 180° (paper: near 155°, |SRR| < 0.003).
         let closing: Vec<(f64, f64)> = (0..a.len()).filter(|&i| a[i] >= 140.0 && a[i] <= 200.0).map(|i| (a[i], srr[i])).collect();
         let (amin, smin) = closing.iter().fold((0.0, f64::MAX), |(am, sm), &(an, s)| if s < sm { (an, s) } else { (am, sm) });
         assert!(smin < 0.0 && smin > -0.05, "negative on the closing ramp: {closing:?}");
@@ -268,8 +332,11 @@ mod seed000_cycle {
             println!("{deg}°: startup {s_start:.3} steady {s_steady:.3}");
         }
         assert!(at(&sa, &ss, 0.0) > 1.5 * at(&a, &srr, 0.0), "0°: more than 50 % above steady");
-        // Measured at 10°: 0.246 against 0.205 (+20 %, not +50 %).
-        assert!(at(&sa, &ss, 10.0) > 1.1 * at(&a, &srr, 10.0), "10°");
+        // Paper: more than 50 % above steady over 0–18°. Model: at 10° the roller has caught up —
+        // 0.104 against the steady 0.114 (−9 %; +20 % with the lagged Eyring film before); the
+        // startup's extra skid is confined to the first angle step (BENCHMARKS.md).
+        let (s10, st10) = (at(&sa, &ss, 10.0), at(&a, &srr, 10.0));
+        assert!(s10 > 0.8 * st10 && s10 < st10, "10°: startup {s10} steady {st10}");
     }
 
     /// Key points (`ehl.thermal.carry_tolerance` 0.01) against the full thermal solve at every

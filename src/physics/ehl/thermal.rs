@@ -30,10 +30,12 @@
 //!
 //! With an Eyring stress `τ_E` the film is the generalized Newtonian fluid of Yang & Wen: the
 //! viscosity in every integral above is the effective `η* = η (τ/τ_E)/sinh(τ/τ_E)` at the
-//! point's shear stress (iterated with the temperature, lagged by one sweep). A limiting shear
-//! stress is not applied. (A direct solve of the Eyring velocity constraint per column was tried
-//! and made the sweeps diverge on the seed 000 cycle; at the seed 001 nose, 1.4 GPa with
-//! τ_E = 5 MPa, the lagged form runs away in the first sweep: a typed error.)
+//! point's shear stress. Each column's stress `τ_1 + z ∂p/∂x` is solved exactly at the current
+//! temperatures (the shear rates integrate to `u2 − u1`, [`eyring_column`]); an earlier form
+//! lagged the stress by one sweep, which cannot converge where `τ > 1.9 τ_E` (the map
+//! `s ← A s/sinh s` has the slope `1 − s coth s` at its fixed point) and ran away at the seed 001
+//! nose. A limiting shear stress is not applied; a film hotter than the inlet by
+//! [`MAX_TEMPERATURE_RISE`] ends the solve as a runaway (typed error).
 //!
 //! # Method
 //! A column of nodes across cam, film and roller at every grid node of the EHL solution (the
@@ -286,12 +288,80 @@ pub struct EnergyInput<'a> {
 struct Column {
     /// Effective viscosity at the film levels, Pa·s, relative to `eta_ref`.
     eta: Vec<f64>,
+    /// The Newtonian viscosity at the levels' temperatures (under-relaxed between sweeps),
+    /// relative to `eta_ref`; `eta` is this times the Eyring factor.
+    eta_n: Vec<f64>,
     rho: Vec<f64>,
     u: Vec<f64>,
     /// Shear stress at the film levels, Pa.
     tau: Vec<f64>,
     /// `−∂ ln η/∂T` at the film levels, 1/K.
     beta: Vec<f64>,
+}
+
+/// Eyring film across one column (Yang & Wen's generalized Newtonian fluid; Eyring's law
+/// `γ̇ = (τ_E/η) sinh(τ/τ_E)`, e.g. Johnson & Tevaarwerk 1977): the shear stress
+/// `τ(z) = τ_1 + (∂p/∂x) z` (momentum across a thin film) whose shear rate integrates,
+/// trapezoidally over the levels as `F0`/`F1` do, to the surface speed difference `du`. Writes
+/// the effective viscosities `η* = τ/γ̇ = η (τ/τ_E)/sinh(τ/τ_E)` relative to `eta_ref` into
+/// `eta`, so the Newtonian-form velocities and stresses built from them are the Eyring ones.
+/// `eta_n`: the Newtonian viscosities relative to `eta_ref`. Where no stress is found (not
+/// expected: the constraint is monotone in `τ_1`) the Newtonian values stay.
+fn eyring_column(eta_n: &[f64], eta_ref: f64, dz: f64, du: f64, px: f64, te: f64, eta: &mut [f64]) {
+    let nz = eta_n.len();
+    let weight = |k: usize| if k == 0 || k == nz - 1 { 0.5 * dz } else { dz };
+    // Stresses in units of τ_E: s_k = t + c_k.
+    let c: Vec<f64> = (0..nz).map(|k| px * dz * k as f64 / te).collect();
+    let cmax = c.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+    // g(t) = Σ w_k (τ_E/η_k) sinh(t + c_k) − du and its derivative; increasing in t.
+    let g = |t: f64| -> (f64, f64) {
+        let (mut v, mut d) = (-du, 0.0);
+        for k in 0..nz {
+            let a = weight(k) * te / (eta_n[k] * eta_ref);
+            let s = t + c[k];
+            v += a * s.sinh();
+            d += a * s.cosh();
+        }
+        (v, d)
+    };
+    let limit = 700.0 - cmax;
+    if limit <= 1.0 {
+        return;
+    }
+    // Bracket the root by doubling outwards from ±1.
+    let (mut lo, mut hi) = (-1.0f64, 1.0f64);
+    while g(lo).0 > 0.0 && lo > -limit {
+        lo = (2.0 * lo).max(-limit);
+    }
+    while g(hi).0 < 0.0 && hi < limit {
+        hi = (2.0 * hi).min(limit);
+    }
+    let (glo, ghi) = (g(lo).0, g(hi).0);
+    if !(glo <= 0.0 && ghi >= 0.0) {
+        return;
+    }
+    // Safeguarded Newton: a Newton step inside the bracket, else bisection.
+    let mut t = 0.5 * (lo + hi);
+    for _ in 0..200 {
+        let (v, d) = g(t);
+        if !v.is_finite() || v > 0.0 {
+            hi = t;
+        } else {
+            lo = t;
+        }
+        // Converged at this t: the speed difference met to 1e-13 of itself (of the Poiseuille
+        // part's scale in pure rolling) or the bracket closed.
+        if v.abs() <= 1e-13 * du.abs().max(1e-9) || hi - lo < 1e-13 * (1.0 + t.abs()) {
+            break;
+        }
+        let step = t - v / d;
+        t = if v.is_finite() && d.is_finite() && d > 0.0 && step > lo && step < hi { step } else { 0.5 * (lo + hi) };
+    }
+    for k in 0..nz {
+        let s = (t + c[k]).abs();
+        let factor = if s > 1e-8 { s / s.sinh() } else { 1.0 };
+        eta[k] = (eta_n[k] * factor).max(1e-300);
+    }
 }
 
 /// Depths of the solid nodes from the surface: `d (g^k − 1)/(g^(m) − 1)`, the ratio `g` chosen so
@@ -454,7 +524,7 @@ fn energy_iterated(x: &[f64], p: &[f64], h: &[f64], input: &EnergyInput, options
     let nn = 2 * ns + nz - 2;
     let i_film0 = ns - 1;
     let i_film1 = ns + nz - 3 + 1;
-    let mut columns: Vec<Column> = (0..n).map(|_| Column { eta: vec![1.0; nz], rho: vec![1.0; nz], u: vec![0.0; nz], tau: vec![0.0; nz], beta: vec![0.0; nz] }).collect();
+    let mut columns: Vec<Column> = (0..n).map(|_| Column { eta: vec![1.0; nz], eta_n: vec![1.0; nz], rho: vec![1.0; nz], u: vec![0.0; nz], tau: vec![0.0; nz], beta: vec![0.0; nz] }).collect();
     let mut eta_ref = vec![1.0; n];
     let relax_cell = std::cell::Cell::new(1.0f64);
     // Columns below `HOLD_FLOW_PRESSURE` of the peak pressure (the inlet and the exit) hold their
@@ -483,17 +553,18 @@ fn energy_iterated(x: &[f64], p: &[f64], h: &[f64], input: &EnergyInput, options
             let ln_e = (ln_eta0 + lub.ln_viscosity_ratio(pi, temps[k])).min(600.0 + ln_eta0);
             let w = relax_cell.get();
             let ln_new = ln_e - ln_ref;
-            let ln_rel = if w < 1.0 && col.eta[k] > 0.0 && col.u.iter().any(|&u| u != 0.0) { (1.0 - w) * col.eta[k].ln() + w * ln_new } else { ln_new };
-            let mut e = ln_rel.exp();
-            if let Some(te) = eyring {
-                let s = (col.tau[k] / te).abs();
-                if s > 1e-8 {
-                    e *= s / s.sinh();
-                }
-            }
-            col.eta[k] = e.max(1e-300);
+            let ln_rel = if w < 1.0 && col.eta_n[k] > 0.0 && col.u.iter().any(|&u| u != 0.0) { (1.0 - w) * col.eta_n[k].ln() + w * ln_new } else { ln_new };
+            col.eta_n[k] = ln_rel.exp().max(1e-300);
+            col.eta[k] = col.eta_n[k];
             col.beta[k] = -lub.ln_viscosity_temperature_slope(pi, temps[k]);
             col.rho[k] = lub.density_ratio(pi, temps[k]);
+        }
+        if let Some(te) = eyring {
+            // The column's Eyring stress solved exactly at these viscosities: the lagged form
+            // (η* from the previous sweep's stress) is unstable wherever τ > 1.9 τ_E — its
+            // fixed-point map s ← A s/sinh s has the slope 1 − s coth s at s = asinh A — and ran
+            // away in the first sweep at the seed 001 nose (1.4 GPa, τ_E = 5 MPa).
+            eyring_column(&col.eta_n, *eta_ref, dz, u2 - u1, dpdx[i], te, &mut col.eta);
         }
         // F0, F1 in units of dz/η_ref.
         let mut f0 = vec![0.0; nz];
@@ -750,9 +821,12 @@ fn energy_iterated(x: &[f64], p: &[f64], h: &[f64], input: &EnergyInput, options
             let rise = scale_rise(&field);
             for j in 0..nn {
                 let v = zr[j];
-                if !v.is_finite() {
+                if !v.is_finite() || v > t0 + MAX_TEMPERATURE_RISE {
                     // Runaway shear heating (a Newtonian film sheared far beyond its traction
-                    // maximum): a typed failure, not a NaN.
+                    // maximum, or a hot layer drawing an unbounded Poiseuille flow at the fixed
+                    // pressure gradient): a typed failure, not a NaN or a film at thousands of
+                    // kelvin where eq. 4–5 mean nothing (measured: 45 000 K, then 1e24 K, with
+                    // negative densities, at the seed 001 nose with S = 1 before this bound).
                     return Err(SolveError::NotConverged {
                         solver: "thermal ehl energy equation (temperature runaway)",
                         iterations: sweeps,
@@ -1055,6 +1129,16 @@ fn thermal_range(film: &[f64], extent: f64) -> (usize, usize) {
 
 /// `old` (on its positions) blended towards `new` by `w`: the Poiseuille factor geometrically,
 /// the densities linearly, on `new`'s positions.
+/// Largest temperature rise over the inlet temperature an energy solve may reach, K: beyond it
+/// the oil has long decomposed and the Roelands/Dowson–Higginson laws (seed 000 eq. 4–5) are far
+/// outside their range; the solve ends as a runaway (typed error). (400 K was too tight: the
+/// sweeps of a Newtonian film at w' = 2e5 N/m, u_m = 5 m/s, S = 0.3 pass it on their way to a
+/// converged 122 K rise.)
+pub const MAX_TEMPERATURE_RISE: f64 = 1000.0;
+
+/// Smallest step towards new generalized Reynolds factors after a failed Reynolds solve.
+const MIN_FACTOR_STEP: f64 = 1.0 / 32.0;
+
 fn blend(old: &ThermalFactors, new: &ThermalFactors, w: f64) -> ThermalFactors {
     if w >= 1.0 {
         return new.clone();
@@ -1164,13 +1248,40 @@ impl ThermalEngine {
             // Under-relaxed factors (the last ones used, interpolated onto this grid, blended
             // with the new): the energy ↔ Reynolds fixed point can oscillate where the heating
             // is strong; the step shrinks when the change grows.
-            if let Some(old) = &used {
-                en.factors = blend(old, &en.factors, relax);
+            let raw = std::mem::replace(&mut en.factors, ThermalFactors { x: Vec::new(), poiseuille: Vec::new(), wedge: Vec::new(), mass: Vec::new() });
+            let unit = || ThermalFactors { x: raw.x.clone(), poiseuille: vec![1.0; raw.x.len()], wedge: vec![1.0; raw.x.len()], mass: vec![1.0; raw.x.len()] };
+            en.factors = match &used {
+                Some(old) => blend(old, &raw, relax),
+                None => raw.clone(),
+            };
+            if std::env::var_os("TRIBOD_THERMAL_TRACE").is_some() {
+                let mm = |v: &[f64]| v.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &x| (a.min(x), b.max(x)));
+                let nzp = en.field.film.len() / en.field.x.len();
+                let kmax = (0..en.field.film.len()).max_by(|&a, &b| en.field.film[a].total_cmp(&en.field.film[b])).unwrap_or(0);
+                let (ix, iz) = (kmax / nzp, kmax % nzp);
+                let ip = sol.state.x.partition_point(|&v| v < en.field.x[ix]).min(sol.state.x.len() - 1);
+                eprintln!("   Tmax at x/b {:.3} level {iz}/{nzp} p {:.3e} h {:.3e}", en.field.x[ix] / sol.hertz_half_width, sol.state.pressure[ip], sol.state.film[ip]);
+                eprintln!("thermal coupling {iterations}: relax {relax:.3} Tmax {:.1} poiseuille {:?} wedge {:?} mass {:?}", en.summary.film_temperature_max, mm(&en.factors.poiseuille), mm(&en.factors.wedge), mm(&en.factors.mass));
             }
             let ph = sol.hertz_pressure;
             let pred: Vec<f64> = sol.state.pressure.iter().map(|p| p / ph).collect();
             let prediction = Prediction { pressure: &pred, centre_film: sol.central_film };
-            let next = self.engine.solve_with(ehl, options, Some(layout), Some(prediction), Some(&en.factors), observer)?;
+            // Where the Reynolds solve fails on the new factors (strong heating: the film's
+            // Poiseuille coefficient moves by orders of magnitude between iterations), the step
+            // towards them is halved (from the isothermal factors on the first iteration).
+            let next = loop {
+                match self.engine.solve_with(ehl, options, Some(layout), Some(prediction), Some(&en.factors), observer) {
+                    Ok(next) => break next,
+                    Err(SolveError::NotConverged { .. }) if relax > MIN_FACTOR_STEP => {
+                        relax *= 0.5;
+                        en.factors = match &used {
+                            Some(old) => blend(old, &raw, relax),
+                            None => blend(&unit(), &raw, relax),
+                        };
+                    }
+                    Err(e) => return Err(e),
+                }
+            };
             used = Some(en.factors.clone());
             let rel = |a: f64, b: f64| ((a - b) / b.abs().max(1e-30)).abs();
             // Change of the largest temperature rise, relative to the rise (at least 0.1 K).
@@ -1221,5 +1332,63 @@ impl ThermalEngine {
             factors: fin.factors,
             convergence: Convergence { iterations, residual, tolerance: thermal.tolerance, termination },
         })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::eyring_column;
+
+    /// Couette flow of a uniform film (no pressure gradient): the Eyring stress is the closed
+    /// form `τ = τ_E asinh(η Δu/(h τ_E))`, far beyond τ_E where the lagged iteration diverged.
+    #[test]
+    fn eyring_column_is_the_couette_closed_form() {
+        let (nz, h, te, eta) = (7, 2.8e-7, 5e6, 4.0e3);
+        let dz = h / (nz - 1) as f64;
+        for du in [1e-4, 0.04, 0.4, 4.0] {
+            let mut out = vec![0.0; nz];
+            eyring_column(&vec![1.0; nz], eta, dz, du, 0.0, te, &mut out);
+            let tau = te * (eta * du / (h * te)).asinh();
+            // η* = τ/γ̇ with γ̇ = Δu/h.
+            let expect = tau / (du / h) / eta;
+            println!("Δu {du}: τ/τ_E {:.3}, η*/η {:.4e} (closed form {:.4e})", tau / te, out[3], expect);
+            for v in &out {
+                assert!((v - expect).abs() <= 1e-9 * expect, "{v} vs {expect}");
+            }
+        }
+    }
+
+    /// With a pressure gradient and viscosity varying across the film, the shear rates of the
+    /// solved stress integrate to the surface speed difference (the constraint it solves).
+    #[test]
+    fn eyring_column_meets_the_speed_difference() {
+        let (nz, h, te) = (9, 3e-7, 5e6);
+        let dz = h / (nz - 1) as f64;
+        let eta_ref = 1e4;
+        let eta_n: Vec<f64> = (0..nz).map(|k| (-(0.5 * (k as f64 - 4.0)).powi(2)).exp() * 0.2 + 0.01).collect();
+        for (du, px) in [(2.0, 3e12), (-1.0, -5e13), (0.0, 1e13)] {
+            let mut out = vec![0.0; nz];
+            eyring_column(&eta_n, eta_ref, dz, du, px, te, &mut out);
+            // τ_k = η*_k γ̇_k with γ̇_k = (τ_E/η_k) sinh(τ_k/τ_E): recover τ_1 from level 0 and check
+            // the trapezoidal ∫ γ̇ dz.
+            let gam = |tau: f64, k: usize| te / (eta_n[k] * eta_ref) * (tau / te).sinh();
+            // τ_k from η*_k: solve η*/η = s/sinh s at level 0 by bisection on s ≥ 0 with the sign
+            // of the integral's τ_1 (found as the one meeting the constraint below).
+            let ratio = out[0] / eta_n[0];
+            let (mut lo, mut hi) = (0.0f64, 700.0f64);
+            for _ in 0..200 {
+                let mid = 0.5 * (lo + hi);
+                let r = if mid > 1e-8 { mid / mid.sinh() } else { 1.0 };
+                if r > ratio { lo = mid } else { hi = mid }
+            }
+            let s0 = 0.5 * (lo + hi);
+            let best = [s0, -s0].into_iter().map(|s| {
+                let t1 = s * te;
+                let integral: f64 = (0..nz).map(|k| { let w = if k == 0 || k == nz - 1 { 0.5 * dz } else { dz }; w * gam(t1 + px * dz * k as f64, k) }).sum();
+                (integral - du).abs()
+            }).fold(f64::INFINITY, f64::min);
+            println!("Δu {du} px {px:e}: τ_1/τ_E = ±{s0:.4}, constraint error {best:.3e} m/s");
+            assert!(best < 1e-6 * du.abs().max(1e-3), "constraint error {best}");
+        }
     }
 }
