@@ -25,8 +25,22 @@ const GMRES_TOL: f64 = 1e-3;
 /// GMRES iterations allowed with a kept (older) preconditioner before the step is solved again
 /// with a fresh factorisation; and the count above which a kept one is refactorised at the next
 /// step although it reached the tolerance (measured, `BENCHMARKS.md` issue 16, `ehl2d-7`).
-const REUSE_MAX: usize = 40;
-const REUSE_REFRESH: usize = 25;
+const REUSE_MAX: usize = 15;
+const REUSE_REFRESH: usize = 8;
+
+/// Development aid (policy scan): `TRIBOD_EHL2D_REUSE=max,refresh,across` overrides the two
+/// thresholds above and whether a factor is kept across solves (1) or not (0).
+fn reuse_policy() -> (usize, usize, bool) {
+    static P: std::sync::OnceLock<(usize, usize, bool)> = std::sync::OnceLock::new();
+    *P.get_or_init(|| {
+        let v: Vec<usize> = std::env::var("TRIBOD_EHL2D_REUSE").ok().map(|s| s.split(',').filter_map(|x| x.trim().parse().ok()).collect()).unwrap_or_default();
+        if v.len() == 3 {
+            (v[0], v[1], v[2] != 0)
+        } else {
+            (REUSE_MAX, REUSE_REFRESH, true)
+        }
+    })
+}
 /// Most halvings in the line search.
 const MAX_HALVINGS: u32 = 25;
 
@@ -452,19 +466,27 @@ fn dot(a: &[f64], b: &[f64]) -> f64 {
 /// Restarted GMRES for `A x = b` right-preconditioned by `lu`, at most `max_its` iterations;
 /// `x` starts at 0. Returns the iterations and the final relative residual.
 #[allow(clippy::too_many_arguments)]
-fn gmres(prob: &mut Problem, p: &[f64], v: &Fields, active: &[bool], c: &[f64], lu: &Precond, b: &[f64], x: &mut [f64], buf: &mut Buffers, tol: f64, max_its: usize) -> (usize, f64) {
+fn gmres(prob: &mut Problem, p: &[f64], v: &Fields, active: &[bool], c: &[f64], lu: &Precond, b: &[f64], x: &mut [f64], buf: &mut Buffers, tol: f64, max_its: usize, from_x: bool) -> (usize, f64) {
     let lw = prob.load_weight();
     let n = b.len();
-    x.iter_mut().for_each(|v| *v = 0.0);
     let bnorm = dot(b, b).sqrt();
     if bnorm == 0.0 {
+        x.iter_mut().for_each(|v| *v = 0.0);
         return (0, 0.0);
     }
-    let mut r = b.to_vec();
-    let mut iters = 0;
-    let mut rel = 1.0;
     let mut w = vec![0.0; n];
     let mut z = vec![0.0; n];
+    let mut r = b.to_vec();
+    if from_x && x.iter().all(|v| v.is_finite()) {
+        prob.apply(p, v, active, c, x, &mut w, buf);
+        for ii in 0..n {
+            r[ii] = b[ii] - w[ii];
+        }
+    } else {
+        x.iter_mut().for_each(|v| *v = 0.0);
+    }
+    let mut iters = 0;
+    let mut rel = 1.0;
     while iters < max_its {
         let beta = dot(&r, &r).sqrt();
         rel = beta / bnorm;
@@ -615,6 +637,8 @@ fn newton(prob: &mut Problem, p: &mut [f64], h0: &mut f64, tol: f64, max_iter: u
         let (mut t_lu, mut t_gm) = (0.0, 0.0);
         let (mut its, mut rel);
         let mut fresh = false;
+        let (reuse_max, reuse_refresh, _) = reuse_policy();
+        let mut from_x = false;
         loop {
             let kept = prob.kept.clone().filter(|k| !refresh && k.bu.len() == m);
             let pc = match kept {
@@ -636,17 +660,28 @@ fn newton(prob: &mut Problem, p: &mut [f64], h0: &mut f64, tol: f64, max_iter: u
                 }
             };
             let t = std::time::Instant::now();
-            (its, rel) = gmres(prob, p, &v, &active, &c, &pc, &rhs, &mut sol, &mut buf, gtol, if fresh { GMRES_MAX } else { REUSE_MAX });
+            (its, rel) = gmres(prob, p, &v, &active, &c, &pc, &rhs, &mut sol, &mut buf, gtol, if fresh { GMRES_MAX } else { reuse_max }, from_x);
             t_gm += t.elapsed().as_secs_f64();
             gm_total += its;
             crate::physics::film::work::add(&crate::physics::film::work::FINITE_GMRES_ITERATIONS, its as u64);
             if fresh || rel <= gtol {
                 break;
             }
+            // The fresh factor's GMRES goes on from the kept one's iterate.
             refresh = true;
+            from_x = true;
+        }
+        // Active (cavitated) rows are the identity: their exact step is `δP = −P`. GMRES meets it
+        // only to its tolerance — closely with a fresh factor (its own identity rows), loosely
+        // with a kept one factorised at another active set — and a cavitated node left at
+        // `P ≈ ±1e-12` instead of 0 would count as a loaded traction node. So set it exactly.
+        for (u, &k) in prob.nodes.iter().enumerate() {
+            if active[u] {
+                sol[u] = -p[k];
+            }
         }
         // A kept factor that needed many iterations is replaced at the next step.
-        if !fresh && its > REUSE_REFRESH {
+        if !fresh && its > reuse_refresh {
             refresh = true;
         }
         if trace() {
@@ -1101,7 +1136,7 @@ fn solve_inner(input: &Ehl2dInput, options: &Ehl2dOptions, warm: Option<&Warm2d>
             (prob, p, h0, its + failed_steps, res, coarse, false)
         }
     };
-    *kept = Kept2d { pc: prob.kept.take(), nx: prob.nx, ny: prob.ny };
+    *kept = Kept2d { pc: prob.kept.take().filter(|_| reuse_policy().2), nx: prob.nx, ny: prob.ny };
     let mut sol = finish(input, options, &s, &mut prob, &p, h0, total, residual)?;
     sol.warm_started = warm_used;
     let next = {
