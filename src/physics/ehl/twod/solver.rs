@@ -409,7 +409,7 @@ impl Problem {
         };
         lu.solve_in_place(faer::MatMut::from_column_major_slice_mut(&mut ucol, m, 1));
         let sum_bu = ucol.iter().sum::<f64>();
-        (sum_bu.is_finite() && ucol.iter().all(|x| x.is_finite())).then_some(Precond { lu, bu: ucol, sum_bu })
+        (sum_bu.is_finite() && ucol.iter().all(|x| x.is_finite())).then_some(Precond { lu, bu: ucol, sum_bu, c: c.to_vec(), active: active.to_vec() })
     }
 
     /// The load row's weight `ΔX ΔY / W` (the `wᵀ` of [`Precond`]).
@@ -434,13 +434,21 @@ struct Precond {
     bu: Vec<f64>,
     /// `Σ B⁻¹u` (the Schur complement is `w` times it).
     sum_bu: f64,
+    /// The row scales and the active set it was factorised with.
+    c: Vec<f64>,
+    active: Vec<bool>,
 }
 
 impl Precond {
     /// `z ← M⁻¹ z`: `x1 = B⁻¹f`, `y = (wᵀx1 − g)/s`, `x = x1 − y B⁻¹u`.
-    fn apply(&self, z: &mut [f64], w: f64) {
+    fn apply(&self, z: &mut [f64], w: f64, rescale: &[f64]) {
         let m = self.bu.len();
         let g = z[m];
+        if !rescale.is_empty() {
+            for (zi, s) in z[..m].iter_mut().zip(rescale) {
+                *zi *= s;
+            }
+        }
         self.lu.solve_in_place(faer::MatMut::from_column_major_slice_mut(&mut z[..m], m, 1));
         let schur = w * self.sum_bu;
         let y = if schur != 0.0 { (w * z[..m].iter().sum::<f64>() - g) / schur } else { 0.0 };
@@ -468,6 +476,13 @@ fn dot(a: &[f64], b: &[f64]) -> f64 {
 #[allow(clippy::too_many_arguments)]
 fn gmres(prob: &mut Problem, p: &[f64], v: &Fields, active: &[bool], c: &[f64], lu: &Precond, b: &[f64], x: &mut [f64], buf: &mut Buffers, tol: f64, max_its: usize, from_x: bool) -> (usize, f64) {
     let lw = prob.load_weight();
+    // A kept factor carries its own row scales `c_old`: `M⁻¹ = (C_old J_old)⁻¹ C_old C⁻¹` keeps
+    // `C J M⁻¹ ≈ I` where the scales moved (rows inactive in both; others unscaled).
+    let rescale: Vec<f64> = if lu.c.as_slice() == c && lu.active.as_slice() == active {
+        Vec::new()
+    } else {
+        (0..c.len()).map(|u| if !active[u] && !lu.active[u] { lu.c[u] / c[u] } else { 1.0 }).collect()
+    };
     let n = b.len();
     let bnorm = dot(b, b).sqrt();
     if bnorm == 0.0 {
@@ -487,6 +502,7 @@ fn gmres(prob: &mut Problem, p: &[f64], v: &Fields, active: &[bool], c: &[f64], 
     }
     let mut iters = 0;
     let mut rel = 1.0;
+    let mut gave_up = false;
     while iters < max_its {
         let beta = dot(&r, &r).sqrt();
         rel = beta / bnorm;
@@ -501,7 +517,7 @@ fn gmres(prob: &mut Problem, p: &[f64], v: &Fields, active: &[bool], c: &[f64], 
         let mut k = 0;
         while k < RESTART && iters < max_its {
             z.copy_from_slice(&basis[k]);
-            lu.apply(&mut z, lw);
+            lu.apply(&mut z, lw, &rescale);
             prob.apply(p, v, active, c, &z, &mut w, buf);
             zs.push(z.clone());
             let mut h = vec![0.0; k + 2];
@@ -534,6 +550,12 @@ fn gmres(prob: &mut Problem, p: &[f64], v: &Fields, active: &[bool], c: &[f64], 
             if rel <= tol || wn == 0.0 || !rel.is_finite() {
                 break;
             }
+            // With a kept factor (a cap below a restart): give up early when the mean reduction
+            // per iteration so far would not reach the tolerance within the cap.
+            if max_its < RESTART && iters >= 4 && iters < max_its && rel.ln() * max_its as f64 > tol.ln() * iters as f64 {
+                gave_up = true;
+                break;
+            }
             basis.push(w.iter().map(|v| v / wn).collect());
         }
         // Back substitution for the combination of the preconditioned directions.
@@ -550,7 +572,7 @@ fn gmres(prob: &mut Problem, p: &[f64], v: &Fields, active: &[bool], c: &[f64], 
                 *xv += yk[ii] * zv;
             }
         }
-        if rel <= tol || !rel.is_finite() {
+        if rel <= tol || !rel.is_finite() || gave_up {
             break;
         }
         // True residual for the restart.
