@@ -6,6 +6,16 @@
 //! and the load balance. A Newton step solves `J δ = −φ` by restarted GMRES, right-preconditioned
 //! by the sparse LU of the near-field Jacobian; a backtracking line search on `Σ φ² ΔXΔY + G²`
 //! and a fraction-to-boundary rule on the film damp it.
+//!
+//! The LU is kept (chord-preconditioned Newton–Krylov, as the 1-D solver): a step first runs
+//! GMRES with the last factor of this grid — an earlier Newton step's, continuation step's or,
+//! through [`Kept2d`], the previous contact point's — rescaled by the row scales it was
+//! factorised with, for at most `REUSE_MAX` iterations (given up early when its mean reduction
+//! rate cannot reach the tolerance); only then is the current near field factorised, GMRES going
+//! on from the kept factor's iterate. A kept factor that needed more than `REUSE_REFRESH`
+//! iterations, or whose step failed the line search, is replaced at the next step. The operator
+//! is always the current Jacobian, so the converged solution is the same to the Newton tolerance
+//! (measured: ≤ 7e-8 on the seed 000 finite cycle, `BENCHMARKS.md` issue 16, `ehl2d-7`).
 
 use super::elastic::Deflection;
 use super::geometry::{domain, scales, side_gap, Domain, Scales};
