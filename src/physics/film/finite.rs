@@ -29,11 +29,12 @@
 use super::closed_form::{ClosedForm, FILM_FLOOR, VISCOSITY_CAP};
 use super::formulas::LineGroups;
 use super::{ContactInput, ContactShape, FilmModel, FilmModelId, FilmSolution, Regime};
-use crate::physics::ehl::twod::{self, Ehl2dInput, Ehl2dOptions, Fields2d, Geometry2d, Warm2d};
+use crate::physics::ehl::twod::{self, Ehl2dInput, Ehl2dOptions, Fields2d, Geometry2d, Kept2d, Warm2d};
 use crate::physics::friction::TractionNode;
 use crate::physics::roller::Crown;
 use crate::physics::{ensure_finite, Silent, SolveError};
 use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::Mutex;
 
 /// What the 2-D model adds to a [`FilmSolution`].
 #[derive(Debug, Clone, PartialEq)]
@@ -83,11 +84,15 @@ pub struct Finite {
     /// residual of 1.5e-6 against 1e-8, BENCHMARKS.md issue 16, `ehl2d-6`).
     pub rescale_range: f64,
     checked: AtomicBool,
+    /// The 2-D Newton preconditioner of the last solve, for the next one on the same grid (the
+    /// next contact point; [`twod::solve_kept`]). Taken out for a solve and put back after it: a
+    /// concurrent solve on the same model just starts without one.
+    kept: Mutex<Kept2d>,
 }
 
 impl Finite {
     pub fn new(options: Ehl2dOptions, crown: Option<Crown>, fallback: ClosedForm) -> Self {
-        Finite { options, crown, fallback, check_first_only: false, rescale_range: 0.0, checked: AtomicBool::new(false) }
+        Finite { options, crown, fallback, check_first_only: false, rescale_range: 0.0, checked: AtomicBool::new(false), kept: Mutex::new(Kept2d::default()) }
     }
 
     /// The same model with the entrainment rescale over `range` (0: off, every film solved).
@@ -258,7 +263,12 @@ impl FilmModel for Finite {
         let first = !self.checked.swap(true, Ordering::Relaxed);
         let grid_check = self.options.grid_check && (!self.check_first_only || first || warm.is_none());
         let options = Ehl2dOptions { fields: true, grid_check, ..self.options };
-        let (s, next) = twod::solve_from(&ehl, &options, warm, &Silent)?;
+        let mut kept = self.kept.lock().map(|mut k| std::mem::take(&mut *k)).unwrap_or_default();
+        let solved = twod::solve_kept(&ehl, &options, warm, &mut kept, &Silent);
+        if let Ok(mut k) = self.kept.lock() {
+            *k = kept;
+        }
+        let (s, next) = solved?;
         super::work::add(&super::work::FINITE_SOLVES, 1);
         super::work::add(&super::work::FINITE_COLD, (!s.warm_started) as u64);
         super::work::add(&super::work::FINITE_NEWTON_STEPS, s.convergence.iterations as u64);

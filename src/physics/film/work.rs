@@ -27,6 +27,10 @@ counters! {
     FINITE_COLD,
     /// Newton steps of those solves (as reported, incl. the resolution check's are not counted).
     FINITE_NEWTON_STEPS,
+    /// Numeric factorisations of the 2-D Newton preconditioner (near-field sparse LU) and GMRES
+    /// iterations, over every 2-D solve (also outside a cam cycle), resolution checks included.
+    FINITE_FACTORISATIONS,
+    FINITE_GMRES_ITERATIONS,
     /// 2-D films taken from a neighbouring solution by the entrainment rescale instead of a solve.
     FINITE_RESCALED,
     /// Traction evaluations over a 2-D film's nodes, and the nodes summed by them.

@@ -59,7 +59,7 @@ pub mod elastic;
 mod geometry;
 pub mod solver;
 
-pub use solver::{solve, solve_from};
+pub use solver::{solve, solve_from, solve_kept, Kept2d};
 
 use crate::physics::lubricant::Lubricant;
 use crate::physics::roller::Crown;
