@@ -343,11 +343,10 @@ mod seed000_cycle {
     /// angle, the seed 000 steady example (36 angles; 72 angles at the example's slip tolerance
     /// did not settle in the full cycle within the time available). Films relative at every angle,
     /// SRR relative to the cycle's largest |SRR| (the closing-ramp SRR crosses zero). Measured
-    /// (BENCHMARKS.md, "Thermal EHL"): films within 1.2 %, but the SRR up to 11 % of its largest
-    /// value off on the base circle — not the 1 %. There the roller runs at the thermal
-    /// traction maximum (flat), so the SRR amplifies small traction differences: the full cycle's
-    /// own SRR moved by 3 % when only the warm-start order of its traction table changed. Asserted
-    /// as measured.
+    /// (BENCHMARKS.md, "Eyring at seed 001 loads"): films within 0.93 % (central) and 1.10 %
+    /// (minimum), SRR within 0.2 % of its largest value — the 1 % for the SRR; the minimum
+    /// film 0.1 % above it. (Before the Eyring stress was solved per column the SRR was 11 % off:
+    /// the lagged iteration's noise on the traction table.)
     #[test]
     fn carried_thermal_factors_against_the_full_cycle() {
         let base = example("seed000_thermal_steady");
@@ -374,9 +373,10 @@ mod seed000_cycle {
         assert!(worst("slide_roll_ratio", Some(scale), cycle) < SRR_CYCLE, "SRR over the cycle");
         assert!(keys < 36, "{keys}");
     }
-    /// Measured worst differences over the whole cycle (see the test above): 1.2 % and 10.9 %.
+    /// Measured worst differences over the whole cycle (see the test above): films 1.10 %, SRR
+    /// 0.2 % of its largest value.
     const FILM_CYCLE: f64 = 0.015;
-    const SRR_CYCLE: f64 = 0.12;
+    const SRR_CYCLE: f64 = 0.01;
 
     /// Seed 000 Figs. 9 and 13 with the thermal model (the steady example with key points,
     /// `carry_tolerance` 0.05, 36 angles; the five cycles run side by side). Paper, Fig. 9: the SRR
