@@ -94,7 +94,7 @@ fn main() {
         println!("Richardson reference: h_c = {:.3} nm, h_min = {:.3} nm", rc * 1e9, rm * 1e9);
     }
     // Seed 000 roller at the nose (tests/it/ehl_2d.rs: seed000_nose).
-    let crown = Crown { length: 0.014, middle_length: 0.012, crown_height: 4.5e-6, end_radius: 0.0125 };
+    let crown = Crown::SEED000;
     let input = Ehl2dInput { load: 954.0, geometry: Geometry2d::Finite { rx: 0.01037, crown }, effective_modulus: 2.1e11, entrainment_velocity: 2.77, lubricant: Lubricant::SEED000, temperature: 313.0 };
     println!();
     println!("| roller grid | time (s) | h_c (µm) | h_min (µm) at y (mm) | p_max (GPa) | edge peak (GPa at y mm) |");
@@ -119,8 +119,7 @@ fn arg<T: std::str::FromStr>(args: &[String], name: &str, default: T) -> T {
 fn cycle(args: &[String]) {
     use serde_json::{json, Value};
     use tribod::jobs::{registry, Limits};
-    use tribod::physics::film::{ClosedForm, ContactInput, ContactShape, Finite, FilmFormula, FilmModel};
-    use tribod::physics::friction::{AsperityFriction, AsperityModel, Rheology, Roughness, TractionLaw};
+    use tribod::physics::film::{ClosedForm, ContactShape, Finite, FilmFormula, FilmModel, SmoothContact};
     let angles: usize = arg(args, "angles", 360);
     let nx: usize = arg(args, "nx", 65);
     let ny: usize = arg(args, "ny", 129);
@@ -159,26 +158,9 @@ fn cycle(args: &[String]) {
         println!("  {what} (angle {i}): load {:.1} N, u_e {:.3} m/s, h_c {:.4} µm, h_min {:.4} µm at y = {:.2} mm, edge peak {:.3} GPa", load[i], ue[i], hc[i] * 1e6, hm[i] * 1e6, ymin[i] * 1e3, edge[i] * 1e-9);
     }
     // The film model alone along the cycle's contact points: warm chain against cold solves.
-    let crown = Crown { length: 0.014, middle_length: 0.012, crown_height: 4.5e-6, end_radius: 0.0125 };
-    let lub = Lubricant { viscosity: 0.152, pressure_viscosity: 2.2e-8, ..Lubricant::SEED000 };
-    let rough = Roughness { sigma: 0.0, eta_beta_sigma: 0.04, sigma_over_beta: 0.001, plastic_limit: f64::INFINITY, curve: None };
-    let law = TractionLaw { rheology: Rheology::Newtonian, limiting_shear_coefficient: None };
-    let asp = AsperityFriction { coefficient: 0.1, model: AsperityModel::Coulomb, map: None };
-    let es = 1.911e11 / (2.0 * (1.0 - 0.09));
-    let input = |i: usize| ContactInput {
-        load: load[i],
-        shape: ContactShape::Line { reduced_radius: rx[i], length: 0.014 },
-        entrainment_velocity: ue[i],
-        sliding_velocity: 0.0,
-        time: 0.0,
-        time_step: 0.0,
-        contact_modulus: es,
-        temperature: 313.0,
-        lubricant: &lub,
-        roughness: &rough,
-        traction_law: &law,
-        asperity_friction: &asp,
-    };
+    let crown = Crown::SEED000;
+    let smooth = SmoothContact::seed000();
+    let input = |i: usize| smooth.input(load[i], ContactShape::Line { reduced_radius: rx[i], length: 0.014 }, ue[i]);
     let fallback = ClosedForm { formula: FilmFormula::PanHamrock, squeeze: false };
     let options = Ehl2dOptions { nx, ny, tolerance: 1e-6, max_iterations: 60, ..Default::default() };
     let warm_model = Finite::new(options, Some(crown), fallback).check_first_only();

@@ -205,7 +205,7 @@ fn ehl2d_under_resolved_grid_is_refused() {
 /// η0 = 0.152 Pa·s, α = 2.2e-8 1/Pa, 313 K) at the cam nose (127°: F = 954 N, cam radius of
 /// curvature 17.5 mm against the 25.5 mm roller, R = 10.37 mm; pure rolling, u_m = 2.77 m/s).
 pub fn seed000_nose() -> Ehl2dInput {
-    let crown = Crown { length: 0.014, middle_length: 0.012, crown_height: 4.5e-6, end_radius: 0.0125 };
+    let crown = Crown::SEED000;
     Ehl2dInput { load: 954.0, geometry: Geometry2d::Finite { rx: 0.01037, crown }, effective_modulus: 2.1e11, entrainment_velocity: 2.77, lubricant: Lubricant::SEED000, temperature: 313.0 }
 }
 

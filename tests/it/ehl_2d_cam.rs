@@ -150,30 +150,11 @@ fn finite_geometry_bad_input_names_the_field() {
 #[test]
 fn entrainment_rescale_matches_the_solve() {
     use tribod::physics::ehl::twod::Ehl2dOptions;
-    use tribod::physics::film::{ClosedForm, ContactInput, ContactShape, FilmFormula, FilmModel, FilmSolution, Finite};
-    use tribod::physics::friction::{AsperityFriction, AsperityModel, Rheology, Roughness, TractionLaw};
-    use tribod::physics::lubricant::Lubricant;
+    use tribod::physics::film::{ClosedForm, ContactShape, FilmFormula, FilmModel, FilmSolution, Finite, SmoothContact};
     use tribod::physics::roller::Crown;
-    let lub = Lubricant::SEED000;
-    let rough = Roughness { sigma: 0.0, eta_beta_sigma: 0.04, sigma_over_beta: 0.001, plastic_limit: f64::INFINITY, curve: None };
-    let law = TractionLaw { rheology: Rheology::Newtonian, limiting_shear_coefficient: None };
-    let asp = AsperityFriction { coefficient: 0.1, model: AsperityModel::Coulomb, map: None };
-    let es = 1.911e11 / (2.0 * 0.91);
-    let crown = Crown { length: 0.014, middle_length: 0.012, crown_height: 4.5e-6, end_radius: 0.0125 };
-    let input = |load: f64, u: f64| ContactInput {
-        load,
-        shape: ContactShape::Line { reduced_radius: 0.01037, length: 0.014 },
-        entrainment_velocity: u,
-        sliding_velocity: 0.0,
-        time: 0.0,
-        time_step: 0.0,
-        contact_modulus: es,
-        temperature: 313.0,
-        lubricant: &lub,
-        roughness: &rough,
-        traction_law: &law,
-        asperity_friction: &asp,
-    };
+    let smooth = SmoothContact::seed000();
+    let crown = Crown::SEED000;
+    let input = |load: f64, u: f64| smooth.input(load, ContactShape::Line { reduced_radius: 0.01037, length: 0.014 }, u);
     let options = Ehl2dOptions { nx: 33, ny: 65, tolerance: 1e-9, grid_check: false, grid_tolerance: 0.5, ..Default::default() };
     let fallback = ClosedForm { formula: FilmFormula::PanHamrock, squeeze: false };
     let model = Finite::new(options, Some(crown), fallback).with_rescale_range(tribod::physics::film::finite::RESCALE_RANGE);

@@ -415,8 +415,7 @@ impl FilmModel for AutoFinite {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::physics::friction::{AsperityFriction, AsperityModel, Rheology, Roughness, TractionLaw};
-    use crate::physics::lubricant::Lubricant;
+    use crate::physics::film::SmoothContact;
 
     /// The `auto` estimate on seed 000's crowned roller (L = 14 mm, L1 = 12 mm, h_td = 4.5 µm,
     /// R_d = 12.5 mm; R = 10.37 mm, E* = 105 GPa): the load reaches the crown transition at the
@@ -424,26 +423,10 @@ mod tests {
     /// do not matter, a point contact's always do. Run with `--nocapture` for the loaded lengths.
     #[test]
     fn ends_matter_on_the_seed000_roller_at_heavy_loads_only() {
-        let lub = Lubricant::SEED000;
-        let rough = Roughness { sigma: 0.0, eta_beta_sigma: 0.04, sigma_over_beta: 0.001, plastic_limit: f64::INFINITY, curve: None };
-        let law = TractionLaw { rheology: Rheology::Newtonian, limiting_shear_coefficient: None };
-        let asp = AsperityFriction { coefficient: 0.1, model: AsperityModel::Coulomb, map: None };
-        let es = 1.911e11 / (2.0 * 0.91);
-        let crown = Crown { length: 0.014, middle_length: 0.012, crown_height: 4.5e-6, end_radius: 0.0125 };
-        let input = |load: f64, shape: ContactShape| ContactInput {
-            load,
-            shape,
-            entrainment_velocity: 2.77,
-            sliding_velocity: 0.0,
-            time: 0.0,
-            time_step: 0.0,
-            contact_modulus: es,
-            temperature: 313.0,
-            lubricant: &lub,
-            roughness: &rough,
-            traction_law: &law,
-            asperity_friction: &asp,
-        };
+        let smooth = SmoothContact::seed000();
+        let es = smooth.contact_modulus;
+        let crown = Crown::SEED000;
+        let input = |load: f64, shape: ContactShape| smooth.input(load, shape, 2.77);
         let line = ContactShape::Line { reduced_radius: 0.01037, length: 0.014 };
         for load in [100.0, 600.0, 954.0, 2241.0] {
             let cc = crown.distribute(load, 0.01037, es);

@@ -96,6 +96,51 @@ pub struct ContactInput<'a> {
     pub asperity_friction: &'a AsperityFriction,
 }
 
+/// The settings of a smooth contact with seed 000's oil and steels that the film models' tests
+/// and benches share: no roughness (σ = 0), a Newtonian traction law, Coulomb asperity friction
+/// 0.1, E* = 1.911e11/(2(1 − 0.3²)) Pa, the oil at its 313 K reference. `input` builds the
+/// contact point in pure rolling, steady.
+#[derive(Debug, Clone)]
+pub struct SmoothContact {
+    pub lubricant: Lubricant,
+    pub roughness: Roughness,
+    pub traction_law: TractionLaw,
+    pub asperity_friction: AsperityFriction,
+    pub contact_modulus: f64,
+}
+
+impl SmoothContact {
+    /// Seed 000 Table 1's oil and steels (cam and roller E = 191.1 GPa, ν = 0.3).
+    pub fn seed000() -> Self {
+        use crate::physics::friction::{AsperityModel, Rheology};
+        SmoothContact {
+            lubricant: Lubricant::SEED000,
+            roughness: Roughness { sigma: 0.0, eta_beta_sigma: 0.04, sigma_over_beta: 0.001, plastic_limit: f64::INFINITY, curve: None },
+            traction_law: TractionLaw { rheology: Rheology::Newtonian, limiting_shear_coefficient: None },
+            asperity_friction: AsperityFriction { coefficient: 0.1, model: AsperityModel::Coulomb, map: None },
+            contact_modulus: 1.911e11 / (2.0 * 0.91),
+        }
+    }
+
+    /// The contact point at `load` (N) on `shape`, entrained at `u` (m/s), no sliding, steady.
+    pub fn input(&self, load: f64, shape: ContactShape, u: f64) -> ContactInput<'_> {
+        ContactInput {
+            load,
+            shape,
+            entrainment_velocity: u,
+            sliding_velocity: 0.0,
+            time: 0.0,
+            time_step: 0.0,
+            contact_modulus: self.contact_modulus,
+            temperature: self.lubricant.reference_temperature,
+            lubricant: &self.lubricant,
+            roughness: &self.roughness,
+            traction_law: &self.traction_law,
+            asperity_friction: &self.asperity_friction,
+        }
+    }
+}
+
 /// Which model produced a film solution. The `*_mixed` variants are the same models with rough
 /// surfaces sharing the load inside the solution ([`mixed`]): their asperity load is part of the
 /// load balance (numerical: of the elastic deflection too), not evaluated afterwards.

@@ -40,6 +40,10 @@ pub struct CrownedContact {
 }
 
 impl Crown {
+    /// Seed 000 Table 1's roller: length 14 mm, straight middle L1 = 12 mm, crown drop
+    /// h_td = 4.5 µm, end radius R_d = 12.5 mm.
+    pub const SEED000: Crown = Crown { length: 0.014, middle_length: 0.012, crown_height: 4.5e-6, end_radius: 0.0125 };
+
     /// Axial gap of the unloaded roller at `y` (m from the roller centre) against a straight
     /// generator, m (the profile of the module docs, seed 000 eq. 3 with the sign slip
     /// corrected): `h_td (2y/L1)²` on the middle, `h_td + (|y| − L1/2)²/(2R_d)` beyond.
@@ -126,7 +130,7 @@ mod tests {
     use super::*;
 
     fn seed000() -> Crown {
-        Crown { length: 0.014, middle_length: 0.012, crown_height: 4.5e-6, end_radius: 0.0125 }
+        Crown::SEED000
     }
 
     #[test]
