@@ -83,23 +83,26 @@ fn ehl2d_circular_film_against_hamrock_dowson_and_nijenbanning() {
 }
 
 #[test]
-#[ignore = "issue 16: refused on 97² by the resolution check (the central film changes by 7.4 % from 49²; R_y = 4 R_x widens the domain across); a finer grid not yet measured"]
+#[ignore = "issue 16: 441 s in the dev profile on 129² (379 Newton steps; 97² is refused by the resolution check, 7.4 % from 49²)"]
 fn ehl2d_elliptic_film_against_hamrock_dowson_and_nijenbanning() {
     // R_x = 10 mm, R_y = 40 mm (the ellipse's major axis across the entrainment, k ≈ 2.4).
     let lub = barus_incompressible(0.04, 2e-8);
     let (rx, ry) = (0.01, 0.04);
     let input = point(200.0, rx, ry, 1.0, lub);
     let t = std::time::Instant::now();
-    let s = solve(&input, &opts(97, 97), &Silent).unwrap();
+    let s = solve(&input, &opts(129, 129), &Silent).unwrap();
     let w = 200.0 / (E_PRIME * rx * rx);
     let u = 0.04 * 1.0 / (E_PRIME * rx);
     let (hd_c, hd_m) = hamrock_dowson_point(w, u, 2e-8 * E_PRIME, ellipticity(rx, ry));
     let nvm = nijenbanning_central_film(200.0, rx, ry, E_PRIME, 1.0, 0.04, 2e-8);
     println!("elliptic M {} L {} hc {} (HD {} NVM {}) hmin {:?} (HD {}) {:?} in {:?}", s.moes_m, s.moes_l, s.central_film, hd_c * rx, nvm, s.min_film, hd_m * rx, s.convergence, t.elapsed());
-    // Measured (97², M ≈ 610): central −3.6 % (HD), −9.8 % (NVM); minimum −12 % (HD).
-    assert!(rel(s.central_film, hd_c * rx) < 0.05, "central {} vs HD {}", s.central_film, hd_c * rx);
-    assert!(rel(s.central_film, nvm) < 0.11, "central {} vs NVM {nvm}", s.central_film);
-    assert!(rel(s.min_film.value, hd_m * rx) < 0.15, "min {} vs HD {}", s.min_film.value, hd_m * rx);
+    // Measured (129², M ≈ 607, L ≈ 11.2, geometric face means; session 29): central 310.2 nm,
+    // +1.6 % against the Nijenbanning transcription (305.2 nm) and +8.6 % against Hamrock–Dowson
+    // (285.7 nm); minimum 204.8 nm, −1.9 % against Hamrock–Dowson (208.7 nm) — the circular case's
+    // pattern (NVM −0.7 %, HD +14 %).
+    assert!(rel(s.central_film, nvm) < 0.03, "central {} vs NVM {nvm}", s.central_film);
+    assert!(rel(s.central_film, hd_c * rx) < 0.1, "central {} vs HD {}", s.central_film, hd_c * rx);
+    assert!(rel(s.min_film.value, hd_m * rx) < 0.05, "min {} vs HD {}", s.min_film.value, hd_m * rx);
 }
 
 #[test]
