@@ -373,9 +373,9 @@ mod seed000_cycle {
         assert!(worst("slide_roll_ratio", Some(scale), cycle) < SRR_CYCLE, "SRR over the cycle");
         assert!(keys < 36, "{keys}");
     }
-    /// Measured worst differences over the whole cycle (see the test above): films 1.10 %, SRR
-    /// 0.2 % of its largest value.
-    const FILM_CYCLE: f64 = 0.015;
+    /// Measured worst differences over the whole cycle (see the test above): films 0.67 % (1.10 %
+    /// when the closed form carried the change of conditions), SRR 0.2 % of its largest value.
+    const FILM_CYCLE: f64 = 0.01;
     const SRR_CYCLE: f64 = 0.01;
 
     /// Seed 000 Figs. 9 and 13 with the thermal model (the steady example with key points,

@@ -20,30 +20,36 @@
 //!   slowly with the operating conditions: the full solve runs only at a point whose conditions
 //!   `(w', u_m, R, SRR)` are farther than the tolerance (the largest of `|Δ ln w'|`, `|Δ ln u_m|`,
 //!   `|Δ ln R|`, `|Δ SRR|`) from every key point solved so far in the run; elsewhere the nearest
-//!   key's thermal factors are carried: its films times the closed form's film ratio between
-//!   the two conditions, its peak pressure times the Hertzian ratio, its temperatures, and its
-//!   traction table at the same slide-to-roll ratios times the closed form's traction ratio at
-//!   each. The closed form thus carries the isothermal change, the key the thermal correction;
-//!   the error is second order in the distance (BENCHMARKS.md, "Thermal EHL": against the full
-//!   cycle). Key points are solved quasi-steady (no squeeze or ∂T/∂t history: at seed 000's
-//!   speeds the film's transit time is far below an angle step), warm-started from the nearest
-//!   key. Periodic passes revisit the same conditions and reuse the keys.
+//!   key's thermal factors are carried. Every point of the run (keys too) marches the isothermal
+//!   numerical film (smooth surfaces, Richardson of the thermal grid and its half, squeeze
+//!   history from the previous point); its films, peak pressure and spike are multiplied by the
+//!   key's thermal factors — the thermal solution over the isothermal one, both steady at the
+//!   key's conditions. The key also carries its temperatures and its traction table at the same
+//!   slide-to-roll ratios times the closed form's traction ratio at each. So the isothermal
+//!   march carries the change of conditions and the squeeze (the film's lag behind fast load
+//!   and entrainment changes, which a quasi-steady key cannot see), the key the thermal
+//!   correction; the error is first order in the distance for the factors (BENCHMARKS.md,
+//!   "Thermal EHL": against the full cycle). Key points are solved quasi-steady (no squeeze or
+//!   ∂T/∂t history), warm-started from the nearest key. Periodic passes revisit the same
+//!   conditions and reuse the keys.
 //! * **Point contacts** and a contact at rest without history keep the closed form.
 //!
 //! Cost: one coupled solve (a few Newton and energy solves) and [`SLIDE_TO_ROLL_TABLE`]`.len()`
-//! energy solves per full point; a carried point costs a closed-form solve — see BENCHMARKS.md,
+//! energy solves per full point; a carried point costs an isothermal Newton solve on two grids
+//! (warm-started, typically two steps each) and a closed-form solve — see BENCHMARKS.md,
 //! "Thermal EHL".
 
 use super::closed_form::ClosedForm;
-use super::numerical::{asperity_load, line_contact, traction_nodes, LineContact};
+use super::numerical::{asperity_load, line_contact, traction_nodes, LineContact, Numerical};
 use super::{ContactInput, ContactShape, FilmModel, FilmModelId, FilmProfile, FilmSolution, Traction};
 use crate::physics::contact::hertz_line;
 use crate::physics::ehl::grid::cells;
 use crate::physics::ehl::thermal::{energy, EnergyInput, TemperatureField, ThermalBodies, ThermalEngine, ThermalFactors, ThermalInput, ThermalOptions, ThermalSummary};
-use crate::physics::ehl::{EhlInput, EhlOptions, Rheology, Transient};
+use crate::physics::ehl::{EhlInput, EhlOptions, Extrapolation, Rheology, Transient};
+use crate::physics::friction::Roughness;
 use crate::physics::friction::Rheology as Shear;
 use crate::physics::{ensure_finite, Silent, SolveError};
-use std::sync::Mutex;
+use std::sync::{Arc, Mutex};
 
 /// A key point of the carried mode: its operating conditions, its full thermal solution and the
 /// closed form's film and table traction there.
@@ -54,9 +60,38 @@ struct Key {
     radius: f64,
     slide_to_roll: f64,
     film: FilmSolution,
+    /// The isothermal numerical film at the key's conditions, steady, on the same grid.
+    isothermal: FilmSolution,
     closed_form: FilmSolution,
     /// The closed form's fluid traction at the key's table sliding velocities, N.
     closed_form_table: Vec<f64>,
+}
+
+/// `a/b`, or 1 where `b` is zero or `a` is not finite.
+fn ratio(a: f64, b: f64) -> f64 {
+    if b.abs() > 0.0 && a.is_finite() { a / b } else { 1.0 }
+}
+
+/// What a key carries to a point ([`ThermalNumerical::carry`]): thermal factors (thermal over
+/// isothermal film at the key), the traction table at the point's entrainment and the asperity
+/// load.
+#[derive(Debug)]
+struct Carry {
+    central: f64,
+    min: f64,
+    pressure: f64,
+    spike: f64,
+    /// Shift of the pressure spike's position, m.
+    spike_shift: f64,
+    sliding: Vec<f64>,
+    force: Vec<f64>,
+    asperity_load: f64,
+}
+
+impl Key {
+    fn conditions(&self) -> (f64, f64, f64, f64) {
+        (self.load_per_length, self.entrainment, self.radius, self.slide_to_roll)
+    }
 }
 
 /// Operating conditions of a line-contact point: `(w', u_m, R, SRR)`.
@@ -109,6 +144,9 @@ pub struct FilmThermal {
     /// unit length at each, N/m.
     pub sliding: Vec<f64>,
     pub force_per_length: Vec<f64>,
+    /// Carried mode: the isothermal numerical film at this point (its fields are the next
+    /// point's squeeze history and warm start of the isothermal march).
+    pub isothermal: Option<Box<FilmSolution>>,
 }
 
 /// The thermal numerical film model. See the module docs.
@@ -119,12 +157,16 @@ pub struct ThermalNumerical {
     pub fallback: ClosedForm,
     engine: Mutex<ThermalEngine>,
     /// Key points of the carried mode (this run's).
-    keys: Mutex<Vec<Key>>,
+    keys: Mutex<Vec<Arc<Key>>>,
+    /// Carried mode: the isothermal numerical model (same grid and options, smooth surfaces)
+    /// whose transient film carries the keys' thermal factors.
+    isothermal: Numerical,
 }
 
 impl ThermalNumerical {
     pub fn new(options: EhlOptions, settings: ThermalFilmSettings, fallback: ClosedForm) -> Self {
-        ThermalNumerical { options, settings, fallback, engine: Mutex::new(ThermalEngine::new()), keys: Mutex::new(Vec::new()) }
+        let isothermal = Numerical::new(options, fallback).with_extrapolation(Extrapolation::Richardson);
+        ThermalNumerical { options, settings, fallback, engine: Mutex::new(ThermalEngine::new()), keys: Mutex::new(Vec::new()), isothermal }
     }
 
     /// The closed form's fluid traction at sliding velocities `sliding` (for the carried table).
@@ -132,50 +174,77 @@ impl ThermalNumerical {
         sliding.iter().map(|&us| self.fallback.traction(cf, input, us).viscous).collect()
     }
 
-    /// The carried solution at `input` from key `key` (module docs): the key's thermal film
-    /// reduction, temperatures and traction table on the closed form's change between the key's
-    /// conditions and these.
-    fn carried(&self, key: &Key, input: &ContactInput, r: f64, length: f64) -> Result<FilmSolution, SolveError> {
-        let cf = self.fallback.solve(input, None)?;
-        let k = &key.film;
+    /// The isothermal numerical film at `input` on the thermal model's grid, smooth surfaces (as
+    /// the thermal solve: its asperity share is post hoc), from `history`'s fields (squeeze
+    /// history when `input.time_step > 0`, else a warm start).
+    fn isothermal_film(&self, input: &ContactInput, history: Option<&FilmSolution>) -> Result<FilmSolution, SolveError> {
+        let smooth = Roughness { sigma: 0.0, curve: None, ..input.roughness.clone() };
+        self.isothermal.solve(&ContactInput { roughness: &smooth, ..*input }, history)
+    }
+
+    /// What key `key` carries to `input` (closed form `cf` there): its thermal factors
+    /// (thermal over isothermal film at the key) and its traction table at the same
+    /// slide-to-roll ratios, scaled by the closed form's traction change at each (where the
+    /// closed form has no traction, the key's value stands).
+    fn carry(&self, key: &Key, input: &ContactInput, cf: &FilmSolution, length: f64) -> Carry {
+        let (k, ki) = (&key.film, &key.isothermal);
         let kth = k.thermal.as_deref().expect("a key is a thermal solution");
-        let ratio = |a: f64, b: f64| if b.abs() > 0.0 && a.is_finite() { a / b } else { 1.0 };
-        let film_ratio = ratio(cf.central_film, key.closed_form.central_film);
-        let min_ratio = ratio(cf.min_film, key.closed_form.min_film);
-        let w = input.load / length;
-        let hz = hertz_line(w, r, input.contact_modulus);
-        let pressure_ratio = ratio(hz.max_pressure, key.closed_form.max_pressure);
-        let width_ratio = ratio(hz.half_width, k.half_width);
-        // Table at the key's slide-to-roll ratios, scaled by the closed form's traction change
-        // at each (where the closed form has no traction, the key's value stands).
         let speed = ratio(input.entrainment_velocity, key.entrainment);
         let sliding: Vec<f64> = kth.sliding.iter().map(|us| us * speed).collect();
-        let cf_table = self.closed_form_table(&cf, input, &sliding);
-        let force: Vec<f64> = kth
+        let cf_table = self.closed_form_table(cf, input, &sliding);
+        let force = kth
             .force_per_length
             .iter()
             .zip(cf_table.iter().zip(&key.closed_form_table))
             .map(|(f, (a, b))| if b.abs() > 1e-12 * input.load { f * a / b } else { *f })
             .collect();
-        let load_ratio = input.load / (key.load_per_length * length);
-        let w_a = if key.closed_form.asperity.load > 0.0 { k.asperity.load * ratio(cf.asperity.load, key.closed_form.asperity.load) } else { k.asperity.load * load_ratio };
-        let w_a = w_a.min(input.load);
-        let min_film = k.min_film * min_ratio;
-        ensure_finite("carried thermal film", [&film_ratio, &min_ratio, &pressure_ratio, &w_a])?;
-        ensure_finite("carried thermal traction table", &force)?;
+        let asperity_load = if key.closed_form.asperity.load > 0.0 {
+            k.asperity.load * ratio(cf.asperity.load, key.closed_form.asperity.load)
+        } else {
+            k.asperity.load * input.load / (key.load_per_length * length)
+        };
+        let both = |a: Option<f64>, b: Option<f64>| a.zip(b);
+        Carry {
+            central: ratio(k.central_film, ki.central_film),
+            min: ratio(k.min_film, ki.min_film),
+            pressure: ratio(k.max_pressure, ki.max_pressure),
+            spike: both(k.pressure_spike, ki.pressure_spike).map_or(1.0, |(a, b)| ratio(a, b)),
+            spike_shift: both(k.pressure_spike_position, ki.pressure_spike_position).map_or(0.0, |(a, b)| a - b),
+            sliding,
+            force,
+            asperity_load,
+        }
+    }
+
+    /// The carried solution at `input` from key `key` (module docs): the isothermal numerical
+    /// film marched from `previous` (its squeeze history) times the key's thermal factors, the
+    /// key's temperatures, and its traction table carried by the closed form.
+    fn carried(&self, key: &Key, input: &ContactInput, previous: Option<&FilmSolution>, r: f64, length: f64) -> Result<FilmSolution, SolveError> {
+        let history = previous.and_then(|p| p.thermal.as_deref()).and_then(|t| t.isothermal.as_deref());
+        let iso = self.isothermal_film(input, history)?;
+        let cf = self.fallback.solve(input, None)?;
+        let c = self.carry(key, input, &cf, length);
+        let kth = key.film.thermal.as_deref().expect("a key is a thermal solution");
+        let w = input.load / length;
+        let hz = hertz_line(w, r, input.contact_modulus);
+        let w_a = c.asperity_load.min(input.load);
+        let central_film = iso.central_film * c.central;
+        let min_film = iso.min_film * c.min;
+        ensure_finite("carried thermal film", [&central_film, &min_film, &c.pressure, &c.spike, &c.spike_shift, &w_a])?;
+        ensure_finite("carried thermal traction table", &c.force)?;
         let sigma = input.roughness.sigma;
         Ok(FilmSolution {
             model: FilmModelId::ThermalCarried,
-            central_film: k.central_film * film_ratio,
+            central_film,
             min_film,
             steady_central_film: cf.steady_central_film,
-            max_pressure: k.max_pressure * pressure_ratio,
-            pressure_spike: k.pressure_spike.map(|p| p * pressure_ratio),
-            pressure_spike_position: k.pressure_spike_position.map(|x| x * width_ratio),
-            exit_film: k.exit_film.map(|h| h * film_ratio),
+            max_pressure: iso.max_pressure * c.pressure,
+            pressure_spike: iso.pressure_spike.map(|p| p * c.spike),
+            pressure_spike_position: iso.pressure_spike_position.map(|x| x + c.spike_shift),
+            exit_film: iso.exit_film.map(|h| h * c.central),
             half_width: hz.half_width,
             contact_area: 2.0 * hz.half_width * length,
-            asperity: input.asperity_friction.contact(w_a, hz.half_width, r, k.central_film * film_ratio),
+            asperity: input.asperity_friction.contact(w_a, hz.half_width, r, central_film),
             // The thermal model keeps the post-hoc asperity share: semi-elliptic micro-slip.
             asperity_nodes: Vec::new(),
             lambda: (sigma > 0.0).then(|| min_film / sigma),
@@ -184,10 +253,10 @@ impl ThermalNumerical {
             // The carried table includes the key's surface stresses (Poiseuille part too).
             rolling_force: 0.0,
             viscosity_law: None,
-            // No profile of its own (the next key point warm-starts from the nearest key).
+            // No thermal profile of its own (a new key warm-starts from the nearest key).
             profile: None,
-            iterations: Some(0),
-            thermal: Some(Box::new(FilmThermal { sliding, force_per_length: force, ..kth.clone() })),
+            iterations: iso.iterations,
+            thermal: Some(Box::new(FilmThermal { sliding: c.sliding, force_per_length: c.force, isothermal: Some(Box::new(iso)), ..kth.clone() })),
             finite: None,
         })
     }
@@ -337,6 +406,7 @@ impl ThermalNumerical {
                 factors: th.factors,
                 sliding,
                 force_per_length: force,
+                isothermal: None,
             })),
             finite: None,
         })
@@ -398,31 +468,39 @@ impl FilmModel for ThermalNumerical {
         let here = conditions(input, r, length);
         let nearest = {
             let keys = self.keys.lock().unwrap_or_else(|e| e.into_inner());
-            keys.iter()
-                .map(|k| (distance(here, (k.load_per_length, k.entrainment, k.radius, k.slide_to_roll)), k))
-                .min_by(|a, b| a.0.total_cmp(&b.0))
-                .map(|(d, k)| (d, k.clone()))
+            keys.iter().map(|k| (distance(here, k.conditions()), k)).min_by(|a, b| a.0.total_cmp(&b.0)).map(|(d, k)| (d, k.clone()))
         };
         if let Some((d, key)) = &nearest {
             if *d <= tol {
-                return self.carried(key, input, r, length);
+                return self.carried(key, input, previous, r, length);
             }
         }
-        // A new key point, warm-started from the previous point or the nearest key.
-        let warm = previous.filter(|p| p.profile.is_some()).or(nearest.as_ref().map(|(_, k)| &k.film));
+        // A new key point, warm-started from the nearest key (its thermal fields) or the
+        // previous point.
+        let warm = nearest.as_ref().map(|(_, k)| &k.film).or(previous.filter(|p| p.profile.is_some()));
         // Where the tighter coupling stalls above it (energy sweeps' noise), the key takes the
         // default tolerance.
         let film = match self.full_with(&steady, warm, KEY_TOLERANCE_FACTOR) {
             Err(SolveError::NotConverged { .. }) => self.full_with(&steady, warm, 1.0)?,
             other => other?,
         };
-        if film.thermal.is_some() {
-            let cf = self.fallback.solve(input, None)?;
-            let table = self.closed_form_table(&cf, input, &film.thermal.as_deref().expect("thermal").sliding);
-            let key = Key { load_per_length: here.0, entrainment: here.1, radius: here.2, slide_to_roll: here.3, film: film.clone(), closed_form: cf, closed_form_table: table };
-            self.keys.lock().unwrap_or_else(|e| e.into_inner()).push(key);
-        }
-        Ok(film)
+        let Some(thermal) = film.thermal.as_deref() else {
+            return Ok(film);
+        };
+        let cf = self.fallback.solve(input, None)?;
+        let table = self.closed_form_table(&cf, input, &thermal.sliding);
+        // Steady, from the previous point's isothermal film (the march's grid design).
+        let history = previous.and_then(|p| p.thermal.as_deref()).and_then(|t| t.isothermal.as_deref());
+        let isothermal = self.isothermal_film(&steady, history)?;
+        let key = Arc::new(Key { load_per_length: here.0, entrainment: here.1, radius: here.2, slide_to_roll: here.3, film, isothermal, closed_form: cf, closed_form_table: table });
+        // The key's own point: its factors on the isothermal film marched to it (the same
+        // squeeze history as every carried point), its thermal profile.
+        let mut out = self.carried(&key, input, previous, r, length)?;
+        out.model = FilmModelId::Thermal;
+        out.profile = key.film.profile.clone();
+        out.iterations = key.film.iterations;
+        self.keys.lock().unwrap_or_else(|e| e.into_inner()).push(key);
+        Ok(out)
     }
 
     fn traction_local(&self, film: &FilmSolution, input: &ContactInput, sliding: f64) -> (Traction, (f64, f64)) {
