@@ -1136,6 +1136,18 @@ fn thermal_range(film: &[f64], extent: f64) -> (usize, usize) {
 /// converged 122 K rise.)
 pub const MAX_TEMPERATURE_RISE: f64 = 1000.0;
 
+/// Development trace of one coupling iteration (`TRIBOD_THERMAL_TRACE`): where the film is
+/// hottest and the range of the new generalized-Reynolds factors.
+fn trace_coupling(iteration: u32, relax: f64, sol: &EhlSolution, en: &EnergySolution) {
+    let mm = |v: &[f64]| v.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &x| (a.min(x), b.max(x)));
+    let nzp = en.field.film.len() / en.field.x.len();
+    let kmax = (0..en.field.film.len()).max_by(|&a, &b| en.field.film[a].total_cmp(&en.field.film[b])).unwrap_or(0);
+    let (ix, iz) = (kmax / nzp, kmax % nzp);
+    let ip = sol.state.x.partition_point(|&v| v < en.field.x[ix]).min(sol.state.x.len() - 1);
+    eprintln!("   Tmax at x/b {:.3} level {iz}/{nzp} p {:.3e} h {:.3e}", en.field.x[ix] / sol.hertz_half_width, sol.state.pressure[ip], sol.state.film[ip]);
+    eprintln!("thermal coupling {iteration}: relax {relax:.3} Tmax {:.1} poiseuille {:?} wedge {:?} mass {:?}", en.summary.film_temperature_max, mm(&en.factors.poiseuille), mm(&en.factors.wedge), mm(&en.factors.mass));
+}
+
 /// Smallest step towards new generalized Reynolds factors after a failed Reynolds solve.
 const MIN_FACTOR_STEP: f64 = 1.0 / 32.0;
 
@@ -1248,20 +1260,14 @@ impl ThermalEngine {
             // Under-relaxed factors (the last ones used, interpolated onto this grid, blended
             // with the new): the energy ↔ Reynolds fixed point can oscillate where the heating
             // is strong; the step shrinks when the change grows.
-            let raw = std::mem::replace(&mut en.factors, ThermalFactors { x: Vec::new(), poiseuille: Vec::new(), wedge: Vec::new(), mass: Vec::new() });
+            let raw = en.factors.clone();
             let unit = || ThermalFactors { x: raw.x.clone(), poiseuille: vec![1.0; raw.x.len()], wedge: vec![1.0; raw.x.len()], mass: vec![1.0; raw.x.len()] };
             en.factors = match &used {
                 Some(old) => blend(old, &raw, relax),
                 None => raw.clone(),
             };
             if std::env::var_os("TRIBOD_THERMAL_TRACE").is_some() {
-                let mm = |v: &[f64]| v.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &x| (a.min(x), b.max(x)));
-                let nzp = en.field.film.len() / en.field.x.len();
-                let kmax = (0..en.field.film.len()).max_by(|&a, &b| en.field.film[a].total_cmp(&en.field.film[b])).unwrap_or(0);
-                let (ix, iz) = (kmax / nzp, kmax % nzp);
-                let ip = sol.state.x.partition_point(|&v| v < en.field.x[ix]).min(sol.state.x.len() - 1);
-                eprintln!("   Tmax at x/b {:.3} level {iz}/{nzp} p {:.3e} h {:.3e}", en.field.x[ix] / sol.hertz_half_width, sol.state.pressure[ip], sol.state.film[ip]);
-                eprintln!("thermal coupling {iterations}: relax {relax:.3} Tmax {:.1} poiseuille {:?} wedge {:?} mass {:?}", en.summary.film_temperature_max, mm(&en.factors.poiseuille), mm(&en.factors.wedge), mm(&en.factors.mass));
+                trace_coupling(iterations, relax, &sol, &en);
             }
             let ph = sol.hertz_pressure;
             let pred: Vec<f64> = sol.state.pressure.iter().map(|p| p / ph).collect();
