@@ -204,6 +204,10 @@ pub struct Level {
     inv_d: Vec<f64>,
     /// `1/diag` at every node (set with the coefficients; `inv_d` is it masked).
     inv_diag: Vec<f64>,
+    /// Per row, two ascending column ranges `a₁..b₁`, `a₂..b₂` that hold every free node: the
+    /// row without its longest (cyclic) run of fixed nodes. Outside them the V-cycle's
+    /// correction, residual and `A p` are 0, so the smoother and the operator kernels skip them.
+    free_span: Vec<Span>,
     /// Face cosines and sines of the last `set_film` (scratch kept to avoid allocation).
     cos_f: Vec<f64>,
     sin_f: Vec<f64>,
@@ -268,6 +272,7 @@ impl Level {
             mask: vec![0.0; n],
             inv_d: vec![0.0; n],
             inv_diag: vec![0.0; n],
+            free_span: vec![[(0, nt), (nt, nt)]; nz],
             cos_f: vec![0.0; nt],
             sin_f: vec![0.0; nt],
             zq: 1,
@@ -449,6 +454,10 @@ impl Level {
             *m = if free { 1.0 } else { 0.0 };
             *inv = if free { *id } else { 0.0 };
         }
+        let nt = self.nt;
+        for (span, f) in self.free_span.iter_mut().zip(self.fixed.chunks_exact(nt)) {
+            *span = free_ranges(f);
+        }
     }
 
     /// Factor `A_II` (free nodes) densely: `A_II = L Lᵀ` (Cholesky; `A` is a symmetric
@@ -562,7 +571,7 @@ impl Level {
         let mut s = 0.0;
         for j in 1..nz - 1 {
             update(v, j + 1);
-            self.kernel_row::<{ Self::PLAIN }>(j, v, out, &self.mask, &self.src);
+            self.kernel_row::<{ Self::PLAIN }>(j, self.free_span[j], v, out, &self.mask, &self.src);
             let row = j * nt;
             for (a, b) in v[row..row + nt].iter().zip(&out[row..row + nt]) {
                 s += a * b;
@@ -638,12 +647,17 @@ impl Level {
         let (ta, tb) = (&self.tmp[a * nt..(a + 1) * nt], &self.tmp[b * nt..(b + 1) * nt]);
         let m = &self.mask[row..row + nt];
         let x = &mut self.x[row..row + nt];
-        for i in 0..nt {
-            x[i] += m[i] * ((1.0 - w) * ta[i] + w * tb[i]);
+        // outside the free ranges the mask is 0 (the correction adds nothing)
+        for (lo, hi) in self.free_span[j] {
+            for i in lo..hi {
+                x[i] += m[i] * ((1.0 - w) * ta[i] + w * tb[i]);
+            }
         }
     }
 
-    /// The first half-sweep from `x = 0`: `x = b/d` on the nodes of colour `color` in row `j`.
+    /// The first half-sweep from `x = 0`: `x = b/d` on the nodes of colour `color` in row `j`
+    /// within its free span, and `x = 0` on both colours outside it (the later half-sweeps
+    /// skip those nodes: every one is fixed).
     #[inline(always)]
     fn smooth_row_zero(&mut self, j: usize, color: usize) {
         let nt = self.nt;
@@ -651,10 +665,14 @@ impl Level {
         let inv = &self.inv_d[row..row + nt];
         let b = &self.b[row..row + nt];
         let cur = &mut self.x[row..row + nt];
-        let mut i = (color + j) % 2;
-        while i < nt {
-            cur[i] = b[i] * inv[i];
-            i += 2;
+        let span = self.free_span[j];
+        fill_gaps(cur, span);
+        for (lo, hi) in span {
+            let mut i = lo + (color + j + lo) % 2;
+            while i < hi {
+                cur[i] = b[i] * inv[i];
+                i += 2;
+            }
         }
     }
 
@@ -662,13 +680,22 @@ impl Level {
     #[inline(always)]
     fn residual_row(&mut self, j: usize) {
         let mut r = std::mem::take(&mut self.r);
-        self.kernel_row::<{ Self::SUB_MINUS }>(j, &self.x, &mut r, &self.mask, &self.b);
+        self.kernel_row::<{ Self::SUB_MINUS }>(j, self.free_span[j], &self.x, &mut r, &self.mask, &self.b);
         self.r = r;
     }
 
-    /// Gauss–Seidel update of the nodes of colour `color` (`(i + j) % 2`) in row `j`.
+    /// Gauss–Seidel update of the nodes of colour `color` (`(i + j) % 2`) in row `j` within its
+    /// free span (outside it every node is fixed and `x` stays 0).
     #[inline(always)]
     fn smooth_row(&mut self, j: usize, color: usize) {
+        for (lo, hi) in self.free_span[j] {
+            self.smooth_range(j, color, lo, hi);
+        }
+    }
+
+    /// [`Level::smooth_row`] on the columns `lo..hi`.
+    #[inline(always)]
+    fn smooth_range(&mut self, j: usize, color: usize, lo: usize, hi: usize) {
         let nt = self.nt;
         let row = j * nt;
         let ce = &self.ce[row..row + nt];
@@ -686,15 +713,18 @@ impl Level {
             let s = b[i] + ce[i] * cur[ie] + ce[iw] * cur[iw] + cn_n[i] * above[i] + cn_s[i] * below[i];
             cur[i] = s * inv[i];
         }
-        let mut i = (color + j) % 2;
+        let mut i = lo + (color + j + lo) % 2;
+        if i >= hi {
+            return;
+        }
         if i == 0 {
             upd(cur, b, ce, cn_n, cn_s, above, below, inv, 0, nt - 1, 1);
             i = 2;
         }
-        let end = if (nt - 1) % 2 == i % 2 { nt - 1 } else { nt };
-        // interior nodes of this colour: 1 ≤ i ≤ nt − 2, step 2
+        // interior nodes of this colour: 1 ≤ i ≤ nt − 2 and i < hi, step 2
+        let end = hi.min(nt - 1);
         let mut k = i;
-        while k + 1 < nt {
+        while k < end {
             // SAFETY: 1 ≤ k − 1 < k + 1 < nt and every slice has length nt.
             unsafe {
                 let s = *b.get_unchecked(k)
@@ -706,8 +736,7 @@ impl Level {
             }
             k += 2;
         }
-        let _ = end;
-        if k + 1 == nt {
+        if k + 1 == nt && k < hi {
             upd(cur, b, ce, cn_n, cn_s, above, below, inv, k, k - 1, 0);
         }
     }
@@ -766,13 +795,26 @@ impl Level {
         out[..nt].fill(0.0);
         out[(self.nz - 1) * nt..].fill(0.0);
         for j in 1..self.nz - 1 {
-            self.kernel_row::<MODE>(j, v, out, mask, sub);
+            self.kernel_row::<MODE>(j, [(0, nt), (nt, nt)], v, out, mask, sub);
         }
     }
 
-    /// Row `j` (not an edge row) of [`Level::kernel`].
+    /// Row `j` (not an edge row) of [`Level::kernel`] on the column ranges `span`; 0 on the
+    /// other columns (where `mask` is 0).
     #[inline(always)]
-    fn kernel_row<const MODE: u8>(&self, j: usize, v: &[f64], out: &mut [f64], mask: &[f64], sub: &[f64]) {
+    #[allow(clippy::too_many_arguments)]
+    fn kernel_row<const MODE: u8>(&self, j: usize, span: Span, v: &[f64], out: &mut [f64], mask: &[f64], sub: &[f64]) {
+        let row = j * self.nt;
+        fill_gaps(&mut out[row..row + self.nt], span);
+        for (lo, hi) in span {
+            self.kernel_range::<MODE>(j, lo, hi, v, out, mask, sub);
+        }
+    }
+
+    /// [`Level::kernel_row`] on the columns `lo..hi` (the others untouched).
+    #[inline(always)]
+    #[allow(clippy::too_many_arguments)]
+    fn kernel_range<const MODE: u8>(&self, j: usize, lo: usize, hi: usize, v: &[f64], out: &mut [f64], mask: &[f64], sub: &[f64]) {
         #[inline(always)]
         fn finish<const MODE: u8>(m: f64, a: f64, s: f64) -> f64 {
             match MODE {
@@ -793,15 +835,24 @@ impl Level {
         let vc = &v[row..row + nt];
         let va = &v[row + nt..row + 2 * nt];
         let o = &mut out[row..row + nt];
-        let a0 = d[0] * vc[0] - ce[0] * vc[1] - ce[nt - 1] * vc[nt - 1] - cnn[0] * va[0] - cs[0] * vb[0];
-        let an = d[nt - 1] * vc[nt - 1] - ce[nt - 1] * vc[0] - ce[nt - 2] * vc[nt - 2] - cnn[nt - 1] * va[nt - 1] - cs[nt - 1] * vb[nt - 1];
-        o[0] = finish::<MODE>(m[0], a0, sb[0]);
-        o[nt - 1] = finish::<MODE>(m[nt - 1], an, sb[nt - 1]);
-        let n = nt - 2;
-        let (d1, ce0, ce1, cn1, cs1) = (&d[1..n + 1], &ce[0..n], &ce[1..n + 1], &cnn[1..n + 1], &cs[1..n + 1]);
-        let (vw, vcc, ve, va1, vb1) = (&vc[0..n], &vc[1..n + 1], &vc[2..n + 2], &va[1..n + 1], &vb[1..n + 1]);
-        let (m1, s1) = (&m[1..n + 1], &sb[1..n + 1]);
-        let o1 = &mut o[1..n + 1];
+        if lo == 0 && hi > 0 {
+            let a0 = d[0] * vc[0] - ce[0] * vc[1] - ce[nt - 1] * vc[nt - 1] - cnn[0] * va[0] - cs[0] * vb[0];
+            o[0] = finish::<MODE>(m[0], a0, sb[0]);
+        }
+        if hi == nt && lo < nt {
+            let an = d[nt - 1] * vc[nt - 1] - ce[nt - 1] * vc[0] - ce[nt - 2] * vc[nt - 2] - cnn[nt - 1] * va[nt - 1] - cs[nt - 1] * vb[nt - 1];
+            o[nt - 1] = finish::<MODE>(m[nt - 1], an, sb[nt - 1]);
+        }
+        // the interior columns of the range, 1 ≤ i ≤ nt − 2
+        let (a, b) = (lo.max(1), hi.min(nt - 1));
+        if a >= b {
+            return;
+        }
+        let (d1, ce0, ce1, cn1, cs1) = (&d[a..b], &ce[a - 1..b - 1], &ce[a..b], &cnn[a..b], &cs[a..b]);
+        let (vw, vcc, ve, va1, vb1) = (&vc[a - 1..b - 1], &vc[a..b], &vc[a + 1..b + 1], &va[a..b], &vb[a..b]);
+        let (m1, s1) = (&m[a..b], &sb[a..b]);
+        let o1 = &mut o[a..b];
+        let n = b - a;
         for i in 0..n {
             let a = d1[i] * vcc[i] - ce1[i] * ve[i] - ce0[i] * vw[i] - cn1[i] * va1[i] - cs1[i] * vb1[i];
             o1[i] = finish::<MODE>(m1[i], a, s1[i]);
@@ -833,6 +884,46 @@ fn face_means(film: &Film, z0: f64, z1: f64, m: usize, north: bool, k: f64, cs: 
         let mean = acc * inv_m;
         *o = if north { k / mean } else { mean * k };
     }
+}
+
+/// Two ascending column ranges of one row (see `Level::free_span`).
+type Span = [(usize, usize); 2];
+
+/// The columns of one row's `fixed` flags without their longest cyclic run of fixed nodes, as
+/// two ascending ranges (both empty when no node is free).
+fn free_ranges(f: &[u8]) -> Span {
+    let nt = f.len();
+    let (Some(lead), Some(last)) = (f.iter().position(|v| *v == FREE), f.iter().rposition(|v| *v == FREE)) else {
+        return [(0, 0), (0, 0)];
+    };
+    // the run wrapping around column 0, then the longest run inside the row
+    let trail = nt - 1 - last;
+    let (mut len, mut start) = (0, 0);
+    let mut i = lead;
+    while i <= last {
+        let s = i;
+        while f[i] != FREE {
+            i += 1;
+        }
+        if i - s > len {
+            (len, start) = (i - s, s);
+        }
+        i += 1;
+    }
+    if lead + trail >= len {
+        [(lead, last + 1), (nt, nt)]
+    } else {
+        [(0, start), (start + len, nt)]
+    }
+}
+
+/// Zero of `row` outside the ranges of `span`.
+#[inline(always)]
+fn fill_gaps(row: &mut [f64], span: Span) {
+    let [(a1, b1), (a2, b2)] = span;
+    row[..a1].fill(0.0);
+    row[b1..a2].fill(0.0);
+    row[b2..].fill(0.0);
 }
 
 /// Whether the film's edge profile is non-zero anywhere in `[z0, z1]` (it is zero exactly on
