@@ -449,14 +449,25 @@ impl Level {
     fn refresh_masks(&mut self) {
         self.chol = None;
         self.free_src_norm = None;
-        for (((m, inv), f), id) in self.mask.iter_mut().zip(self.inv_d.iter_mut()).zip(&self.fixed).zip(&self.inv_diag) {
-            let free = *f == FREE;
-            *m = if free { 1.0 } else { 0.0 };
-            *inv = if free { *id } else { 0.0 };
-        }
         let nt = self.nt;
-        for (span, f) in self.free_span.iter_mut().zip(self.fixed.chunks_exact(nt)) {
-            *span = free_ranges(f);
+        let rows = self.mask.chunks_exact_mut(nt).zip(self.inv_d.chunks_exact_mut(nt)).zip(self.fixed.chunks_exact(nt)).zip(self.inv_diag.chunks_exact(nt));
+        for ((((m, inv), f), id), span) in rows.zip(self.free_span.iter_mut()) {
+            // the mask, and the free nodes' extent and longest inner run of fixed nodes
+            let (mut first, mut last) = (usize::MAX, 0);
+            let (mut gap, mut gap_start) = (0, 0);
+            for i in 0..nt {
+                let free = f[i] == FREE;
+                m[i] = if free { 1.0 } else { 0.0 };
+                inv[i] = if free { id[i] } else { 0.0 };
+                if free {
+                    if first != usize::MAX && i - last - 1 > gap {
+                        (gap, gap_start) = (i - last - 1, last + 1);
+                    }
+                    first = first.min(i);
+                    last = i;
+                }
+            }
+            *span = free_ranges(nt, first, last, gap, gap_start);
         }
     }
 
@@ -557,10 +568,13 @@ impl Level {
     fn apply_free_dot(&self, z: &[f64], beta: Option<f64>, v: &mut [f64], out: &mut [f64]) -> f64 {
         let nt = self.nt;
         let nz = self.nz;
+        // on the free ranges only: outside them `z` is 0, and so `v` stays (it starts as `z`)
         let update = |v: &mut [f64], j: usize| {
             if let Some(beta) = beta {
-                for (p, z) in v[j * nt..(j + 1) * nt].iter_mut().zip(&z[j * nt..(j + 1) * nt]) {
-                    *p = z + beta * *p;
+                for (lo, hi) in self.free_span[j] {
+                    for (p, z) in v[j * nt + lo..j * nt + hi].iter_mut().zip(&z[j * nt + lo..j * nt + hi]) {
+                        *p = z + beta * *p;
+                    }
                 }
             }
         };
@@ -573,8 +587,10 @@ impl Level {
             update(v, j + 1);
             self.kernel_row::<{ Self::PLAIN }>(j, self.free_span[j], v, out, &self.mask, &self.src);
             let row = j * nt;
-            for (a, b) in v[row..row + nt].iter().zip(&out[row..row + nt]) {
-                s += a * b;
+            for (lo, hi) in self.free_span[j] {
+                for (a, b) in v[row + lo..row + hi].iter().zip(&out[row + lo..row + hi]) {
+                    s += a * b;
+                }
             }
         }
         s
@@ -889,31 +905,19 @@ fn face_means(film: &Film, z0: f64, z1: f64, m: usize, north: bool, k: f64, cs: 
 /// Two ascending column ranges of one row (see `Level::free_span`).
 type Span = [(usize, usize); 2];
 
-/// The columns of one row's `fixed` flags without their longest cyclic run of fixed nodes, as
-/// two ascending ranges (both empty when no node is free).
-fn free_ranges(f: &[u8]) -> Span {
-    let nt = f.len();
-    let (Some(lead), Some(last)) = (f.iter().position(|v| *v == FREE), f.iter().rposition(|v| *v == FREE)) else {
+/// The columns of a row of `nt` nodes without its longest cyclic run of fixed nodes, as two
+/// ascending ranges (both empty when no node is free), from the first and last free column
+/// (`first = usize::MAX` when there is none) and the longest run of fixed nodes between them
+/// (`gap` nodes from `gap_start`).
+fn free_ranges(nt: usize, first: usize, last: usize, gap: usize, gap_start: usize) -> Span {
+    if first == usize::MAX {
         return [(0, 0), (0, 0)];
-    };
-    // the run wrapping around column 0, then the longest run inside the row
-    let trail = nt - 1 - last;
-    let (mut len, mut start) = (0, 0);
-    let mut i = lead;
-    while i <= last {
-        let s = i;
-        while f[i] != FREE {
-            i += 1;
-        }
-        if i - s > len {
-            (len, start) = (i - s, s);
-        }
-        i += 1;
     }
-    if lead + trail >= len {
-        [(lead, last + 1), (nt, nt)]
+    // the run around column 0 against the longest inside the row
+    if first + (nt - 1 - last) >= gap {
+        [(first, last + 1), (nt, nt)]
     } else {
-        [(0, start), (start + len, nt)]
+        [(0, gap_start), (gap_start + gap, nt)]
     }
 }
 
@@ -1194,10 +1198,17 @@ impl Hierarchy {
             let a = rz / pq;
             let l = &mut self.levels[k];
             let mut rr = 0.0;
-            for (((u, r), p), q) in l.u.iter_mut().zip(l.b.iter_mut()).zip(p.iter()).zip(q.iter()) {
-                *u += a * p;
-                *r -= a * q;
-                rr += *r * *r;
+            // on the free ranges: outside them `p`, `q` and the residual are 0
+            let nt = l.nt;
+            for (j, span) in l.free_span.iter().enumerate() {
+                for (lo, hi) in *span {
+                    let (a0, a1) = (j * nt + lo, j * nt + hi);
+                    for (((u, r), p), q) in l.u[a0..a1].iter_mut().zip(l.b[a0..a1].iter_mut()).zip(&p[a0..a1]).zip(&q[a0..a1]) {
+                        *u += a * p;
+                        *r -= a * q;
+                        rr += *r * *r;
+                    }
+                }
             }
             rnorm = rr.sqrt();
             if rnorm <= tol * fnorm {
