@@ -1584,6 +1584,34 @@ mod tests {
     }
 
     #[test]
+    fn free_span_drops_the_longest_cyclic_run_of_fixed_nodes() {
+        // 12 columns, supply line at column 0, three interior rows
+        let mut l = Level::new(12, 5, 1);
+        let (f, c) = (FREE, CAVITATED);
+        // row 1: free on both sides of a cavitated middle: the middle run (5) is dropped
+        // row 2: free in 1..6 with a short inner run: the run around column 0 (7) is dropped
+        // row 3: cavitated throughout
+        let rows: [[u8; 11]; 3] = [[f, f, f, c, c, c, c, c, f, f, f], [f, f, c, c, f, c, c, c, c, c, c], [c; 11]];
+        for (a, row) in rows.iter().enumerate() {
+            let j = a + 1;
+            l.fixed[j * 12 + 1..j * 12 + 12].copy_from_slice(row);
+        }
+        l.refresh_masks();
+        assert_eq!(l.free_span[0], [(0, 0), (0, 0)]);
+        assert_eq!(l.free_span[1], [(0, 4), (9, 12)]);
+        assert_eq!(l.free_span[2], [(1, 6), (12, 12)]);
+        assert_eq!(l.free_span[3], [(0, 0), (0, 0)]);
+        assert_eq!(l.free_span[4], [(0, 0), (0, 0)]);
+        // every free node lies in a range
+        for j in 0..5 {
+            for i in 0..12 {
+                let inside = l.free_span[j].iter().any(|(lo, hi)| (*lo..*hi).contains(&i));
+                assert!(l.fixed[j * 12 + i] != FREE || inside, "{j} {i}");
+            }
+        }
+    }
+
+    #[test]
     fn active_set_matches_projected_gauss_seidel() {
         // The same discrete LCP solved by plain projected Gauss–Seidel to round-off.
         let mut h = aligned_hierarchy(48, 17, 1.0, 0.7);
