@@ -1459,12 +1459,15 @@ fn restrict(fine: &mut Level, coarse: &mut Level) {
         let (a, b, w) = (tz.p_lo[j], tz.p_hi[j], tz.p_w[j]);
         let src = &fine.r[j * ntf..(j + 1) * ntf];
         let wa = 1.0 - w;
-        for i in 0..ntf {
-            tmp[a * ntf + i] += wa * src[i];
-        }
-        if w != 0.0 {
-            for i in 0..ntf {
-                tmp[b * ntf + i] += w * src[i];
+        // the residual is 0 outside the row's free ranges
+        for (lo, hi) in fine.free_span[j] {
+            for i in lo..hi {
+                tmp[a * ntf + i] += wa * src[i];
+            }
+            if w != 0.0 {
+                for i in lo..hi {
+                    tmp[b * ntf + i] += w * src[i];
+                }
             }
         }
     }
