@@ -189,6 +189,29 @@ fn speed_section(reps: usize) {
     println!("L9 ({ev} analyses, 2 threads): {:.1} ms wall, {:.1} ms CPU over both threads (best of {reps})", wall * 1e3, cpu * 1e3);
 }
 
+/// The L9's nine profiled cases one by one on one thread (`cargo bench --bench journal --
+/// l9-cases`): each a cold analysis at 361×181 under seed 002's misalignment and the load of the
+/// aligned ε = 0.6, started at the aligned position (as the L9 runs are), with its work counters:
+/// balance steps per grid, V-cycles and active-set steps per level (finest first).
+fn l9_cases() {
+    let s = settings(361, 181);
+    let a = analyse(&Bearing::plain(1.25), &Operating::Eccentricity(0.6), &s, None, None, false, &Silent).unwrap();
+    let guess = Guess { eccentricity: a.eccentricity, attitude: a.attitude };
+    let runs = [(1, 0.1, 0.01), (1, 0.4, 0.2), (1, 1.0, 0.4), (2, 0.1, 0.2), (2, 0.4, 0.4), (2, 1.0, 0.01), (3, 0.1, 0.4), (3, 0.4, 0.01), (3, 1.0, 0.2)];
+    let mut finest_cycles = 0;
+    for (order, height, length_fraction) in runs {
+        let b = Bearing { profile: Some(Profile { order, height, length_fraction }), ..seed_case() };
+        let mut ws = Workspace::new(&b, &s);
+        let (c, _, m) = best_of(1, || analyse(&b, &Operating::Load(a.load), &s, Some(&mut ws), Some(guess), false, &Silent).unwrap());
+        finest_cycles += ws.cycles()[0];
+        println!(
+            "({order}, {height}, {length_fraction}): {:.1} ms CPU; ε {:.7}, β {:.7}; steps per grid {:?}; V-cycles {:?}; active-set steps {:?}",
+            c * 1e3, m.eccentricity, m.attitude, m.steps_per_grid, ws.cycles(), ws.steps()
+        );
+    }
+    println!("finest-grid V-cycles over the nine cases: {finest_cycles}");
+}
+
 /// Records every `check()` of a solve: (rayon worker, wall s since start, the thread's CPU s), and
 /// the progress stages. `cargo bench --bench journal -- l9-timeline`: when each worker of the L9
 /// pool worked, and how much CPU it got while it did.
@@ -277,6 +300,10 @@ fn main() {
             }
         });
         println!("{which}: {:.3} ms CPU per analysis", c * 1e3 / n as f64);
+        return;
+    }
+    if std::env::args().any(|a| a == "l9-cases") {
+        l9_cases();
         return;
     }
     if std::env::args().any(|a| a == "l9-timeline") {

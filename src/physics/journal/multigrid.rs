@@ -204,9 +204,18 @@ pub struct Level {
     inv_d: Vec<f64>,
     /// `1/diag` at every node (set with the coefficients; `inv_d` is it masked).
     inv_diag: Vec<f64>,
+    /// Per row, two ascending column ranges `a₁..b₁`, `a₂..b₂` that hold every free node: the
+    /// row without its longest (cyclic) run of fixed nodes. Outside them the V-cycle's
+    /// correction, residual and `A p` are 0, so the smoother and the operator kernels skip them.
+    free_span: Vec<Span>,
     /// Face cosines and sines of the last `set_film` (scratch kept to avoid allocation).
     cos_f: Vec<f64>,
     sin_f: Vec<f64>,
+    /// Axial samples per cell for the face conductances of a profiled film: the finest grid's
+    /// axial cells in one of this level's (1 on the finest level: point values).
+    zq: usize,
+    /// Film rows at the axial samples of one face (scratch of `set_film`).
+    zrows: Vec<super::film::Row>,
     /// 1 at every node that is not on the boundary (edges, supply line).
     interior: Vec<f64>,
     // linear multigrid work arrays (correction scheme)
@@ -263,8 +272,11 @@ impl Level {
             mask: vec![0.0; n],
             inv_d: vec![0.0; n],
             inv_diag: vec![0.0; n],
+            free_span: vec![[(0, nt), (nt, nt)]; nz],
             cos_f: vec![0.0; nt],
             sin_f: vec![0.0; nt],
+            zq: 1,
+            zrows: Vec::new(),
             interior: vec![0.0; n],
             x: vec![0.0; n],
             b: vec![0.0; n],
@@ -324,7 +336,10 @@ impl Level {
             let r = film.row(z);
             let rn = film.row((z + 0.5 * dz).min(1.0));
             let row = j * nt;
-            if j + 1 < nz && prev == Some((r, rn)) {
+            let (z_lo, z_hi) = ((z - 0.5 * dz).max(0.0), (z + 0.5 * dz).min(1.0));
+            let east_avg = self.sub_cell_profile(film) && profile_in(film, z_lo, z_hi);
+            let north_avg = self.sub_cell_profile(film) && j + 1 < nz && profile_in(film, z, (z + dz).min(1.0));
+            if !east_avg && !north_avg && j + 1 < nz && prev == Some((r, rn)) {
                 // the same film data as the row below (an aligned film, or the unprofiled middle
                 // of a profiled one): the same coefficients
                 for v in [&mut self.ce, &mut self.h, &mut self.cn, &mut self.src] {
@@ -332,7 +347,7 @@ impl Level {
                 }
                 continue;
             }
-            prev = (j + 1 < nz).then_some((r, rn));
+            prev = (j + 1 < nz && !east_avg && !north_avg).then_some((r, rn));
             let base = 1.0 + r.gamma;
             let base_n = 1.0 + rn.gamma;
             let ce = &mut self.ce[row..row + nt];
@@ -342,8 +357,13 @@ impl Level {
                 ce[i] = he * he * he * ke;
                 h[i] = base + r.x * self.cos_n[i] + r.y * self.sin_n[i];
             }
+            if east_avg {
+                face_means(film, z_lo, z_hi, self.zq, false, ke, &cos_f, &sin_f, &mut self.zrows, &mut self.ce[row..row + nt]);
+            }
             let cn = &mut self.cn[row..row + nt];
-            if j + 1 < nz {
+            if north_avg {
+                face_means(film, z, (z + dz).min(1.0), self.zq, true, kn, &self.cos_n, &self.sin_n, &mut self.zrows, cn);
+            } else if j + 1 < nz {
                 for i in 0..nt {
                     let hn = base_n + rn.x * self.cos_n[i] + rn.y * self.sin_n[i];
                     cn[i] = hn * hn * hn * kn;
@@ -386,6 +406,16 @@ impl Level {
         self.refresh_masks();
     }
 
+    /// Whether this level's face conductances take the film's edge profile as a cell mean
+    /// ([`face_means`]): on a coarse level whose axial cell is wider than the profiled zone
+    /// (`ψ < ΔZ`), where a point value at the face misses most of the profile. A profile that
+    /// spans a cell or more keeps the point values: measured on the L9's nine cases (BENCHMARKS.md,
+    /// speed seventh round), cell means there put the coarse equilibria farther from the
+    /// finest grid's (one more finest Newton step in three of the six cases with ψ ≥ 0.2).
+    fn sub_cell_profile(&self, film: &Film) -> bool {
+        self.zq > 1 && film.profile.is_some_and(|p| p.length_fraction < self.dz)
+    }
+
     /// [`Hierarchy::lcp_residual`] with `lam = A u − f` already computed (at the non-boundary
     /// nodes). The denominator `‖f/d‖²` depends on the coefficients only: it is kept with them.
     fn lcp_residual_of(&mut self, lam: &[f64]) -> f64 {
@@ -419,10 +449,25 @@ impl Level {
     fn refresh_masks(&mut self) {
         self.chol = None;
         self.free_src_norm = None;
-        for (((m, inv), f), id) in self.mask.iter_mut().zip(self.inv_d.iter_mut()).zip(&self.fixed).zip(&self.inv_diag) {
-            let free = *f == FREE;
-            *m = if free { 1.0 } else { 0.0 };
-            *inv = if free { *id } else { 0.0 };
+        let nt = self.nt;
+        let rows = self.mask.chunks_exact_mut(nt).zip(self.inv_d.chunks_exact_mut(nt)).zip(self.fixed.chunks_exact(nt)).zip(self.inv_diag.chunks_exact(nt));
+        for ((((m, inv), f), id), span) in rows.zip(self.free_span.iter_mut()) {
+            // the mask, and the free nodes' extent and longest inner run of fixed nodes
+            let (mut first, mut last) = (usize::MAX, 0);
+            let (mut gap, mut gap_start) = (0, 0);
+            for i in 0..nt {
+                let free = f[i] == FREE;
+                m[i] = if free { 1.0 } else { 0.0 };
+                inv[i] = if free { id[i] } else { 0.0 };
+                if free {
+                    if first != usize::MAX && i - last - 1 > gap {
+                        (gap, gap_start) = (i - last - 1, last + 1);
+                    }
+                    first = first.min(i);
+                    last = i;
+                }
+            }
+            *span = free_ranges(nt, first, last, gap, gap_start);
         }
     }
 
@@ -523,10 +568,13 @@ impl Level {
     fn apply_free_dot(&self, z: &[f64], beta: Option<f64>, v: &mut [f64], out: &mut [f64]) -> f64 {
         let nt = self.nt;
         let nz = self.nz;
+        // on the free ranges only: outside them `z` is 0, and so `v` stays (it starts as `z`)
         let update = |v: &mut [f64], j: usize| {
             if let Some(beta) = beta {
-                for (p, z) in v[j * nt..(j + 1) * nt].iter_mut().zip(&z[j * nt..(j + 1) * nt]) {
-                    *p = z + beta * *p;
+                for (lo, hi) in self.free_span[j] {
+                    for (p, z) in v[j * nt + lo..j * nt + hi].iter_mut().zip(&z[j * nt + lo..j * nt + hi]) {
+                        *p = z + beta * *p;
+                    }
                 }
             }
         };
@@ -537,10 +585,12 @@ impl Level {
         let mut s = 0.0;
         for j in 1..nz - 1 {
             update(v, j + 1);
-            self.kernel_row::<{ Self::PLAIN }>(j, v, out, &self.mask, &self.src);
+            self.kernel_row::<{ Self::PLAIN }>(j, self.free_span[j], v, out, &self.mask, &self.src);
             let row = j * nt;
-            for (a, b) in v[row..row + nt].iter().zip(&out[row..row + nt]) {
-                s += a * b;
+            for (lo, hi) in self.free_span[j] {
+                for (a, b) in v[row + lo..row + hi].iter().zip(&out[row + lo..row + hi]) {
+                    s += a * b;
+                }
             }
         }
         s
@@ -613,12 +663,17 @@ impl Level {
         let (ta, tb) = (&self.tmp[a * nt..(a + 1) * nt], &self.tmp[b * nt..(b + 1) * nt]);
         let m = &self.mask[row..row + nt];
         let x = &mut self.x[row..row + nt];
-        for i in 0..nt {
-            x[i] += m[i] * ((1.0 - w) * ta[i] + w * tb[i]);
+        // outside the free ranges the mask is 0 (the correction adds nothing)
+        for (lo, hi) in self.free_span[j] {
+            for i in lo..hi {
+                x[i] += m[i] * ((1.0 - w) * ta[i] + w * tb[i]);
+            }
         }
     }
 
-    /// The first half-sweep from `x = 0`: `x = b/d` on the nodes of colour `color` in row `j`.
+    /// The first half-sweep from `x = 0`: `x = b/d` on the nodes of colour `color` in row `j`
+    /// within its free span, and `x = 0` on both colours outside it (the later half-sweeps
+    /// skip those nodes: every one is fixed).
     #[inline(always)]
     fn smooth_row_zero(&mut self, j: usize, color: usize) {
         let nt = self.nt;
@@ -626,10 +681,14 @@ impl Level {
         let inv = &self.inv_d[row..row + nt];
         let b = &self.b[row..row + nt];
         let cur = &mut self.x[row..row + nt];
-        let mut i = (color + j) % 2;
-        while i < nt {
-            cur[i] = b[i] * inv[i];
-            i += 2;
+        let span = self.free_span[j];
+        fill_gaps(cur, span);
+        for (lo, hi) in span {
+            let mut i = lo + (color + j + lo) % 2;
+            while i < hi {
+                cur[i] = b[i] * inv[i];
+                i += 2;
+            }
         }
     }
 
@@ -637,13 +696,22 @@ impl Level {
     #[inline(always)]
     fn residual_row(&mut self, j: usize) {
         let mut r = std::mem::take(&mut self.r);
-        self.kernel_row::<{ Self::SUB_MINUS }>(j, &self.x, &mut r, &self.mask, &self.b);
+        self.kernel_row::<{ Self::SUB_MINUS }>(j, self.free_span[j], &self.x, &mut r, &self.mask, &self.b);
         self.r = r;
     }
 
-    /// Gauss–Seidel update of the nodes of colour `color` (`(i + j) % 2`) in row `j`.
+    /// Gauss–Seidel update of the nodes of colour `color` (`(i + j) % 2`) in row `j` within its
+    /// free span (outside it every node is fixed and `x` stays 0).
     #[inline(always)]
     fn smooth_row(&mut self, j: usize, color: usize) {
+        for (lo, hi) in self.free_span[j] {
+            self.smooth_range(j, color, lo, hi);
+        }
+    }
+
+    /// [`Level::smooth_row`] on the columns `lo..hi`.
+    #[inline(always)]
+    fn smooth_range(&mut self, j: usize, color: usize, lo: usize, hi: usize) {
         let nt = self.nt;
         let row = j * nt;
         let ce = &self.ce[row..row + nt];
@@ -661,15 +729,18 @@ impl Level {
             let s = b[i] + ce[i] * cur[ie] + ce[iw] * cur[iw] + cn_n[i] * above[i] + cn_s[i] * below[i];
             cur[i] = s * inv[i];
         }
-        let mut i = (color + j) % 2;
+        let mut i = lo + (color + j + lo) % 2;
+        if i >= hi {
+            return;
+        }
         if i == 0 {
             upd(cur, b, ce, cn_n, cn_s, above, below, inv, 0, nt - 1, 1);
             i = 2;
         }
-        let end = if (nt - 1) % 2 == i % 2 { nt - 1 } else { nt };
-        // interior nodes of this colour: 1 ≤ i ≤ nt − 2, step 2
+        // interior nodes of this colour: 1 ≤ i ≤ nt − 2 and i < hi, step 2
+        let end = hi.min(nt - 1);
         let mut k = i;
-        while k + 1 < nt {
+        while k < end {
             // SAFETY: 1 ≤ k − 1 < k + 1 < nt and every slice has length nt.
             unsafe {
                 let s = *b.get_unchecked(k)
@@ -681,8 +752,7 @@ impl Level {
             }
             k += 2;
         }
-        let _ = end;
-        if k + 1 == nt {
+        if k + 1 == nt && k < hi {
             upd(cur, b, ce, cn_n, cn_s, above, below, inv, k, k - 1, 0);
         }
     }
@@ -741,13 +811,26 @@ impl Level {
         out[..nt].fill(0.0);
         out[(self.nz - 1) * nt..].fill(0.0);
         for j in 1..self.nz - 1 {
-            self.kernel_row::<MODE>(j, v, out, mask, sub);
+            self.kernel_row::<MODE>(j, [(0, nt), (nt, nt)], v, out, mask, sub);
         }
     }
 
-    /// Row `j` (not an edge row) of [`Level::kernel`].
+    /// Row `j` (not an edge row) of [`Level::kernel`] on the column ranges `span`; 0 on the
+    /// other columns (where `mask` is 0).
     #[inline(always)]
-    fn kernel_row<const MODE: u8>(&self, j: usize, v: &[f64], out: &mut [f64], mask: &[f64], sub: &[f64]) {
+    #[allow(clippy::too_many_arguments)]
+    fn kernel_row<const MODE: u8>(&self, j: usize, span: Span, v: &[f64], out: &mut [f64], mask: &[f64], sub: &[f64]) {
+        let row = j * self.nt;
+        fill_gaps(&mut out[row..row + self.nt], span);
+        for (lo, hi) in span {
+            self.kernel_range::<MODE>(j, lo, hi, v, out, mask, sub);
+        }
+    }
+
+    /// [`Level::kernel_row`] on the columns `lo..hi` (the others untouched).
+    #[inline(always)]
+    #[allow(clippy::too_many_arguments)]
+    fn kernel_range<const MODE: u8>(&self, j: usize, lo: usize, hi: usize, v: &[f64], out: &mut [f64], mask: &[f64], sub: &[f64]) {
         #[inline(always)]
         fn finish<const MODE: u8>(m: f64, a: f64, s: f64) -> f64 {
             match MODE {
@@ -768,20 +851,89 @@ impl Level {
         let vc = &v[row..row + nt];
         let va = &v[row + nt..row + 2 * nt];
         let o = &mut out[row..row + nt];
-        let a0 = d[0] * vc[0] - ce[0] * vc[1] - ce[nt - 1] * vc[nt - 1] - cnn[0] * va[0] - cs[0] * vb[0];
-        let an = d[nt - 1] * vc[nt - 1] - ce[nt - 1] * vc[0] - ce[nt - 2] * vc[nt - 2] - cnn[nt - 1] * va[nt - 1] - cs[nt - 1] * vb[nt - 1];
-        o[0] = finish::<MODE>(m[0], a0, sb[0]);
-        o[nt - 1] = finish::<MODE>(m[nt - 1], an, sb[nt - 1]);
-        let n = nt - 2;
-        let (d1, ce0, ce1, cn1, cs1) = (&d[1..n + 1], &ce[0..n], &ce[1..n + 1], &cnn[1..n + 1], &cs[1..n + 1]);
-        let (vw, vcc, ve, va1, vb1) = (&vc[0..n], &vc[1..n + 1], &vc[2..n + 2], &va[1..n + 1], &vb[1..n + 1]);
-        let (m1, s1) = (&m[1..n + 1], &sb[1..n + 1]);
-        let o1 = &mut o[1..n + 1];
+        if lo == 0 && hi > 0 {
+            let a0 = d[0] * vc[0] - ce[0] * vc[1] - ce[nt - 1] * vc[nt - 1] - cnn[0] * va[0] - cs[0] * vb[0];
+            o[0] = finish::<MODE>(m[0], a0, sb[0]);
+        }
+        if hi == nt && lo < nt {
+            let an = d[nt - 1] * vc[nt - 1] - ce[nt - 1] * vc[0] - ce[nt - 2] * vc[nt - 2] - cnn[nt - 1] * va[nt - 1] - cs[nt - 1] * vb[nt - 1];
+            o[nt - 1] = finish::<MODE>(m[nt - 1], an, sb[nt - 1]);
+        }
+        // the interior columns of the range, 1 ≤ i ≤ nt − 2
+        let (a, b) = (lo.max(1), hi.min(nt - 1));
+        if a >= b {
+            return;
+        }
+        let (d1, ce0, ce1, cn1, cs1) = (&d[a..b], &ce[a - 1..b - 1], &ce[a..b], &cnn[a..b], &cs[a..b]);
+        let (vw, vcc, ve, va1, vb1) = (&vc[a - 1..b - 1], &vc[a..b], &vc[a + 1..b + 1], &va[a..b], &vb[a..b]);
+        let (m1, s1) = (&m[a..b], &sb[a..b]);
+        let o1 = &mut o[a..b];
+        let n = b - a;
         for i in 0..n {
             let a = d1[i] * vcc[i] - ce1[i] * ve[i] - ce0[i] * vw[i] - cn1[i] * va1[i] - cs1[i] * vb1[i];
             o1[i] = finish::<MODE>(m1[i], a, s1[i]);
         }
     }
+}
+
+/// Face conductances of one row of a coarse level under a profiled film whose edge profile
+/// varies inside one coarse cell (a point value at the face does not see a profile narrower
+/// than the cell): the film across the axial interval `[z0, z1]` sampled at `m` midpoints (the
+/// finest grid's resolution), at the angles `(cs, sn)`. East faces (`north = false`, flow
+/// around the bearing: the sub-cells conduct in parallel) take the arithmetic mean of `H³`
+/// over the cell's axial extent; north faces (`north = true`, flow along the axis: the
+/// sub-cells conduct in series) the harmonic mean over `[Z_j, Z_{j+1}]` (finite-volume
+/// conductances of a varying coefficient, Patankar 1980, §4.2-3). `k` is the grid factor
+/// `ΔZ/Δθ` or `αΔθ/ΔZ`; `zrows` is scratch.
+#[allow(clippy::too_many_arguments)]
+fn face_means(film: &Film, z0: f64, z1: f64, m: usize, north: bool, k: f64, cs: &[f64], sn: &[f64], zrows: &mut Vec<super::film::Row>, out: &mut [f64]) {
+    zrows.clear();
+    zrows.extend((0..m).map(|q| film.row(z0 + (q as f64 + 0.5) / m as f64 * (z1 - z0))));
+    let inv_m = 1.0 / m as f64;
+    for ((o, c), s) in out.iter_mut().zip(cs).zip(sn) {
+        let mut acc = 0.0;
+        for r in zrows.iter() {
+            let h = 1.0 + r.gamma + r.x * c + r.y * s;
+            let h3 = h * h * h;
+            acc += if north { 1.0 / h3 } else { h3 };
+        }
+        let mean = acc * inv_m;
+        *o = if north { k / mean } else { mean * k };
+    }
+}
+
+/// Two ascending column ranges of one row (see `Level::free_span`).
+type Span = [(usize, usize); 2];
+
+/// The columns of a row of `nt` nodes without its longest cyclic run of fixed nodes, as two
+/// ascending ranges (both empty when no node is free), from the first and last free column
+/// (`first = usize::MAX` when there is none) and the longest run of fixed nodes between them
+/// (`gap` nodes from `gap_start`).
+fn free_ranges(nt: usize, first: usize, last: usize, gap: usize, gap_start: usize) -> Span {
+    if first == usize::MAX {
+        return [(0, 0), (0, 0)];
+    }
+    // the run around column 0 against the longest inside the row
+    if first + (nt - 1 - last) >= gap {
+        [(first, last + 1), (nt, nt)]
+    } else {
+        [(0, gap_start), (gap_start + gap, nt)]
+    }
+}
+
+/// Zero of `row` outside the ranges of `span`.
+#[inline(always)]
+fn fill_gaps(row: &mut [f64], span: Span) {
+    let [(a1, b1), (a2, b2)] = span;
+    row[..a1].fill(0.0);
+    row[b1..a2].fill(0.0);
+    row[b2..].fill(0.0);
+}
+
+/// Whether the film's edge profile is non-zero anywhere in `[z0, z1]` (it is zero exactly on
+/// `[ψ, 1 − ψ]` and non-zero elsewhere when its height is).
+fn profile_in(film: &Film, z0: f64, z1: f64) -> bool {
+    film.profile.is_some_and(|p| p.opening(z0) != 0.0 || p.opening(z1) != 0.0)
 }
 
 /// The grid hierarchy for one bearing: level 0 is the finest.
@@ -859,6 +1011,10 @@ impl Hierarchy {
             fine.tz = Some(tz);
             fine.tmp = vec![0.0; nz_c * nt];
             levels.push(Level::new(nt_c, nz_c, grooves));
+        }
+        let dz0 = levels[0].dz;
+        for l in &mut levels[1..] {
+            l.zq = ((l.dz / dz0).round() as usize).max(1);
         }
         let n = levels.len();
         Hierarchy { levels, alpha, sweeps: 2, cycle_count: vec![0; n], step_count: vec![0; n], eager_tight: false, scratch: Default::default() }
@@ -1042,10 +1198,17 @@ impl Hierarchy {
             let a = rz / pq;
             let l = &mut self.levels[k];
             let mut rr = 0.0;
-            for (((u, r), p), q) in l.u.iter_mut().zip(l.b.iter_mut()).zip(p.iter()).zip(q.iter()) {
-                *u += a * p;
-                *r -= a * q;
-                rr += *r * *r;
+            // on the free ranges: outside them `p`, `q` and the residual are 0
+            let nt = l.nt;
+            for (j, span) in l.free_span.iter().enumerate() {
+                for (lo, hi) in *span {
+                    let (a0, a1) = (j * nt + lo, j * nt + hi);
+                    for (((u, r), p), q) in l.u[a0..a1].iter_mut().zip(l.b[a0..a1].iter_mut()).zip(&p[a0..a1]).zip(&q[a0..a1]) {
+                        *u += a * p;
+                        *r -= a * q;
+                        rr += *r * *r;
+                    }
+                }
             }
             rnorm = rr.sqrt();
             if rnorm <= tol * fnorm {
@@ -1296,12 +1459,15 @@ fn restrict(fine: &mut Level, coarse: &mut Level) {
         let (a, b, w) = (tz.p_lo[j], tz.p_hi[j], tz.p_w[j]);
         let src = &fine.r[j * ntf..(j + 1) * ntf];
         let wa = 1.0 - w;
-        for i in 0..ntf {
-            tmp[a * ntf + i] += wa * src[i];
-        }
-        if w != 0.0 {
-            for i in 0..ntf {
-                tmp[b * ntf + i] += w * src[i];
+        // the residual is 0 outside the row's free ranges
+        for (lo, hi) in fine.free_span[j] {
+            for i in lo..hi {
+                tmp[a * ntf + i] += wa * src[i];
+            }
+            if w != 0.0 {
+                for i in lo..hi {
+                    tmp[b * ntf + i] += w * src[i];
+                }
             }
         }
     }
@@ -1418,6 +1584,34 @@ mod tests {
         // a position farther than `near` rebuilds them
         b.set_film_near(0, &film(0.52), 0.0, 1e-3);
         assert!(b.levels[1].coeffs_of.unwrap().0 == film(0.52));
+    }
+
+    #[test]
+    fn free_span_drops_the_longest_cyclic_run_of_fixed_nodes() {
+        // 12 columns, supply line at column 0, three interior rows
+        let mut l = Level::new(12, 5, 1);
+        let (f, c) = (FREE, CAVITATED);
+        // row 1: free on both sides of a cavitated middle: the middle run (5) is dropped
+        // row 2: free in 1..6 with a short inner run: the run around column 0 (7) is dropped
+        // row 3: cavitated throughout
+        let rows: [[u8; 11]; 3] = [[f, f, f, c, c, c, c, c, f, f, f], [f, f, c, c, f, c, c, c, c, c, c], [c; 11]];
+        for (a, row) in rows.iter().enumerate() {
+            let j = a + 1;
+            l.fixed[j * 12 + 1..j * 12 + 12].copy_from_slice(row);
+        }
+        l.refresh_masks();
+        assert_eq!(l.free_span[0], [(0, 0), (0, 0)]);
+        assert_eq!(l.free_span[1], [(0, 4), (9, 12)]);
+        assert_eq!(l.free_span[2], [(1, 6), (12, 12)]);
+        assert_eq!(l.free_span[3], [(0, 0), (0, 0)]);
+        assert_eq!(l.free_span[4], [(0, 0), (0, 0)]);
+        // every free node lies in a range
+        for j in 0..5 {
+            for i in 0..12 {
+                let inside = l.free_span[j].iter().any(|(lo, hi)| (*lo..*hi).contains(&i));
+                assert!(l.fixed[j * 12 + i] != FREE || inside, "{j} {i}");
+            }
+        }
     }
 
     #[test]
