@@ -1338,6 +1338,9 @@ fn solve_levels(input: &Ehl2dInput, options: &Ehl2dOptions, s: &Scales, d: Domai
         let hc = if prob.evaluate(&p, h0, &mut v) {
             let hc = bilinear(&prob.x, &prob.y, &v.h, 0.0, 0.0);
             coarse = Some((hc, v.h.iter().cloned().fold(f64::INFINITY, f64::min), lx, ly));
+            if trace() {
+                eprintln!("ehl2d level {lx}x{ly}: Hc {hc:.4e} Hmin {:.4e} floor {:.4e} at floor {}", v.h.iter().cloned().fold(f64::INFINITY, f64::min), prob.floor, v.on.iter().filter(|o| **o == 0.0).count());
+            }
             hc
         } else {
             coarse = None;
