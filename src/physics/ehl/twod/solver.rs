@@ -61,7 +61,8 @@ const MAX_HALVINGS: u32 = 25;
 /// the discrete problem of the current stage wants a non-positive film at one node (issue 16,
 /// measured: 1.7 GPa on 65², the arithmetic-mean stage of the continuation pinches in a side
 /// lobe; each step then shrank that film 5× and the step with it, 190 steps to a residual of
-/// 2.4e-5); the rule now only damps ([`film_damping`]). A converged film at the floor is refused by the pinch check ([`PINCH`] ≫ 1e-3).
+/// 2.4e-5); the rule now only damps ([`film_damping`]). A converged film at the floor is refused
+/// by the pinch check ([`PINCH`] ≫ 1e-3).
 pub const FILM_FLOOR: f64 = 1e-3;
 /// Fraction-to-boundary rule of [`film_damping`]: largest fraction of a node's film one step may
 /// remove, and the smallest step it may impose.
