@@ -48,8 +48,11 @@
 //! Grid convergence (`BENCHMARKS.md`, "Finite-length and point EHL"): on the circular M ≈ 300,
 //! L ≈ 11 contact the central film is within −5 % (65²), −1.6 % (129²), −0.4 % (257²) of the
 //! Richardson value (arithmetic means before: −28 %, −7 %, −1.8 %); observed order 1.5 along x on
-//! 65…257 nodes, 2 across. Still failing (`NotConverged`, typed, tests ignored): near-dry
-//! (M ≈ 3000), 1.7 GPa on 65², the 129×65 long straight roller.
+//! 65…257 nodes, 2 across. Newton's stalls at a node whose film the discrete problem wants
+//! non-positive are gone (a film floor in the Reynolds terms, `solver::FILM_FLOOR`): 1.7 GPa
+//! converges on 129² (on 65² it is refused by the resolution check), a long straight roller with
+//! relieved ends matches the 1-D line solution to 0.84 %. Still failing (`NotConverged`, typed,
+//! test ignored): near-dry (M ≈ 3000) on 97².
 //!
 //! # Not modelled
 //! Transient (squeeze) terms, thermal and non-Newtonian effects, grid grading and mixed

@@ -5,7 +5,8 @@
 //! included) — the complementarity reformulation of the 1-D solver (`super::super::newton`) —
 //! and the load balance. A Newton step solves `J δ = −φ` by restarted GMRES, right-preconditioned
 //! by the sparse LU of the near-field Jacobian; a backtracking line search on `Σ φ² ΔXΔY + G²`
-//! and a fraction-to-boundary rule on the film damp it.
+//! from a fraction-to-boundary step on the film ([`film_damping`]) damps it (the Reynolds terms
+//! see the film above a small floor, [`FILM_FLOOR`], so every trial point is evaluable).
 //!
 //! The LU is kept (chord-preconditioned Newton–Krylov, as the 1-D solver): a step first runs
 //! GMRES with the last factor of this grid — an earlier Newton step's, continuation step's or,
@@ -53,6 +54,20 @@ fn reuse_policy() -> (usize, usize, bool) {
 }
 /// Most halvings in the line search.
 const MAX_HALVINGS: u32 = 25;
+/// The film floor of the Reynolds terms, as a fraction of the closed-form film estimate: the
+/// Poiseuille and wedge terms see `max(H, floor)` (`∂/∂H` zero below it), so a Newton iterate may
+/// pass through a non-positive film at a node without leaving the domain of the residual. The
+/// fraction-to-boundary rule that kept every iterate's film positive before stalled Newton where
+/// the discrete problem of the current stage wants a non-positive film at one node (issue 16,
+/// measured: 1.7 GPa on 65², the arithmetic-mean stage of the continuation pinches in a side
+/// lobe; each step then shrank that film 5× and the step with it, 190 steps to a residual of
+/// 2.4e-5); the rule now only damps ([`film_damping`]). A converged film at the floor is refused
+/// by the pinch check ([`PINCH`] ≫ 1e-3).
+pub const FILM_FLOOR: f64 = 1e-3;
+/// Fraction-to-boundary rule of [`film_damping`]: largest fraction of a node's film one step may
+/// remove, and the smallest step it may impose.
+const FTB: f64 = 0.8;
+const FTB_MIN: f64 = 0.1;
 
 /// The discretisation on one grid.
 struct Problem {
@@ -80,9 +95,9 @@ struct Problem {
     /// Weight of the geometric face mean of `ε` ([`face_of`]): 1, or less during the
     /// continuation from the arithmetic mean.
     theta: f64,
-    /// Film floor in units of `a²/R_x` (`None`: off, the default): below it the film is held
-    /// constant in the Reynolds terms (a regularisation under study, see the module status).
-    floor: Option<f64>,
+    /// Film floor in units of `a²/R_x` ([`FILM_FLOOR`] times the film estimate): below it the
+    /// film is held constant in the Reynolds terms.
+    floor: f64,
     /// Unknown index of each node (`usize::MAX`: boundary).
     unk: Vec<usize>,
     /// Node of each unknown (interior nodes).
@@ -173,7 +188,7 @@ impl Problem {
             rheo: PressureRheology::new(&input.lubricant, input.temperature),
             defl: Deflection::new(nx, ny, dx, dy, s.c_def),
             near,
-            floor: None,
+            floor: FILM_FLOOR * s.h_est,
             second: true,
             theta: 1.0,
             unk,
@@ -204,7 +219,8 @@ impl Problem {
         w
     }
 
-    /// Fields at `(p, h0)`; `false` when the film is not positive or a value is not finite.
+    /// Fields at `(p, h0)` (the film held at the floor where it falls below); `false` when a value
+    /// is not finite.
     fn evaluate(&mut self, p: &[f64], h0: f64, v: &mut Fields) -> bool {
         let n = self.nx * self.ny;
         for a in [&mut v.w, &mut v.h, &mut v.rho, &mut v.drho, &mut v.eps, &mut v.deps, &mut v.f, &mut v.on] {
@@ -214,11 +230,9 @@ impl Problem {
         for k in 0..n {
             let mut h = h0 + self.geom[k] + v.w[k];
             v.on[k] = 1.0;
-            if let Some(floor) = self.floor {
-                if h < floor {
-                    h = floor;
-                    v.on[k] = 0.0;
-                }
+            if h < self.floor {
+                h = self.floor;
+                v.on[k] = 0.0;
             }
             if !(h > 0.0 && h.is_finite()) {
                 return false;
@@ -750,19 +764,9 @@ fn newton(prob: &mut Problem, p: &mut [f64], h0: &mut f64, tol: f64, max_iter: u
             dpn[k] = sol[u];
         }
         let dh0 = sol[m];
-        prob.defl.apply(&dpn, &mut dw);
-        let mut alpha: f64 = 1.0;
-        let ftb = 0.8;
-        let mut limiting = 0;
-        for k in 0..p.len() {
-            let d = dh0 + dw[k];
-            if prob.floor.is_none() && d < 0.0 && ftb * v.h[k] / -d < alpha {
-                alpha = ftb * v.h[k] / -d;
-                limiting = k;
-            }
-        }
+        let mut alpha = film_damping(prob, &v, &dpn, dh0, &mut dw);
         if trace() {
-            eprintln!("   ftb alpha {alpha:.3e} at node ({}, {}) h {:.3e} P {:.3e} dh0 {dh0:.3e}", limiting % prob.nx, limiting / prob.nx, v.h[limiting], p[limiting]);
+            eprintln!("   film damping alpha {alpha:.3e}");
         }
         let m0 = dot(&phi, &phi) * cell + v.g * v.g;
         let mut accepted = false;
@@ -798,6 +802,27 @@ fn newton(prob: &mut Problem, p: &mut [f64], h0: &mut f64, tol: f64, max_iter: u
         }
     }
     unreachable!("the loop returns at iter == max_iter")
+}
+
+/// First trial length of a Newton step: the fraction-to-boundary rule on the film (no node's film
+/// shrinks below `1 − FTB` of itself), unless it would cut the step below `FTB_MIN`: then the full
+/// step, the film passing below the floor ([`FILM_FLOOR`]) where the discrete problem wants it
+/// non-positive, and the line search's merit function decides. The rule alone stalled Newton
+/// there (the limiting film shrank 5× per step and the step with it, issue 16).
+fn film_damping(prob: &mut Problem, v: &Fields, dpn: &[f64], dh0: f64, dw: &mut [f64]) -> f64 {
+    prob.defl.apply(dpn, dw);
+    let mut alpha: f64 = 1.0;
+    for (k, d) in dw.iter().enumerate() {
+        let d = dh0 + d;
+        if d < 0.0 && v.on[k] > 0.0 && FTB * v.h[k] / -d < alpha {
+            alpha = FTB * v.h[k] / -d;
+        }
+    }
+    if alpha < FTB_MIN {
+        1.0
+    } else {
+        alpha
+    }
 }
 
 /// Newton from `(p, h0)`; when it fails, pseudo-time continuation ([`march`]) from the same start.
@@ -1056,7 +1081,7 @@ fn cold(prob: &mut Problem, input: &Ehl2dInput, s: &Scales) -> (Vec<f64>, f64) {
         let (x, y) = (prob.x[k % nx] / wide, prob.y[k / nx]);
         p[k] = match input.geometry {
             Geometry2d::Point { .. } => (1.0 - x * x - (y / (s.ky * wide)).powi(2)).max(0.0).sqrt(),
-            Geometry2d::Finite { .. } => (1.0 - x * x).max(0.0).sqrt() * (1.0 - (y / s.loaded).powi(2)).max(0.0),
+            Geometry2d::Finite { .. } => (1.0 - x * x).max(0.0).sqrt() * slice_load(input, s, y),
         };
     }
     let sum: f64 = p.iter().sum::<f64>() * prob.dx * prob.dy;
@@ -1065,6 +1090,23 @@ fn cold(prob: &mut Problem, input: &Ehl2dInput, s: &Scales) -> (Vec<f64>, f64) {
     }
     let h0 = h0_for(prob, &p, s.h_est);
     (p, h0)
+}
+
+/// The slice model's load per length at `Y` relative to the centre's (`physics::roller::Crown::
+/// distribute`: each slice carries `∝ (δ − g(y))₊`, the approach `δ` being the gap at the loaded
+/// zone's edge): `1 − S(Y)/S(Y_loaded)`, uniform along a straight roller (the parabola
+/// `1 − (Y/Y_loaded)²` of the crowned middle before, which loaded a straight roller's centre 1.5×
+/// and left its ends unloaded: its films there started far below zero, issue 16).
+fn slice_load(input: &Ehl2dInput, s: &Scales, y: f64) -> f64 {
+    let delta = side_gap(input, s, s.loaded.min(s.ky));
+    let g = side_gap(input, s, y);
+    if delta > 0.0 {
+        (1.0 - g / delta).max(0.0)
+    } else if g <= 0.0 {
+        1.0
+    } else {
+        0.0
+    }
 }
 
 /// The pressure of a coarser grid interpolated onto `prob`'s nodes, scaled to the load.
@@ -1297,6 +1339,9 @@ fn solve_levels(input: &Ehl2dInput, options: &Ehl2dOptions, s: &Scales, d: Domai
         let hc = if prob.evaluate(&p, h0, &mut v) {
             let hc = bilinear(&prob.x, &prob.y, &v.h, 0.0, 0.0);
             coarse = Some((hc, v.h.iter().cloned().fold(f64::INFINITY, f64::min), lx, ly));
+            if trace() {
+                eprintln!("ehl2d level {lx}x{ly}: Hc {hc:.4e} Hmin {:.4e} floor {:.4e} at floor {}", v.h.iter().cloned().fold(f64::INFINITY, f64::min), prob.floor, v.on.iter().filter(|o| **o == 0.0).count());
+            }
             hc
         } else {
             coarse = None;
