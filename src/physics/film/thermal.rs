@@ -470,10 +470,10 @@ impl FilmModel for ThermalNumerical {
             let keys = self.keys.lock().unwrap_or_else(|e| e.into_inner());
             keys.iter().map(|k| (distance(here, k.conditions()), k)).min_by(|a, b| a.0.total_cmp(&b.0)).map(|(d, k)| (d, k.clone()))
         };
-        if let Some((d, key)) = &nearest {
-            if *d <= tol {
-                return self.carried(key, input, previous, r, length);
-            }
+        if let Some((d, key)) = &nearest
+            && *d <= tol
+        {
+            return self.carried(key, input, previous, r, length);
         }
         // A new key point, warm-started from the nearest key (its thermal fields) or the
         // previous point.
