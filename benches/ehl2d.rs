@@ -155,7 +155,9 @@ fn cycle(args: &[String]) {
     let inose = angles * 127 / 360;
     let ibase = angles * 300 / 360;
     for (what, i) in [("max load", imax), ("nose 127°", inose), ("base circle 300°", ibase)] {
-        println!("  {what} (angle {i}): load {:.1} N, u_e {:.3} m/s, h_c {:.4} µm, h_min {:.4} µm at y = {:.2} mm, edge peak {:.3} GPa", load[i], ue[i], hc[i] * 1e6, hm[i] * 1e6, ymin[i] * 1e3, edge[i] * 1e-9);
+        // A null edge peak (none found at that angle) reads as NaN in `col`.
+        let peak = if edge[i].is_finite() { format!("{:.3} GPa", edge[i] * 1e-9) } else { "none".to_string() };
+        println!("  {what} (angle {i}): load {:.1} N, u_e {:.3} m/s, h_c {:.4} µm, h_min {:.4} µm at y = {:.2} mm, edge peak {peak}", load[i], ue[i], hc[i] * 1e6, hm[i] * 1e6, ymin[i] * 1e3);
     }
     // The film model alone along the cycle's contact points: warm chain against cold solves.
     let crown = Crown::SEED000;
