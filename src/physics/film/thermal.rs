@@ -94,6 +94,12 @@ impl Key {
     }
 }
 
+/// The isothermal film a carried-mode point keeps ([`FilmThermal::isothermal`]): the next
+/// point's squeeze history and warm start.
+fn isothermal_history(previous: Option<&FilmSolution>) -> Option<&FilmSolution> {
+    previous.and_then(|p| p.thermal.as_deref()).and_then(|t| t.isothermal.as_deref())
+}
+
 /// Operating conditions of a line-contact point: `(w', u_m, R, SRR)`.
 fn conditions(input: &ContactInput, r: f64, length: f64) -> (f64, f64, f64, f64) {
     let um = input.entrainment_velocity;
@@ -220,8 +226,7 @@ impl ThermalNumerical {
     /// film marched from `previous` (its squeeze history) times the key's thermal factors, the
     /// key's temperatures, and its traction table carried by the closed form.
     fn carried(&self, key: &Key, input: &ContactInput, previous: Option<&FilmSolution>, r: f64, length: f64) -> Result<FilmSolution, SolveError> {
-        let history = previous.and_then(|p| p.thermal.as_deref()).and_then(|t| t.isothermal.as_deref());
-        let iso = self.isothermal_film(input, history)?;
+        let iso = self.isothermal_film(input, isothermal_history(previous))?;
         let cf = self.fallback.solve(input, None)?;
         let c = self.carry(key, input, &cf, length);
         let kth = key.film.thermal.as_deref().expect("a key is a thermal solution");
@@ -489,9 +494,8 @@ impl FilmModel for ThermalNumerical {
         };
         let cf = self.fallback.solve(input, None)?;
         let table = self.closed_form_table(&cf, input, &thermal.sliding);
-        // Steady, from the previous point's isothermal film (the march's grid design).
-        let history = previous.and_then(|p| p.thermal.as_deref()).and_then(|t| t.isothermal.as_deref());
-        let isothermal = self.isothermal_film(&steady, history)?;
+        // Steady, warm-started from the previous point's isothermal film.
+        let isothermal = self.isothermal_film(&steady, isothermal_history(previous))?;
         let key = Arc::new(Key { load_per_length: here.0, entrainment: here.1, radius: here.2, slide_to_roll: here.3, film, isothermal, closed_form: cf, closed_form_table: table });
         // The key's own point: its factors on the isothermal film marched to it (the same
         // squeeze history as every carried point), its thermal profile.
