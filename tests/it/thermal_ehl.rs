@@ -301,22 +301,28 @@ mod seed000_cycle {
         println!("steady SRR: {:?}", a.iter().zip(&srr).map(|(a, s)| format!("{a:.0}:{s:.3}")).collect::<Vec<_>>());
         assert!(tmax.iter().all(|t| *t > 313.0 && *t < 400.0), "{tmax:?}");
         assert!(pin.iter().all(|t| *t > 313.0 && *t < 450.0), "{pin:?}");
-        // (1) Large and nearly constant on the base circle before the lift (0–50°). Measured
-        // 0.113–0.115 since the Eyring stress is solved per column (0.204–0.205 before, from a
-        // lagged Eyring iteration that cannot converge beyond τ = 1.9 τ_E and was frozen after 40
-        // sweeps; BENCHMARKS.md, "Eyring at seed 001 loads").
+        // The examples use seed 000's Newtonian film (eq. 7, 9: no limiting or Eyring stress;
+        // `traction.model: newtonian`). With the default Eyring stress (τ_E = 5 MPa, seed 001)
+        // the base circle sat at 0.113–0.115 and the nose kept sliding (0.190 at 120°, 0.093 at
+        // 130°); BENCHMARKS.md, "Seed 000 as published: the Newtonian film".
+        // (1) Large and nearly constant on the base circle before the lift (0–50°): 0.0472.
         let base: Vec<f64> = (0..a.len()).filter(|&i| a[i] <= 50.0).map(|i| srr[i]).collect();
         let (lo, hi) = base.iter().fold((f64::MAX, f64::MIN), |(l, h), &s| (l.min(s), h.max(s)));
-        assert!(lo > 0.1 && (hi - lo) / hi < 0.03, "base circle {base:?}");
-        // (2) A sharp drop at the opening ramp (60°).
-        assert!(at(&a, &srr, 60.0) < 0.6 * lo, "opening ramp");
+        assert!(lo > 0.03 && (hi - lo) / hi < 0.03, "base circle {base:?}");
+        // (2) A sharp drop at the opening ramp (60°: 0.005).
+        assert!(at(&a, &srr, 60.0) < 0.2 * lo, "opening ramp");
         // (3) Paper: the rise near 100° does not exceed the base-circle level. Model: it does
-        // (0.228 against 0.114).
-        assert!(at(&a, &srr, 100.0) > hi, "measured: the rise near 100° exceeds the base circle");
-        // (4) Paper: almost zero at the nose (127°). Model: 0.190 at 120°, 0.093 at 130°.
-        assert!(at(&a, &srr, 130.0) > 0.05, "measured: the nose keeps sliding");
+        // (0.121 against 0.047): the roller's inertia torque there (the moment of inertia is not
+        // in seed 000's Table 1; a solid steel ring here) is twice the pin's torque —
+        // BENCHMARKS.md shows the rise falling with the inertia.
+        assert!(at(&a, &srr, 100.0) > 2.0 * hi, "measured: the rise near 100° exceeds the base circle");
+        // (4) Almost zero at the nose (127°): 0.003 at 120°, 0.002 at 130°.
+        for deg in [120.0, 130.0] {
+            let s = at(&a, &srr, deg);
+            assert!(s.abs() < 0.1 * lo, "nose {deg}°: {s}");
+        }
         // (5) Negative on the closing ramp with a local negative extreme: model 160–190°, the
-        // extreme −0.026 at 180° (paper: near 155°, |SRR| < 0.003).
+        // extreme −0.023 at 180° (paper: near 155°, |SRR| < 0.003).
         let closing: Vec<(f64, f64)> = (0..a.len()).filter(|&i| a[i] >= 140.0 && a[i] <= 200.0).map(|i| (a[i], srr[i])).collect();
         let (amin, smin) = closing.iter().fold((0.0, f64::MAX), |(am, sm), &(an, s)| if s < sm { (an, s) } else { (am, sm) });
         assert!(smin < 0.0 && smin > -0.05, "negative on the closing ramp: {closing:?}");
@@ -332,11 +338,10 @@ mod seed000_cycle {
             println!("{deg}°: startup {s_start:.3} steady {s_steady:.3}");
         }
         assert!(at(&sa, &ss, 0.0) > 1.5 * at(&a, &srr, 0.0), "0°: more than 50 % above steady");
-        // Paper: more than 50 % above steady over 0–18°. Model: at 10° the roller has caught up —
-        // 0.104 against the steady 0.114 (−9 %; +20 % with the lagged Eyring film before); the
-        // startup's extra skid is confined to the first angle step (BENCHMARKS.md).
+        // Paper: more than 50 % above steady over 0–18°. Model: above steady but by less — at 10°
+        // 0.060 against the steady 0.047 (+28 %); with the Eyring film it had caught up (−9 %).
         let (s10, st10) = (at(&sa, &ss, 10.0), at(&a, &srr, 10.0));
-        assert!(s10 > 0.8 * st10 && s10 < st10, "10°: startup {s10} steady {st10}");
+        assert!(s10 > 1.1 * st10 && s10 < 1.5 * st10, "10°: startup {s10} steady {st10}");
     }
 
     /// Key points (`ehl.thermal.carry_tolerance` 0.01) against the full thermal solve at every
@@ -373,8 +378,9 @@ mod seed000_cycle {
         assert!(worst("slide_roll_ratio", Some(scale), cycle) < SRR_CYCLE, "SRR over the cycle");
         assert!(keys < 36, "{keys}");
     }
-    /// Measured worst differences over the whole cycle (see the test above): films 0.67 % (1.10 %
-    /// when the closed form carried the change of conditions), SRR 0.2 % of its largest value.
+    /// Measured worst differences over the whole cycle (see the test above), Newtonian film: films
+    /// 0.66 % / 0.69 % (central / minimum), SRR 0.52 % of its largest value (Eyring film before:
+    /// 0.67 %, SRR 0.2 %; 1.10 % when the closed form carried the change of conditions).
     const FILM_CYCLE: f64 = 0.01;
     const SRR_CYCLE: f64 = 0.01;
 
@@ -382,7 +388,7 @@ mod seed000_cycle {
     /// `carry_tolerance` 0.05, 36 angles; the five cycles run side by side). Paper, Fig. 9: the SRR
     /// grows with η0 at 0° and 100°, and at the closing flank's negative extreme (155° in the
     /// paper) the skidding slightly decreases with η0. Fig. 13: the SRR falls as the modified load
-    /// w1 grows at 0°, 100° and 176°, most at 0°. The model's closing-flank extreme sits at 180°
+    /// w1 grows at 0°, 100° and 176°, most at 0° (the model: most at 100°, see below). The model's closing-flank extreme sits at 180°
     /// (test above), so its counterpart of the paper's 155° is that extreme; at 176° the model's
     /// SRR is negative (the paper's is a positive peak), and there the skid's magnitude falls
     /// with w1. Release figures at 360 angles: BENCHMARKS.md, "Thermal EHL", Figs. 9 and 13.
@@ -423,9 +429,13 @@ mod seed000_cycle {
         let (e_thin, e_base, e_thick) = (extreme(thin), extreme(base), extreme(thick));
         assert!(e_thin.1 < e_base.1 && e_base.1 < e_thick.1 && e_thick.1 < 0.0, "{e_thin:?} {e_base:?} {e_thick:?}");
         assert!([e_thin.0, e_base.0, e_thick.0].iter().all(|d| (160.0..=190.0).contains(d)));
-        // Fig. 13: the SRR falls with the modified load at 0° and 100°, relatively most at 0°.
+        // Fig. 13: the SRR falls with the modified load at 0° and 100°. Paper: relatively most at
+        // 0°. Model (Newtonian film): most at 100° (×0.07 against ×0.21 at 0°) — its 100° slip is
+        // the roller's inertia demand, which a larger load's traction meets with far less slip
+        // (BENCHMARKS.md, "Seed 000 as published: the Newtonian film"; with the Eyring film it was
+        // most at 0°).
         let ratio = |deg: f64| at(&a, loaded, deg) / at(&a, base, deg);
-        assert!(ratio(0.0) < ratio(100.0) && ratio(100.0) < 1.0, "0° {} 100° {}", ratio(0.0), ratio(100.0));
+        assert!(ratio(100.0) < ratio(0.0) && ratio(0.0) < 1.0, "0° {} 100° {}", ratio(0.0), ratio(100.0));
         // At 176° (nearest angle 180°) the model's SRR is negative; its magnitude falls with w1.
         assert!(at(&a, base, 176.0) < 0.0 && at(&a, loaded, 176.0) < 0.0 && at(&a, loaded, 176.0) > at(&a, base, 176.0));
         // w1 = 800 N (the peak load 3 kN): its traction table's −0.15 point runs away and is
