@@ -51,21 +51,34 @@ fn cycle_table() {
     println!("\n## Seed 000 thermal cycle, {angles} angles (whole job, release, rayon pool of the machine)\n");
     println!("| case | time, s | thermal solves (angles) | worst film_central | worst film_min | worst SRR (of max \\|SRR\\| {srr_scale:.3}) | convergence |");
     println!("|---|---|---|---|---|---|---|");
+    // THERMAL_BENCH_DUMP=<dir>: each case's result JSON is written there (for per-angle study).
+    let dump = std::env::var("THERMAL_BENCH_DUMP").ok();
+    let angle = series(&full, "angle_deg");
     let row = |name: &str, out: &Value, t: f64| {
+        // Worst difference and the angle where it sits.
+        let worst_at = |d: Vec<f64>| d.iter().enumerate().fold((0.0, 0.0), |(w, a), (i, &v)| if v > w { (v, angle[i]) } else { (w, a) });
         let worst = |n: &str| {
             let (a, b) = (series(&full, n), series(out, n));
-            (0..a.len()).map(|i| (b[i] - a[i]).abs() / a[i].abs()).fold(0.0, f64::max)
+            worst_at((0..a.len()).map(|i| (b[i] - a[i]).abs() / a[i].abs()).collect())
         };
         let srr = series(out, "slide_roll_ratio");
-        let ws = (0..srr.len()).map(|i| (srr[i] - srr_full[i]).abs()).fold(0.0, f64::max) / srr_scale;
+        let ws = worst_at((0..srr.len()).map(|i| (srr[i] - srr_full[i]).abs() / srr_scale).collect());
+        let (hc, hm) = (worst("film_central"), worst("film_min"));
         println!(
-            "| {name} | {t:.2} | {} | {:.3} % | {:.3} % | {:.3} % | {} |",
+            "| {name} | {t:.2} | {} | {:.3} % ({:.1}°) | {:.3} % ({:.1}°) | {:.3} % ({:.1}°) | {} |",
             out["summary"]["fidelity_used"],
-            100.0 * worst("film_central"),
-            100.0 * worst("film_min"),
-            100.0 * ws,
+            100.0 * hc.0,
+            hc.1,
+            100.0 * hm.0,
+            hm.1,
+            100.0 * ws.0,
+            ws.1,
             out["convergence"]
         );
+        if let Some(dir) = &dump {
+            let file = format!("{dir}/{}.json", name.replace([' ', ','], "_"));
+            std::fs::write(&file, out.to_string()).unwrap_or_else(|e| panic!("{file}: {e}"));
+        }
     };
     row(if skip_full { "reference: accurate, carry_tolerance 0.01" } else { "accurate, full thermal solve at every angle" }, &full, t_full);
     for tol in [0.02, 0.05, 0.1] {

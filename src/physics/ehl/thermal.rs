@@ -546,17 +546,19 @@ fn energy_iterated(x: &[f64], p: &[f64], h: &[f64], input: &EnergyInput, options
         let hi = h[i];
         let dz = hi / (nz - 1) as f64;
         let pi = p[i].max(0.0);
+        let law = lub.pressure_law(pi);
         // Reference viscosity: the lubricant at the inlet temperature and this pressure.
-        let ln_ref = (ln_eta0 + lub.ln_viscosity_ratio(pi, t0)).min(600.0 + ln_eta0);
+        let ln_ref = (ln_eta0 + law.ln_ratio_and_temperature_slope(t0).0).min(600.0 + ln_eta0);
         *eta_ref = ln_ref.exp();
         for k in 0..nz {
-            let ln_e = (ln_eta0 + lub.ln_viscosity_ratio(pi, temps[k])).min(600.0 + ln_eta0);
+            let (ln_ratio, ln_slope) = law.ln_ratio_and_temperature_slope(temps[k]);
+            let ln_e = (ln_eta0 + ln_ratio).min(600.0 + ln_eta0);
             let w = relax_cell.get();
             let ln_new = ln_e - ln_ref;
             let ln_rel = if w < 1.0 && col.eta_n[k] > 0.0 && col.u.iter().any(|&u| u != 0.0) { (1.0 - w) * col.eta_n[k].ln() + w * ln_new } else { ln_new };
             col.eta_n[k] = ln_rel.exp().max(1e-300);
             col.eta[k] = col.eta_n[k];
-            col.beta[k] = -lub.ln_viscosity_temperature_slope(pi, temps[k]);
+            col.beta[k] = -ln_slope;
             col.rho[k] = lub.density_ratio(pi, temps[k]);
         }
         if let Some(te) = eyring {
