@@ -208,6 +208,8 @@ pub struct Level {
     /// row without its longest (cyclic) run of fixed nodes. Outside them the V-cycle's
     /// correction, residual and `A p` are 0, so the smoother and the operator kernels skip them.
     free_span: Vec<Span>,
+    /// Rows whose `fixed` changed since their masks and span were last refreshed.
+    dirty: Vec<bool>,
     /// Face cosines and sines of the last `set_film` (scratch kept to avoid allocation).
     cos_f: Vec<f64>,
     sin_f: Vec<f64>,
@@ -273,6 +275,7 @@ impl Level {
             inv_d: vec![0.0; n],
             inv_diag: vec![0.0; n],
             free_span: vec![[(0, nt), (nt, nt)]; nz],
+            dirty: vec![true; nz],
             cos_f: vec![0.0; nt],
             sin_f: vec![0.0; nt],
             zq: 1,
@@ -447,11 +450,23 @@ impl Level {
 
     /// Recompute `mask` and `inv_d` from `fixed` and `diag`.
     fn refresh_masks(&mut self) {
-        self.chol = None;
-        self.free_src_norm = None;
+        self.dirty.fill(true);
+        self.refresh_dirty();
+    }
+
+    /// [`Level::refresh_masks`] on the rows marked in `dirty` only (the others' masks and
+    /// spans already match `fixed`: every change of `fixed` marks its row), clearing the marks.
+    /// The dense factor and the free source norm are dropped when any row changed.
+    fn refresh_dirty(&mut self) {
         let nt = self.nt;
-        let rows = self.mask.chunks_exact_mut(nt).zip(self.inv_d.chunks_exact_mut(nt)).zip(self.fixed.chunks_exact(nt)).zip(self.inv_diag.chunks_exact(nt));
-        for ((((m, inv), f), id), span) in rows.zip(self.free_span.iter_mut()) {
+        let mut any = false;
+        for (j, d) in self.dirty.iter_mut().enumerate() {
+            if !std::mem::take(d) {
+                continue;
+            }
+            any = true;
+            let row = j * nt..(j + 1) * nt;
+            let (m, inv, f, id) = (&mut self.mask[row.clone()], &mut self.inv_d[row.clone()], &self.fixed[row.clone()], &self.inv_diag[row]);
             // the mask, and the free nodes' extent and longest inner run of fixed nodes
             let (mut first, mut last) = (usize::MAX, 0);
             let (mut gap, mut gap_start) = (0, 0);
@@ -467,7 +482,11 @@ impl Level {
                     last = i;
                 }
             }
-            *span = free_ranges(nt, first, last, gap, gap_start);
+            self.free_span[j] = free_ranges(nt, first, last, gap, gap_start);
+        }
+        if any {
+            self.chol = None;
+            self.free_src_norm = None;
         }
     }
 
@@ -1098,20 +1117,26 @@ impl Hierarchy {
             let l = &mut self.levels[k];
             l.lambda(&l.u, &mut lam);
             let mut n_changed = 0usize;
-            for (((f, u), lam), d) in l.fixed.iter_mut().zip(l.u.iter_mut()).zip(lam.iter()).zip(&l.diag) {
-                if *f == BOUNDARY {
-                    continue;
+            let nt = l.nt;
+            let rows = l.fixed.chunks_exact_mut(nt).zip(l.u.chunks_exact_mut(nt)).zip(lam.chunks_exact(nt)).zip(l.diag.chunks_exact(nt));
+            for ((((f, u), lam), d), dirty) in rows.zip(l.dirty.iter_mut()) {
+                let before = n_changed;
+                for (((f, u), lam), d) in f.iter_mut().zip(u.iter_mut()).zip(lam).zip(d) {
+                    if *f == BOUNDARY {
+                        continue;
+                    }
+                    // new active set: λ − d·P > 0  (d: the diagonal, a per-node scale)
+                    let active = lam - d * *u > 0.0;
+                    let flag = if active { CAVITATED } else { FREE };
+                    if flag != *f {
+                        n_changed += 1;
+                        *f = flag;
+                    }
+                    if active {
+                        *u = 0.0;
+                    }
                 }
-                // new active set: λ − d·P > 0  (d: the diagonal, a per-node scale)
-                let active = lam - d * *u > 0.0;
-                let flag = if active { CAVITATED } else { FREE };
-                if flag != *f {
-                    n_changed += 1;
-                    *f = flag;
-                }
-                if active {
-                    *u = 0.0;
-                }
+                *dirty |= n_changed > before;
             }
             let changed = n_changed > 0;
             if !changed && steps > 0 {
@@ -1126,7 +1151,7 @@ impl Hierarchy {
                 tight = true;
             }
             if changed || steps == 0 {
-                self.levels[k].refresh_masks();
+                self.levels[k].refresh_dirty();
                 self.inject_active_set(k);
             }
             steps += 1;
@@ -1281,10 +1306,14 @@ impl Hierarchy {
                         continue;
                     }
                     let iff = if tt.s_w[m] < 0.5 { tt.s_lo[m] } else { tt.s_hi[m] };
-                    coarse.fixed[kc] = if fine.fixed[jf * fine.nt + iff] == FREE { FREE } else { CAVITATED };
+                    let flag = if fine.fixed[jf * fine.nt + iff] == FREE { FREE } else { CAVITATED };
+                    if coarse.fixed[kc] != flag {
+                        coarse.fixed[kc] = flag;
+                        coarse.dirty[a] = true;
+                    }
                 }
             }
-            coarse.refresh_masks();
+            coarse.refresh_dirty();
         }
     }
 
