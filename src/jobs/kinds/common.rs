@@ -485,7 +485,9 @@ pub struct EhlSpec {
     /// (`summary.fidelity_used` counts the angles of each model). Line contacts only (roller
     /// and flat-faced followers). Costly: one coupled solve and a 13-point traction table per angle and periodic
     /// iteration — the seed 000 cycle at 36 angles and 96 nodes takes ≈ 30 s
-    /// (`examples/seed000_thermal_steady.json`); see BENCHMARKS.md, "Thermal EHL". A contact
+    /// (`examples/seed000_thermal_steady.json`); see BENCHMARKS.md, "Thermal EHL". The film's
+    /// shear law is the spec's `traction` (default Eyring, seed 001); seed 000's own model is
+    /// Newtonian, which its examples set (`traction.model: newtonian`). A contact
     /// the model cannot settle fails with a typed `not_converged`. `cam_point` uses steel bodies.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub thermal: Option<EhlThermalSpec>,
