@@ -76,9 +76,9 @@ pub enum PressureLaw {
 }
 
 impl PressureLaw {
-    /// `ln(η/η0)` at temperature `t` (K) and `∂ ln η/∂T` (1/K): bit for bit
-    /// [`Lubricant::ln_viscosity_ratio`] and [`Lubricant::ln_viscosity_temperature_slope`] at this
-    /// pressure, with one `powf` per temperature instead of four.
+    /// `ln(η/η0)` at temperature `t` (K) and `∂ ln η/∂T` (1/K), one `powf` per temperature (the
+    /// one formula behind [`Lubricant::ln_viscosity_ratio`] and
+    /// [`Lubricant::ln_viscosity_temperature_slope`]).
     #[inline]
     pub fn ln_ratio_and_temperature_slope(&self, t: f64) -> (f64, f64) {
         match *self {
@@ -183,19 +183,7 @@ impl Lubricant {
     /// `ln(η(p, t)/η0)`, the logarithm of the viscosity ratio (never overflows: EHL solvers work
     /// with it where `η` itself would exceed `f64` at absurd trial pressures).
     pub fn ln_viscosity_ratio(&self, p: f64, t: f64) -> f64 {
-        let p = p.max(0.0);
-        let dt = t - self.reference_temperature;
-        match self.viscosity_model {
-            ViscosityModel::Barus => self.pressure_viscosity * p - self.temperature_viscosity * dt,
-            ViscosityModel::Roelands => {
-                let a1 = self.roelands_a1();
-                let z = self.roelands_z();
-                let t0 = self.reference_temperature;
-                let s0 = self.temperature_viscosity * (t0 - 138.0) / a1;
-                let thermal = ((t - 138.0).max(1.0) / (t0 - 138.0)).powf(-s0);
-                a1 * (-1.0 + (1.0 + p / ROELANDS_PRESSURE).powf(z) * thermal)
-            }
-        }
+        self.pressure_law(p).ln_ratio_and_temperature_slope(t).0
     }
 
     /// `∂ ln η / ∂p` at `(p, t)`, 1/Pa (0 below ambient pressure, where `p` is clamped).
@@ -219,15 +207,7 @@ impl Lubricant {
     /// `∂ ln η / ∂T` at `(p, t)`, 1/K (≤ 0): Barus `−β`; Roelands
     /// `−(ln(η/η0) + A1) S0/(T − 138)` (seed 000 eq. 4 differentiated).
     pub fn ln_viscosity_temperature_slope(&self, p: f64, t: f64) -> f64 {
-        match self.viscosity_model {
-            ViscosityModel::Barus => -self.temperature_viscosity,
-            ViscosityModel::Roelands => {
-                let a1 = self.roelands_a1();
-                let t0 = self.reference_temperature;
-                let s0 = self.temperature_viscosity * (t0 - 138.0) / a1;
-                -(self.ln_viscosity_ratio(p, t) + a1) * s0 / (t - 138.0).max(1.0)
-            }
-        }
+        self.pressure_law(p).ln_ratio_and_temperature_slope(t).1
     }
 
     /// `∂(ρ/ρ0)/∂p` at `(p, t)`, 1/Pa (0 below ambient pressure, where `p` is clamped).
@@ -302,16 +282,24 @@ mod tests {
     use super::*;
 
     #[test]
-    fn pressure_law_is_bit_for_bit_the_pointwise_law() {
+    fn pressure_law_is_roelands_and_barus_with_their_temperature_slopes() {
         let roelands = Lubricant::SEED000;
         let barus = Lubricant { viscosity_model: ViscosityModel::Barus, ..roelands };
-        for oil in [roelands, barus] {
-            for p in [-1e6, 0.0, 1e5, 3.7e8, 1.7e9, 4e9] {
-                let law = oil.pressure_law(p);
-                for t in [100.0, 138.5, 290.0, 313.0, 351.7, 800.0] {
-                    let (ln, slope) = law.ln_ratio_and_temperature_slope(t);
-                    assert_eq!(ln.to_bits(), oil.ln_viscosity_ratio(p, t).to_bits(), "{p} {t}");
-                    assert_eq!(slope.to_bits(), oil.ln_viscosity_temperature_slope(p, t).to_bits(), "{p} {t}");
+        let (t0, eta0, alpha, beta) = (roelands.reference_temperature, roelands.viscosity, roelands.pressure_viscosity, roelands.temperature_viscosity);
+        // Roelands (seed 000 eq. 4, p_r = 1/A2 = 1.96e8 Pa, the temperature factor
+        // ((T − 138)/(T0 − 138))^(−S0)).
+        let a1 = eta0.ln() + 9.67;
+        let (z, s0) = (alpha * 1.96e8 / a1, beta * (t0 - 138.0) / a1);
+        for p in [-1e6, 0.0, 1e5, 3.7e8, 1.7e9, 4e9] {
+            let pc = f64::max(p, 0.0);
+            for t in [290.0, 313.0, 351.7, 800.0] {
+                let want = [a1 * (-1.0 + (1.0 + pc / 1.96e8).powf(z) * ((t - 138.0) / (t0 - 138.0)).powf(-s0)), alpha * pc - beta * (t - t0)];
+                for (oil, want) in [roelands, barus].into_iter().zip(want) {
+                    let (ln, slope) = oil.pressure_law(p).ln_ratio_and_temperature_slope(t);
+                    assert!((ln - want).abs() <= 1e-12 * want.abs().max(1.0), "{p} {t}: {ln} {want}");
+                    assert_eq!(ln.to_bits(), oil.ln_viscosity_ratio(p, t).to_bits());
+                    let fd = (oil.ln_viscosity_ratio(p, t + 1e-3) - oil.ln_viscosity_ratio(p, t - 1e-3)) / 2e-3;
+                    assert!((slope - fd).abs() <= 1e-6 * fd.abs().max(1e-3), "{p} {t}: slope {slope} fd {fd}");
                 }
             }
         }
