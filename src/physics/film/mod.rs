@@ -45,6 +45,7 @@ pub mod formulas;
 pub mod mixed;
 pub mod numerical;
 pub mod thermal;
+pub mod traction_table;
 pub mod work;
 
 pub use auto::{closed_form_error, Auto, ClosedFormError, ErrorRule};

@@ -26,7 +26,8 @@ use super::closed_form::{ClosedForm, FILM_FLOOR, VISCOSITY_CAP};
 use super::formulas::LineGroups;
 use super::{ContactInput, ContactShape, FilmModel, FilmModelId, FilmProfile, FilmSolution, Regime};
 use crate::physics::contact::hertz_line;
-use crate::physics::ehl::grid::cells;
+use crate::physics::ehl::grid::{cells, Layout};
+use crate::physics::ehl::transient::lattice_layout;
 use super::mixed::LoadSharingLaw;
 use crate::physics::ehl::{AsperityPressure, EhlInput, EhlOptions, EhlState, Extrapolation, ReusableSolver, Rheology, Transient};
 use crate::physics::friction::TractionNode;
@@ -61,6 +62,26 @@ impl Numerical {
     /// The same model with grid `extrapolation`.
     pub fn with_extrapolation(self, extrapolation: Extrapolation) -> Self {
         Numerical { extrapolation, ..self }
+    }
+
+    /// The grid layout this model solves `input` on (a line contact of reduced radius `r` and
+    /// length `length`, m): a pure function of the conditions
+    /// ([`crate::physics::ehl::transient::lattice_layout`]).
+    pub fn layout(&self, input: &ContactInput, r: f64, length: f64) -> Layout {
+        let ehl_input = EhlInput {
+            load_per_length: input.load / length,
+            reduced_radius: r,
+            effective_modulus: 2.0 * input.contact_modulus,
+            entrainment_velocity: input.entrainment_velocity,
+            sliding_velocity: input.sliding_velocity,
+            lubricant: *input.lubricant,
+            temperature: input.temperature,
+            rheology: Rheology::default(),
+            transient: None,
+            warm_start: None,
+            asperity: None,
+        };
+        lattice_layout(&ehl_input, &self.options)
     }
 }
 

@@ -13,7 +13,8 @@
 //!   the inlet temperature — the inlet's own heating is left out of the traction table, not out
 //!   of the film), and the follower's surface stress integral (eq. 9) is interpolated between
 //!   them by a monotone cubic (Steffen 1990: no overshoot, C¹), linear beyond the ends. The
-//!   slope is the interpolant's. The asperity share of rough surfaces is as in the isothermal
+//!   slope is the interpolant's. Entries beyond ±0.05 are solved only where the balance needs
+//!   them ([`super::traction_table`]). The asperity share of rough surfaces is as in the isothermal
 //!   numerical model (Greenwood–Tripp with the local film, fluid traction scaled by
 //!   `1 − W_a/W`).
 //! * **Carried thermal factors** (`carry_tolerance`, key points). The thermal state changes
@@ -24,7 +25,9 @@
 //!   numerical film (smooth surfaces, Richardson of the thermal grid and its half, squeeze
 //!   history from the previous point); its films, peak pressure and spike are multiplied by the
 //!   key's thermal factors — the thermal solution over the isothermal one, both steady at the
-//!   key's conditions. The key also carries its temperatures and its traction table at the same
+//!   key's conditions, on the same isothermal grid layout (a key on another layout is not
+//!   carried: the factor would mix two discretisation errors — a 1 % step in the central film
+//!   where the isothermal layout changed at seed 000's 118.5°). The key also carries its temperatures and its traction table at the same
 //!   slide-to-roll ratios times the closed form's traction ratio at each. So the isothermal
 //!   march carries the change of conditions and the squeeze (the film's lag behind fast load
 //!   and entrainment changes, which a quasi-steady key cannot see), the key the thermal
@@ -32,10 +35,16 @@
 //!   "Thermal EHL": against the full cycle). Key points are solved quasi-steady (no squeeze or
 //!   ∂T/∂t history), warm-started from the nearest key. Periodic passes revisit the same
 //!   conditions and reuse the keys.
+//! * **Lag** (carried mode). Where the conditions jump — seed 000's opening ramp takes the load
+//!   from 600 to 2241 N within 3.5° — the film's temperatures lag behind the steady keys'
+//!   (`∂T/∂t`, eq. 7) and the carried film was 1–2 % thinner than the every-angle cycle's over
+//!   the next 6° (BENCHMARKS.md, "Thermal EHL"). There the full transient thermal solve runs at
+//!   every point, from a steady key at the previous point's conditions, until its film agrees
+//!   with the carried one ([`ThermalNumerical::transient_window`]).
 //! * **Point contacts** and a contact at rest without history keep the closed form.
 //!
-//! Cost: one coupled solve (a few Newton and energy solves) and [`SLIDE_TO_ROLL_TABLE`]`.len()`
-//! energy solves per full point; a carried point costs an isothermal Newton solve on two grids
+//! Cost: one coupled solve (a few Newton and energy solves) and the table's core energy solves
+//! (seven, within ±0.05; the outer ones when the balance reaches them) per full point; a carried point costs an isothermal Newton solve on two grids
 //! (warm-started, typically two steps each) and a closed-form solve — see BENCHMARKS.md,
 //! "Thermal EHL".
 
@@ -43,8 +52,9 @@ use super::closed_form::ClosedForm;
 use super::numerical::{asperity_load, line_contact, traction_nodes, LineContact, Numerical};
 use super::{ContactInput, ContactShape, FilmModel, FilmModelId, FilmProfile, FilmSolution, Traction};
 use crate::physics::contact::hertz_line;
-use crate::physics::ehl::grid::cells;
-use crate::physics::ehl::thermal::{energy, EnergyInput, TemperatureField, ThermalBodies, ThermalEngine, ThermalFactors, ThermalInput, ThermalOptions, ThermalSummary};
+use crate::physics::ehl::grid::{cells, Layout};
+use super::traction_table::{candidate_sliding, TableProblem, TableView, TractionTable};
+use crate::physics::ehl::thermal::{TemperatureField, ThermalBodies, ThermalEngine, ThermalFactors, ThermalInput, ThermalOptions, ThermalSummary};
 use crate::physics::ehl::{EhlInput, EhlOptions, Extrapolation, Rheology, Transient};
 use crate::physics::friction::Roughness;
 use crate::physics::friction::Rheology as Shear;
@@ -59,12 +69,16 @@ struct Key {
     entrainment: f64,
     radius: f64,
     slide_to_roll: f64,
+    /// The isothermal model's grid layout at the key's conditions: a key carries its factors
+    /// only to points on the same layout (module docs, "Carried thermal factors").
+    layout: Layout,
     film: FilmSolution,
     /// The isothermal numerical film at the key's conditions, steady, on the same grid.
     isothermal: FilmSolution,
     closed_form: FilmSolution,
-    /// The closed form's fluid traction at the key's table sliding velocities, N.
-    closed_form_table: Vec<f64>,
+    /// The closed form's fluid traction at the key's table sliding velocities (every candidate
+    /// of every entry, [`candidate_sliding`]), N.
+    closed_form_table: Vec<Vec<f64>>,
 }
 
 /// `a/b`, or 1 where `b` is zero or `a` is not finite.
@@ -83,8 +97,7 @@ struct Carry {
     spike: f64,
     /// Shift of the pressure spike's position, m.
     spike_shift: f64,
-    sliding: Vec<f64>,
-    force: Vec<f64>,
+    table: TableView,
     asperity_load: f64,
 }
 
@@ -115,10 +128,6 @@ fn distance(a: (f64, f64, f64, f64), b: (f64, f64, f64, f64)) -> f64 {
     (a.0 / b.0).ln().abs().max((a.1 / b.1).ln().abs()).max((a.2 / b.2).ln().abs()).max((a.3 - b.3).abs())
 }
 
-/// Slide-to-roll ratios `u_s/u_m` of the traction table (both signs and zero). Points beyond
-/// ±0.15 whose energy solve fails are left out (the interpolant then extends linearly).
-pub const SLIDE_TO_ROLL_TABLE: [f64; 13] = [-2.0, -0.5, -0.15, -0.05, -0.015, -0.004, 0.0, 0.004, 0.015, 0.05, 0.15, 0.5, 2.0];
-
 /// Coupling tolerance of a key point ([`ThermalFilmSettings::carry_tolerance`]) relative to
 /// `ThermalOptions::tolerance`. A key point starts from the nearest key (other conditions), not
 /// from the previous angle's converged state as the every-angle cycle does, and a coupling
@@ -146,13 +155,16 @@ pub struct FilmThermal {
     pub summary: ThermalSummary,
     pub field: TemperatureField,
     pub factors: ThermalFactors,
-    /// Sliding velocities of the table, m/s (increasing), and the follower's fluid traction per
-    /// unit length at each, N/m.
-    pub sliding: Vec<f64>,
-    pub force_per_length: Vec<f64>,
+    /// The follower's fluid traction per unit length against the sliding velocity.
+    pub table: TableView,
     /// Carried mode: the isothermal numerical film at this point (its fields are the next
     /// point's squeeze history and warm start of the isothermal march).
     pub isothermal: Option<Box<FilmSolution>>,
+    /// Carried mode: the point's operating conditions `(w', u_m, R, SRR)`.
+    pub conditions: Option<(f64, f64, f64, f64)>,
+    /// Carried mode: the point's transient thermal film still differs from the carried one, so
+    /// the next point is solved transient too ([`ThermalNumerical`] module docs, "Lag").
+    pub lagging: bool,
 }
 
 /// The thermal numerical film model. See the module docs.
@@ -175,9 +187,10 @@ impl ThermalNumerical {
         ThermalNumerical { options, settings, fallback, engine: Mutex::new(ThermalEngine::new()), keys: Mutex::new(Vec::new()), isothermal }
     }
 
-    /// The closed form's fluid traction at sliding velocities `sliding` (for the carried table).
-    fn closed_form_table(&self, cf: &FilmSolution, input: &ContactInput, sliding: &[f64]) -> Vec<f64> {
-        sliding.iter().map(|&us| self.fallback.traction(cf, input, us).viscous).collect()
+    /// The closed form's fluid traction at sliding velocities `sliding` (per table entry, every
+    /// candidate; for the carried table).
+    fn closed_form_table(&self, cf: &FilmSolution, input: &ContactInput, sliding: &[Vec<f64>]) -> Vec<Vec<f64>> {
+        sliding.iter().map(|c| c.iter().map(|&us| self.fallback.traction(cf, input, us).viscous).collect()).collect()
     }
 
     /// The isothermal numerical film at `input` on the thermal model's grid, smooth surfaces (as
@@ -196,14 +209,14 @@ impl ThermalNumerical {
         let (k, ki) = (&key.film, &key.isothermal);
         let kth = k.thermal.as_deref().expect("a key is a thermal solution");
         let speed = ratio(input.entrainment_velocity, key.entrainment);
-        let sliding: Vec<f64> = kth.sliding.iter().map(|us| us * speed).collect();
+        let sliding: Vec<Vec<f64>> = candidate_sliding(kth.table.problem().scale).iter().map(|c| c.iter().map(|us| us * speed).collect()).collect();
         let cf_table = self.closed_form_table(cf, input, &sliding);
-        let force = kth
-            .force_per_length
+        let force_ratio = cf_table
             .iter()
-            .zip(cf_table.iter().zip(&key.closed_form_table))
-            .map(|(f, (a, b))| if b.abs() > 1e-12 * input.load { f * a / b } else { *f })
+            .zip(&key.closed_form_table)
+            .map(|(here, there)| here.iter().zip(there).map(|(a, b)| if b.abs() > 1e-12 * input.load { a / b } else { 1.0 }).collect())
             .collect();
+        let table = TableView { table: kth.table.table.clone(), speed: kth.table.speed * speed, ratio: Some(force_ratio) };
         let asperity_load = if key.closed_form.asperity.load > 0.0 {
             k.asperity.load * ratio(cf.asperity.load, key.closed_form.asperity.load)
         } else {
@@ -216,8 +229,7 @@ impl ThermalNumerical {
             pressure: ratio(k.max_pressure, ki.max_pressure),
             spike: both(k.pressure_spike, ki.pressure_spike).map_or(1.0, |(a, b)| ratio(a, b)),
             spike_shift: both(k.pressure_spike_position, ki.pressure_spike_position).map_or(0.0, |(a, b)| a - b),
-            sliding,
-            force,
+            table,
             asperity_load,
         }
     }
@@ -236,7 +248,6 @@ impl ThermalNumerical {
         let central_film = iso.central_film * c.central;
         let min_film = iso.min_film * c.min;
         ensure_finite("carried thermal film", [&central_film, &min_film, &c.pressure, &c.spike, &c.spike_shift, &w_a])?;
-        ensure_finite("carried thermal traction table", &c.force)?;
         let sigma = input.roughness.sigma;
         Ok(FilmSolution {
             model: FilmModelId::ThermalCarried,
@@ -261,9 +272,92 @@ impl ThermalNumerical {
             // No thermal profile of its own (a new key warm-starts from the nearest key).
             profile: None,
             iterations: iso.iterations,
-            thermal: Some(Box::new(FilmThermal { sliding: c.sliding, force_per_length: c.force, isothermal: Some(Box::new(iso)), ..kth.clone() })),
+            thermal: Some(Box::new(FilmThermal {
+                table: c.table,
+                isothermal: Some(Box::new(iso)),
+                conditions: Some(conditions(input, r, length)),
+                lagging: false,
+                ..kth.clone()
+            })),
             finite: None,
         })
+    }
+
+    /// A new key point at `input` (conditions `here`), warm-started from the nearest key
+    /// `nearest` (its thermal fields) or the previous point, and the point's own solution: the
+    /// key's factors on the isothermal film marched to it (the same squeeze history as every
+    /// carried point), its thermal profile.
+    #[allow(clippy::too_many_arguments)]
+    fn new_key(&self, input: &ContactInput, previous: Option<&FilmSolution>, nearest: Option<Arc<Key>>, here: (f64, f64, f64, f64), layout: Layout, r: f64, length: f64) -> Result<FilmSolution, SolveError> {
+        let steady = ContactInput { time_step: 0.0, ..*input };
+        let warm = nearest.as_ref().map(|k| &k.film).or(previous.filter(|p| p.profile.is_some()));
+        // Where the tighter coupling stalls above it (energy sweeps' noise), the key takes the
+        // default tolerance.
+        let film = match self.full_with(&steady, warm, KEY_TOLERANCE_FACTOR) {
+            Err(SolveError::NotConverged { .. }) => self.full_with(&steady, warm, 1.0)?,
+            other => other?,
+        };
+        let Some(thermal) = film.thermal.as_deref() else {
+            return Ok(film);
+        };
+        let cf = self.fallback.solve(input, None)?;
+        let table = self.closed_form_table(&cf, input, &candidate_sliding(thermal.table.problem().scale));
+        // Steady, warm-started from the previous point's isothermal film.
+        let isothermal = self.isothermal_film(&steady, isothermal_history(previous))?;
+        let key = Arc::new(Key { load_per_length: here.0, entrainment: here.1, radius: here.2, slide_to_roll: here.3, layout, film, isothermal, closed_form: cf, closed_form_table: table });
+        let mut out = self.carried(&key, input, previous, r, length)?;
+        out.model = FilmModelId::Thermal;
+        out.profile = key.film.profile.clone();
+        out.iterations = key.film.iterations;
+        self.keys.lock().unwrap_or_else(|e| e.into_inner()).push(key);
+        Ok(out)
+    }
+
+    /// The transient window of the carried mode (module docs, "Lag"): `carried` (the point's
+    /// carried or new-key solution), or the full transient thermal solve at `input` when the
+    /// conditions moved faster than the film's thermal state can follow — by more than the carry
+    /// tolerance `tol` within the film's transit time `2b/|u_m|` — or the previous point's
+    /// transient film still differed from its carried one. The window's first point starts
+    /// from the key nearest the previous point's conditions (a steady state at them, to within
+    /// the tolerance), the next from its predecessor's transient solution. A window point keeps
+    /// the isothermal march going, and the window closes once its transient film agrees with the
+    /// carried one to within a tenth of the tolerance.
+    fn transient_window(&self, input: &ContactInput, previous: Option<&FilmSolution>, carried: FilmSolution, here: (f64, f64, f64, f64), r: f64, tol: f64) -> Result<FilmSolution, SolveError> {
+        let Some((prev, prev_thermal)) = previous.and_then(|p| p.thermal.as_deref().map(|t| (p, t))) else {
+            return Ok(carried);
+        };
+        if !(input.time_step > 0.0) {
+            return Ok(carried);
+        }
+        let transit = 2.0 * hertz_line(here.0, r, input.contact_modulus).half_width / here.1.abs();
+        let fast = prev_thermal.conditions.is_some_and(|c| distance(here, c) * transit / input.time_step > tol);
+        if !(fast || prev_thermal.lagging) {
+            return Ok(carried);
+        }
+        let history_key;
+        let history = if prev.profile.is_some() {
+            prev
+        } else {
+            let Some(c) = prev_thermal.conditions else {
+                return Ok(carried);
+            };
+            let keys = self.keys.lock().unwrap_or_else(|e| e.into_inner());
+            let Some(key) = keys.iter().min_by(|a, b| distance(c, a.conditions()).total_cmp(&distance(c, b.conditions()))).cloned() else {
+                return Ok(carried);
+            };
+            drop(keys);
+            history_key = key;
+            &history_key.film
+        };
+        let mut film = self.full(input, Some(history))?;
+        let lag = ratio(film.central_film, carried.central_film).ln().abs().max(ratio(film.min_film, carried.min_film).ln().abs());
+        let Some(th) = film.thermal.as_deref_mut() else {
+            return Ok(carried);
+        };
+        th.isothermal = carried.thermal.and_then(|t| t.isothermal);
+        th.conditions = Some(here);
+        th.lagging = lag > 0.1 * tol;
+        Ok(film)
     }
 
     /// The full thermal solve at `input` (module docs); `previous` the previous point's
@@ -328,50 +422,21 @@ impl ThermalNumerical {
         let first = st.pressure.iter().position(|&p| p > 0.0).unwrap_or(0);
         let start = st.x.partition_point(|&x| x < st.x[first] - 0.5 * hz.half_width).min(st.x.len().saturating_sub(3));
         let (x, p, h) = (&st.x[start..], &st.pressure[start..], &st.film[start..]);
-        let scale = um.abs().max(1e-6);
-        let mut sliding = Vec::with_capacity(SLIDE_TO_ROLL_TABLE.len());
-        let mut force = Vec::with_capacity(SLIDE_TO_ROLL_TABLE.len());
-        let mut warm = th.temperature.clone();
-        for &srr in &SLIDE_TO_ROLL_TABLE {
-            let us = srr * scale;
-            let ein = EnergyInput {
-                velocity_1: um + 0.5 * us,
-                velocity_2: um - 0.5 * us,
-                lubricant: input.lubricant,
-                inlet_temperature: input.temperature,
-                bodies: &self.settings.bodies,
-                half_width: s.hertz_half_width,
-                load_per_length: w,
-                rheology: &rheology,
-                previous: None,
-                warm: Some(&warm),
-            };
-            // A point beyond the traction maximum whose Newtonian film runs away (or whose sweeps
-            // do not settle) is left out of the table; the points within ±0.05 must succeed. A
-            // failing ±0.15 point is retried closer to rolling (±0.105, ±0.0735) so that the
-            // table still reaches past ±0.05 (seed 000 with w1 = 800 N: the −0.15 point runs away
-            // at w' = 193 kN/m; BENCHMARKS.md, "Figs. 9 and 13").
-            let retries: &[f64] = if srr.abs() <= 0.05 || srr.abs() > 0.15 { &[1.0] } else { &[1.0, 0.7, 0.49] };
-            let mut outcome = None;
-            for &shrink in retries {
-                let us = shrink * us;
-                let ein = EnergyInput { velocity_1: um + 0.5 * us, velocity_2: um - 0.5 * us, ..ein };
-                outcome = Some(energy(x, p, h, &ein, &self.settings.options).map(|en| (us, en)));
-                if matches!(outcome, Some(Ok(_))) {
-                    break;
-                }
-            }
-            match outcome {
-                Some(Ok((us, en))) => {
-                    sliding.push(us);
-                    force.push(en.traction.force_body_2);
-                    warm = en.field;
-                }
-                Some(Err(e)) if srr.abs() <= 0.05 => return Err(e),
-                _ => {}
-            }
-        }
-        ensure_finite("thermal traction table", &force)?;
+        let problem = TableProblem {
+            x: x.to_vec(),
+            pressure: p.to_vec(),
+            film: h.to_vec(),
+            entrainment: um,
+            scale: um.abs().max(1e-6),
+            lubricant: *input.lubricant,
+            inlet_temperature: input.temperature,
+            bodies: self.settings.bodies,
+            half_width: s.hertz_half_width,
+            load_per_length: w,
+            rheology,
+            options: self.settings.options,
+        };
+        let table = TableView { table: Arc::new(TractionTable::new(problem, th.temperature.clone(), input.sliding_velocity)?), speed: 1.0, ratio: None };
         ensure_finite("thermal film", [&s.central_film, &s.min_film, &s.exit_film, &s.max_pressure, &w_a])?;
         // Nodes (for consumers that read them; the traction comes from the table).
         let t = th.summary.film_temperature_mean;
@@ -409,50 +474,14 @@ impl ThermalNumerical {
                 summary: th.summary,
                 field: th.temperature,
                 factors: th.factors,
-                sliding,
-                force_per_length: force,
+                table,
                 isothermal: None,
+                conditions: None,
+                lagging: false,
             })),
             finite: None,
         })
     }
-}
-
-/// Steffen's (1990) slopes of the data `(x, y)`: monotone where the data are, no overshoot.
-fn steffen_slopes(x: &[f64], y: &[f64]) -> Vec<f64> {
-    let n = x.len();
-    let d: Vec<f64> = (0..n - 1).map(|i| (y[i + 1] - y[i]) / (x[i + 1] - x[i])).collect();
-    let mut m = vec![0.0; n];
-    m[0] = d[0];
-    m[n - 1] = d[n - 2];
-    for i in 1..n - 1 {
-        let (h0, h1) = (x[i] - x[i - 1], x[i + 1] - x[i]);
-        let p = (d[i - 1] * h1 + d[i] * h0) / (h0 + h1);
-        m[i] = if d[i - 1] * d[i] <= 0.0 { 0.0 } else { d[i - 1].signum() * d[i - 1].abs().min(d[i].abs()).min(0.5 * p.abs()) * 2.0 };
-        if d[i - 1] * d[i] > 0.0 && m[i].abs() > p.abs() {
-            m[i] = p;
-        }
-    }
-    m
-}
-
-/// Value and slope of the monotone cubic through `(x, y)` with slopes `m` at `at`; linear
-/// beyond the ends.
-fn hermite(x: &[f64], y: &[f64], m: &[f64], at: f64) -> (f64, f64) {
-    let n = x.len();
-    if at <= x[0] {
-        return (y[0] + m[0] * (at - x[0]), m[0]);
-    }
-    if at >= x[n - 1] {
-        return (y[n - 1] + m[n - 1] * (at - x[n - 1]), m[n - 1]);
-    }
-    let i = x.partition_point(|&v| v <= at).clamp(1, n - 1) - 1;
-    let h = x[i + 1] - x[i];
-    let t = (at - x[i]) / h;
-    let (t2, t3) = (t * t, t * t * t);
-    let v = (2.0 * t3 - 3.0 * t2 + 1.0) * y[i] + (t3 - 2.0 * t2 + t) * h * m[i] + (-2.0 * t3 + 3.0 * t2) * y[i + 1] + (t3 - t2) * h * m[i + 1];
-    let dv = ((6.0 * t2 - 6.0 * t) * y[i] + (3.0 * t2 - 4.0 * t + 1.0) * h * m[i] + (-6.0 * t2 + 6.0 * t) * y[i + 1] + (3.0 * t2 - 2.0 * t) * h * m[i + 1]) / h;
-    (v, dv)
 }
 
 impl FilmModel for ThermalNumerical {
@@ -465,46 +494,22 @@ impl FilmModel for ThermalNumerical {
             return self.full(input, previous);
         };
         // Carried mode: quasi-steady key points (no squeeze or ∂T/∂t history).
-        let steady = ContactInput { time_step: 0.0, ..*input };
         let (r, length) = match input.shape {
             ContactShape::Line { reduced_radius, length } if input.entrainment_velocity != 0.0 => (reduced_radius, length),
-            _ => return self.full(&steady, None),
+            _ => return self.full(&ContactInput { time_step: 0.0, ..*input }, None),
         };
         let here = conditions(input, r, length);
+        let layout = self.isothermal.layout(input, r, length);
         let nearest = {
             let keys = self.keys.lock().unwrap_or_else(|e| e.into_inner());
-            keys.iter().map(|k| (distance(here, k.conditions()), k)).min_by(|a, b| a.0.total_cmp(&b.0)).map(|(d, k)| (d, k.clone()))
+            let far = |k: &Key| if k.layout == layout { distance(here, k.conditions()) } else { f64::INFINITY };
+            keys.iter().map(|k| (far(k), k)).min_by(|a, b| a.0.total_cmp(&b.0)).map(|(d, k)| (d, k.clone()))
         };
-        if let Some((d, key)) = &nearest
-            && *d <= tol
-        {
-            return self.carried(key, input, previous, r, length);
-        }
-        // A new key point, warm-started from the nearest key (its thermal fields) or the
-        // previous point.
-        let warm = nearest.as_ref().map(|(_, k)| &k.film).or(previous.filter(|p| p.profile.is_some()));
-        // Where the tighter coupling stalls above it (energy sweeps' noise), the key takes the
-        // default tolerance.
-        let film = match self.full_with(&steady, warm, KEY_TOLERANCE_FACTOR) {
-            Err(SolveError::NotConverged { .. }) => self.full_with(&steady, warm, 1.0)?,
-            other => other?,
+        let out = match nearest {
+            Some((d, key)) if d <= tol => self.carried(&key, input, previous, r, length)?,
+            other => self.new_key(input, previous, other.map(|(_, k)| k), here, layout, r, length)?,
         };
-        let Some(thermal) = film.thermal.as_deref() else {
-            return Ok(film);
-        };
-        let cf = self.fallback.solve(input, None)?;
-        let table = self.closed_form_table(&cf, input, &thermal.sliding);
-        // Steady, warm-started from the previous point's isothermal film.
-        let isothermal = self.isothermal_film(&steady, isothermal_history(previous))?;
-        let key = Arc::new(Key { load_per_length: here.0, entrainment: here.1, radius: here.2, slide_to_roll: here.3, film, isothermal, closed_form: cf, closed_form_table: table });
-        // The key's own point: its factors on the isothermal film marched to it (the same
-        // squeeze history as every carried point), its thermal profile.
-        let mut out = self.carried(&key, input, previous, r, length)?;
-        out.model = FilmModelId::Thermal;
-        out.profile = key.film.profile.clone();
-        out.iterations = key.film.iterations;
-        self.keys.lock().unwrap_or_else(|e| e.into_inner()).push(key);
-        Ok(out)
+        self.transient_window(input, previous, out, here, r, tol)
     }
 
     fn traction_local(&self, film: &FilmSolution, input: &ContactInput, sliding: f64) -> (Traction, (f64, f64)) {
@@ -516,8 +521,7 @@ impl FilmModel for ThermalNumerical {
             ContactShape::Point { .. } => 0.0,
         };
         let share = 1.0 - film.asperity.load / input.load;
-        let m = steffen_slopes(&th.sliding, &th.force_per_length);
-        let (f, df) = hermite(&th.sliding, &th.force_per_length, &m, sliding);
+        let (f, df) = th.table.force(sliding);
         let (asp, aslope) = input.asperity_friction.traction(&film.asperity, sliding, input.entrainment_velocity);
         let viscous = share * length * f;
         let traction = Traction {
@@ -528,29 +532,5 @@ impl FilmModel for ThermalNumerical {
         };
         // No curvature bound: the balance evaluates the (cheap) interpolant instead.
         (traction, (0.0, 0.0))
-    }
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn steffen_interpolant_passes_through_the_data_without_overshoot() {
-        let x = [-2.0, -0.5, 0.0, 0.5, 2.0];
-        let y = [-1.0, -0.9, 0.0, 0.9, 1.0];
-        let m = steffen_slopes(&x, &y);
-        for (i, &xi) in x.iter().enumerate() {
-            assert!((hermite(&x, &y, &m, xi).0 - y[i]).abs() < 1e-12);
-        }
-        for k in 0..=400 {
-            let at = -2.0 + 4.0 * k as f64 / 400.0;
-            let (v, _) = hermite(&x, &y, &m, at);
-            assert!((-1.0 - 1e-12..=1.0 + 1e-12).contains(&v), "{at}: {v}");
-        }
-        // Slope against a finite difference.
-        let (a, da) = hermite(&x, &y, &m, 0.3);
-        let (b, _) = hermite(&x, &y, &m, 0.3 + 1e-7);
-        assert!(((b - a) / 1e-7 - da).abs() < 1e-5);
     }
 }

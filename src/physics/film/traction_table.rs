@@ -1,0 +1,365 @@
+//! The thermal film's traction table (`physics::film::thermal`): the follower's surface stress
+//! integral (seed 000 eq. 9) from the energy equation (eq. 7–8) solved on one point's pressure
+//! and film at a fixed set of slide-to-roll ratios, interpolated between them by a monotone cubic
+//! (Steffen 1990: no overshoot, C¹), linear beyond the ends.
+//!
+//! **Entries are solved when first needed**: the value at a sliding velocity needs the two
+//! entries of the interval that holds it and one neighbour on each side (they set the
+//! interval's slopes). The four around the point's own sliding velocity are solved with the
+//! point (a failure there fails the point); the others when the roller balance evaluates the
+//! traction where they are needed, and one that fails is left out (the interpolant bridges it).
+//! A cam cycle's slip stays near its own point's, while a whole table cost ≈ 4× the point's own
+//! four entries, and the far entries (±0.5, ±2) most: their energy sweeps converge slowly under
+//! strong shear heating (BENCHMARKS.md, "Where the thermal cycle's time goes").
+//!
+//! **The interpolant does not depend on the order of evaluation.** Every entry starts its sweeps
+//! from the point's coupled temperature field, so its value is the same whichever query asked
+//! for it first; and the value at a sliding velocity uses only the four entries around it, all
+//! solved — the value the whole table would give.
+
+use crate::physics::ehl::thermal::{energy, EnergyInput, TemperatureField, ThermalBodies, ThermalOptions};
+use crate::physics::ehl::Rheology;
+use crate::physics::lubricant::Lubricant;
+use crate::physics::SolveError;
+use std::sync::{Arc, Mutex};
+
+/// Slide-to-roll ratios `u_s/u_m` of the traction table (both signs and zero). Entries whose
+/// energy solve fails (beyond the point's own four) are left out; beyond the last entry the
+/// interpolant extends linearly.
+pub const SLIDE_TO_ROLL_TABLE: [f64; 13] = [-2.0, -0.5, -0.15, -0.05, -0.015, -0.004, 0.0, 0.004, 0.015, 0.05, 0.15, 0.5, 2.0];
+
+/// Factors on an entry's sliding velocity tried in turn until its energy solve succeeds. A
+/// failing ±0.15 entry is retried closer to rolling (±0.105, ±0.0735) so that the table still
+/// reaches past ±0.05 (seed 000 with w1 = 800 N: the −0.15 entry runs away at w' = 193 kN/m;
+/// BENCHMARKS.md, "Figs. 9 and 13").
+pub fn shrinks(srr: f64) -> &'static [f64] {
+    if srr.abs() <= 0.05 || srr.abs() > 0.15 { &[1.0] } else { &[1.0, 0.7, 0.49] }
+}
+
+/// Every sliding velocity an entry may take at entrainment scale `scale` (m/s): per entry, its
+/// nominal one and its retries ([`shrinks`]).
+pub fn candidate_sliding(scale: f64) -> Vec<Vec<f64>> {
+    SLIDE_TO_ROLL_TABLE.iter().map(|&srr| shrinks(srr).iter().map(|s| s * srr * scale).collect()).collect()
+}
+
+/// The problem every entry solves: the energy equation on the point's pressure and film over the
+/// pressurised zone, the surfaces moving at `u_m ± u_s/2`.
+#[derive(Debug)]
+pub struct TableProblem {
+    pub x: Vec<f64>,
+    pub pressure: Vec<f64>,
+    pub film: Vec<f64>,
+    /// Entrainment velocity `u_m`, m/s.
+    pub entrainment: f64,
+    /// Sliding velocity per unit slide-to-roll ratio, m/s (`|u_m|`, at least 1e-6).
+    pub scale: f64,
+    pub lubricant: Lubricant,
+    pub inlet_temperature: f64,
+    pub bodies: ThermalBodies,
+    pub half_width: f64,
+    pub load_per_length: f64,
+    pub rheology: Rheology,
+    pub options: ThermalOptions,
+}
+
+#[derive(Debug, Clone)]
+enum Entry {
+    Unsolved,
+    /// `candidate`: which of [`shrinks`] succeeded; `sliding` in m/s, `force` the follower's
+    /// fluid traction per unit length, N/m.
+    Solved { candidate: usize, sliding: f64, force: f64 },
+    Failed,
+}
+
+/// A traction table whose entries are solved when first needed (module docs).
+#[derive(Debug)]
+pub struct TractionTable {
+    problem: TableProblem,
+    /// The point's coupled temperature field: every entry's start.
+    start: TemperatureField,
+    entries: Mutex<Vec<Entry>>,
+}
+
+impl TableProblem {
+    /// The entry at slide-to-roll ratio `srr` from the field `warm`: the index of the first of
+    /// its candidates whose energy solve succeeds, its sliding velocity (m/s) and traction (N/m),
+    /// or the last error.
+    fn solve(&self, srr: f64, warm: &TemperatureField) -> Result<(usize, f64, f64), SolveError> {
+        let mut last = None;
+        for (candidate, &shrink) in shrinks(srr).iter().enumerate() {
+            let us = shrink * srr * self.scale;
+            let input = EnergyInput {
+                velocity_1: self.entrainment + 0.5 * us,
+                velocity_2: self.entrainment - 0.5 * us,
+                lubricant: &self.lubricant,
+                inlet_temperature: self.inlet_temperature,
+                bodies: &self.bodies,
+                half_width: self.half_width,
+                load_per_length: self.load_per_length,
+                rheology: &self.rheology,
+                previous: None,
+                warm: Some(warm),
+            };
+            match energy(&self.x, &self.pressure, &self.film, &input, &self.options) {
+                Ok(en) => return Ok((candidate, us, en.traction.force_body_2)),
+                Err(e) => last = Some(e),
+            }
+        }
+        Err(last.expect("every entry has a candidate"))
+    }
+}
+
+impl TractionTable {
+    /// The table of `problem` with the four entries around the point's own sliding velocity
+    /// `sliding` (m/s) solved from its coupled temperature field `start`; one of them failing
+    /// fails the table.
+    pub fn new(problem: TableProblem, start: TemperatureField, sliding: f64) -> Result<Self, SolveError> {
+        let table = TractionTable { problem, start, entries: Mutex::new(vec![Entry::Unsolved; SLIDE_TO_ROLL_TABLE.len()]) };
+        {
+            let mut entries = table.entries.lock().unwrap_or_else(|e| e.into_inner());
+            let nominal: Vec<f64> = SLIDE_TO_ROLL_TABLE.iter().map(|s| s * table.problem.scale).collect();
+            let j = interval(&nominal, sliding);
+            for k in j.saturating_sub(1)..=(j + 2).min(nominal.len() - 1) {
+                let (candidate, sliding, force) = table.problem.solve(SLIDE_TO_ROLL_TABLE[k], &table.start)?;
+                crate::physics::ensure_finite("thermal traction table", [&force])?;
+                entries[k] = Entry::Solved { candidate, sliding, force };
+            }
+        }
+        Ok(table)
+    }
+
+    /// Solve entry `k` from the point's coupled field; one whose energy solve fails or is not
+    /// finite is marked failed.
+    fn solve_entry(&self, entries: &mut [Entry], k: usize) {
+        entries[k] = match self.problem.solve(SLIDE_TO_ROLL_TABLE[k], &self.start) {
+            Ok((candidate, sliding, force)) if force.is_finite() => Entry::Solved { candidate, sliding, force },
+            _ => Entry::Failed,
+        };
+    }
+
+    /// Value and slope of the table seen through `view` at sliding velocity `at` (m/s). The
+    /// interval is located on the live entries' positions (an unsolved entry at its nominal
+    /// ratio: a retry keeps it between its neighbours); once its four entries are solved, the
+    /// positions that matter are exact.
+    fn evaluate(&self, view: &TableView, at: f64) -> (f64, f64) {
+        let mut entries = self.entries.lock().unwrap_or_else(|e| e.into_inner());
+        let position = |e: &Entry, k: usize| match e {
+            Entry::Solved { sliding, .. } => sliding * view.speed,
+            _ => SLIDE_TO_ROLL_TABLE[k] * self.problem.scale * view.speed,
+        };
+        loop {
+            let live: Vec<usize> = (0..entries.len()).filter(|&k| !matches!(entries[k], Entry::Failed)).collect();
+            let n = live.len();
+            let positions: Vec<f64> = live.iter().map(|&k| position(&entries[k], k)).collect();
+            let j = interval(&positions, at);
+            let stencil = &live[j.saturating_sub(1)..=(j + 2).min(n - 1)];
+            if let Some(&k) = stencil.iter().find(|&&k| matches!(entries[k], Entry::Unsolved)) {
+                self.solve_entry(&mut entries, k);
+                continue;
+            }
+            // Only the stencil's entries are read: the others stay NaN.
+            let mut x = vec![f64::NAN; n];
+            let mut y = vec![f64::NAN; n];
+            for (i, &k) in live.iter().enumerate().skip(j.saturating_sub(1)).take(4) {
+                if let Entry::Solved { candidate, sliding, force, .. } = &entries[k] {
+                    x[i] = sliding * view.speed;
+                    y[i] = force * view.ratio.as_ref().map_or(1.0, |r| r[k][*candidate]);
+                }
+            }
+            let mut m = vec![f64::NAN; n];
+            m[j] = steffen_slope(&x, &y, j);
+            m[j + 1] = steffen_slope(&x, &y, j + 1);
+            return hermite(&x, &y, &m, j, at);
+        }
+    }
+}
+
+/// One point's view of a traction table (its own, or a key point's carried to it): sliding
+/// velocities times `speed`, and forces times `ratio[entry][candidate]` (`None`: 1).
+#[derive(Debug, Clone)]
+pub struct TableView {
+    pub table: Arc<TractionTable>,
+    pub speed: f64,
+    pub ratio: Option<Vec<Vec<f64>>>,
+}
+
+impl PartialEq for TableView {
+    fn eq(&self, other: &Self) -> bool {
+        Arc::ptr_eq(&self.table, &other.table) && self.speed == other.speed && self.ratio == other.ratio
+    }
+}
+
+impl TableView {
+    /// The follower's fluid traction per unit length (N/m) and its slope in the sliding
+    /// velocity at `sliding` (m/s).
+    pub fn force(&self, sliding: f64) -> (f64, f64) {
+        self.table.evaluate(self, sliding)
+    }
+
+    /// The table's problem (entrainment and sliding scale).
+    pub fn problem(&self) -> &TableProblem {
+        &self.table.problem
+    }
+}
+
+/// Steffen's (1990) slope at node `i` of the data `(x, y)` (reads nodes `i − 1 … i + 1`):
+/// monotone where the data are, no overshoot; one-sided at the ends.
+fn steffen_slope(x: &[f64], y: &[f64], i: usize) -> f64 {
+    let n = x.len();
+    let d = |k: usize| (y[k + 1] - y[k]) / (x[k + 1] - x[k]);
+    if i == 0 {
+        return d(0);
+    }
+    if i == n - 1 {
+        return d(n - 2);
+    }
+    let (d0, d1) = (d(i - 1), d(i));
+    let (h0, h1) = (x[i] - x[i - 1], x[i + 1] - x[i]);
+    let p = (d0 * h1 + d1 * h0) / (h0 + h1);
+    if d0 * d1 <= 0.0 {
+        return 0.0;
+    }
+    let m = d0.signum() * d0.abs().min(d1.abs()).min(0.5 * p.abs()) * 2.0;
+    if m.abs() > p.abs() { p } else { m }
+}
+
+/// Index `i` of the interval `[x_i, x_{i+1}]` of the increasing nodes `x` that holds `at`
+/// (the first or last interval beyond the ends).
+fn interval(x: &[f64], at: f64) -> usize {
+    x.partition_point(|&v| v <= at).clamp(1, x.len() - 1) - 1
+}
+
+/// Value and slope at `at` of the monotone cubic through `(x, y)` with slopes `m` on interval
+/// `i` ([`interval`]); linear beyond the ends. Reads only the nodes `i`, `i + 1`.
+fn hermite(x: &[f64], y: &[f64], m: &[f64], i: usize, at: f64) -> (f64, f64) {
+    let n = x.len();
+    if i == 0 && at <= x[0] {
+        return (y[0] + m[0] * (at - x[0]), m[0]);
+    }
+    if i + 2 == n && at >= x[n - 1] {
+        return (y[n - 1] + m[n - 1] * (at - x[n - 1]), m[n - 1]);
+    }
+    let h = x[i + 1] - x[i];
+    let t = (at - x[i]) / h;
+    let (t2, t3) = (t * t, t * t * t);
+    let v = (2.0 * t3 - 3.0 * t2 + 1.0) * y[i] + (t3 - 2.0 * t2 + t) * h * m[i] + (-2.0 * t3 + 3.0 * t2) * y[i + 1] + (t3 - t2) * h * m[i + 1];
+    let dv = ((6.0 * t2 - 6.0 * t) * y[i] + (3.0 * t2 - 4.0 * t + 1.0) * h * m[i] + (-6.0 * t2 + 6.0 * t) * y[i + 1] + (3.0 * t2 - 2.0 * t) * h * m[i + 1]) / h;
+    (v, dv)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A light table problem: a smooth pressure bump (`p0 (1 − x²/b²)^1.5`, p0 = 0.3 GPa,
+    /// b = 0.1 mm: finite slopes, unlike Hertz's, whose Poiseuille flow on a uniform film runs
+    /// away at the edges) on a uniform 2 µm film, u_m = 3 m/s, Newtonian, the seed 000 oil.
+    fn problem() -> TableProblem {
+        let b = 1e-4;
+        let x: Vec<f64> = (0..=120).map(|i| -1.5 * b + 3.0 * b * i as f64 / 120.0).collect();
+        let pressure = x.iter().map(|x| 0.3e9 * (1.0 - (x / b).powi(2)).max(0.0).powf(1.5)).collect();
+        TableProblem {
+            film: vec![2e-6; x.len()],
+            x,
+            pressure,
+            entrainment: 3.0,
+            scale: 3.0,
+            lubricant: Lubricant::SEED000,
+            inlet_temperature: 313.0,
+            bodies: ThermalBodies::SEED000,
+            half_width: b,
+            load_per_length: 0.375 * std::f64::consts::PI * b * 0.3e9,
+            rheology: Rheology::default(),
+            options: ThermalOptions::default(),
+        }
+    }
+
+    fn start(p: &TableProblem) -> TemperatureField {
+        let n = p.x.len();
+        let o = p.options;
+        TemperatureField { x: p.x.clone(), film: vec![p.inlet_temperature; n * o.film_points], body_1: vec![p.inlet_temperature; n * o.solid_points], body_2: vec![p.inlet_temperature; n * o.solid_points], film_points: o.film_points, solid_points: o.solid_points }
+    }
+
+    fn solved(table: &TractionTable) -> Vec<usize> {
+        let entries = table.entries.lock().unwrap();
+        (0..entries.len()).filter(|&k| matches!(entries[k], Entry::Solved { .. })).collect()
+    }
+
+    /// A table solves only the entries the queries need, and its values do not depend on the
+    /// order of the queries: the same as every entry solved up front and interpolated whole.
+    #[test]
+    fn lazy_table_solves_what_it_needs_and_matches_the_whole_table() {
+        let p = problem();
+        let field = start(&p);
+        let lazy = TractionTable::new(problem(), field.clone(), 0.047 * 3.0).unwrap();
+        // The point's own interval [0.015, 0.05] and its neighbours 0.004 and 0.15.
+        assert_eq!(solved(&lazy), vec![7, 8, 9, 10]);
+        let view = TableView { table: Arc::new(lazy), speed: 1.0, ratio: None };
+        let queries = [0.12, -0.1 * 3.0, 0.01, 5.0];
+        let values: Vec<(f64, f64)> = queries.iter().map(|&q| view.force(q)).collect();
+        assert_eq!(solved(&view.table), (0..13).filter(|&k| k != 0).collect::<Vec<_>>(), "−2 is not needed by any query");
+        // The whole table, eagerly, each entry from the same start.
+        let (x, y): (Vec<f64>, Vec<f64>) = SLIDE_TO_ROLL_TABLE
+            .iter()
+            .map(|&srr| {
+                let (_, us, f) = p.solve(srr, &field).unwrap();
+                (us, f)
+            })
+            .unzip();
+        let m: Vec<f64> = (0..x.len()).map(|i| steffen_slope(&x, &y, i)).collect();
+        for (&q, &(v, dv)) in queries.iter().zip(&values) {
+            let (w, dw) = hermite(&x, &y, &m, interval(&x, q), q);
+            println!("u_s {q}: lazy {v:.6e} / {dv:.6e}, whole {w:.6e} / {dw:.6e}");
+            assert_eq!((v, dv), (w, dw), "{q}");
+        }
+        // Queried again in the reverse order: the same values.
+        let view2 = TableView { table: Arc::new(TractionTable::new(problem(), field, 0.047 * 3.0).unwrap()), speed: 1.0, ratio: None };
+        for (&q, &v) in queries.iter().zip(&values).rev() {
+            assert_eq!(view2.force(q), v);
+        }
+    }
+
+    fn slopes(x: &[f64], y: &[f64]) -> Vec<f64> {
+        (0..x.len()).map(|i| steffen_slope(x, y, i)).collect()
+    }
+
+    #[test]
+    fn steffen_interpolant_passes_through_the_data_without_overshoot() {
+        let x = [-2.0, -0.5, 0.0, 0.5, 2.0];
+        let y = [-1.0, -0.9, 0.0, 0.9, 1.0];
+        let m = slopes(&x, &y);
+        let at = |v: f64| hermite(&x, &y, &m, interval(&x, v), v);
+        for (i, &xi) in x.iter().enumerate() {
+            assert!((at(xi).0 - y[i]).abs() < 1e-12);
+        }
+        for k in 0..=400 {
+            let u = -2.0 + 4.0 * k as f64 / 400.0;
+            let (v, _) = at(u);
+            assert!((-1.0 - 1e-12..=1.0 + 1e-12).contains(&v), "{u}: {v}");
+        }
+        // Slope against a finite difference.
+        let (a, da) = at(0.3);
+        let (b, _) = at(0.3 + 1e-7);
+        assert!(((b - a) / 1e-7 - da).abs() < 1e-5);
+    }
+
+    #[test]
+    fn the_interpolant_reads_only_its_stencil() {
+        // NaN outside the four nodes around the interval changes nothing.
+        let x: Vec<f64> = (0..7).map(|i| i as f64 * 0.7 - 2.0).collect();
+        let y: Vec<f64> = x.iter().map(|v: &f64| v.tanh()).collect();
+        let m = slopes(&x, &y);
+        for at in [-3.0, -1.9, -0.3, 2.1, 3.5] {
+            let j = interval(&x, at);
+            let (mut xs, mut ys) = (vec![f64::NAN; 7], vec![f64::NAN; 7]);
+            for i in j.saturating_sub(1)..=(j + 2).min(6) {
+                xs[i] = x[i];
+                ys[i] = y[i];
+            }
+            let mut ms = vec![f64::NAN; 7];
+            ms[j] = steffen_slope(&xs, &ys, j);
+            ms[j + 1] = steffen_slope(&xs, &ys, j + 1);
+            assert_eq!(hermite(&xs, &ys, &ms, j, at), hermite(&x, &y, &m, j, at), "{at}");
+        }
+    }
+}
