@@ -5,17 +5,21 @@
 //!
 //! **Entries are solved when first needed**: the value at a sliding velocity needs the two
 //! entries of the interval that holds it and one neighbour on each side (they set the
-//! interval's slopes). The four around the point's own sliding velocity are solved with the
-//! point (a failure there fails the point); the others when the roller balance evaluates the
-//! traction where they are needed, and one that fails is left out (the interpolant bridges it).
-//! A cam cycle's slip stays near its own point's, while a whole table cost ≈ 4× the point's own
-//! four entries, and the far entries (±0.5, ±2) most: their energy sweeps converge slowly under
-//! strong shear heating (BENCHMARKS.md, "Where the thermal cycle's time goes").
+//! interval's slopes). The four around the point's own sliding velocity, and those between them
+//! and rolling (their starts, below), are solved with the point (a failure there fails the
+//! point); the others when the roller balance evaluates the traction where they are needed, and
+//! one that fails is left out (the interpolant bridges it). A cam cycle's slip stays near its
+//! own point's, while the far entries (±0.5, ±2) cost most: their energy sweeps converge slowly
+//! under strong shear heating (BENCHMARKS.md, "Where the thermal cycle's time goes"; the lazy
+//! table's effect: "Thermal cycle: lazy table, layouts, lag window").
 //!
-//! **The interpolant does not depend on the order of evaluation.** Every entry starts its sweeps
-//! from the point's coupled temperature field, so its value is the same whichever query asked
-//! for it first; and the value at a sliding velocity uses only the four entries around it, all
-//! solved — the value the whole table would give.
+//! **The interpolant does not depend on the order of evaluation.** The rolling entry starts its
+//! sweeps from the point's coupled temperature field, every other entry from its inner
+//! neighbour's converged field (solved first when needed) — so an entry's value is the same
+//! whichever query asked for it first; and the value at a sliding velocity uses only the four
+//! entries around it, all solved — the value the whole table would give. (Every entry from the
+//! coupled field instead cost 70 % more sweeps: near rolling the coupled field's shear heating
+//! is far from the entry's.)
 
 use crate::physics::ehl::thermal::{energy, EnergyInput, TemperatureField, ThermalBodies, ThermalOptions};
 use crate::physics::ehl::Rheology;
@@ -27,6 +31,9 @@ use std::sync::{Arc, Mutex};
 /// energy solve fails (beyond the point's own four) are left out; beyond the last entry the
 /// interpolant extends linearly.
 pub const SLIDE_TO_ROLL_TABLE: [f64; 13] = [-2.0, -0.5, -0.15, -0.05, -0.015, -0.004, 0.0, 0.004, 0.015, 0.05, 0.15, 0.5, 2.0];
+
+/// Index of the rolling entry (`u_s = 0`).
+const ROLLING: usize = 6;
 
 /// Factors on an entry's sliding velocity tried in turn until its energy solve succeeds. A
 /// failing ±0.15 entry is retried closer to rolling (±0.105, ±0.0735) so that the table still
@@ -67,7 +74,7 @@ enum Entry {
     Unsolved,
     /// `candidate`: which of [`shrinks`] succeeded; `sliding` in m/s, `force` the follower's
     /// fluid traction per unit length, N/m.
-    Solved { candidate: usize, sliding: f64, force: f64 },
+    Solved { candidate: usize, sliding: f64, force: f64, field: TemperatureField },
     Failed,
 }
 
@@ -75,7 +82,7 @@ enum Entry {
 #[derive(Debug)]
 pub struct TractionTable {
     problem: TableProblem,
-    /// The point's coupled temperature field: every entry's start.
+    /// The point's coupled temperature field: the rolling entry's start.
     start: TemperatureField,
     entries: Mutex<Vec<Entry>>,
 }
@@ -84,7 +91,7 @@ impl TableProblem {
     /// The entry at slide-to-roll ratio `srr` from the field `warm`: the index of the first of
     /// its candidates whose energy solve succeeds, its sliding velocity (m/s) and traction (N/m),
     /// or the last error.
-    fn solve(&self, srr: f64, warm: &TemperatureField) -> Result<(usize, f64, f64), SolveError> {
+    fn solve(&self, srr: f64, warm: &TemperatureField) -> Result<(usize, f64, f64, TemperatureField), SolveError> {
         let mut last = None;
         for (candidate, &shrink) in shrinks(srr).iter().enumerate() {
             let us = shrink * srr * self.scale;
@@ -101,7 +108,7 @@ impl TableProblem {
                 warm: Some(warm),
             };
             match energy(&self.x, &self.pressure, &self.film, &input, &self.options) {
-                Ok(en) => return Ok((candidate, us, en.traction.force_body_2)),
+                Ok(en) => return Ok((candidate, us, en.traction.force_body_2, en.field)),
                 Err(e) => last = Some(e),
             }
         }
@@ -111,7 +118,8 @@ impl TableProblem {
 
 impl TractionTable {
     /// The table of `problem` with the four entries around the point's own sliding velocity
-    /// `sliding` (m/s) solved from its coupled temperature field `start`; one of them failing
+    /// `sliding` (m/s) solved (and the entries between them and rolling that they start from),
+    /// the rolling entry from the point's coupled temperature field `start`; one of them failing
     /// fails the table.
     pub fn new(problem: TableProblem, start: TemperatureField, sliding: f64) -> Result<Self, SolveError> {
         let table = TractionTable { problem, start, entries: Mutex::new(vec![Entry::Unsolved; SLIDE_TO_ROLL_TABLE.len()]) };
@@ -119,20 +127,46 @@ impl TractionTable {
             let mut entries = table.entries.lock().unwrap_or_else(|e| e.into_inner());
             let nominal: Vec<f64> = SLIDE_TO_ROLL_TABLE.iter().map(|s| s * table.problem.scale).collect();
             let j = interval(&nominal, sliding);
-            for k in j.saturating_sub(1)..=(j + 2).min(nominal.len() - 1) {
-                let (candidate, sliding, force) = table.problem.solve(SLIDE_TO_ROLL_TABLE[k], &table.start)?;
-                crate::physics::ensure_finite("thermal traction table", [&force])?;
-                entries[k] = Entry::Solved { candidate, sliding, force };
+            let (lo, hi) = (j.saturating_sub(1).min(ROLLING), (j + 2).min(nominal.len() - 1).max(ROLLING));
+            // From rolling outwards, so that each entry's start is solved before it.
+            for k in (ROLLING..=hi).chain((lo..ROLLING).rev()) {
+                table.solve_entry(&mut entries, k);
+                if !matches!(entries[k], Entry::Solved { .. }) {
+                    let warm = table.warm(&entries, k).clone();
+                    let (_, _, force, _) = table.problem.solve(SLIDE_TO_ROLL_TABLE[k], &warm)?;
+                    crate::physics::ensure_finite("thermal traction table", [&force])?;
+                }
             }
         }
         Ok(table)
     }
 
-    /// Solve entry `k` from the point's coupled field; one whose energy solve fails or is not
-    /// finite is marked failed.
+    /// The field entry `k` starts from: its inner neighbour's (the nearest solved entry towards
+    /// rolling), the coupled field for the rolling entry.
+    fn warm<'a>(&'a self, entries: &'a [Entry], k: usize) -> &'a TemperatureField {
+        let inner = |j: usize| if j > ROLLING { j - 1 } else { j + 1 };
+        let mut j = k;
+        while j != ROLLING {
+            j = inner(j);
+            if let Entry::Solved { field, .. } = &entries[j] {
+                return field;
+            }
+        }
+        &self.start
+    }
+
+    /// Solve entry `k` from its inner neighbour's field ([`Self::warm`]; solving that first
+    /// when needed); one whose energy solve fails or is not finite is marked failed.
     fn solve_entry(&self, entries: &mut [Entry], k: usize) {
-        entries[k] = match self.problem.solve(SLIDE_TO_ROLL_TABLE[k], &self.start) {
-            Ok((candidate, sliding, force)) if force.is_finite() => Entry::Solved { candidate, sliding, force },
+        if k != ROLLING {
+            let inner = if k > ROLLING { k - 1 } else { k + 1 };
+            if matches!(entries[inner], Entry::Unsolved) {
+                self.solve_entry(entries, inner);
+            }
+        }
+        let warm = self.warm(entries, k);
+        entries[k] = match self.problem.solve(SLIDE_TO_ROLL_TABLE[k], warm) {
+            Ok((candidate, sliding, force, field)) if force.is_finite() => Entry::Solved { candidate, sliding, force, field },
             _ => Entry::Failed,
         };
     }
@@ -292,20 +326,22 @@ mod tests {
         let p = problem();
         let field = start(&p);
         let lazy = TractionTable::new(problem(), field.clone(), 0.047 * 3.0).unwrap();
-        // The point's own interval [0.015, 0.05] and its neighbours 0.004 and 0.15.
-        assert_eq!(solved(&lazy), vec![7, 8, 9, 10]);
+        // The point's own interval [0.015, 0.05], its neighbours 0.004 and 0.15, and rolling
+        // (0.004's start).
+        assert_eq!(solved(&lazy), vec![6, 7, 8, 9, 10]);
         let view = TableView { table: Arc::new(lazy), speed: 1.0, ratio: None };
         let queries = [0.12, -0.1 * 3.0, 0.01, 5.0];
         let values: Vec<(f64, f64)> = queries.iter().map(|&q| view.force(q)).collect();
         assert_eq!(solved(&view.table), (0..13).filter(|&k| k != 0).collect::<Vec<_>>(), "−2 is not needed by any query");
-        // The whole table, eagerly, each entry from the same start.
-        let (x, y): (Vec<f64>, Vec<f64>) = SLIDE_TO_ROLL_TABLE
-            .iter()
-            .map(|&srr| {
-                let (_, us, f) = p.solve(srr, &field).unwrap();
-                (us, f)
-            })
-            .unzip();
+        // The whole table, eagerly: rolling from the start, then outwards each from its inner
+        // neighbour.
+        let n = SLIDE_TO_ROLL_TABLE.len();
+        let (mut x, mut y, mut fields) = (vec![0.0; n], vec![0.0; n], vec![None; n]);
+        for k in (ROLLING..n).chain((0..ROLLING).rev()) {
+            let warm = if k == ROLLING { &field } else { fields[if k > ROLLING { k - 1 } else { k + 1 }].as_ref().unwrap() };
+            let (_, us, f, next) = p.solve(SLIDE_TO_ROLL_TABLE[k], warm).unwrap();
+            (x[k], y[k], fields[k]) = (us, f, Some(next));
+        }
         let m: Vec<f64> = (0..x.len()).map(|i| steffen_slope(&x, &y, i)).collect();
         for (&q, &(v, dv)) in queries.iter().zip(&values) {
             let (w, dw) = hermite(&x, &y, &m, interval(&x, q), q);
