@@ -255,6 +255,10 @@ fn l9_timeline() {
         let cpu = process_cpu() - c0;
         let ev = obs.events.into_inner().unwrap();
         println!("\nrun {rep}: {} analyses, {:.1} ms wall, {:.1} ms CPU (all threads)", r.evaluations, wall * 1e3, cpu * 1e3);
+        // the results, to the last bit (equal for every pool size and run)
+        let bits: Vec<u64> = r.runs.iter().flat_map(|x| [x.sn_ratio_db, x.eccentricity_ratio]).chain([r.best_levels.design.score, r.best_levels.design.eccentricity_ratio, r.baseline.eccentricity_ratio]).map(f64::to_bits).collect();
+        let fold = bits.iter().fold(0u64, |h, b| h.rotate_left(5) ^ b);
+        println!("  results: hash {fold:016x}; best levels {}/{}/{}, confirmation ε {:.15}", r.best_levels.order_level, r.best_levels.height_level, r.best_levels.length_fraction_level, r.best_levels.design.eccentricity_ratio);
         for e in ev.iter().filter(|e| !e.3.is_empty()) {
             println!("  stage '{}' at {:.1} ms on {:?}", e.3, e.1 * 1e3, e.0);
         }
