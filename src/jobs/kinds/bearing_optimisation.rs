@@ -673,3 +673,36 @@ impl Observer for Abandon<'_> {
         self.inner.check()
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::physics::Silent;
+
+    /// The array's result does not depend on the pool size or on which worker ran which case
+    /// (each case on a reset workspace; the early confirmation kept only when it is the same
+    /// analysis): equal to the last bit with 1, 2 and 3 threads, run twice each.
+    #[test]
+    fn the_l9_result_is_the_same_for_every_pool_size() {
+        let spec: OptimisationSpec = serde_json::from_value(json!({
+            "base": {
+                "geometry": {"length_to_diameter": 1.25},
+                "load": {"aligned_eccentricity_ratio": 0.6},
+                "misalignment": {"vertical": 0.56, "horizontal": 0.56},
+                "grid": {"circumferential": 61, "axial": 31}
+            },
+            "method": "taguchi_l9",
+            "factors": {"order": [1, 2, 3], "height": [0.1, 0.4, 1.0], "length_fraction": [0.01, 0.2, 0.4]},
+            "continuous": {"enabled": false}
+        }))
+        .unwrap();
+        let run = |threads: usize| {
+            let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().unwrap();
+            serde_json::to_string(&pool.install(|| optimise(&spec, &Silent).unwrap())).unwrap()
+        };
+        let one = run(1);
+        for threads in [2, 3, 2, 3] {
+            assert_eq!(run(threads), one, "{threads} threads");
+        }
+    }
+}
