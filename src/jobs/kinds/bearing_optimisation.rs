@@ -438,7 +438,7 @@ fn optimise(spec: &OptimisationSpec, observer: &dyn Observer) -> Result<Optimisa
             }
             if let Some(combo) = predicted_best_levels(&rows, levels, &runs_so_far, &weights) {
                 ws.reset();
-                let abandon = Abandon { inner: observer, known_best: &known_best, mine: combo_index(&combo) };
+                let abandon = Abandon { inner: observer, known_best: &known_best, failed: &failed, mine: combo_index(&combo) };
                 // an error here (a wrong guess abandoned, a cancel, a failure) is not kept: the
                 // confirmation after the array runs again and reports it
                 if let Ok((d, _)) = ev.design(base, Some(profile(&combo)), Some(&mut ws), &abandon) {
@@ -654,10 +654,12 @@ fn predicted_best_levels(rows: &[[usize; 3]], levels: usize, runs: &[Option<Desi
 }
 
 /// The observer of a speculative confirmation run: stops it once the array is complete and its
-/// best-level combination is another one (`known_best`: 0 while unknown, else 1 + its index).
+/// best-level combination is another one (`known_best`: 0 while unknown, else 1 + its index),
+/// or a case of the array failed.
 struct Abandon<'a> {
     inner: &'a dyn Observer,
     known_best: &'a AtomicUsize,
+    failed: &'a AtomicBool,
     mine: usize,
 }
 
@@ -667,7 +669,7 @@ impl Observer for Abandon<'_> {
     }
     fn check(&self) -> Result<(), crate::physics::Interrupt> {
         let known = self.known_best.load(Ordering::Relaxed);
-        if known != 0 && known != self.mine {
+        if (known != 0 && known != self.mine) || self.failed.load(Ordering::Relaxed) {
             return Err(crate::physics::Interrupt::Canceled);
         }
         self.inner.check()
