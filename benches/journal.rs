@@ -212,6 +212,64 @@ fn l9_cases() {
     println!("finest-grid V-cycles over the nine cases: {finest_cycles}");
 }
 
+/// The L9's schedule on two idle cores, modelled from measured costs (`cargo bench --bench
+/// journal -- l9-schedule`): the thread CPU of each analysis (best of 3; the reference, the
+/// baseline, the nine runs and the confirmation, each on a reset workspace as the kind runs
+/// them) and of a workspace allocation, then the makespan of round 8's schedule (reference;
+/// cases `w, w + 2, …` per worker, the second worker allocating its workspace first;
+/// confirmation after both) and of round 9's (allocation during the reference; cases from a
+/// shared counter; the idle worker starts the confirmation while the last case runs, kept when
+/// the predicted best levels hold). Wall times on this shared VM are too noisy to show it.
+fn l9_schedule() {
+    let s = settings(361, 181);
+    let plain = Bearing::plain(1.25);
+    let (alloc, _, _) = best_of(3, || Workspace::new(&seed_case(), &s));
+    let mut ws = Workspace::new(&plain, &s);
+    let (reference, _, a) = best_of(3, || {
+        ws.reset();
+        analyse(&plain, &Operating::Eccentricity(0.6), &s, Some(&mut ws), None, false, &Silent).unwrap()
+    });
+    let guess = Guess { eccentricity: a.eccentricity, attitude: a.attitude };
+    let runs = [(1, 0.1, 0.01), (1, 0.4, 0.2), (1, 1.0, 0.4), (2, 0.1, 0.2), (2, 0.4, 0.4), (2, 1.0, 0.01), (3, 0.1, 0.4), (3, 0.4, 0.01), (3, 1.0, 0.2)];
+    let profiles: Vec<Option<Profile>> = std::iter::once(None)
+        .chain(runs.iter().map(|&(order, height, length_fraction)| Some(Profile { order, height, length_fraction })))
+        .chain(std::iter::once(Some(Profile { order: 2, height: 0.4, length_fraction: 0.2 })))
+        .collect();
+    let costs: Vec<f64> = profiles
+        .iter()
+        .map(|p| {
+            let b = Bearing { profile: *p, ..seed_case() };
+            best_of(3, || {
+                ws.reset();
+                analyse(&b, &Operating::Load(a.load), &s, Some(&mut ws), Some(guess), false, &Silent).unwrap()
+            })
+            .0
+        })
+        .collect();
+    let (cases, confirm) = (&costs[..10], costs[10]);
+    let ms = |x: f64| x * 1e3;
+    println!("workspace {:.2} ms, reference {:.2} ms, confirmation {:.2} ms; baseline and runs 1–9 (ms): {:?}", ms(alloc), ms(reference), ms(confirm), cases.iter().map(|c| (ms(*c) * 100.0).round() / 100.0).collect::<Vec<_>>());
+    let total: f64 = cases.iter().sum();
+    let (a0, a1): (f64, f64) = (cases.iter().step_by(2).sum(), cases.iter().skip(1).step_by(2).sum());
+    let old = reference + a0.max(alloc + a1) + confirm;
+    // shared counter in index order, the first worker to be free takes the next case
+    let mut free = [reference.max(alloc), reference.max(alloc)];
+    let mut last_of = [0usize; 2];
+    for (i, c) in cases.iter().enumerate() {
+        let w = if free[0] <= free[1] { 0 } else { 1 };
+        free[w] += c;
+        last_of[w] = i;
+    }
+    let idle = if free[0] <= free[1] { 0 } else { 1 };
+    let busy = free[1 - idle];
+    let hit = busy.max(free[idle] + confirm);
+    let miss = busy + confirm;
+    println!(
+        "modelled makespan on two idle cores: round 8 {:.1} ms; round 9 {:.1} ms when the prediction holds ({:+.1} %), {:.1} ms when not ({:+.1} %); the idle worker waits on case {} (0 = baseline); lower bound (reference + half the rest) {:.1} ms; one thread {:.1} ms",
+        ms(old), ms(hit), (hit / old - 1.0) * 100.0, ms(miss), (miss / old - 1.0) * 100.0, last_of[1 - idle], ms(reference + 0.5 * (total + confirm)), ms(reference + total + confirm)
+    );
+}
+
 /// Records every `check()` of a solve: (rayon worker, wall s since start, the thread's CPU s), and
 /// the progress stages. `cargo bench --bench journal -- l9-timeline`: when each worker of the L9
 /// pool worked, and how much CPU it got while it did.
@@ -255,6 +313,10 @@ fn l9_timeline() {
         let cpu = process_cpu() - c0;
         let ev = obs.events.into_inner().unwrap();
         println!("\nrun {rep}: {} analyses, {:.1} ms wall, {:.1} ms CPU (all threads)", r.evaluations, wall * 1e3, cpu * 1e3);
+        // the results, to the last bit (equal for every pool size and run)
+        let bits: Vec<u64> = r.runs.iter().flat_map(|x| [x.sn_ratio_db, x.eccentricity_ratio]).chain([r.best_levels.design.score, r.best_levels.design.eccentricity_ratio, r.baseline.eccentricity_ratio]).map(f64::to_bits).collect();
+        let fold = bits.iter().fold(0u64, |h, b| h.rotate_left(5) ^ b);
+        println!("  results: hash {fold:016x}; best levels {}/{}/{}, confirmation ε {:.15}", r.best_levels.order_level, r.best_levels.height_level, r.best_levels.length_fraction_level, r.best_levels.design.eccentricity_ratio);
         for e in ev.iter().filter(|e| !e.3.is_empty()) {
             println!("  stage '{}' at {:.1} ms on {:?}", e.3, e.1 * 1e3, e.0);
         }
@@ -304,6 +366,10 @@ fn main() {
     }
     if std::env::args().any(|a| a == "l9-cases") {
         l9_cases();
+        return;
+    }
+    if std::env::args().any(|a| a == "l9-schedule") {
+        l9_schedule();
         return;
     }
     if std::env::args().any(|a| a == "l9-timeline") {

@@ -16,7 +16,7 @@ use crate::physics::journal::taguchi::{level_means, nelder_mead, sn_larger_bette
 use crate::physics::journal::{Guess, Operating, Workspace};
 use crate::physics::{Convergence, Observer, SolveError, Termination};
 use rayon::prelude::*;
-use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
 use std::sync::Mutex;
 use serde::{Deserialize, Serialize};
 use serde_json::{json, Value};
@@ -365,66 +365,96 @@ impl Kind for BearingOptimisation {
 fn optimise(spec: &OptimisationSpec, observer: &dyn Observer) -> Result<OptimisationResult, SolveError> {
     let base = &spec.base;
     observer.progress(0.0, "reference load");
-    // one workspace (the grids of the base) serves the reference, a worker of the array and
-    // the confirmation run
+    let array = spec.method.array();
+    let rows = array.rows();
+    let levels = array.levels();
+    let f = &spec.factors;
+    let weights = Weights { film: spec.weights.film, pressure: spec.weights.pressure, friction: spec.weights.friction };
+    let profile = |r: &[usize; 3]| BearingProfileSpec { order: f.order[r[0]], height: f.height[r[1]], length_fraction: f.length_fraction[r[2]] };
+    let cases: Vec<Option<BearingProfileSpec>> = std::iter::once(None).chain(rows.iter().map(|r| Some(profile(r)))).collect();
+    let workers = rayon::current_num_threads().clamp(1, cases.len());
+    // the reference analysis on one thread while the others allocate the array's workspaces
+    // (the first worker takes the reference's)
     let mut ws0 = Workspace::new(&base.bearing(), &base.settings());
-    let (op, guess, target) = resolve_load_in(base, Some(&mut ws0), observer)?;
+    let (reference_load, others) = rayon::join(
+        || resolve_load_in(base, Some(&mut ws0), observer),
+        || (1..workers).map(|_| Workspace::new(&base.bearing(), &base.settings())).collect::<Vec<_>>(),
+    );
+    let (op, guess, target) = reference_load?;
     let mut evaluations = if base.load.aligned_eccentricity_ratio.is_some() { 1 } else { 0 };
     let load = target.unwrap_or(0.0);
     let ev = Evaluator { friction: spec.friction, op, guess };
     observer.progress(0.1, "orthogonal array");
-    let array = spec.method.array();
-    let rows = array.rows();
-    let f = &spec.factors;
-    let profile = |r: &[usize; 3]| BearingProfileSpec { order: f.order[r[0]], height: f.height[r[1]], length_fraction: f.length_fraction[r[2]] };
-    // the unprofiled base and the runs in parallel: one worker per thread of the pool, each
-    // with one workspace (grids and the last pressure, which warm-starts its next case) for the
-    // cases `w, w + W, w + 2W, …` in that order, the first worker with the reference's
-    // workspace. A fixed assignment, so that each case's warm start — and the last digits of
-    // its result — do not depend on which worker finished first (a shared counter made
-    // `seed002_taguchi_l9` differ by ≈ 3e-9 between runs); with the pool's thread count the
-    // results are reproducible. The nine L9 cases' costs interleave evenly (BENCHMARKS.md,
-    // journal speed, round 8: finest V-cycles 62 / 61 per worker of two).
-    let cases: Vec<Option<BearingProfileSpec>> = std::iter::once(None).chain(rows.iter().map(|r| Some(profile(r)))).collect();
-    let workers = rayon::current_num_threads().clamp(1, cases.len());
+    // The unprofiled base and the runs in parallel: each worker takes the next case from a
+    // shared counter and analyses it on its workspace after `Workspace::reset`, so a case's
+    // result is the same bit for bit whichever worker runs it after whichever case (and for any
+    // pool size). A worker that finds no case left while others still run theirs predicts the
+    // best-level combination from the runs done (`predicted_best_levels`) and analyses it
+    // speculatively: the confirmation run then overlaps the array's last cases instead of
+    // following them on one thread (BENCHMARKS.md, journal speed, ninth round). A wrong
+    // prediction is abandoned as soon as the last run is in; it only costs the idle worker.
+    let next = AtomicUsize::new(0);
     let failed = AtomicBool::new(false);
-    let spare = Mutex::new(Some(ws0));
-    let done: Vec<(Vec<(usize, Design)>, Workspace)> = (0..workers)
+    let done: Mutex<Vec<Option<Design>>> = Mutex::new(vec![None; cases.len()]);
+    // 0: the array is not complete; else 1 + the index of its best-level combination
+    let known_best = AtomicUsize::new(0);
+    let speculating = AtomicBool::new(false);
+    let speculation: Mutex<Option<([usize; 3], Design)>> = Mutex::new(None);
+    let combo_index = |c: &[usize; 3]| 1 + (c[0] * levels + c[1]) * levels + c[2];
+    let spare = Mutex::new(std::iter::once(ws0).chain(others).collect::<Vec<_>>());
+    let workspaces: Vec<Workspace> = (0..workers)
         .into_par_iter()
-        .map(|w| -> Result<(Vec<(usize, Design)>, Workspace), SolveError> {
-            let reference = if w == 0 { spare.lock().ok().and_then(|mut s| s.take()) } else { None };
-            let mut ws = reference.unwrap_or_else(|| Workspace::new(&base.bearing(), &base.settings()));
-            let mut out = Vec::new();
-            for i in (w..cases.len()).step_by(workers) {
-                if failed.load(Ordering::Relaxed) {
+        .map(|_| -> Result<Workspace, SolveError> {
+            let mut ws = spare.lock().ok().and_then(|mut s| s.pop()).unwrap_or_else(|| Workspace::new(&base.bearing(), &base.settings()));
+            loop {
+                let i = next.fetch_add(1, Ordering::Relaxed);
+                if i >= cases.len() || failed.load(Ordering::Relaxed) {
                     break;
                 }
+                ws.reset();
                 let d = observer.check().map_err(SolveError::from).and_then(|_| ev.design(base, cases[i], Some(&mut ws), observer));
                 match d {
-                    Ok(d) => out.push((i, d.0)),
+                    Ok((d, _)) => {
+                        let mut all = done.lock().unwrap_or_else(|e| e.into_inner());
+                        all[i] = Some(d);
+                        if all.iter().all(Option::is_some) {
+                            let designs: Vec<Design> = all[1..].iter().flatten().copied().collect();
+                            let best = best_levels(&rows, levels, &sn_ratios(&designs, &weights));
+                            known_best.store(combo_index(&best), Ordering::Relaxed);
+                        }
+                    }
                     Err(e) => {
                         failed.store(true, Ordering::Relaxed);
                         return Err(e);
                     }
                 }
             }
-            Ok((out, ws))
+            if failed.load(Ordering::Relaxed) || speculating.swap(true, Ordering::Relaxed) {
+                return Ok(ws);
+            }
+            let runs_so_far: Vec<Option<Design>> = done.lock().unwrap_or_else(|e| e.into_inner())[1..].to_vec();
+            if runs_so_far.iter().all(Option::is_some) {
+                return Ok(ws);
+            }
+            if let Some(combo) = predicted_best_levels(&rows, levels, &runs_so_far, &weights) {
+                ws.reset();
+                let abandon = Abandon { inner: observer, known_best: &known_best, failed: &failed, mine: combo_index(&combo) };
+                // an error here (a wrong guess abandoned, a cancel, a failure) is not kept: the
+                // confirmation after the array runs again and reports it
+                if let Ok((d, _)) = ev.design(base, Some(profile(&combo)), Some(&mut ws), &abandon) {
+                    *speculation.lock().unwrap_or_else(|e| e.into_inner()) = Some((combo, d));
+                }
+            }
+            Ok(ws)
         })
         .collect::<Result<_, _>>()?;
-    let mut ws_confirm = None;
-    let mut indexed: Vec<(usize, Design)> = Vec::with_capacity(cases.len());
-    for (out, ws) in done {
-        indexed.extend(out);
-        ws_confirm.get_or_insert(ws);
-    }
-    indexed.sort_by_key(|p| p.0);
-    let mut all: Vec<Design> = indexed.into_iter().map(|p| p.1).collect();
+    let mut ws_confirm = workspaces.into_iter().next();
+    let mut all: Vec<Design> = done.into_inner().unwrap_or_else(|e| e.into_inner()).into_iter().flatten().collect();
     evaluations += all.len();
     let mut baseline = all.remove(0);
     let designs = all;
     let crit: Vec<Criteria> = designs.iter().map(criteria).collect();
     let reference = Reference::of(&crit);
-    let weights = Weights { film: spec.weights.film, pressure: spec.weights.pressure, friction: spec.weights.friction };
     let score = |d: &Design| reference.score(&criteria(d), &weights);
     let runs: Vec<Run> = designs
         .iter()
@@ -452,9 +482,7 @@ fn optimise(spec: &OptimisationSpec, observer: &dyn Observer) -> Result<Optimisa
     let best_run = runs.iter().max_by(|a, b| a.score.total_cmp(&b.score)).map_or(1, |r| r.run);
     let scores: Vec<f64> = runs.iter().map(|r| r.score).collect();
     let sn: Vec<f64> = runs.iter().map(|r| r.sn_ratio_db).collect();
-    let levels = array.levels();
     let mut main_effects = Vec::new();
-    let mut best = [0usize; 3];
     for (fi, name) in ["order", "height", "length_fraction"].iter().enumerate() {
         let ms = level_means(&rows, fi, levels, &scores);
         let mn = level_means(&rows, fi, levels, &sn);
@@ -466,13 +494,21 @@ fn optimise(spec: &OptimisationSpec, observer: &dyn Observer) -> Result<Optimisa
             };
             main_effects.push(Effect { factor: name.to_string(), level: l + 1, value, mean_score: ms[l], mean_sn_ratio_db: mn[l] });
         }
-        best[fi] = (0..levels).max_by(|a, b| mn[*a].total_cmp(&mn[*b])).unwrap_or(0);
     }
+    let best = best_levels(&rows, levels, &sn);
     let best_combo = match rows.iter().position(|r| *r == best) {
         Some(i) => designs[i],
         None => {
             evaluations += 1;
-            ev.design(base, Some(profile(&best)), ws_confirm.as_mut(), observer)?.0
+            match speculation.into_inner().unwrap_or_else(|e| e.into_inner()) {
+                Some((combo, d)) if combo == best => d,
+                _ => {
+                    if let Some(ws) = ws_confirm.as_mut() {
+                        ws.reset();
+                    }
+                    ev.design(base, Some(profile(&best)), ws_confirm.as_mut(), observer)?.0
+                }
+            }
         }
     };
     let mut best_design = best_combo;
@@ -562,4 +598,114 @@ fn optimise(spec: &OptimisationSpec, observer: &dyn Observer) -> Result<Optimisa
         evaluations,
         convergence: Convergence { iterations: evaluations as u32, residual: 0.0, tolerance: 0.0, termination: Termination::Converged },
     })
+}
+
+/// S/N ratio of each run (larger the better, dB) on the runs' own normalisation (eq. 19).
+fn sn_ratios(designs: &[Design], weights: &Weights) -> Vec<f64> {
+    let crit: Vec<Criteria> = designs.iter().map(criteria).collect();
+    let reference = Reference::of(&crit);
+    crit.iter().map(|c| sn_larger_better(reference.score(c, weights))).collect()
+}
+
+/// The level of each factor with the largest mean S/N (0-based).
+fn best_levels(rows: &[[usize; 3]], levels: usize, sn: &[f64]) -> [usize; 3] {
+    let mut best = [0usize; 3];
+    for (fi, b) in best.iter_mut().enumerate() {
+        let mn = level_means(rows, fi, levels, sn);
+        *b = (0..levels).max_by(|a, b| mn[*a].total_cmp(&mn[*b])).unwrap_or(0);
+    }
+    best
+}
+
+/// A guess of the array's best-level combination while some runs are still running, for
+/// starting the confirmation run early: the S/N ratios of the runs done (on their own
+/// normalisation), the missing runs' S/N set to one value `s` scanned from below the lowest to
+/// above the highest known ratio, and of the combinations that come out and are not runs of
+/// the array (only those need a confirmation run) the one that does for the widest range of
+/// `s`. `None` when every outcome is a run or too few runs are done. Only a guess: a wrong
+/// one costs the idle worker's time, never a result.
+fn predicted_best_levels(rows: &[[usize; 3]], levels: usize, runs: &[Option<Design>], weights: &Weights) -> Option<[usize; 3]> {
+    let done: Vec<Design> = runs.iter().flatten().copied().collect();
+    if done.len() < 2 {
+        return None;
+    }
+    let known = sn_ratios(&done, weights);
+    let (lo, hi) = known.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), x| (a.min(*x), b.max(*x)));
+    if !(lo.is_finite() && hi.is_finite()) {
+        return None;
+    }
+    let margin = 0.5 * (hi - lo) + 1e-3;
+    let mut tally: Vec<([usize; 3], usize)> = Vec::new();
+    const SAMPLES: usize = 64;
+    for k in 0..=SAMPLES {
+        let s = lo - margin + (hi - lo + 2.0 * margin) * k as f64 / SAMPLES as f64;
+        let mut it = known.iter();
+        let sn: Vec<f64> = runs.iter().map(|r| if r.is_some() { *it.next().unwrap_or(&s) } else { s }).collect();
+        let combo = best_levels(rows, levels, &sn);
+        if rows.contains(&combo) {
+            continue;
+        }
+        match tally.iter_mut().find(|t| t.0 == combo) {
+            Some(t) => t.1 += 1,
+            None => tally.push((combo, 1)),
+        }
+    }
+    tally.iter().max_by_key(|t| t.1).map(|t| t.0)
+}
+
+/// The observer of a speculative confirmation run: stops it once the array is complete and its
+/// best-level combination is another one (`known_best`: 0 while unknown, else 1 + its index),
+/// or a case of the array failed.
+struct Abandon<'a> {
+    inner: &'a dyn Observer,
+    known_best: &'a AtomicUsize,
+    failed: &'a AtomicBool,
+    mine: usize,
+}
+
+impl Observer for Abandon<'_> {
+    fn progress(&self, fraction: f64, stage: &str) {
+        self.inner.progress(fraction, stage);
+    }
+    fn check(&self) -> Result<(), crate::physics::Interrupt> {
+        let known = self.known_best.load(Ordering::Relaxed);
+        if (known != 0 && known != self.mine) || self.failed.load(Ordering::Relaxed) {
+            return Err(crate::physics::Interrupt::Canceled);
+        }
+        self.inner.check()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::physics::Silent;
+
+    /// The array's result does not depend on the pool size or on which worker ran which case
+    /// (each case on a reset workspace; the early confirmation kept only when it is the same
+    /// analysis): equal to the last bit with 1, 2 and 3 threads, run twice each. (Without the
+    /// reset before each case this fails at 181×91, not at 61×31.)
+    #[test]
+    fn the_l9_result_is_the_same_for_every_pool_size() {
+        let spec: OptimisationSpec = serde_json::from_value(json!({
+            "base": {
+                "geometry": {"length_to_diameter": 1.25},
+                "load": {"aligned_eccentricity_ratio": 0.6},
+                "misalignment": {"vertical": 0.56, "horizontal": 0.56},
+                "grid": {"circumferential": 181, "axial": 91}
+            },
+            "method": "taguchi_l9",
+            "factors": {"order": [1, 2, 3], "height": [0.1, 0.4, 1.0], "length_fraction": [0.01, 0.2, 0.4]},
+            "continuous": {"enabled": false}
+        }))
+        .unwrap();
+        let run = |threads: usize| {
+            let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().unwrap();
+            serde_json::to_string(&pool.install(|| optimise(&spec, &Silent).unwrap())).unwrap()
+        };
+        let one = run(1);
+        for threads in [2, 3, 2, 3] {
+            assert_eq!(run(threads), one, "{threads} threads");
+        }
+    }
 }

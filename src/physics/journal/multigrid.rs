@@ -304,6 +304,27 @@ impl Level {
         l
     }
 
+    /// Back to the state of [`Level::new`] without reallocating: no coefficients, zero
+    /// pressure and work arrays, every non-boundary node free. What a solve on this level does
+    /// then depends only on its inputs, not on what the level solved before.
+    fn reset_state(&mut self) {
+        for f in &mut self.fixed {
+            if *f != BOUNDARY {
+                *f = FREE;
+            }
+        }
+        for v in [&mut self.u, &mut self.x, &mut self.b, &mut self.r, &mut self.mask, &mut self.inv_d] {
+            v.fill(0.0);
+        }
+        self.free_span.fill([(0, self.nt), (self.nt, self.nt)]);
+        self.dirty.fill(true);
+        self.theta0 = 0.0;
+        self.chol = None;
+        self.coeffs_of = None;
+        self.src_norm2 = None;
+        self.free_src_norm = None;
+    }
+
     /// Absolute angle of node `i`.
     pub fn theta(&self, i: usize) -> f64 {
         self.theta0 + i as f64 * self.dt
@@ -1042,6 +1063,17 @@ impl Hierarchy {
     /// Rebuild the coefficients of every level for `film`, node 0 at angle `theta0`.
     pub fn set_film(&mut self, film: &Film, theta0: f64) {
         self.set_film_from(0, film, theta0);
+    }
+
+    /// Back to the state of a new hierarchy (work counters and smoothing kept), without
+    /// reallocating: see [`Level::reset_state`].
+    pub fn reset_state(&mut self) {
+        for l in &mut self.levels {
+            l.reset_state();
+        }
+        for s in &mut self.scratch {
+            s.clear();
+        }
     }
 
     /// Rebuild the coefficients of level `k` only.
