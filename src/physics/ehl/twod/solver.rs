@@ -630,6 +630,7 @@ impl NearLu {
 /// 139 against 157 M instructions, triangular solve 6.25 against 6.5 M (`ehl2d-10`).
 fn nested_dissection(mx: usize, my: usize, wx: usize, wy: usize) -> Vec<usize> {
     const LEAF: usize = 32;
+    #[allow(clippy::too_many_arguments)]
     fn part(x0: usize, x1: usize, y0: usize, y1: usize, mx: usize, wx: usize, wy: usize, out: &mut Vec<usize>) {
         let (lx, ly) = (x1 - x0, y1 - y0);
         let (cut_x, cut_y) = (lx > 2 * wx + 2, ly > 2 * wy + 2);
