@@ -30,8 +30,9 @@
 //! interior node and the load balance, unknowns `P` and `H0` — is solved by a damped semismooth
 //! Newton method ([`solver`]) whose steps are computed by restarted GMRES with the exact Jacobian
 //! product (two FFTs) and a sparse preconditioner: the Jacobian with the elastic kernel truncated
-//! to a `(2r+1)²` near field, factorised by faer's sparse LU (the `H0` border by its Schur
-//! complement). Nested iteration from the coarsest grid that resolves the film; on each grid the
+//! to a `(2r+1)²` near field, factorised by faer's supernodal sparse LU (the `H0` border by its Schur
+//! complement) with a nested-dissection column ordering and a symbolic factorisation computed once
+//! per grid (`solver::NearPattern`). Nested iteration from the coarsest grid that resolves the film; on each grid the
 //! arithmetic-mean problem first, then continuation in the weight of the geometric mean; when
 //! Newton fails, pseudo-time continuation: backward-Euler steps of the transient problem (squeeze
 //! term) with a growing step.

@@ -23,9 +23,11 @@ use super::geometry::{domain, scales, side_gap, Domain, Scales};
 use super::{Ehl2dInput, Ehl2dOptions, Ehl2dSolution, Fields2d, Geometry2d, Located, Warm2d};
 use crate::physics::ehl::rheology::PressureRheology;
 use crate::physics::{Convergence, Observer, SolveError, Termination};
-use faer::prelude::Solve;
-use faer::sparse::linalg::solvers::{Lu, SymbolicLu};
-use faer::sparse::{SparseColMat, Triplet};
+use faer::sparse::linalg::lu::supernodal::{self, SupernodalLu, SymbolicSupernodalLu};
+use faer::dyn_stack::{MemBuffer, MemStack, StackReq};
+use faer::perm::PermRef;
+use faer::sparse::linalg::{qr, SymbolicSupernodalParams};
+use faer::sparse::{SparseColMatRef, SymbolicSparseColMatRef};
 
 /// Largest `ln(η/η0)` used (keeps `ε` finite at absurd trial pressures), as in the 1-D solver.
 const LN_ETA_CAP: f64 = 600.0;
@@ -102,11 +104,9 @@ struct Problem {
     unk: Vec<usize>,
     /// Node of each unknown (interior nodes).
     nodes: Vec<usize>,
-    /// The preconditioner's symbolic LU (column ordering, elimination structure) and the sparsity
-    /// pattern it was computed for (column pointers, row indices): reused while the pattern stays
-    /// (the active set unchanged), which makes the factorisation bit-identical to a fresh one
-    /// without the ordering's cost (colamd was ≈ 25 % of a cam cycle's CPU, BENCHMARKS.md issue 16).
-    symbolic: std::cell::RefCell<Option<(Vec<usize>, Vec<usize>, SymbolicLu<usize>)>>,
+    /// The preconditioner's sparsity pattern and symbolic LU ([`NearPattern`]): one per grid,
+    /// kept across Newton steps and — through [`Kept2d`] — across solves.
+    pattern: std::cell::RefCell<Option<std::sync::Arc<NearPattern>>>,
     /// The kept preconditioner: the last one factorised on this grid (possibly several Newton
     /// steps, continuation steps or — through [`Kept2d`] — cam angles old), used for GMRES until
     /// it needs more than [`REUSE_MAX`] iterations (see [`newton`]).
@@ -193,7 +193,7 @@ impl Problem {
             theta: 1.0,
             unk,
             nodes,
-            symbolic: std::cell::RefCell::new(None),
+            pattern: std::cell::RefCell::new(None),
             kept: None,
             factorisations: 0,
         }
@@ -349,9 +349,12 @@ impl Problem {
             }
             return None;
         }
-        let mut trip: Vec<Triplet<usize, usize, f64>> = Vec::with_capacity(m * (10 + (2 * self.near + 3) * (2 * self.near + 1)) + 2 * m);
+        // Every row's entries (column, value), cavitated rows too: the pattern is then that of the
+        // grid alone, its symbolic LU computed once ([`NearPattern`]).
+        let mut ent: Vec<(usize, f64)> = Vec::with_capacity(m * (10 + (2 * self.near + 3) * (2 * self.near + 1)));
+        let mut row_ptr: Vec<usize> = Vec::with_capacity(m + 1);
+        row_ptr.push(0);
         let mut row: Vec<(usize, f64)> = Vec::with_capacity(64);
-        let mut ucol = vec![0.0; m];
         for (u, &k) in self.nodes.iter().enumerate() {
             let (i, j) = (k % nx, k / nx);
             row.clear();
@@ -395,43 +398,46 @@ impl Problem {
             let cu = 1.0 / diag.abs().max(1e-300);
             c[u] = cu;
             active[u] = p[k] <= -cu * v.f[k];
-            if !factor {
-                continue;
-            }
-            if active[u] {
-                trip.push(Triplet::new(u, u, 1.0));
-            } else {
-                for &(col, val) in &row {
-                    if col == m {
-                        ucol[u] += cu * val;
-                    } else {
-                        trip.push(Triplet::new(u, col, cu * val));
-                    }
-                }
-            }
+            ent.extend(row.iter().map(|&(col, val)| (col, cu * val)));
+            row_ptr.push(ent.len());
         }
         // The bordered system `[B u; wᵀ 0]` (the `H0` column `u`, the load row `w`) by its Schur
         // complement: factorising it with the dense border made the sparse LU fill in (35 s at
         // 97², measured), the block `B` alone factorises in a fraction of a second.
-        if !factor {
-            return None;
-        }
-        let mat = SparseColMat::<usize, f64>::try_new_from_triplets(m, m, &trip).ok()?;
-        let lu = {
-            let sym = mat.symbolic();
-            let mut cache = self.symbolic.borrow_mut();
-            let reuse = cache.as_ref().filter(|(cp, ri, _)| cp.as_slice() == sym.col_ptr() && ri.as_slice() == sym.row_idx()).map(|c| c.2.clone());
-            let symbolic = match reuse {
-                Some(s) => s,
+        let pattern = {
+            let mut cache = self.pattern.borrow_mut();
+            match cache.as_ref().filter(|pat| pat.covers(m, &row_ptr, &ent)) {
+                Some(pat) => pat.clone(),
                 None => {
-                    let s = SymbolicLu::try_new(sym).ok()?;
-                    *cache = Some((sym.col_ptr().to_vec(), sym.row_idx().to_vec(), s.clone()));
-                    s
+                    let order = nested_dissection(nx - 2, ny - 2, 2 + 2 * self.near, 2 * self.near.max(1));
+                    let pat = std::sync::Arc::new(NearPattern::new(m, &row_ptr, &ent, order)?);
+                    *cache = Some(pat.clone());
+                    pat
                 }
-            };
-            Lu::try_new_with_symbolic(symbolic, mat.as_ref()).ok()?
+            }
         };
-        lu.solve_in_place(faer::MatMut::from_column_major_slice_mut(&mut ucol, m, 1));
+        let mut ucol = vec![0.0; m];
+        let mut values = vec![0.0; pattern.row_idx.len()];
+        let mut slot = vec![usize::MAX; m];
+        for u in 0..m {
+            let (a, b) = (pattern.row_ptr[u], pattern.row_ptr[u + 1]);
+            for (&col, &pos) in pattern.row_col[a..b].iter().zip(&pattern.row_pos[a..b]) {
+                slot[col] = pos;
+            }
+            if active[u] {
+                values[slot[u]] = 1.0;
+                continue;
+            }
+            for &(col, val) in &ent[row_ptr[u]..row_ptr[u + 1]] {
+                if col == m {
+                    ucol[u] += val;
+                } else {
+                    values[slot[col]] += val;
+                }
+            }
+        }
+        let lu = NearLu::new(pattern, &values)?;
+        lu.solve_in_place(&mut ucol);
         let sum_bu = ucol.iter().sum::<f64>();
         (sum_bu.is_finite() && ucol.iter().all(|x| x.is_finite())).then_some(Precond { lu, bu: ucol, sum_bu, c: c.to_vec(), active: active.to_vec() })
     }
@@ -453,7 +459,7 @@ impl Problem {
 /// solved by the sparse LU of `B` and the Schur complement `s = wᵀB⁻¹u` (`w` the constant
 /// load-row weight, taken from the problem at each use: a kept factor may come from another load).
 struct Precond {
-    lu: Lu<usize, f64>,
+    lu: NearLu,
     /// `B⁻¹u`.
     bu: Vec<f64>,
     /// `Σ B⁻¹u` (the Schur complement is `w` times it).
@@ -473,7 +479,7 @@ impl Precond {
                 *zi *= s;
             }
         }
-        self.lu.solve_in_place(faer::MatMut::from_column_major_slice_mut(&mut z[..m], m, 1));
+        self.lu.solve_in_place(&mut z[..m]);
         let schur = w * self.sum_bu;
         let y = if schur != 0.0 { (w * z[..m].iter().sum::<f64>() - g) / schur } else { 0.0 };
         for (zi, bi) in z[..m].iter_mut().zip(&self.bu) {
@@ -481,6 +487,178 @@ impl Precond {
         }
         z[m] = y;
     }
+}
+
+/// The sparsity pattern of the near-field matrix `B` of a grid and its symbolic LU (a
+/// nested-dissection column ordering of the grid, [`nested_dissection`], and the supernodal
+/// elimination structure). Every row carries its full stencil, cavitated rows too (their values
+/// are the identity and structural zeros), so the pattern depends on the grid only and its
+/// symbolic LU is computed once per grid, not at every change of the active set and every new
+/// solve: faer's default ordering (colamd) of each pattern cost 1.4× a numeric factorisation on
+/// 65×129 (`BENCHMARKS.md` issue 16, `ehl2d-10`).
+struct NearPattern {
+    /// CSC of `B` (row indices sorted in each column).
+    col_ptr: Vec<usize>,
+    row_idx: Vec<usize>,
+    /// Per row `u`, `row_ptr[u]..row_ptr[u + 1]`: its columns (sorted) and their positions in
+    /// the CSC arrays.
+    row_ptr: Vec<usize>,
+    row_col: Vec<usize>,
+    row_pos: Vec<usize>,
+    /// Column ordering (position → column) and its inverse.
+    col_fwd: Vec<usize>,
+    col_inv: Vec<usize>,
+    symbolic: SymbolicSupernodalLu<usize>,
+}
+
+impl NearPattern {
+    /// The pattern of rows `ent[row_ptr[u]..row_ptr[u + 1]]` (column `m`, the `H0` border, left
+    /// out); `None` when the symbolic factorisation fails.
+    fn new(m: usize, row_ptr: &[usize], ent: &[(usize, f64)], col_fwd: Vec<usize>) -> Option<Self> {
+        if col_fwd.len() != m {
+            return None;
+        }
+        let mut rp = Vec::with_capacity(m + 1);
+        let mut row_col: Vec<usize> = Vec::with_capacity(ent.len());
+        rp.push(0);
+        for u in 0..m {
+            let start = row_col.len();
+            row_col.extend(ent[row_ptr[u]..row_ptr[u + 1]].iter().map(|e| e.0).filter(|&col| col < m));
+            row_col[start..].sort_unstable();
+            let mut w = start;
+            for r in start..row_col.len() {
+                if r == start || row_col[r] != row_col[w - 1] {
+                    row_col[w] = row_col[r];
+                    w += 1;
+                }
+            }
+            row_col.truncate(w);
+            rp.push(row_col.len());
+        }
+        // Transpose to CSC: rows visited in order, so each column's row indices come sorted.
+        let mut col_ptr = vec![0usize; m + 1];
+        for &col in &row_col {
+            col_ptr[col + 1] += 1;
+        }
+        for cc in 0..m {
+            col_ptr[cc + 1] += col_ptr[cc];
+        }
+        let mut next = col_ptr.clone();
+        let mut row_idx = vec![0usize; row_col.len()];
+        let mut row_pos = vec![0usize; row_col.len()];
+        for u in 0..m {
+            for q in rp[u]..rp[u + 1] {
+                let col = row_col[q];
+                row_idx[next[col]] = u;
+                row_pos[q] = next[col];
+                next[col] += 1;
+            }
+        }
+        let mut col_inv = vec![0usize; m];
+        for (pos, &col) in col_fwd.iter().enumerate() {
+            col_inv[col] = pos;
+        }
+        // faer's supernodal LU with partial pivoting, symbolic part with a given column ordering:
+        // the column elimination tree (that of `BᵀB`), its postorder, the column counts of `BᵀB`
+        // and the supernodal structure.
+        let a = SymbolicSparseColMatRef::new_checked(m, m, &col_ptr, None, &row_idx);
+        let values = vec![0.0; row_idx.len()];
+        let at = SparseColMatRef::new(a, &values).transpose().to_col_major().ok()?;
+        let perm = PermRef::new_checked(&col_fwd, &col_inv, m);
+        let (mut etree, mut post, mut col_counts, mut min_col) = (vec![0usize; m], vec![0usize; m], vec![0usize; m], vec![0usize; m]);
+        let et = qr::col_etree(a, Some(perm), &mut etree, MemStack::new(&mut MemBuffer::new(qr::col_etree_scratch::<usize>(m, m))));
+        qr::postorder(&mut post, et, MemStack::new(&mut MemBuffer::new(qr::postorder_scratch::<usize>(m))));
+        qr::column_counts_ata(&mut col_counts, &mut min_col, at.symbolic(), Some(perm), et, &post, MemStack::new(&mut MemBuffer::new(StackReq::new::<usize>(6 * m))));
+        let symbolic = supernodal::factorize_supernodal_symbolic_lu::<usize>(a, Some(perm), &min_col, et, &col_counts, MemStack::new(&mut MemBuffer::new(supernodal::factorize_supernodal_symbolic_lu_scratch::<usize>(m, m))), SymbolicSupernodalParams::default()).ok()?;
+        Some(NearPattern { col_ptr, row_idx, row_ptr: rp, row_col, row_pos, col_fwd, col_inv, symbolic })
+    }
+
+    /// Whether every entry of the rows is in the pattern (same size, each row's columns a subset).
+    fn covers(&self, m: usize, row_ptr: &[usize], ent: &[(usize, f64)]) -> bool {
+        if self.row_ptr.len() != m + 1 {
+            return false;
+        }
+        (0..m).all(|u| {
+            let cols = &self.row_col[self.row_ptr[u]..self.row_ptr[u + 1]];
+            ent[row_ptr[u]..row_ptr[u + 1]].iter().all(|&(col, _)| col == m || cols.binary_search(&col).is_ok())
+        })
+    }
+}
+
+/// The numeric LU (faer's supernodal, partial pivoting) of a near-field matrix on its
+/// [`NearPattern`].
+struct NearLu {
+    pattern: std::sync::Arc<NearPattern>,
+    lu: SupernodalLu<usize, f64>,
+    row_fwd: Vec<usize>,
+    row_inv: Vec<usize>,
+}
+
+impl NearLu {
+    /// Factorise the matrix with `values` on `pattern`'s CSC; `None` when it is singular.
+    fn new(pattern: std::sync::Arc<NearPattern>, values: &[f64]) -> Option<Self> {
+        let m = pattern.col_fwd.len();
+        let a = SparseColMatRef::new(SymbolicSparseColMatRef::new_checked(m, m, &pattern.col_ptr, None, &pattern.row_idx), values);
+        let at = a.transpose().to_col_major().ok()?;
+        let (mut row_fwd, mut row_inv) = (vec![0usize; m], vec![0usize; m]);
+        let mut lu = SupernodalLu::<usize, f64>::new();
+        let perm = PermRef::new_checked(&pattern.col_fwd, &pattern.col_inv, m);
+        let mut mem = MemBuffer::new(supernodal::factorize_supernodal_numeric_lu_scratch::<usize, f64>(&pattern.symbolic, Default::default()));
+        supernodal::factorize_supernodal_numeric_lu(&mut row_fwd, &mut row_inv, &mut lu, a, at.as_ref(), perm, &pattern.symbolic, faer::get_global_parallelism(), MemStack::new(&mut mem), Default::default()).ok()?;
+        Some(NearLu { pattern, lu, row_fwd, row_inv })
+    }
+
+    /// `x ← B⁻¹ x`.
+    fn solve_in_place(&self, x: &mut [f64]) {
+        let m = self.row_fwd.len();
+        let par = faer::get_global_parallelism();
+        let rows = PermRef::new_checked(&self.row_fwd, &self.row_inv, m);
+        let cols = PermRef::new_checked(&self.pattern.col_fwd, &self.pattern.col_inv, m);
+        let mut mem = MemBuffer::new(supernodal::solve_in_place_scratch::<usize, f64>(m, 1, par));
+        self.lu.solve_in_place_with_conj(rows, cols, faer::Conj::No, faer::MatMut::from_column_major_slice_mut(x, m, 1), par, MemStack::new(&mut mem));
+    }
+}
+
+/// A nested-dissection ordering of the `mx × my` interior grid (unknown `j·mx + i`): the
+/// rectangle is cut by a separator `wx` columns wide (a cut across x) or `wy` rows wide, whichever
+/// is smaller, the halves ordered first (recursively), the separator last; blocks of at most 32
+/// unknowns in natural order. The widths are the reach of the column-intersection graph of the
+/// near-field matrix (`BᵀB`, whose Cholesky structure bounds the LU with partial pivoting):
+/// a row's columns span `i − 2 − r … i + r` and `j − r … j + r` (upwind wedge and near field `r`),
+/// so `wx = 2 + 2r`, `wy = 2r`. George, SIAM J. Numer. Anal. 10 (1973) for the method; against
+/// colamd on the seed 000 roller's 63×127 unknowns (full pattern): numeric factorisation
+/// 139 against 157 M instructions, triangular solve 6.25 against 6.5 M (`ehl2d-10`).
+fn nested_dissection(mx: usize, my: usize, wx: usize, wy: usize) -> Vec<usize> {
+    const LEAF: usize = 32;
+    #[allow(clippy::too_many_arguments)]
+    fn part(x0: usize, x1: usize, y0: usize, y1: usize, mx: usize, wx: usize, wy: usize, out: &mut Vec<usize>) {
+        let (lx, ly) = (x1 - x0, y1 - y0);
+        let (cut_x, cut_y) = (lx > 2 * wx + 2, ly > 2 * wy + 2);
+        if lx * ly <= LEAF || !(cut_x || cut_y) {
+            for j in y0..y1 {
+                out.extend((x0..x1).map(|i| j * mx + i));
+            }
+            return;
+        }
+        if cut_x && (!cut_y || wx * ly <= wy * lx) {
+            let c = x0 + (lx - wx) / 2;
+            part(x0, c, y0, y1, mx, wx, wy, out);
+            part(c + wx, x1, y0, y1, mx, wx, wy, out);
+            for j in y0..y1 {
+                out.extend((c..c + wx).map(|i| j * mx + i));
+            }
+        } else {
+            let c = y0 + (ly - wy) / 2;
+            part(x0, x1, y0, c, mx, wx, wy, out);
+            part(x0, x1, c + wy, y1, mx, wx, wy, out);
+            for j in c..c + wy {
+                out.extend((x0..x1).map(|i| j * mx + i));
+            }
+        }
+    }
+    let mut out = Vec::with_capacity(mx * my);
+    part(0, mx, 0, my, mx, wx, wy.max(1), &mut out);
+    out
 }
 
 #[derive(Default)]
@@ -1136,6 +1314,8 @@ pub fn solve(input: &Ehl2dInput, options: &Ehl2dOptions, observer: &dyn Observer
 #[derive(Clone, Default)]
 pub struct Kept2d {
     pc: Option<std::sync::Arc<Precond>>,
+    /// The grid's sparsity pattern and symbolic LU (the same for every solve on the grid).
+    pattern: Option<std::sync::Arc<NearPattern>>,
     nx: usize,
     ny: usize,
 }
@@ -1145,6 +1325,11 @@ impl Kept2d {
     fn take_for(&mut self, nx: usize, ny: usize) -> Option<std::sync::Arc<Precond>> {
         let pc = self.pc.take();
         pc.filter(|_| self.nx == nx && self.ny == ny)
+    }
+
+    /// The symbolic pattern when it was computed on an `nx × ny` grid.
+    fn pattern_for(&self, nx: usize, ny: usize) -> Option<std::sync::Arc<NearPattern>> {
+        self.pattern.clone().filter(|_| self.nx == nx && self.ny == ny)
     }
 }
 
@@ -1178,6 +1363,7 @@ pub fn solve_from(input: &Ehl2dInput, options: &Ehl2dOptions, warm: Option<&Warm
 fn solve_inner(input: &Ehl2dInput, options: &Ehl2dOptions, warm: Option<&Warm2d>, kept: &mut Kept2d, observer: &dyn Observer) -> Result<(Ehl2dSolution, Warm2d), SolveError> {
     validate(input, options)?;
     let mut kept_pc = kept.take_for(options.nx, options.ny);
+    let kept_pattern = kept.pattern_for(options.nx, options.ny);
     let s = scales(input)?;
     let d = domain(input, options, &s);
     let finite = matches!(input.geometry, Geometry2d::Finite { .. });
@@ -1186,6 +1372,7 @@ fn solve_inner(input: &Ehl2dInput, options: &Ehl2dOptions, warm: Option<&Warm2d>
     if let Some(w) = warm.filter(|w| w.finite == finite && w.central > 0.0 && w.h_est > 0.0) {
         let mut prob = Problem::new(input, &s, d, options.nx, options.ny, options.near_field);
         prob.kept = kept_pc.take();
+        prob.pattern = std::cell::RefCell::new(kept_pattern.clone());
         let mut p = vec![0.0; options.nx * options.ny];
         let axial = if finite { s.a / w.a } else { 1.0 };
         for &k in &prob.nodes {
@@ -1210,7 +1397,8 @@ fn solve_inner(input: &Ehl2dInput, options: &Ehl2dOptions, warm: Option<&Warm2d>
             (prob, p, h0, its + failed_steps, res, coarse, false)
         }
     };
-    *kept = Kept2d { pc: prob.kept.take().filter(|_| reuse_policy().2), nx: prob.nx, ny: prob.ny };
+    let pattern = prob.pattern.borrow().clone().or(kept_pattern);
+    *kept = Kept2d { pc: prob.kept.take().filter(|_| reuse_policy().2), pattern, nx: prob.nx, ny: prob.ny };
     let mut sol = finish(input, options, &s, &mut prob, &p, h0, total, residual)?;
     sol.warm_started = warm_used;
     let next = {
