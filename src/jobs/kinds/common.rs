@@ -483,9 +483,11 @@ pub struct EhlSpec {
     /// not accurate enough and the estimated thermal error of the isothermal solution (film
     /// reduction and traction, `physics::film::auto::thermal_error`) exceeds `auto_tolerance`
     /// (`summary.fidelity_used` counts the angles of each model). Line contacts only (roller
-    /// and flat-faced followers). Costly: one coupled solve and a 13-point traction table per angle and periodic
-    /// iteration — the seed 000 cycle at 36 angles and 96 nodes takes ≈ 30 s
-    /// (`examples/seed000_thermal_steady.json`); see BENCHMARKS.md, "Thermal EHL". The film's
+    /// and flat-faced followers). Costly: one coupled solve per angle and periodic iteration,
+    /// and the traction table's energy solves around the angle's slip (the rest when the roller
+    /// balance reaches them) — the seed 000 cycle at 36 angles takes ≈ 1.8 s in a debug build
+    /// (`examples/seed000_thermal_steady.json`), 720 angles ≈ 11 s in release (2.9 s with
+    /// `carry_tolerance` 0.02); see BENCHMARKS.md, "Thermal EHL". The film's
     /// shear law is the spec's `traction` (default Eyring, seed 001); seed 000's own model is
     /// Newtonian, which its examples set (`traction.model: newtonian`). A contact
     /// the model cannot settle fails with a typed `not_converged`. `cam_point` uses steel bodies.
@@ -558,9 +560,13 @@ pub struct EhlThermalSpec {
     /// by more than this from every key point solved so far — the largest of `|Δ ln w'|`,
     /// `|Δ ln u_m|`, `|Δ ln R|` and `|Δ SRR|` — and elsewhere the nearest key point's thermal film
     /// reduction, temperatures and traction table carried onto the closed form's change between
-    /// the two (series `model`: `thermal_carried`). Key points are solved quasi-steady (no
-    /// squeeze or ∂T/∂t history). 0.001–0.5; absent: the full solve at every angle. Seed 000 at
-    /// 720 angles with 0.05: see BENCHMARKS.md, "Thermal EHL".
+    /// the two (series `model`: `thermal_carried`), from a key on the same isothermal grid
+    /// layout. Key points are solved quasi-steady (no squeeze or ∂T/∂t history); where the
+    /// conditions jump (by more than this within the film's transit time), the full transient
+    /// solve runs at every angle until its film agrees with the carried one to a tenth of this.
+    /// 0.001–0.5; absent: the full solve at every angle. Seed 000 at 720 angles: 0.02 keeps films
+    /// and slide-to-roll ratio within 1 % of the every-angle cycle at a quarter of its time;
+    /// 0.05 the films, the slip within 3.5 % (BENCHMARKS.md, "Thermal EHL").
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub carry_tolerance: Option<f64>,
 }
