@@ -27,8 +27,13 @@
 //!   key's thermal factors — the thermal solution over the isothermal one, both steady at the
 //!   key's conditions, on the same isothermal grid layout (a key on another layout is not
 //!   carried: the factor would mix two discretisation errors — a 1 % step in the central film
-//!   where the isothermal layout changed at seed 000's 118.5°). The key also carries its temperatures and its traction table at the same
-//!   slide-to-roll ratios times the closed form's traction ratio at each. So the isothermal
+//!   where the isothermal layout changed at seed 000's 118.5°). The key also carries its
+//!   temperatures and its traction table at the same slide-to-roll ratios times the closed
+//!   form's traction ratio at each, raised to an exponent calibrated between the key and the
+//!   nearest earlier key (`γ = ln(f_key/f_prev)/ln(closed-form ratio)` per entry,
+//!   [`super::traction_table::Calibration`]): the closed form overstates how the thermal
+//!   traction changes with the radius, and the roller's inertia integrates the difference into
+//!   the slip (seed 000 at carry 0.05: SRR 3.5 % → 0.6 % off). So the isothermal
 //!   march carries the change of conditions and the squeeze (the film's lag behind fast load
 //!   and entrainment changes, which a quasi-steady key cannot see), the key the thermal
 //!   correction; the error is first order in the distance for the factors (BENCHMARKS.md,
@@ -53,7 +58,7 @@ use super::numerical::{asperity_load, line_contact, traction_nodes, LineContact,
 use super::{ContactInput, ContactShape, FilmModel, FilmModelId, FilmProfile, FilmSolution, Traction};
 use crate::physics::contact::hertz_line;
 use crate::physics::ehl::grid::{cells, Layout};
-use super::traction_table::{candidate_sliding, TableProblem, TableView, TractionTable};
+use super::traction_table::{candidate_sliding, Calibration, TableProblem, TableView, TractionTable};
 use crate::physics::ehl::thermal::{TemperatureField, ThermalBodies, ThermalEngine, ThermalFactors, ThermalInput, ThermalOptions, ThermalSummary};
 use crate::physics::ehl::{EhlInput, EhlOptions, Extrapolation, Rheology, Transient};
 use crate::physics::friction::Roughness;
@@ -65,6 +70,9 @@ use std::sync::{Arc, Mutex};
 /// closed form's film and table traction there.
 #[derive(Debug, Clone)]
 struct Key {
+    /// The nearest earlier key on the same layout, within three carry tolerances: calibrates
+    /// the traction carried from this key ([`super::traction_table::Calibration`]).
+    previous: Option<Arc<Key>>,
     load_per_length: f64,
     entrainment: f64,
     radius: f64,
@@ -216,7 +224,17 @@ impl ThermalNumerical {
             .zip(&key.closed_form_table)
             .map(|(here, there)| here.iter().zip(there).map(|(a, b)| if b.abs() > 1e-12 * input.load { a / b } else { 1.0 }).collect())
             .collect();
-        let table = TableView { table: kth.table.table.clone(), speed: kth.table.speed * speed, ratio: Some(force_ratio) };
+        let calibration = key.previous.as_ref().and_then(|a| {
+            let ath = a.film.thermal.as_deref()?;
+            let closed_form_ratio = key
+                .closed_form_table
+                .iter()
+                .zip(&a.closed_form_table)
+                .map(|(here, there)| here.iter().zip(there).map(|(x, y)| if y.abs() > 1e-12 * input.load { x / y } else { 1.0 }).collect())
+                .collect();
+            Some(Calibration { table: ath.table.table.clone(), closed_form_ratio })
+        });
+        let table = TableView { table: kth.table.table.clone(), speed: kth.table.speed * speed, ratio: Some(force_ratio), calibration };
         let asperity_load = if key.closed_form.asperity.load > 0.0 {
             k.asperity.load * ratio(cf.asperity.load, key.closed_form.asperity.load)
         } else {
@@ -291,6 +309,8 @@ impl ThermalNumerical {
     fn new_key(&self, input: &ContactInput, previous: Option<&FilmSolution>, nearest: Option<Arc<Key>>, here: (f64, f64, f64, f64), layout: Layout, r: f64, length: f64) -> Result<FilmSolution, SolveError> {
         let steady = ContactInput { time_step: 0.0, ..*input };
         let warm = nearest.as_ref().map(|k| &k.film).or(previous.filter(|p| p.profile.is_some()));
+        let reach = 3.0 * self.settings.carry_tolerance.unwrap_or(0.0);
+        let previous_key = nearest.as_ref().filter(|k| distance(here, k.conditions()) <= reach).cloned();
         // Where the tighter coupling stalls above it (energy sweeps' noise), the key takes the
         // default tolerance.
         let film = match self.full_with(&steady, warm, KEY_TOLERANCE_FACTOR) {
@@ -304,7 +324,7 @@ impl ThermalNumerical {
         let table = self.closed_form_table(&cf, input, &candidate_sliding(thermal.table.problem().scale));
         // Steady, warm-started from the previous point's isothermal film.
         let isothermal = self.isothermal_film(&steady, isothermal_history(previous))?;
-        let key = Arc::new(Key { load_per_length: here.0, entrainment: here.1, radius: here.2, slide_to_roll: here.3, layout, film, isothermal, closed_form: cf, closed_form_table: table });
+        let key = Arc::new(Key { previous: previous_key, load_per_length: here.0, entrainment: here.1, radius: here.2, slide_to_roll: here.3, layout, film, isothermal, closed_form: cf, closed_form_table: table });
         let mut out = self.carried(&key, input, previous, r, length)?;
         out.model = FilmModelId::Thermal;
         out.profile = key.film.profile.clone();
@@ -436,7 +456,7 @@ impl ThermalNumerical {
             rheology,
             options: self.settings.options,
         };
-        let table = TableView { table: Arc::new(TractionTable::new(problem, th.temperature.clone(), input.sliding_velocity)?), speed: 1.0, ratio: None };
+        let table = TableView { table: Arc::new(TractionTable::new(problem, th.temperature.clone(), input.sliding_velocity)?), speed: 1.0, ratio: None, calibration: None };
         ensure_finite("thermal film", [&s.central_film, &s.min_film, &s.exit_film, &s.max_pressure, &w_a])?;
         // Nodes (for consumers that read them; the traction comes from the table).
         let t = th.summary.film_temperature_mean;

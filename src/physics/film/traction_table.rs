@@ -155,6 +155,18 @@ impl TractionTable {
         &self.start
     }
 
+    /// Entry `k`'s candidate and force (N/m), solved now if needed; `None` if it failed.
+    fn entry(&self, k: usize) -> Option<(usize, f64)> {
+        let mut entries = self.entries.lock().unwrap_or_else(|e| e.into_inner());
+        if matches!(entries[k], Entry::Unsolved) {
+            self.solve_entry(&mut entries, k);
+        }
+        match entries[k] {
+            Entry::Solved { candidate, force, .. } => Some((candidate, force)),
+            _ => None,
+        }
+    }
+
     /// Solve entry `k` from its inner neighbour's field ([`Self::warm`]; solving that first
     /// when needed); one whose energy solve fails or is not finite is marked failed.
     fn solve_entry(&self, entries: &mut [Entry], k: usize) {
@@ -197,7 +209,7 @@ impl TractionTable {
             for (i, &k) in live.iter().enumerate().skip(j.saturating_sub(1)).take(4) {
                 if let Entry::Solved { candidate, sliding, force, .. } = &entries[k] {
                     x[i] = sliding * view.speed;
-                    y[i] = force * view.ratio.as_ref().map_or(1.0, |r| r[k][*candidate]);
+                    y[i] = force * view.factor(k, *candidate, *force);
                 }
             }
             let mut m = vec![f64::NAN; n];
@@ -209,21 +221,61 @@ impl TractionTable {
 }
 
 /// One point's view of a traction table (its own, or a key point's carried to it): sliding
-/// velocities times `speed`, and forces times `ratio[entry][candidate]` (`None`: 1).
+/// velocities times `speed`, and forces times `ratio[entry][candidate]` (`None`: 1) — raised to
+/// the calibrated exponent where a `calibration` is given.
 #[derive(Debug, Clone)]
 pub struct TableView {
     pub table: Arc<TractionTable>,
     pub speed: f64,
     pub ratio: Option<Vec<Vec<f64>>>,
+    pub calibration: Option<Calibration>,
+}
+
+/// The sensitivity of a carried table's forces to the change of conditions, measured between two
+/// tables: `ratio` is the closed form's prediction of a force's change from one point to another;
+/// the thermal forces of this table and of `table` (another point's) change by `ratio^γ`, with
+/// `γ = ln(f / f_other) / ln(closed_form_ratio)` per entry (the closed form's change between the two
+/// points), clamped to [0, 2]; 1 where the closed form barely changes (|ln| < 1e-3) or the
+/// entries' signs or candidates differ.
+#[derive(Debug, Clone)]
+pub struct Calibration {
+    pub table: Arc<TractionTable>,
+    /// The closed form's force at this table's point over that at `table`'s, per entry and
+    /// candidate.
+    pub closed_form_ratio: Vec<Vec<f64>>,
 }
 
 impl PartialEq for TableView {
     fn eq(&self, other: &Self) -> bool {
-        Arc::ptr_eq(&self.table, &other.table) && self.speed == other.speed && self.ratio == other.ratio
+        let calibration = match (&self.calibration, &other.calibration) {
+            (None, None) => true,
+            (Some(a), Some(b)) => Arc::ptr_eq(&a.table, &b.table) && a.closed_form_ratio == b.closed_form_ratio,
+            _ => false,
+        };
+        Arc::ptr_eq(&self.table, &other.table) && self.speed == other.speed && self.ratio == other.ratio && calibration
     }
 }
 
 impl TableView {
+    /// The factor on entry `k`'s force `force` (solved at `candidate`): `ratio`, or `ratio^γ`
+    /// with the calibration's exponent ([`Calibration`]).
+    fn factor(&self, k: usize, candidate: usize, force: f64) -> f64 {
+        let Some(ratio) = self.ratio.as_ref().map(|r| r[k][candidate]) else {
+            return 1.0;
+        };
+        let Some(cal) = &self.calibration else {
+            return ratio;
+        };
+        let predicted = cal.closed_form_ratio[k][candidate];
+        match cal.table.entry(k) {
+            Some((c, other)) if c == candidate && ratio > 0.0 && predicted > 0.0 && predicted.ln().abs() > 1e-3 && force / other > 0.0 => {
+                let gamma = ((force / other).ln() / predicted.ln()).clamp(0.0, 2.0);
+                ratio.powf(gamma)
+            }
+            _ => ratio,
+        }
+    }
+
     /// The follower's fluid traction per unit length (N/m) and its slope in the sliding
     /// velocity at `sliding` (m/s).
     pub fn force(&self, sliding: f64) -> (f64, f64) {
@@ -308,6 +360,35 @@ mod tests {
         }
     }
 
+    /// A calibrated carry from table B back to the conditions of its calibration table A
+    /// (the closed form's ratio B → A the inverse of A → B) gives A's forces: `ratio^γ` with
+    /// `γ = ln(f_B/f_A)/ln(closed-form ratio)` undoes B's change exactly, whatever the closed
+    /// form's sensitivity (here 0.8 of the thermal one's in log).
+    #[test]
+    fn calibrated_carry_back_to_the_calibration_table_gives_its_forces() {
+        let a = TractionTable::new(problem(), start(&problem()), 0.047 * 3.0).unwrap();
+        let heavier = || TableProblem { pressure: problem().pressure.iter().map(|p| 1.1 * p).collect(), load_per_length: 1.1 * problem().load_per_length, ..problem() };
+        let b = TractionTable::new(heavier(), start(&heavier()), 0.047 * 3.0).unwrap();
+        let (a, b) = (Arc::new(a), Arc::new(b));
+        let n = SLIDE_TO_ROLL_TABLE.len();
+        let mut closed_form_ratio = vec![vec![1.0; 3]; n];
+        for k in 0..n {
+            if let (Some((_, fa)), Some((_, fb))) = (a.entry(k), b.entry(k)) {
+                closed_form_ratio[k] = vec![(fb / fa).powf(0.8); 3];
+            }
+        }
+        let ratio = closed_form_ratio.iter().map(|r| r.iter().map(|x| 1.0 / x).collect()).collect();
+        let view = TableView { table: b.clone(), speed: 1.0, ratio: Some(ratio), calibration: Some(Calibration { table: a.clone(), closed_form_ratio }) };
+        for k in [2, 4, 8, 9, 10, 11] {
+            let (_, fa) = a.entry(k).unwrap();
+            let (_, fb) = b.entry(k).unwrap();
+            let at = SLIDE_TO_ROLL_TABLE[k] * 3.0;
+            let (carried, _) = view.force(at);
+            println!("SRR {}: f_A {fa:.6e}, f_B {fb:.6e}, carried back {carried:.6e}", SLIDE_TO_ROLL_TABLE[k]);
+            assert!((carried - fa).abs() <= 1e-9 * fa.abs(), "{k}");
+        }
+    }
+
     fn start(p: &TableProblem) -> TemperatureField {
         let n = p.x.len();
         let o = p.options;
@@ -329,7 +410,7 @@ mod tests {
         // The point's own interval [0.015, 0.05], its neighbours 0.004 and 0.15, and rolling
         // (0.004's start).
         assert_eq!(solved(&lazy), vec![6, 7, 8, 9, 10]);
-        let view = TableView { table: Arc::new(lazy), speed: 1.0, ratio: None };
+        let view = TableView { table: Arc::new(lazy), speed: 1.0, ratio: None, calibration: None };
         let queries = [0.12, -0.1 * 3.0, 0.01, 5.0];
         let values: Vec<(f64, f64)> = queries.iter().map(|&q| view.force(q)).collect();
         assert_eq!(solved(&view.table), (0..13).filter(|&k| k != 0).collect::<Vec<_>>(), "−2 is not needed by any query");
@@ -349,7 +430,7 @@ mod tests {
             assert_eq!((v, dv), (w, dw), "{q}");
         }
         // Queried again in the reverse order: the same values.
-        let view2 = TableView { table: Arc::new(TractionTable::new(problem(), field, 0.047 * 3.0).unwrap()), speed: 1.0, ratio: None };
+        let view2 = TableView { table: Arc::new(TractionTable::new(problem(), field, 0.047 * 3.0).unwrap()), speed: 1.0, ratio: None, calibration: None };
         for (&q, &v) in queries.iter().zip(&values).rev() {
             assert_eq!(view2.force(q), v);
         }
