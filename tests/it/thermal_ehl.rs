@@ -379,47 +379,59 @@ mod seed000_cycle {
         assert!(keys < 36, "{keys}");
     }
     /// Measured worst differences over the whole cycle (see the test above), Newtonian film: films
-    /// 0.66 % / 0.69 % (central / minimum), SRR 0.52 % of its largest value (Eyring film before:
-    /// 0.67 %, SRR 0.2 %; 1.10 % when the closed form carried the change of conditions).
+    /// 0.28 % / 0.31 % (central / minimum), SRR 0.15 % of its largest value with the lazy table,
+    /// layouts and calibrated traction carry (session 32; 0.66 / 0.69 %, SRR 0.52 % before; Eyring
+    /// film before that: 0.67 %, SRR 0.2 %; 1.10 % when the closed form carried the change of
+    /// conditions).
     const FILM_CYCLE: f64 = 0.01;
     const SRR_CYCLE: f64 = 0.01;
 
     /// The carried mode through seed 000's load spike (600 → 2241 N at 54.5–58°), 360 angles,
-    /// `carry_tolerance` 0.02, against the full thermal solve at every angle. The films' lag behind
+    /// `carry_tolerance` 0.02 and 0.05, against the full thermal solve at every angle. The films' lag behind
     /// the jump (the temperatures' `∂T/∂t`) is not in a steady key: before the transient window the
     /// carried films were 1.2–2.2 % thinner over 54.5–57.5° at 720 angles (BENCHMARKS.md, "Thermal
-    /// cycle: lazy table, layouts, lag window"). Measured (dev): whole cycle films within 0.58 % /
-    /// 0.68 % (central / minimum), SRR 0.83 % of its largest value; the issue's 1 % is asserted.
-    /// (At 144 angles the minimum film is 1.4 % off at four carried points beside the nose —
-    /// not traced; see BENCHMARKS.md.)
+    /// cycle: lazy table, layouts, lag window"). Measured (dev), carry 0.02 / 0.05: whole cycle
+    /// films within 0.58 / 0.85 % (central) and 0.68 / 0.91 % (minimum), SRR 0.34 / 0.73 % of its
+    /// largest value; at the spike films within 0.04 / 0.38 %. The issue's 1 % is asserted, and at
+    /// the spike the window's own exit criterion (a tenth of the tolerance). (At 144 angles the
+    /// minimum film is 1.4 % off at four carried points beside the nose — not traced; see
+    /// BENCHMARKS.md.)
     #[test]
     fn carried_cycle_follows_the_load_spike() {
         let mut base = example("seed000_thermal_steady");
         base["angles"] = 360.into();
-        let mut spec = base.clone();
-        spec["ehl"]["thermal"]["carry_tolerance"] = 0.02.into();
+        let carry = |tolerance: f64| {
+            let mut spec = base.clone();
+            spec["ehl"]["thermal"]["carry_tolerance"] = tolerance.into();
+            spec
+        };
         let (full, carried) = std::thread::scope(|sc| {
             let f = sc.spawn(|| run("cam_cycle", &base).unwrap());
-            let c = run("cam_cycle", &spec).unwrap();
+            let c: Vec<Value> = [0.02, 0.05].iter().map(|&t| run("cam_cycle", &carry(t)).unwrap()).collect();
             (f.join().unwrap(), c)
         });
-        println!("fidelity_used: {}", carried["summary"]["fidelity_used"]);
         let a = series(&full, "angle_deg");
         let srr = series(&full, "slide_roll_ratio");
         let scale = srr.iter().fold(0.0f64, |m, s| m.max(s.abs()));
-        let worst = |name: &str, scale: Option<f64>, range: (f64, f64)| {
-            let (x, y) = (series(&full, name), series(&carried, name));
-            (0..x.len()).filter(|&i| a[i] >= range.0 && a[i] <= range.1).map(|i| (y[i] - x[i]).abs() / scale.unwrap_or(x[i].abs())).fold(0.0, f64::max)
-        };
-        for (label, range) in [("spike 54–62°", (54.0, 62.0)), ("whole cycle", (0.0, 360.0))] {
-            let (hc, hm, sr) = (worst("film_central", None, range), worst("film_min", None, range), worst("slide_roll_ratio", Some(scale), range));
-            println!("{label}: worst film_central {hc:.3e}, film_min {hm:.3e}, SRR {sr:.3e} (of {scale:.3})");
+        for (tolerance, carried) in [0.02, 0.05].iter().zip(&carried) {
+            println!("carry {tolerance}: fidelity_used {}", carried["summary"]["fidelity_used"]);
+            let worst = |name: &str, scale: Option<f64>, range: (f64, f64)| {
+                let (x, y) = (series(&full, name), series(carried, name));
+                (0..x.len()).filter(|&i| a[i] >= range.0 && a[i] <= range.1).map(|i| (y[i] - x[i]).abs() / scale.unwrap_or(x[i].abs())).fold(0.0, f64::max)
+            };
+            for (label, range) in [("spike 54–62°", (54.0, 62.0)), ("whole cycle", (0.0, 360.0))] {
+                let (hc, hm, sr) = (worst("film_central", None, range), worst("film_min", None, range), worst("slide_roll_ratio", Some(scale), range));
+                println!("  {label}: worst film_central {hc:.3e}, film_min {hm:.3e}, SRR {sr:.3e} (of {scale:.3})");
+            }
+            let spike = (54.0, 62.0);
+            // The window closes once its film agrees with the carried one to a tenth of the
+            // tolerance.
+            let window = 0.1 * tolerance;
+            assert!(worst("film_central", None, spike) < window && worst("film_min", None, spike) < window, "{tolerance}: films at the spike");
+            let cycle = (0.0, 360.0);
+            assert!(worst("film_central", None, cycle) < FILM_CYCLE && worst("film_min", None, cycle) < FILM_CYCLE, "{tolerance}: films over the cycle");
+            assert!(worst("slide_roll_ratio", Some(scale), cycle) < SRR_CYCLE, "{tolerance}: SRR over the cycle");
         }
-        let spike = (54.0, 62.0);
-        assert!(worst("film_central", None, spike) < 3e-3 && worst("film_min", None, spike) < 3e-3, "films at the spike");
-        let cycle = (0.0, 360.0);
-        assert!(worst("film_central", None, cycle) < FILM_CYCLE && worst("film_min", None, cycle) < FILM_CYCLE, "films over the cycle");
-        assert!(worst("slide_roll_ratio", Some(scale), cycle) < SRR_CYCLE, "SRR over the cycle");
     }
 
     /// Seed 000 Figs. 9 and 13 with the thermal model (the steady example with key points,
