@@ -486,8 +486,8 @@ pub struct EhlSpec {
     /// and flat-faced followers). Costly: one coupled solve per angle and periodic iteration,
     /// and the traction table's energy solves around the angle's slip (the rest when the roller
     /// balance reaches them) — the seed 000 cycle at 36 angles takes ≈ 1.8 s in a debug build
-    /// (`examples/seed000_thermal_steady.json`), 720 angles ≈ 11 s in release (2.9 s with
-    /// `carry_tolerance` 0.02); see BENCHMARKS.md, "Thermal EHL". The film's
+    /// (`examples/seed000_thermal_steady.json`), 720 angles ≈ 11 s in release (1.6 s with
+    /// `carry_tolerance` 0.05); see BENCHMARKS.md, "Thermal EHL". The film's
     /// shear law is the spec's `traction` (default Eyring, seed 001); seed 000's own model is
     /// Newtonian, which its examples set (`traction.model: newtonian`). A contact
     /// the model cannot settle fails with a typed `not_converged`. `cam_point` uses steel bodies.
@@ -564,9 +564,10 @@ pub struct EhlThermalSpec {
     /// layout. Key points are solved quasi-steady (no squeeze or ∂T/∂t history); where the
     /// conditions jump (by more than this within the film's transit time), the full transient
     /// solve runs at every angle until its film agrees with the carried one to a tenth of this.
-    /// 0.001–0.5; absent: the full solve at every angle. Seed 000 at 720 angles: 0.02 keeps films
-    /// and slide-to-roll ratio within 1 % of the every-angle cycle at a quarter of its time;
-    /// 0.05 the films, the slip within 3.5 % (BENCHMARKS.md, "Thermal EHL").
+    /// The carried traction's closed-form ratio is calibrated between each key and the one
+    /// before it. 0.001–0.5; absent: the full solve at every angle. Seed 000 at 720 angles: 0.05
+    /// keeps films and slide-to-roll ratio within 1 % of the every-angle cycle in 1.6 s against
+    /// its 10.5 s (release; BENCHMARKS.md, "Thermal EHL").
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub carry_tolerance: Option<f64>,
 }

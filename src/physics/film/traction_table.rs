@@ -11,7 +11,7 @@
 //! one that fails is left out (the interpolant bridges it). A cam cycle's slip stays near its
 //! own point's, while the far entries (±0.5, ±2) cost most: their energy sweeps converge slowly
 //! under strong shear heating (BENCHMARKS.md, "Where the thermal cycle's time goes"; the lazy
-//! table's effect: "Thermal cycle: lazy table, layouts, lag window").
+//! table's effect: "Thermal cycle: lazy table, layouts, lag window, calibrated carry").
 //!
 //! **The interpolant does not depend on the order of evaluation.** The rolling entry starts its
 //! sweeps from the point's coupled temperature field, every other entry from its inner
