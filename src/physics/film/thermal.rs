@@ -13,8 +13,8 @@
 //!   the inlet temperature — the inlet's own heating is left out of the traction table, not out
 //!   of the film), and the follower's surface stress integral (eq. 9) is interpolated between
 //!   them by a monotone cubic (Steffen 1990: no overshoot, C¹), linear beyond the ends. The
-//!   slope is the interpolant's. Entries beyond ±0.05 are solved only where the balance needs
-//!   them ([`super::traction_table`]). The asperity share of rough surfaces is as in the isothermal
+//!   slope is the interpolant's. Only the entries around the point's own slip are solved with
+//!   it, the others where the balance needs them ([`super::traction_table`]). The asperity share of rough surfaces is as in the isothermal
 //!   numerical model (Greenwood–Tripp with the local film, fluid traction scaled by
 //!   `1 − W_a/W`).
 //! * **Carried thermal factors** (`carry_tolerance`, key points). The thermal state changes
@@ -48,8 +48,9 @@
 //!   with the carried one ([`ThermalNumerical::transient_window`]).
 //! * **Point contacts** and a contact at rest without history keep the closed form.
 //!
-//! Cost: one coupled solve (a few Newton and energy solves) and the table's core energy solves
-//! (seven, within ±0.05; the outer ones when the balance reaches them) per full point; a carried point costs an isothermal Newton solve on two grids
+//! Cost: one coupled solve (a few Newton and energy solves) and the table's energy solves around
+//! the point's slip (four to seven; the others when the balance reaches them) per full point; a
+//! carried point costs an isothermal Newton solve on two grids
 //! (warm-started, typically two steps each) and a closed-form solve — see BENCHMARKS.md,
 //! "Thermal EHL".
 
@@ -119,6 +120,12 @@ impl Key {
 /// point's squeeze history and warm start.
 fn isothermal_history(previous: Option<&FilmSolution>) -> Option<&FilmSolution> {
     previous.and_then(|p| p.thermal.as_deref()).and_then(|t| t.isothermal.as_deref())
+}
+
+/// `a/b` per table entry and candidate, 1 where `b` is below 1e-12 of `load` (N): the closed
+/// form's traction change between two points.
+fn table_ratio(a: &[Vec<f64>], b: &[Vec<f64>], load: f64) -> Vec<Vec<f64>> {
+    a.iter().zip(b).map(|(x, y)| x.iter().zip(y).map(|(p, q)| if q.abs() > 1e-12 * load { p / q } else { 1.0 }).collect()).collect()
 }
 
 /// Operating conditions of a line-contact point: `(w', u_m, R, SRR)`.
@@ -219,20 +226,10 @@ impl ThermalNumerical {
         let speed = ratio(input.entrainment_velocity, key.entrainment);
         let sliding: Vec<Vec<f64>> = candidate_sliding(kth.table.problem().scale).iter().map(|c| c.iter().map(|us| us * speed).collect()).collect();
         let cf_table = self.closed_form_table(cf, input, &sliding);
-        let force_ratio = cf_table
-            .iter()
-            .zip(&key.closed_form_table)
-            .map(|(here, there)| here.iter().zip(there).map(|(a, b)| if b.abs() > 1e-12 * input.load { a / b } else { 1.0 }).collect())
-            .collect();
+        let force_ratio = table_ratio(&cf_table, &key.closed_form_table, input.load);
         let calibration = key.previous.as_ref().and_then(|a| {
             let ath = a.film.thermal.as_deref()?;
-            let closed_form_ratio = key
-                .closed_form_table
-                .iter()
-                .zip(&a.closed_form_table)
-                .map(|(here, there)| here.iter().zip(there).map(|(x, y)| if y.abs() > 1e-12 * input.load { x / y } else { 1.0 }).collect())
-                .collect();
-            Some(Calibration { table: ath.table.table.clone(), closed_form_ratio })
+            Some(Calibration { table: ath.table.table.clone(), closed_form_ratio: table_ratio(&key.closed_form_table, &a.closed_form_table, input.load) })
         });
         let table = TableView { table: kth.table.table.clone(), speed: kth.table.speed * speed, ratio: Some(force_ratio), calibration };
         let asperity_load = if key.closed_form.asperity.load > 0.0 {
