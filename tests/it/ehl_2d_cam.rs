@@ -53,7 +53,7 @@ fn finite_cam_point_on_a_long_roller_matches_the_line_model() {
     use tribod::physics::roller::Crown;
     let t = std::time::Instant::now();
     let finite = run("cam_point", &long_roller("finite")).unwrap();
-    let crown = Crown { length: 0.014, middle_length: 0.010, crown_height: 0.0, end_radius: 0.05 };
+    let crown = Crown { length: 0.014, middle_length: 0.010, crown_height: 0.0, end_radius: 0.05, profile: Default::default() };
     let es = 1.911e11 / (2.0 * 0.91);
     let eq = crown.distribute(1000.0, 0.01037, es).equivalent_length;
     let line = run("cam_point", &with(&long_roller("line"), |s| s["contact_length"] = json!(eq))).unwrap();

@@ -12,6 +12,7 @@ use super::common::{ExtrapolationSpec, LubricantSpec, Material, ThermalSpec};
 use crate::physics::ehl::twod::{self, Ehl2dInput, Ehl2dOptions, Geometry2d};
 use crate::physics::ehl::ReusableSolver;
 use crate::physics::roller::Crown;
+use super::cam_cycle::CrownProfileSpec;
 use crate::physics::{Convergence, Observer, SolveError};
 use serde::{Deserialize, Serialize};
 use serde_json::{json, Value};
@@ -74,6 +75,11 @@ pub enum EhlGeometrySpec {
         crown_height: f64,
         /// End profile radius R_d, m.
         end_radius: f64,
+        /// `convex` (default) or `seed000_eq3` (eq. 3 as printed: the centre relieved by
+        /// `crown_height`, the roller touching first at `±middle_length/2`); see the cam kinds'
+        /// `crown.profile`.
+        #[serde(default, skip_serializing_if = "CrownProfileSpec::is_convex")]
+        profile: CrownProfileSpec,
         /// Nodes along the entrainment. Default 65.
         #[serde(default = "d_nx")]
         nx: usize,
@@ -411,7 +417,7 @@ impl Kind for EhlPoint {
                 }
                 two_d(nx, ny, v);
             }
-            EhlGeometrySpec::Finite { middle_length, crown_height, end_radius, nx, ny } => {
+            EhlGeometrySpec::Finite { middle_length, crown_height, end_radius, nx, ny, .. } => {
                 v.check(middle_length > 0.0 && middle_length <= spec.length, "/geometry/middle_length", "must be in (0, length]");
                 v.in_range("/geometry/crown_height", crown_height, 0.0, 1e-3);
                 v.positive("/geometry/end_radius", end_radius);
@@ -463,8 +469,8 @@ fn solve_2d(spec: &EhlPointSpec, observer: &dyn Observer) -> Result<EhlPointResu
     let temperature = spec.lubricant.inlet_temperature();
     let (geometry, nx, ny) = match spec.geometry {
         EhlGeometrySpec::Point { rx, ry, nx, ny } => (Geometry2d::Point { rx, ry }, nx, ny),
-        EhlGeometrySpec::Finite { middle_length, crown_height, end_radius, nx, ny } => {
-            let crown = Crown { length: spec.length, middle_length, crown_height, end_radius };
+        EhlGeometrySpec::Finite { middle_length, crown_height, end_radius, profile, nx, ny } => {
+            let crown = Crown { length: spec.length, middle_length, crown_height, end_radius, profile: profile.into() };
             (Geometry2d::Finite { rx: spec.reduced_radius, crown }, nx, ny)
         }
         EhlGeometrySpec::Line => unreachable!("line contacts take the 1-D solver"),

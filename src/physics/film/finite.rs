@@ -121,7 +121,7 @@ impl Finite {
     pub fn geometry(&self, input: &ContactInput) -> Geometry2d {
         match input.shape {
             ContactShape::Line { reduced_radius, length } => {
-                let crown = self.crown.unwrap_or(Crown { length, middle_length: length, crown_height: 0.0, end_radius: 1.0 });
+                let crown = self.crown.unwrap_or(Crown { length, middle_length: length, crown_height: 0.0, end_radius: 1.0, profile: Default::default() });
                 Geometry2d::Finite { rx: reduced_radius, crown }
             }
             ContactShape::Point { rx, ry } => Geometry2d::Point { rx, ry },
@@ -356,7 +356,8 @@ impl FilmModel for Finite {
 /// * a crowned roller: when the slice model's loaded length (`Crown::distribute`, the thin-slice
 ///   estimate of how far the load spreads along the roller) reaches within two Hertzian
 ///   half-widths of the crown transition `L1/2` — there the axial slope of the profile jumps and
-///   the edge pressure peak forms (seed 000); also when it reaches the roller's ends;
+///   the edge pressure peak forms (seed 000); also when it reaches the roller's ends; always for
+///   seed 000 eq. 3 as printed (`CrownProfile::Seed000Eq3`: the transitions carry the load);
 /// * a straight roller (no crown): when twice the Hertzian half-width is more than
 ///   `tolerance` of the contact length (the end zones, a few half-widths long, are then a
 ///   noticeable part of the contact).
@@ -369,7 +370,9 @@ pub fn ends_matter(crown: Option<&Crown>, input: &ContactInput, tolerance: f64) 
                 let cc = c.distribute(input.load, reduced_radius, es);
                 let b = crate::physics::contact::hertz_line(cc.peak_load_per_length.max(input.load / c.length), reduced_radius, es).half_width;
                 let reach = 0.5 * cc.effective_length + 2.0 * b;
-                (c.crown_height > 0.0 && c.middle_length < c.length && reach >= 0.5 * c.middle_length) || reach >= 0.5 * c.length
+                // Seed 000 eq. 3 as printed touches first at the transitions: always there.
+                let printed = c.profile == crate::physics::roller::CrownProfile::Seed000Eq3 && c.middle_length < c.length;
+                printed || (c.crown_height > 0.0 && c.middle_length < c.length && reach >= 0.5 * c.middle_length) || reach >= 0.5 * c.length
             }
             None => {
                 let b = crate::physics::contact::hertz_line(input.load / length, reduced_radius, es).half_width;

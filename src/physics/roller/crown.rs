@@ -3,9 +3,14 @@
 //!
 //! Axial gap of the unloaded roller against a straight generator (y from the roller centre):
 //! `g(y) = h_td (2y/L1)²` for `|y| ≤ L1/2` and `g(y) = h_td + (|y| − L1/2)²/(2R_d)` beyond, up to
-//! `L/2`. Seed 000 eq. 3 prints the middle term as `h_td (1 − (2y/L1)²)`, which would make the
-//! roller's centre the *thinnest* section and is taken as a sign slip; its Table 1 lists h_td in
-//! mm (4.5), read here in µm (4.5 mm of crown on a 12 mm section would not touch at all).
+//! `L/2` ([`CrownProfile::Convex`], the default). Seed 000 eq. 3 prints the middle term as
+//! `h_td (1 − (2y/L1)²)` and the ends as `(|y| − L1/2)²/(2R_d)`, which makes the roller's centre
+//! the *thinnest* section (relieved by h_td) and its highest points the transitions at `±L1/2`;
+//! the default reads it as a sign slip of the usual convex crown, and
+//! [`CrownProfile::Seed000Eq3`] keeps it as printed (the paper's picture of edge pressure peaks at
+//! the crown transitions and the minimum film towards the ends at every load follows from it).
+//! Table 1 lists h_td in mm (4.5), read here in µm (4.5 mm of crown on a 12 mm section would not
+//! touch at all).
 //!
 //! Each slice is a 2D Hertz contact whose approach is `δ_s = c w'` with the compliance
 //! `c = (2 ln(4R/b) − 1)/(π E*)` (Johnson, *Contact Mechanics* §5.6, two cylinders of the same
@@ -14,6 +19,17 @@
 //! `G(δ) = ∫ (δ − g)⁺ dy = c F`, which is closed-form for this profile and inverted by Newton
 //! (`G'(δ)` is the loaded length). `c` depends on the peak slice load through `b`, so the solve
 //! is repeated with the updated `c` (three passes: the load then integrates back within 1e-3).
+
+/// Which axial profile the crown parameters describe (module docs).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum CrownProfile {
+    /// Convex crown: `h_td (2y/L1)²` on the middle, `h_td + (|y| − L1/2)²/(2R_d)` beyond.
+    #[default]
+    Convex,
+    /// Seed 000 eq. 3 as printed: `h_td (1 − (2y/L1)²)` on the middle (a relieved centre),
+    /// `(|y| − L1/2)²/(2R_d)` beyond.
+    Seed000Eq3,
+}
 
 /// Crowned roller profile, m.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -26,35 +42,45 @@ pub struct Crown {
     pub crown_height: f64,
     /// End profile radius R_d.
     pub end_radius: f64,
+    /// How the middle and end terms are shaped.
+    pub profile: CrownProfile,
 }
 
 /// Load distribution of a crowned roller at one instant.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct CrownedContact {
-    /// Peak load per unit length (at the centre slice), N/m.
+    /// Peak load per unit length (at the slice of the smallest gap: the centre of a convex crown,
+    /// the transitions of seed 000 eq. 3 as printed), N/m.
     pub peak_load_per_length: f64,
     /// Axially loaded length, m.
     pub effective_length: f64,
     /// `F / w'_max`: the length of a uniform line contact with the same peak, m.
     pub equivalent_length: f64,
+    /// Rigid approach δ of the roller, m: slice `y` carries `w'_max (δ − g(y))⁺/δ`.
+    pub approach: f64,
 }
 
 impl Crown {
     /// Seed 000 Table 1's roller: length 14 mm, straight middle L1 = 12 mm, crown drop
     /// h_td = 4.5 µm, end radius R_d = 12.5 mm.
-    pub const SEED000: Crown = Crown { length: 0.014, middle_length: 0.012, crown_height: 4.5e-6, end_radius: 0.0125 };
+    pub const SEED000: Crown = Crown { length: 0.014, middle_length: 0.012, crown_height: 4.5e-6, end_radius: 0.0125, profile: CrownProfile::Convex };
 
     /// Axial gap of the unloaded roller at `y` (m from the roller centre) against a straight
-    /// generator, m (the profile of the module docs, seed 000 eq. 3 with the sign slip
-    /// corrected): `h_td (2y/L1)²` on the middle, `h_td + (|y| − L1/2)²/(2R_d)` beyond.
+    /// generator through its highest point, m (the profiles of the module docs; seed 000 eq. 3):
+    /// convex `h_td (2y/L1)²` on the middle, `h_td + (|y| − L1/2)²/(2R_d)` beyond; as printed
+    /// `h_td (1 − (2y/L1)²)` on the middle, `(|y| − L1/2)²/(2R_d)` beyond.
     pub fn gap(&self, y: f64) -> f64 {
         let half1 = 0.5 * self.middle_length;
         let ya = y.abs();
+        let (middle, step) = match self.profile {
+            CrownProfile::Convex => (if half1 > 0.0 { self.crown_height * (ya / half1).powi(2) } else { 0.0 }, self.crown_height),
+            CrownProfile::Seed000Eq3 => (if half1 > 0.0 { self.crown_height * (1.0 - (ya / half1).powi(2)) } else { 0.0 }, 0.0),
+        };
         if ya <= half1 {
-            if half1 > 0.0 { self.crown_height * (ya / half1).powi(2) } else { 0.0 }
+            middle
         } else {
             let z = ya - half1;
-            self.crown_height + if self.end_radius.is_finite() && self.end_radius > 0.0 { z * z / (2.0 * self.end_radius) } else { 0.0 }
+            step + if self.end_radius.is_finite() && self.end_radius > 0.0 { z * z / (2.0 * self.end_radius) } else { 0.0 }
         }
     }
 
@@ -65,12 +91,22 @@ impl Crown {
         }
         let half1 = 0.5 * self.middle_length;
         let half_end = 0.5 * (self.length - self.middle_length);
-        // Middle: g = c y², c = 4 h_td/L1².
         let c = if self.middle_length > 0.0 { 4.0 * self.crown_height / (self.middle_length * self.middle_length) } else { 0.0 };
-        let y1 = if c > 0.0 { half1.min((delta / c).sqrt()) } else { half1 };
-        let i1 = delta * y1 - c * y1 * y1 * y1 / 3.0;
-        // Ends: g = h_td + z²/(2R_d).
-        let d2 = delta - self.crown_height;
+        let (i1, y1, step) = match self.profile {
+            // Middle: g = c y², c = 4 h_td/L1², loaded over |y| < y1.
+            CrownProfile::Convex => {
+                let y1 = if c > 0.0 { half1.min((delta / c).sqrt()) } else { half1 };
+                (delta * y1 - c * y1 * y1 * y1 / 3.0, y1, self.crown_height)
+            }
+            // Middle: g = h_td − c y², loaded over y0 < |y| ≤ L1/2.
+            CrownProfile::Seed000Eq3 => {
+                let y0 = if c > 0.0 && delta < self.crown_height { ((self.crown_height - delta) / c).sqrt().min(half1) } else { 0.0 };
+                let i = (delta - self.crown_height) * (half1 - y0) + c * (half1.powi(3) - y0.powi(3)) / 3.0;
+                (i, half1 - y0, 0.0)
+            }
+        };
+        // Ends: g = step + z²/(2R_d).
+        let d2 = delta - step;
         let (i2, z1) = if d2 > 0.0 && half_end > 0.0 {
             let z1 = if self.end_radius.is_finite() { half_end.min((2.0 * self.end_radius * d2).sqrt()) } else { half_end };
             let quad = if self.end_radius.is_finite() { z1 * z1 * z1 / (6.0 * self.end_radius) } else { 0.0 };
@@ -92,7 +128,7 @@ impl Crown {
     /// per pass; the result differs only within the Newton tolerance (1e-13 of δ).
     pub fn distribute_warm(&self, load: f64, r: f64, contact_modulus: f64, hint: &mut [f64; 3]) -> CrownedContact {
         if !(load > 0.0) {
-            return CrownedContact { peak_load_per_length: 0.0, effective_length: 0.0, equivalent_length: self.length };
+            return CrownedContact { peak_load_per_length: 0.0, effective_length: 0.0, equivalent_length: self.length, approach: 0.0 };
         }
         let pi = std::f64::consts::PI;
         // First compliance guess from a uniform load over the whole length.
@@ -121,7 +157,7 @@ impl Crown {
             eff = self.g_integral(delta).1;
             w_peak = delta / compliance;
         }
-        CrownedContact { peak_load_per_length: w_peak, effective_length: eff, equivalent_length: load / w_peak }
+        CrownedContact { peak_load_per_length: w_peak, effective_length: eff, equivalent_length: load / w_peak, approach: delta }
     }
 }
 
@@ -163,9 +199,42 @@ mod tests {
         }
     }
 
+    /// Seed 000 eq. 3 as printed: the closed-form `G(δ)` integrates the printed gap, the load goes
+    /// to the transitions first (below the relief the centre is unloaded) and reaches the centre
+    /// once the approach exceeds h_td.
+    #[test]
+    fn printed_profile_loads_the_transitions_first() {
+        let crown = Crown { profile: CrownProfile::Seed000Eq3, ..seed000() };
+        assert_eq!(crown.gap(0.0), 4.5e-6);
+        assert_eq!(crown.gap(0.006), 0.0);
+        assert!((crown.gap(0.007) - 1e-6 / (2.0 * 0.0125)).abs() < 1e-18);
+        for delta in [1e-6, 4e-6, 6e-6, 3e-5] {
+            let (g, dg) = crown.g_integral(delta);
+            let n = 200_000;
+            let (mut total, mut len) = (0.0, 0.0);
+            for i in 0..n {
+                let y = -0.007 + 0.014 * (i as f64 + 0.5) / n as f64;
+                let d = (delta - crown.gap(y)).max(0.0);
+                total += d * 0.014 / n as f64;
+                len += if d > 0.0 { 0.014 / n as f64 } else { 0.0 };
+            }
+            assert!((g / total - 1.0).abs() < 1e-4, "δ {delta}: {g} vs {total}");
+            assert!((dg - len).abs() < 1e-6, "δ {delta}: {dg} vs {len}");
+        }
+        let (r, es) = (0.01037, 2.1e11 / 2.0);
+        // 300 N: the centre is not touched (two loaded bands at the transitions).
+        let light = crown.distribute(300.0, r, es);
+        assert!(light.approach < 4.5e-6 && light.effective_length < 0.5 * 0.014, "{light:?}");
+        // The nose (954 N): the centre slice carries (δ − h_td)/δ of the transitions' load per
+        // length (measured 0.15).
+        let nose = crown.distribute(954.0, r, es);
+        let share = (nose.approach - 4.5e-6) / nose.approach;
+        assert!(share > 0.0 && share < 0.2, "{nose:?}");
+    }
+
     #[test]
     fn uncrowned_roller_is_a_uniform_line_contact() {
-        let flat = Crown { length: 0.014, middle_length: 0.014, crown_height: 0.0, end_radius: f64::INFINITY };
+        let flat = Crown { length: 0.014, middle_length: 0.014, crown_height: 0.0, end_radius: f64::INFINITY, profile: CrownProfile::Convex };
         let c = flat.distribute(2000.0, 0.01, 1.15e11);
         assert!((c.effective_length - 0.014).abs() < 1e-12);
         assert!((c.peak_load_per_length - 2000.0 / 0.014).abs() < 1e-6);

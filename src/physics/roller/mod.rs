@@ -20,7 +20,7 @@ pub mod pin;
 pub mod pin_finite;
 pub mod point;
 
-pub use crown::{Crown, CrownedContact};
+pub use crown::{Crown, CrownProfile, CrownedContact};
 pub use pin::{pin_film_temperature, pin_film_temperature_warm, pin_torque, pin_torque_warm, PinFriction};
 pub use pin_finite::{FinitePin, FinitePinState, PinTable, PinThermal};
 pub use point::{PointBalance, PointCase};

@@ -148,7 +148,7 @@ impl CamCycleSpec {
                     FollowerKind::Roller {
                         roller: RollerParams { radius: *radius, inertia, pin },
                         contact_length,
-                        crown: crown.map(|c| Crown { length: *length, middle_length: c.middle_length, crown_height: c.crown_height, end_radius: c.end_radius }),
+                        crown: crown.map(|c| Crown { length: *length, middle_length: c.middle_length, crown_height: c.crown_height, end_radius: c.end_radius, profile: c.profile.into() }),
                     },
                 )
             }
@@ -376,7 +376,7 @@ pub(super) fn solve_spec(spec: &CamCycleSpec, observer: &dyn Observer) -> Result
         // as in the slice model), or a point contact's grid.
         match &spec.follower {
             FollowerSpec::Roller { length, crown: Some(c), .. } => {
-                f.crown = Some(Crown { length: *length, middle_length: c.middle_length, crown_height: c.crown_height, end_radius: c.end_radius });
+                f.crown = Some(Crown { length: *length, middle_length: c.middle_length, crown_height: c.crown_height, end_radius: c.end_radius, profile: c.profile.into() });
             }
             FollowerSpec::Spherical { .. } => f.options = spec.ehl.grid_options(true),
             _ => {}

@@ -152,6 +152,36 @@ pub struct CrownSpec {
     pub crown_height: f64,
     /// End profile radius R_d, m.
     pub end_radius: f64,
+    /// `convex` (default): a crown, `h_td (2y/L1)²` on the middle and `h_td + (|y| − L1/2)²/(2R_d)`
+    /// beyond. `seed000_eq3`: seed 000 eq. 3 exactly as printed, `h_td (1 − (2y/L1)²)` on the middle
+    /// (the centre relieved by h_td, the roller touching first at the transitions `±L1/2`) and
+    /// `(|y| − L1/2)²/(2R_d)` beyond.
+    #[serde(default, skip_serializing_if = "CrownProfileSpec::is_convex")]
+    pub profile: CrownProfileSpec,
+}
+
+/// Axial profile of the crown parameters (see [`CrownSpec::profile`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize, ToSchema)]
+#[serde(rename_all = "snake_case")]
+pub enum CrownProfileSpec {
+    #[default]
+    Convex,
+    Seed000Eq3,
+}
+
+impl CrownProfileSpec {
+    pub fn is_convex(&self) -> bool {
+        *self == CrownProfileSpec::Convex
+    }
+}
+
+impl From<CrownProfileSpec> for crate::physics::roller::CrownProfile {
+    fn from(p: CrownProfileSpec) -> Self {
+        match p {
+            CrownProfileSpec::Convex => Self::Convex,
+            CrownProfileSpec::Seed000Eq3 => Self::Seed000Eq3,
+        }
+    }
 }
 
 fn default_clearance() -> f64 {

@@ -33,6 +33,9 @@ pub(crate) struct Scales {
     /// Half-length of the loaded zone across the entrainment, units of `a` (the Hertzian semi-axis
     /// or the slice model's loaded half-length): shapes the cold-start pressure.
     pub loaded: f64,
+    /// The slice model's rigid approach of a finite roller, units of `a²/R_x` (0 for points):
+    /// the cold start loads slice `Y` in proportion to `(δ − S(Y))⁺`.
+    pub approach: f64,
 }
 
 pub(crate) fn scales(input: &Ehl2dInput) -> Result<Scales, SolveError> {
@@ -42,14 +45,14 @@ pub(crate) fn scales(input: &Ehl2dInput) -> Result<Scales, SolveError> {
     let um = input.entrainment_velocity.abs();
     let f = input.load;
     let pi = std::f64::consts::PI;
-    let (a, p_ref, rx, ky, h_est, m, l, loaded) = match input.geometry {
+    let (a, p_ref, rx, ky, h_est, m, l, loaded, approach) = match input.geometry {
         Geometry2d::Point { rx, ry } => {
             // Hertz with E* = E'/2 (contact::hertz_point takes Johnson's E*).
             let hz = hertz_point(f, rx, ry, 0.5 * ep).map_err(|_| SolveError::invalid("Ehl2dInput.geometry", "radii must be > 0"))?;
             let (ax, ay) = if rx >= ry { (hz.semi_major, hz.semi_minor) } else { (hz.semi_minor, hz.semi_major) };
             let (m, l, u_sum) = point_moes_groups(f, rx, ep, um, eta0, lub.pressure_viscosity);
             let hc = nijenbanning_central(m, l, rx / ry) * rx * u_sum.sqrt();
-            (ax, hz.max_pressure, rx, ay / ax, hc * rx / (ax * ax), m, l, ay / ax)
+            (ax, hz.max_pressure, rx, ay / ax, hc * rx / (ax * ax), m, l, ay / ax, 0.0)
         }
         Geometry2d::Finite { rx, crown } => {
             let cc = crown.distribute(f, rx, 0.5 * ep);
@@ -58,13 +61,13 @@ pub(crate) fn scales(input: &Ehl2dInput) -> Result<Scales, SolveError> {
             let g = Groups::new(w, rx, ep, um, eta0, lub.pressure_viscosity);
             let hc = moes_central(g.moes_m, g.moes_l) * rx * (2.0 * g.speed).sqrt();
             let b = hz.half_width;
-            (b, hz.max_pressure, rx, 0.5 * crown.length / b, hc * rx / (b * b), g.moes_m, g.moes_l, (0.5 * cc.effective_length.min(crown.length) / b).max(1.0))
+            (b, hz.max_pressure, rx, 0.5 * crown.length / b, hc * rx / (b * b), g.moes_m, g.moes_l, (0.5 * cc.effective_length.min(crown.length) / b).max(1.0), cc.approach * rx / (b * b))
         }
     };
     let lambda = 12.0 * eta0 * um * rx * rx / (a * a * a * p_ref);
     let c_def = 2.0 * p_ref * rx / (pi * ep * a);
     let load = f / (p_ref * a * a);
-    let s = Scales { a, p_ref, rx, lambda, c_def, load, h_est, ky, moes_m: m, moes_l: l, loaded };
+    let s = Scales { a, p_ref, rx, lambda, c_def, load, h_est, ky, moes_m: m, moes_l: l, loaded, approach };
     if ![a, p_ref, lambda, c_def, load, h_est, ky].iter().all(|v| v.is_finite() && *v > 0.0) {
         return Err(SolveError::invalid("Ehl2dInput", "the contact scales are not finite and positive (check load, radii, modulus, speed)"));
     }

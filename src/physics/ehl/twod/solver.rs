@@ -1275,8 +1275,11 @@ fn cold(prob: &mut Problem, input: &Ehl2dInput, s: &Scales) -> (Vec<f64>, f64) {
 /// zone's edge): `1 − S(Y)/S(Y_loaded)`, uniform along a straight roller (the parabola
 /// `1 − (Y/Y_loaded)²` of the crowned middle before, which loaded a straight roller's centre 1.5×
 /// and left its ends unloaded: its films there started far below zero, issue 16).
+/// Seed 000 eq. 3 as printed (a relieved centre, loaded zones at the transitions, not an interval
+/// around the centre) takes `δ` from the slice model directly.
 fn slice_load(input: &Ehl2dInput, s: &Scales, y: f64) -> f64 {
-    let delta = side_gap(input, s, s.loaded.min(s.ky));
+    let printed = matches!(input.geometry, Geometry2d::Finite { crown, .. } if crown.profile == crate::physics::roller::CrownProfile::Seed000Eq3);
+    let delta = if printed { s.approach } else { side_gap(input, s, s.loaded.min(s.ky)) };
     let g = side_gap(input, s, y);
     if delta > 0.0 {
         (1.0 - g / delta).max(0.0)
