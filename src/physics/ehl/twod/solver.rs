@@ -1069,7 +1069,9 @@ fn solve_level(prob: &mut Problem, p: &mut [f64], h0: &mut f64, tol: f64, cap: u
         }
         p.copy_from_slice(&ps);
         *h0 = hs;
-        step *= 0.5;
+        // Half the increment that failed (`step` was doubled after the last success, and capped
+        // at θ = 1: halving it alone could retry the same θ from the same start).
+        step = 0.5 * (t - theta);
         if step < 1.0 / 16.0 {
             prob.theta = 1.0;
             let mut r = newton_or_march(prob, p, h0, tol, NESTED_ITER.min(max_iter), max_iter, DT_NESTED, observer)?;
