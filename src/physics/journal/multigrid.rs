@@ -737,9 +737,9 @@ impl Level {
     /// over the rows as they become final (in index order, as [`dot`]; the edge rows are 0).
     /// `prolong`: first `x += P·(coarse correction)` with the coarse level's correction `x`:
     /// each coarse row is interpolated around the circumference into `tmp` when first needed
-    /// (the order of [`prolong_theta`]) and each fine row gets its axial interpolation just before
-    /// the first half-sweep needs it. `restrict`: with `residual`, also `coarse.b = Pᵀ r` (zero
-    /// at the coarse fixed nodes, [`restrict`]), each residual row accumulated into `tmp` while it
+    /// (as `prolong_theta`, the test reference) and each fine row gets its axial interpolation
+    /// just before the first half-sweep needs it. `restrict`: with `residual`, also `coarse.b = Pᵀ r` (zero
+    /// at the coarse fixed nodes, as `restrict`), each residual row accumulated into `tmp` while it
     /// is in cache and each coarse row finished as soon as no later fine row contributes to it.
     #[allow(clippy::too_many_arguments)]
     fn smooth_pass(&mut self, sweeps: usize, reverse: bool, from_zero: bool, residual: bool, want_dot: bool, prolong: Option<&Level>, mut restrict: Option<&mut Level>) -> f64 {
@@ -801,8 +801,8 @@ impl Level {
 
     /// The axial half of the restriction for fine row `j` (its residual final): `tmp` rows
     /// `p_lo[j]` and `p_hi[j]` += the row's weighted residual on its free ranges (outside them
-    /// the residual is 0), in the order of [`restrict`]; the `tmp` rows are zeroed when first
-    /// touched (`zeroed`: the rows zeroed so far).
+    /// the residual is 0), in the order of `restrict` (the test reference); the `tmp` rows are
+    /// zeroed when first touched (`zeroed`: the rows zeroed so far).
     #[inline(always)]
     fn restrict_row_z(&mut self, j: usize, zeroed: &mut usize) {
         let tz = self.tz.as_ref().unwrap();
