@@ -7,7 +7,7 @@
 //! crowned roller at the cam nose (`-- roller`). Times are the best of a few repetitions, one
 //! thread for the solver's own work (faer's sparse LU may use the rayon pool).
 //!
-//! `-- cycle [angles=360] [nx=65] [ny=129] [stride=30] [reference]`: the seed 000 roller cycle
+//! `-- cycle [angles=360] [nx=65] [ny=129] [stride=30] [reference] [cycle-only]`: the seed 000 roller cycle
 //! (`examples/seed000_roller_accurate.json`) with `ehl.geometry: finite` through the `cam_cycle`
 //! kind — wall time, Newton steps per angle, warm/cold solves; then the film model alone along the
 //! cycle's contact points (smooth surfaces): the warm-started chain against cold solves at every
@@ -158,6 +158,10 @@ fn cycle(args: &[String]) {
         // A null edge peak (none found at that angle) reads as NaN in `col`.
         let peak = if edge[i].is_finite() { format!("{:.3} GPa", edge[i] * 1e-9) } else { "none".to_string() };
         println!("  {what} (angle {i}): load {:.1} N, u_e {:.3} m/s, h_c {:.4} µm, h_min {:.4} µm at y = {:.2} mm, edge peak {peak}", load[i], ue[i], hc[i] * 1e6, hm[i] * 1e6, ymin[i] * 1e3);
+    }
+    // `cycle-only`: stop here (the counters and the cycle's time only).
+    if args.iter().any(|a| a == "cycle-only") {
+        return;
     }
     // The film model alone along the cycle's contact points: warm chain against cold solves.
     let crown = Crown::SEED000;

@@ -9,7 +9,10 @@
 //!   form answers, as for the 1-D [`super::Numerical`].
 //!
 //! Warm start: each point starts from the previous point's converged 2-D pressure (carried in
-//! [`FilmSolution::finite`]) rescaled to the new Hertzian scales ([`twod::solve_from`]); the
+//! [`FilmSolution::finite`]) rescaled to the new Hertzian scales ([`twod::solve_from`]), or from
+//! the secant extrapolation through it and the point before (the film carries the warm start it
+//! was solved from, [`FiniteFilm::prior`]) when that has the smaller Newton residual
+//! ([`twod::solve_kept`]); the
 //! cold nested iteration runs only at the first point or when the warm start fails. The model is
 //! steady (no squeeze term) and Newtonian; its film does not depend on the sliding velocity or on
 //! the previous point beyond the Newton tolerance, so it is history-free (a dwell reuses a film).
@@ -34,7 +37,7 @@ use crate::physics::friction::TractionNode;
 use crate::physics::roller::Crown;
 use crate::physics::{ensure_finite, Silent, SolveError};
 use std::sync::atomic::{AtomicBool, Ordering};
-use std::sync::Mutex;
+use std::sync::{Arc, Mutex};
 
 /// What the 2-D model adds to a [`FilmSolution`].
 #[derive(Debug, Clone, PartialEq)]
@@ -53,7 +56,10 @@ pub struct FiniteFilm {
     /// Whether the warm start from the previous point converged (false: cold nested solve).
     pub warm_started: bool,
     /// The converged pressure in the solver's scales: the next point's warm start.
-    pub warm: Warm2d,
+    pub warm: Arc<Warm2d>,
+    /// The warm start this film was solved from (the previous point's `warm`, shared): with
+    /// `warm` the next point's start is extrapolated along the chain ([`twod::solve_kept`]).
+    pub prior: Option<Arc<Warm2d>>,
     /// The entrainment velocity (m/s) of the Newton solve this film comes from; it differs from
     /// the film's own entrainment when the film was rescaled ([`Finite`]'s entrainment rescale).
     pub solved_entrainment: f64,
@@ -235,7 +241,7 @@ impl FilmModel for Finite {
         let Some(f) = film.finite.as_deref() else { return Ok(None) };
         let ehl = Ehl2dInput { entrainment_velocity: f.entrainment, ..self.problem(input) };
         let options = Ehl2dOptions { fields: true, grid_check: false, ..self.options };
-        Ok(twod::solve_from(&ehl, &options, Some(&f.warm), &Silent)?.0.fields)
+        Ok(twod::solve_from(&ehl, &options, Some(&*f.warm), &Silent)?.0.fields)
     }
 
     /// The default nodal traction, counted ([`super::work`]).
@@ -259,12 +265,14 @@ impl FilmModel for Finite {
         let es = input.contact_modulus;
         let geometry = self.geometry(input);
         let ehl = self.problem(input);
-        let warm = previous.and_then(|p| p.finite.as_deref()).map(|f| &f.warm);
+        let previous_finite = previous.and_then(|p| p.finite.as_deref());
+        let warm = previous_finite.map(|f| &*f.warm);
+        let prior = previous_finite.and_then(|f| f.prior.as_deref());
         let first = !self.checked.swap(true, Ordering::Relaxed);
         let grid_check = self.options.grid_check && (!self.check_first_only || first || warm.is_none());
         let options = Ehl2dOptions { fields: true, grid_check, ..self.options };
         let mut kept = self.kept.lock().map(|mut k| std::mem::take(&mut *k)).unwrap_or_default();
-        let solved = twod::solve_kept(&ehl, &options, warm, &mut kept, &Silent);
+        let solved = twod::solve_kept(&ehl, &options, warm, prior, &mut kept, &Silent);
         if let Ok(mut k) = self.kept.lock() {
             *k = kept;
         }
@@ -341,7 +349,8 @@ impl FilmModel for Finite {
                 grid: (s.nx, s.ny),
                 grid_error: s.grid_error,
                 warm_started: s.warm_started,
-                warm: next,
+                warm: Arc::new(next),
+                prior: previous_finite.map(|f| f.warm.clone()),
                 solved_entrainment: input.entrainment_velocity,
                 entrainment: input.entrainment_velocity,
                 solved_at: (load, input.shape, input.temperature),
