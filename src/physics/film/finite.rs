@@ -380,7 +380,7 @@ pub fn ends_matter(crown: Option<&Crown>, input: &ContactInput, tolerance: f64) 
                 let b = crate::physics::contact::hertz_line(cc.peak_load_per_length.max(input.load / c.length), reduced_radius, es).half_width;
                 let reach = 0.5 * cc.effective_length + 2.0 * b;
                 // Seed 000 eq. 3 as printed touches first at the transitions: always there.
-                let printed = c.profile == crate::physics::roller::CrownProfile::Seed000Eq3 && c.middle_length < c.length;
+                let printed = c.loads_the_transitions() && c.middle_length < c.length;
                 printed || (c.crown_height > 0.0 && c.middle_length < c.length && reach >= 0.5 * c.middle_length) || reach >= 0.5 * c.length
             }
             None => {

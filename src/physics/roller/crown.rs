@@ -84,6 +84,13 @@ impl Crown {
         }
     }
 
+    /// Seed 000 eq. 3 as printed with a relieved middle: the roller's highest points are the
+    /// transitions `±L1/2`, which carry the load at every load (the loaded zone is not an interval
+    /// around the centre).
+    pub fn loads_the_transitions(&self) -> bool {
+        self.profile == CrownProfile::Seed000Eq3
+    }
+
     /// `(G(δ), G'(δ))` for this profile.
     fn g_integral(&self, delta: f64) -> (f64, f64) {
         if delta <= 0.0 {

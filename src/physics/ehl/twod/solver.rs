@@ -1355,7 +1355,7 @@ fn cold(prob: &mut Problem, input: &Ehl2dInput, s: &Scales) -> (Vec<f64>, f64) {
 /// Seed 000 eq. 3 as printed (a relieved centre, loaded zones at the transitions, not an interval
 /// around the centre) takes `δ` from the slice model directly.
 fn slice_load(input: &Ehl2dInput, s: &Scales, y: f64) -> f64 {
-    let printed = matches!(input.geometry, Geometry2d::Finite { crown, .. } if crown.profile == crate::physics::roller::CrownProfile::Seed000Eq3);
+    let printed = matches!(input.geometry, Geometry2d::Finite { crown, .. } if crown.loads_the_transitions());
     let delta = if printed { s.approach } else { side_gap(input, s, s.loaded.min(s.ky)) };
     let g = side_gap(input, s, y);
     if delta > 0.0 {
