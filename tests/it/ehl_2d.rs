@@ -150,14 +150,15 @@ fn ehl2d_circular_film_against_nijenbanning_on_65() {
 /// (236.8 nm); minimum 111.5 nm, −17.9 % against Hamrock–Dowson's 135.7 nm. 97² (before the
 /// resolution check): 270.9 nm, −0.7 % / +14.4 %, minimum 112.3 nm.
 #[test]
-#[ignore = "issue 16: passes on 129² but takes 164 s wall in the dev profile (264 Newton steps, mostly the θ continuation on each level; ehl2d-9): h_c 275.5 nm, +1.0 % against NVM, +16.3 % against HD, h_min −17.9 % against HD, 2.3 % from the 65² level. 97² is refused by the resolution check (28.9 % from 49², whose x spacing does not resolve the inlet); ehl2d_circular_film_against_nijenbanning_on_65 runs the 65² level"]
+#[ignore = "issue 16: passes on 129² but takes 45 s wall in the dev profile under load (177 Newton steps since ehl2d-12; 264 steps and 164 s before, mostly the θ continuation on each level; ehl2d-9): h_c 275.5 nm, +1.0 % against NVM, +16.3 % against HD, h_min −17.9 % against HD, 2.3 % from the 65² level. 97² is refused by the resolution check (28.9 % from 49², whose x spacing does not resolve the inlet); ehl2d_circular_film_against_nijenbanning_on_65 runs the 65² level"]
 fn ehl2d_circular_film_against_hamrock_dowson_and_nijenbanning() {
     circular_barus_against_formulas(129, 0.03, 0.17, 0.2);
 }
 
 /// The elliptic contact on 65² (accepted without the half-grid check, as the circular 65² case:
 /// its 33² level is 53 % off, `grid_tolerance` 1). Measured (session 33, dev, 107 Newton steps,
-/// 14.6 s): central 302.57 nm, −0.9 % against the Nijenbanning transcription (305.2 nm) and +5.9 %
+/// 14.6 s; since ehl2d-12's near field with the Poiseuille film terms 18 steps, 5.0 s, the films
+/// equal to 3e-7): central 302.57 nm, −0.9 % against the Nijenbanning transcription (305.2 nm) and +5.9 %
 /// against Hamrock–Dowson (285.7 nm); minimum 201.1 nm, −3.6 % against Hamrock–Dowson (208.7 nm) —
 /// 2.5 % / 1.8 % below the 129² solution (310.2 / 204.8 nm, session 29), and the
 /// circular case's pattern. This case converges on the kept-preconditioner policy 25 / 15; with
@@ -169,7 +170,7 @@ fn ehl2d_elliptic_film_against_nijenbanning_on_65() {
 }
 
 #[test]
-#[ignore = "issue 16: 441 s in the dev profile on 129² (379 Newton steps; 97² is refused by the resolution check, 7.4 % from 49²); ehl2d_elliptic_film_against_nijenbanning_on_65 runs the 65² case"]
+#[ignore = "issue 16: 271 s wall in the dev profile on 129² under load (225 Newton steps since ehl2d-12; 379–396 before, 441 s; 97² is refused by the resolution check, 7.4 % from 49²); ehl2d_elliptic_film_against_nijenbanning_on_65 runs the 65² case"]
 fn ehl2d_elliptic_film_against_hamrock_dowson_and_nijenbanning() {
     elliptic_against_formulas(129, 0.05);
 }

@@ -111,6 +111,14 @@ fn warm_forcing() -> Option<Forcing> {
     })
 }
 
+/// Whether the near-field preconditioner carries the Poiseuille terms' film dependence
+/// ([`Problem::precondition`]); development aid: `TRIBOD_EHL2D_PFILM=0` leaves it out (the
+/// wedge-only near field before `ehl2d-12`).
+fn poiseuille_film() -> bool {
+    static B: std::sync::OnceLock<bool> = std::sync::OnceLock::new();
+    *B.get_or_init(|| std::env::var("TRIBOD_EHL2D_PFILM").map(|s| s.trim() != "0").unwrap_or(true))
+}
+
 /// Most halvings in the line search.
 const MAX_HALVINGS: u32 = 25;
 /// The film floor of the Reynolds terms, as a fraction of the closed-form film estimate: the
@@ -456,6 +464,44 @@ impl Problem {
                 }
             }
             let diag: f64 = row.iter().filter(|(col, _)| *col == u).map(|(_, val)| val).sum();
+            if poiseuille_film() {
+                // The Poiseuille terms' film dependence `∂ε_f/∂H = w·3ε/H` at the row's node and
+                // its four neighbours, through the near-field deflection, within the columns the
+                // wedge terms already occupy (the pattern's box `i − 2 − r … i + r`,
+                // `j − r … j + r`): with the geometric face mean (`θ → 1`) a face between an
+                // inlet node (large ε) and a contact node (small ε) weighs the contact node's film
+                // by `1.5 sqrt(ε_b/ε_a)`, which the wedge-only near field left out. The row scale
+                // `c` (above) is unchanged, so is the residual.
+                let lo = (if i >= 2 && self.second { 2 } else { 1 }) + r;
+                let mut pts = [(k, 0.0); 5];
+                for (q, (nb, d2)) in [(k + 1, dx2), (k - 1, dx2), (k + nx, dy2), (k - nx, dy2)].into_iter().enumerate() {
+                    let (_, w1, w2) = face_of(self.theta, e[k], e[nb]);
+                    let dpf = (p[nb] - p[k]) / d2;
+                    pts[0].1 += w1 * 3.0 * e[k] / v.h[k] * v.on[k] * dpf;
+                    pts[q + 1] = (nb, w2 * 3.0 * e[nb] / v.h[nb] * v.on[nb] * dpf);
+                }
+                for &(q, a) in &pts {
+                    if a == 0.0 || !a.is_finite() {
+                        continue;
+                    }
+                    let (qi, qj) = ((q % nx) as isize, (q / nx) as isize);
+                    row.push((m, a));
+                    for dj in -r..=r {
+                        let lj = j as isize + dj;
+                        if lj < 1 || lj >= ny as isize - 1 || (lj - qj).abs() > r {
+                            continue;
+                        }
+                        for di in -lo..=r {
+                            let li = i as isize + di;
+                            if li < 1 || li >= nx as isize - 1 || (li - qi).abs() > r {
+                                continue;
+                            }
+                            let l = lj as usize * nx + li as usize;
+                            row.push((self.unk[l], a * self.defl.coefficient((li - qi).unsigned_abs(), (lj - qj).unsigned_abs())));
+                        }
+                    }
+                }
+            }
             let cu = 1.0 / diag.abs().max(1e-300);
             c[u] = cu;
             active[u] = p[k] <= -cu * v.f[k];
