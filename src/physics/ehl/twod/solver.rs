@@ -1740,6 +1740,20 @@ fn solve_levels(input: &Ehl2dInput, options: &Ehl2dOptions, s: &Scales, d: Domai
     unreachable!("the finest level returns")
 }
 
+/// The contacts are symmetric about y = 0, so an extremum at node `k` has a mirror at
+/// `(i, ny − 1 − j)` that differs only by the solver's tolerance. Where the two agree to 1e-6
+/// relative, the node at y ≥ 0 is reported, so the reported position does not flip sign with the
+/// last digits of the solution (the roller's two ends).
+fn mirror_tie(nx: usize, ny: usize, k: usize, f: &[f64]) -> usize {
+    let (i, j) = (k % nx, k / nx);
+    let m = (ny - 1 - j) * nx + i;
+    if m > k && (f[m] - f[k]).abs() <= 1e-6 * f[k].abs() {
+        m
+    } else {
+        k
+    }
+}
+
 /// GMRES iterations of the last [`solve`] are not reported; this is the count of Newton steps.
 #[allow(clippy::too_many_arguments)]
 fn finish(input: &Ehl2dInput, options: &Ehl2dOptions, s: &Scales, prob: &mut Problem, p: &[f64], h0: f64, iterations: u32, residual: f64) -> Result<Ehl2dSolution, SolveError> {
@@ -1752,8 +1766,8 @@ fn finish(input: &Ehl2dInput, options: &Ehl2dOptions, s: &Scales, prob: &mut Pro
     let sign = if input.entrainment_velocity >= 0.0 { 1.0 } else { -1.0 };
     let at = |k: usize| (sign * prob.x[k % nx] * s.a, prob.y[k / nx] * s.a);
     let central = bilinear(&prob.x, &prob.y, &v.h, 0.0, 0.0) * film_scale;
-    let kmin = (0..nx * ny).min_by(|&a, &b| v.h[a].total_cmp(&v.h[b])).unwrap_or(0);
-    let kmax = (0..nx * ny).max_by(|&a, &b| p[a].total_cmp(&p[b])).unwrap_or(0);
+    let kmin = mirror_tie(nx, ny, (0..nx * ny).min_by(|&a, &b| v.h[a].total_cmp(&v.h[b])).unwrap_or(0), &v.h);
+    let kmax = mirror_tie(nx, ny, (0..nx * ny).max_by(|&a, &b| p[a].total_cmp(&p[b])).unwrap_or(0), p);
     let loc = |k: usize, value: f64| {
         let (x, y) = at(k);
         Located { value, x, y }
@@ -1781,7 +1795,10 @@ fn finish(input: &Ehl2dInput, options: &Ehl2dOptions, s: &Scales, prob: &mut Pro
                     best = Some((pv, k));
                 }
             }
-            best.map(|(pv, k)| loc(k, pv * s.p_ref))
+            best.map(|(_, k)| {
+                let k = mirror_tie(nx, ny, k, p);
+                loc(k, p[k] * s.p_ref)
+            })
         }
         Geometry2d::Point { .. } => None,
     };
@@ -1918,5 +1935,25 @@ mod probe {
         let o = Ehl2dOptions { nx: fine, ny: fine, inlet: Some(3.5), outlet: Some(1.5), side: Some(2.0), ..Default::default() };
         let strides: Vec<usize> = [2, 4, 8].into_iter().filter(|s| (fine - 1) / s >= 16).collect();
         truncation_probe(&input, &o, &strides).unwrap();
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::mirror_tie;
+
+    /// A tie between mirrored nodes is reported at y ≥ 0 whichever of the two the scan found; a
+    /// real difference keeps the extremum where it is.
+    #[test]
+    fn mirrored_extrema_are_reported_at_positive_y() {
+        let (nx, ny) = (3, 5);
+        let mut f = vec![1.0; nx * ny];
+        f[nx + 1] = 0.5; // (1, 1), y < 0
+        f[3 * nx + 1] = 0.5 * (1.0 + 1e-9); // its mirror (1, 3)
+        assert_eq!(mirror_tie(nx, ny, nx + 1, &f), 3 * nx + 1);
+        assert_eq!(mirror_tie(nx, ny, 3 * nx + 1, &f), 3 * nx + 1);
+        f[3 * nx + 1] = 0.5 * (1.0 + 1e-3);
+        assert_eq!(mirror_tie(nx, ny, nx + 1, &f), nx + 1);
+        assert_eq!(mirror_tie(nx, ny, 2 * nx, &f), 2 * nx); // the centre line is its own mirror
     }
 }
