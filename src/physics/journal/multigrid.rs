@@ -230,8 +230,6 @@ pub struct Level {
     r: Vec<f64>,
     /// Scratch for transfers to the next coarser level: (coarse rows) × nt.
     tmp: Vec<f64>,
-    /// Scratch row of the smoother (`nt`): the update of both colours of a row range.
-    sw: Vec<f64>,
     tt: Option<Transfer1D>,
     tz: Option<Transfer1D>,
     /// For the injection of the cavitated set to the next coarser level: per coarse column and
@@ -295,7 +293,6 @@ impl Level {
             b: vec![0.0; n],
             r: vec![0.0; n],
             tmp: Vec::new(),
-            sw: vec![0.0; nt],
             tt: None,
             tz: None,
             inj_t: Vec::new(),
@@ -643,24 +640,6 @@ impl Level {
     /// classification zeroes it: the values of a `lambda` pass followed by a classification
     /// pass. Returns the number of nodes whose flag changed.
     fn lambda_and_classify(&mut self, lam: &mut [f64]) -> usize {
-        #[cfg(target_arch = "x86_64")]
-        if std::is_x86_feature_detected!("avx2") {
-            // SAFETY: the CPU has AVX2 (checked just above).
-            return unsafe { self.lambda_and_classify_avx2(lam) };
-        }
-        self.lambda_and_classify_body(lam)
-    }
-
-    /// [`Level::lambda_and_classify`] compiled for AVX2 (bit for bit the same results: see
-    /// [`Level::smooth_pass_avx2`]).
-    #[cfg(target_arch = "x86_64")]
-    #[target_feature(enable = "avx2")]
-    unsafe fn lambda_and_classify_avx2(&mut self, lam: &mut [f64]) -> usize {
-        self.lambda_and_classify_body(lam)
-    }
-
-    #[inline(always)]
-    fn lambda_and_classify_body(&mut self, lam: &mut [f64]) -> usize {
         let (nt, nz) = (self.nt, self.nz);
         lam[..nt].fill(0.0);
         lam[(nz - 1) * nt..].fill(0.0);
@@ -694,7 +673,6 @@ impl Level {
     /// The CG direction and its image in one pass: with `beta`, first `v = z + β v` (each row
     /// one row ahead of its use); then `out = A v` restricted to the free nodes (0 at fixed
     /// nodes), and returns `v·out` (summed in index order, as [`dot`]).
-    #[inline(always)]
     fn apply_free_dot(&self, z: &[f64], beta: Option<f64>, v: &mut [f64], out: &mut [f64]) -> f64 {
         let nt = self.nt;
         let nz = self.nz;
@@ -734,7 +712,6 @@ impl Level {
     /// [`Level::residual_free`] and `out·out` in one pass (each row summed as soon as it is
     /// written, in index order as [`dot`]; the edge rows are 0 and every term is ≥ 0, so the
     /// sum is that of `dot(out, out)` bit for bit).
-    #[inline(always)]
     fn residual_free_dot(&self, v: &[f64], out: &mut [f64]) -> f64 {
         let nt = self.nt;
         out[..nt].fill(0.0);
@@ -765,29 +742,7 @@ impl Level {
     /// at the coarse fixed nodes, as `restrict`), each residual row accumulated into `tmp` while it
     /// is in cache and each coarse row finished as soon as no later fine row contributes to it.
     #[allow(clippy::too_many_arguments)]
-    fn smooth_pass(&mut self, sweeps: usize, reverse: bool, from_zero: bool, residual: bool, want_dot: bool, prolong: Option<&Level>, restrict: Option<&mut Level>) -> f64 {
-        #[cfg(target_arch = "x86_64")]
-        if std::is_x86_feature_detected!("avx2") {
-            // SAFETY: the CPU has AVX2 (checked just above).
-            return unsafe { self.smooth_pass_avx2(sweeps, reverse, from_zero, residual, want_dot, prolong, restrict) };
-        }
-        self.smooth_pass_body(sweeps, reverse, from_zero, residual, want_dot, prolong, restrict)
-    }
-
-    /// [`Level::smooth_pass`] compiled for AVX2 (4 lanes instead of SSE2's 2 in the loops the
-    /// compiler vectorises). No fused multiply–add is enabled and Rust never contracts `a*b + c`,
-    /// and reductions stay in index order: the same operations on the same values as the
-    /// baseline build, bit for bit, on any CPU.
-    #[cfg(target_arch = "x86_64")]
-    #[target_feature(enable = "avx2")]
-    #[allow(clippy::too_many_arguments)]
-    unsafe fn smooth_pass_avx2(&mut self, sweeps: usize, reverse: bool, from_zero: bool, residual: bool, want_dot: bool, prolong: Option<&Level>, restrict: Option<&mut Level>) -> f64 {
-        self.smooth_pass_body(sweeps, reverse, from_zero, residual, want_dot, prolong, restrict)
-    }
-
-    #[inline(always)]
-    #[allow(clippy::too_many_arguments)]
-    fn smooth_pass_body(&mut self, sweeps: usize, reverse: bool, from_zero: bool, residual: bool, want_dot: bool, prolong: Option<&Level>, mut restrict: Option<&mut Level>) -> f64 {
+    fn smooth_pass(&mut self, sweeps: usize, reverse: bool, from_zero: bool, residual: bool, want_dot: bool, prolong: Option<&Level>, mut restrict: Option<&mut Level>) -> f64 {
         let nz = self.nz;
         let first = if reverse { 1 } else { 0 };
         let stages = 2 * sweeps;
@@ -990,27 +945,20 @@ impl Level {
             upd(cur, b, ce, cn_n, cn_s, above, below, inv, 0, nt - 1, 1);
             i = 2;
         }
-        // interior nodes of this colour: 1 ≤ i ≤ nt − 2 and i < hi, step 2. The update is
-        // computed for every node of `i..end` (both colours) on contiguous slices into the
-        // scratch row, which the compiler vectorises, and only this colour's values are copied
-        // back: a node of this colour reads only the other colour's nodes (not written in this
-        // half-sweep), so each kept value is the strided loop's, bit for bit (same operations
-        // in the same order); the other colour's values are discarded.
+        // interior nodes of this colour: 1 ≤ i ≤ nt − 2 and i < hi, step 2
         let end = hi.min(nt - 1);
         let mut k = i;
-        if k < end {
-            let n = end - k;
-            let w = &mut self.sw[..n];
-            let (b1, cee, cew, xe, xw) = (&b[k..end], &ce[k..end], &ce[k - 1..end - 1], &cur[k + 1..end + 1], &cur[k - 1..end - 1]);
-            let (nn, ss, ab, be, iv) = (&cn_n[k..end], &cn_s[k..end], &above[k..end], &below[k..end], &inv[k..end]);
-            for t in 0..n {
-                let s = b1[t] + cee[t] * xe[t] + cew[t] * xw[t] + nn[t] * ab[t] + ss[t] * be[t];
-                w[t] = s * iv[t];
+        while k < end {
+            // SAFETY: 1 ≤ k − 1 < k + 1 < nt and every slice has length nt.
+            unsafe {
+                let s = *b.get_unchecked(k)
+                    + *ce.get_unchecked(k) * *cur.get_unchecked(k + 1)
+                    + *ce.get_unchecked(k - 1) * *cur.get_unchecked(k - 1)
+                    + *cn_n.get_unchecked(k) * *above.get_unchecked(k)
+                    + *cn_s.get_unchecked(k) * *below.get_unchecked(k);
+                *cur.get_unchecked_mut(k) = s * *inv.get_unchecked(k);
             }
-            for (c, v) in cur[k..end].chunks_mut(2).zip(w.chunks(2)) {
-                c[0] = v[0];
-            }
-            k += n.div_ceil(2) * 2;
+            k += 2;
         }
         if k + 1 == nt && k < hi {
             upd(cur, b, ce, cn_n, cn_s, above, below, inv, k, k - 1, 0);
@@ -1431,24 +1379,6 @@ impl Hierarchy {
     /// and the preconditioned residual in its `x` (the V-cycle's result), so the preconditioner
     /// copies nothing.
     fn pcg_inner(&mut self, k: usize, tol: f64, max_iter: u32, p: &mut [f64], q: &mut [f64]) -> (u32, bool) {
-        #[cfg(target_arch = "x86_64")]
-        if std::is_x86_feature_detected!("avx2") {
-            // SAFETY: the CPU has AVX2 (checked just above).
-            return unsafe { self.pcg_inner_avx2(k, tol, max_iter, p, q) };
-        }
-        self.pcg_inner_body(k, tol, max_iter, p, q)
-    }
-
-    /// [`Hierarchy::pcg_inner`] compiled for AVX2 (bit for bit the same results: see
-    /// [`Level::smooth_pass_avx2`]).
-    #[cfg(target_arch = "x86_64")]
-    #[target_feature(enable = "avx2")]
-    unsafe fn pcg_inner_avx2(&mut self, k: usize, tol: f64, max_iter: u32, p: &mut [f64], q: &mut [f64]) -> (u32, bool) {
-        self.pcg_inner_body(k, tol, max_iter, p, q)
-    }
-
-    #[inline(always)]
-    fn pcg_inner_body(&mut self, k: usize, tol: f64, max_iter: u32, p: &mut [f64], q: &mut [f64]) -> (u32, bool) {
         let l = &mut self.levels[k];
         // r = f − A u on free nodes
         let mut r = std::mem::take(&mut l.b);
