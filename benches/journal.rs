@@ -346,22 +346,37 @@ fn main() {
     let reps = if quick { 2 } else { 5 };
     if let Some(which) = std::env::args().find(|a| a.starts_with("prof-")) {
         // a loop for a sampling profiler (`perf record`): prof-ross or prof-mis
-        let (b, w, s) = if which == "prof-ross" {
+        let (b, w, mut s) = if which == "prof-ross" {
             let (ld, w) = ross_case();
             (Bearing::plain(ld), w, settings(121, 41))
         } else {
             (seed_case(), 0.557045, settings(361, 181))
         };
+        // tolerance study (issue 18 candidate 2): `P_TOL` / `LOAD_TOL` override the defaults
+        if let Some(t) = std::env::var("P_TOL").ok().and_then(|v| v.parse().ok()) {
+            s.pressure_tolerance = t;
+        }
+        if let Some(t) = std::env::var("LOAD_TOL").ok().and_then(|v| v.parse().ok()) {
+            s.load_tolerance = t;
+        }
         let n = std::env::var("PROF_N").ok().and_then(|v| v.parse().ok()).unwrap_or(if which == "prof-ross" { 2000 } else { 100 });
-        let (c, _, _) = best_of(1, || {
+        let (c, _, a) = best_of(1, || {
             let sweeps: usize = std::env::var("SWEEPS").ok().and_then(|v| v.parse().ok()).unwrap_or(2);
+            let mut last = None;
             for _ in 0..n {
                 let mut ws = Workspace::new(&b, &s);
                 ws.set_smoothing_sweeps(sweeps);
-                analyse(&b, &Operating::Load(w), &s, Some(&mut ws), None, false, &Silent).unwrap();
+                last = Some(analyse(&b, &Operating::Load(w), &s, Some(&mut ws), None, false, &Silent).unwrap());
             }
+            last
         });
         println!("{which}: {:.3} ms CPU per analysis", c * 1e3 / n as f64);
+        if let Some(a) = a {
+            println!(
+                "tolerances p {:.0e} load {:.0e}: ε {:.10}, β {:.10}, P0 {:.10}, H0 {:.10}, friction {:.10}, steps per grid {:?}",
+                s.pressure_tolerance, s.load_tolerance, a.eccentricity, a.attitude, a.max_pressure, a.min_film, a.friction_force, a.steps_per_grid
+            );
+        }
         return;
     }
     if std::env::args().any(|a| a == "l9-cases") {
