@@ -303,9 +303,9 @@ pub enum SupplySpec {
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, ToSchema)]
 #[serde(deny_unknown_fields, default)]
 pub struct SolverSpec {
-    /// Relative residual of the pressure solves (1e-12 to 1e-4). Default 1e-7.
+    /// Relative residual of the pressure solves (1e-12 to 1e-4). Default 1e-6.
     pub pressure_tolerance: f64,
-    /// Relative load residual `‖F + W‖/W` of the load balance (1e-10 to 1e-2). Default 1e-6.
+    /// Relative load residual `‖F + W‖/W` of the load balance (1e-10 to 1e-2). Default 1e-5.
     pub load_tolerance: f64,
     /// Load-balance steps on the finest grid (1 to 200). Default 40.
     pub max_load_iterations: u32,
@@ -1036,7 +1036,7 @@ pub fn solve_spec(
 
 impl Kind for BearingKind {
     const NAME: &'static str = "bearing";
-    const SOLVER_VERSION: &'static str = "bearing-8";
+    const SOLVER_VERSION: &'static str = "bearing-9";
     const DESCRIPTION: &'static str = "Finite-length hydrodynamic journal bearing (seed 002): Reynolds \
         equation with Reynolds cavitation solved as a complementarity problem (active set + multigrid), \
         misalignment, axial edge profiles, load balance; Raimondi–Boyd figures and SI values; optional \
