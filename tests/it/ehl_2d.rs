@@ -263,6 +263,24 @@ fn ehl2d_long_straight_roller_mid_section_matches_the_line_solution() {
     assert!(rel(s.central_film, l1.central_film) < 0.01, "{} vs {}", s.central_film, l1.central_film);
 }
 
+/// Probe (development aid, issue 16): the long straight roller of
+/// [`ehl2d_long_straight_roller_mid_section_matches_the_line_solution`] on 65² with grid
+/// tolerance 1, for the Newton step counts of its θ continuation (`ehl2d-12`: 107 steps).
+#[test]
+#[ignore = "probe: Newton steps of the long roller on 65² (issue 16), not a check"]
+fn probe_long_straight_roller_on_65() {
+    let lub = oil(0.04, 2e-8);
+    let (rx, w) = (0.01, 2.0e5);
+    let hz = tribod::physics::contact::hertz_line(w, rx, 0.5 * E_PRIME);
+    let length = 20.0 * hz.half_width;
+    let geometry = straight_roller(rx, length, 2.0 * hz.half_width);
+    let input = Ehl2dInput { load: w * length, geometry, effective_modulus: E_PRIME, entrainment_velocity: 1.0, lubricant: lub, temperature: lub.reference_temperature };
+    let o = Ehl2dOptions { inlet: Some(5.0), outlet: Some(2.0), grid_tolerance: 1.0, ..opts(65, 65) };
+    let t = std::time::Instant::now();
+    let s = solve(&input, &o, &Silent).unwrap();
+    println!("roller 65 hc {:.7e} hmin {:.7e} pmax {:?} {:?} in {:?}", s.central_film, s.min_film.value, s.max_pressure, s.convergence, t.elapsed());
+}
+
 /// Grid convergence in each direction on the bench's circular contact (M ≈ 300, L ≈ 11, Roelands
 /// + Dowson–Higginson; domain −3.5…1.5 a × ±2 a): the central film on 65, 129, 257 nodes along x
 /// (33 across, which the film hardly feels) and on 33, 65, 129 across (65 along x). The observed
