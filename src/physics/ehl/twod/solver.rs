@@ -119,6 +119,19 @@ fn poiseuille_film() -> bool {
     *B.get_or_init(|| std::env::var("TRIBOD_EHL2D_PFILM").map(|s| s.trim() != "0").unwrap_or(true))
 }
 
+/// Whether a node whose film is at the floor may take the contact row `H = floor` (the film
+/// floor as a complementarity, [`Problem::row_kind`]); development aid: `TRIBOD_EHL2D_CONTACT=0`
+/// keeps every non-cavitated row a Reynolds row (before `ehl2d-13`).
+fn floor_contact() -> bool {
+    static B: std::sync::OnceLock<bool> = std::sync::OnceLock::new();
+    *B.get_or_init(|| std::env::var("TRIBOD_EHL2D_CONTACT").map(|s| s.trim() != "0").unwrap_or(true))
+}
+
+/// Row kinds of the semismooth Newton matrix ([`Problem::row_kind`]).
+const FLUID: u8 = 0;
+const CAVITATED: u8 = 1;
+const CONTACT: u8 = 2;
+
 /// Most halvings in the line search.
 const MAX_HALVINGS: u32 = 25;
 /// The film floor of the Reynolds terms, as a fraction of the closed-form film estimate: the
@@ -215,6 +228,8 @@ struct Fields {
     f: Vec<f64>,
     /// `∂H_eff/∂H`: 1, or 0 where the film is held at the floor.
     on: Vec<f64>,
+    /// The film before the floor, `H0 + X²/2 + S(Y) + W`.
+    hraw: Vec<f64>,
     /// Load residual `∫∫P/target − 1`.
     g: f64,
 }
@@ -292,12 +307,13 @@ impl Problem {
     /// is not finite.
     fn evaluate(&mut self, p: &[f64], h0: f64, v: &mut Fields) -> bool {
         let n = self.nx * self.ny;
-        for a in [&mut v.w, &mut v.h, &mut v.rho, &mut v.drho, &mut v.eps, &mut v.deps, &mut v.f, &mut v.on] {
+        for a in [&mut v.w, &mut v.h, &mut v.rho, &mut v.drho, &mut v.eps, &mut v.deps, &mut v.f, &mut v.on, &mut v.hraw] {
             a.resize(n, 0.0);
         }
         self.defl.apply(p, &mut v.w);
         for k in 0..n {
             let mut h = h0 + self.geom[k] + v.w[k];
+            v.hraw[k] = h;
             v.on[k] = 1.0;
             if h < self.floor {
                 h = self.floor;
@@ -338,7 +354,7 @@ impl Problem {
     }
 
     /// `out = A x`: the scaled Newton matrix applied to `x` (`dP` at the unknowns, then `dH0`).
-    fn apply(&mut self, p: &[f64], v: &Fields, active: &[bool], c: &[f64], x: &[f64], out: &mut [f64], buf: &mut Buffers) {
+    fn apply(&mut self, p: &[f64], v: &Fields, active: &[u8], c: &[f64], x: &[f64], out: &mut [f64], buf: &mut Buffers) {
         let n = self.nx * self.ny;
         let m = self.nodes.len();
         buf.dp.resize(n, 0.0);
@@ -361,8 +377,12 @@ impl Problem {
         for (u, &k) in self.nodes.iter().enumerate() {
             let dp = &buf.dp;
             sum += dp[k];
-            if active[u] {
+            if active[u] == CAVITATED {
                 out[u] = dp[k];
+                continue;
+            }
+            if active[u] == CONTACT {
+                out[u] = self.contact_scale() * (dh0 + buf.dw[k]);
                 continue;
             }
             let i = k % nx;
@@ -384,7 +404,7 @@ impl Problem {
 
     /// The near-field preconditioner (scaled like the Newton matrix) and the row scales `c`;
     /// `factor` false: the row scales and the active set only (`None`).
-    fn precondition(&self, p: &[f64], v: &Fields, active: &mut [bool], c: &mut [f64], factor: bool) -> Option<Precond> {
+    fn precondition(&self, p: &[f64], v: &Fields, active: &mut [u8], c: &mut [f64], factor: bool) -> Option<Precond> {
         let (nx, ny, dx2, dy2) = (self.nx, self.ny, self.dx * self.dx, self.dy * self.dy);
         let m = self.nodes.len();
         let r = self.near as isize;
@@ -414,7 +434,7 @@ impl Problem {
                 }
                 let cu = 1.0 / diag.abs().max(1e-300);
                 c[u] = cu;
-                active[u] = p[k] <= -cu * v.f[k];
+                active[u] = self.row_kind(p, v, cu, k);
             }
             return None;
         }
@@ -504,7 +524,7 @@ impl Problem {
             }
             let cu = 1.0 / diag.abs().max(1e-300);
             c[u] = cu;
-            active[u] = p[k] <= -cu * v.f[k];
+            active[u] = self.row_kind(p, v, cu, k);
             ent.extend(row.iter().map(|&(col, val)| (col, cu * val)));
             row_ptr.push(ent.len());
         }
@@ -531,8 +551,23 @@ impl Problem {
             for (&col, &pos) in pattern.row_col[a..b].iter().zip(&pattern.row_pos[a..b]) {
                 slot[col] = pos;
             }
-            if active[u] {
+            if active[u] == CAVITATED {
                 values[slot[u]] = 1.0;
+                continue;
+            }
+            if active[u] == CONTACT {
+                // `s (H0 + W_k)`: the deflection's near field about the node (inside the box the
+                // row's wedge terms occupy) and the `H0` border.
+                let sc = self.contact_scale();
+                let k = self.nodes[u];
+                let (i, j) = ((k % nx) as isize, (k / nx) as isize);
+                ucol[u] += sc;
+                for lj in (j - r).max(1)..=(j + r).min(ny as isize - 2) {
+                    for li in (i - r).max(1)..=(i + r).min(nx as isize - 2) {
+                        let l = lj as usize * nx + li as usize;
+                        values[slot[self.unk[l]]] += sc * self.defl.coefficient((li - i).unsigned_abs(), (lj - j).unsigned_abs());
+                    }
+                }
                 continue;
             }
             for &(col, val) in &ent[row_ptr[u]..row_ptr[u + 1]] {
@@ -556,8 +591,41 @@ impl Problem {
 
     fn phi(&self, p: &[f64], v: &Fields, c: &[f64], out: &mut Vec<f64>) {
         out.clear();
+        let contact = floor_contact();
+        let sc = self.contact_scale();
         for (u, &k) in self.nodes.iter().enumerate() {
-            out.push(p[k].min(-c[u] * v.f[k]));
+            let r = p[k].min(-c[u] * v.f[k]);
+            out.push(if contact { r.min(sc * (v.hraw[k] - self.floor)) } else { r });
+        }
+    }
+
+    /// Scale of the contact row `s (H − floor)`: `1/C₀₀` (the deflection's self-coefficient), so
+    /// that its derivative in the node's own pressure is 1, as a cavitated row's.
+    fn contact_scale(&self) -> f64 {
+        1.0 / self.defl.coefficient(0, 0)
+    }
+
+    /// The row of node `k` in the semismooth Newton matrix: the complementarity
+    /// `min(P, −c F, s (H − floor)) = 0` of the three regimes — cavitated (`P = 0`, `F ≤ 0`),
+    /// lubricated (`F = 0`, `P ≥ 0`, `H ≥ floor`) and in contact at the film floor (`H = floor`,
+    /// the pressure free and set by it, `F ≤ 0`: the film carries less than the node's pressure,
+    /// the rest is the floor's, as in the unified mixed-lubrication treatments, Hu & Zhu, ASME
+    /// J. Tribol. 122 (2000)). The Reynolds terms keep `max(H, floor)`; without the contact row a
+    /// node at the floor had no film feedback in the Jacobian and Newton asked for pressure
+    /// changes of 100× P there (issue 16, `ehl2d-12`'s roller trace). Ties: cavitated, then
+    /// lubricated.
+    fn row_kind(&self, p: &[f64], v: &Fields, cu: f64, k: usize) -> u8 {
+        let (a, b) = (p[k], -cu * v.f[k]);
+        if !floor_contact() {
+            return if a <= b { CAVITATED } else { FLUID };
+        }
+        let h = self.contact_scale() * (v.hraw[k] - self.floor);
+        if a <= b && a <= h {
+            CAVITATED
+        } else if h < b {
+            CONTACT
+        } else {
+            FLUID
         }
     }
 }
@@ -573,7 +641,7 @@ struct Precond {
     sum_bu: f64,
     /// The row scales and the active set it was factorised with.
     c: Vec<f64>,
-    active: Vec<bool>,
+    active: Vec<u8>,
 }
 
 impl Precond {
@@ -783,14 +851,14 @@ fn dot(a: &[f64], b: &[f64]) -> f64 {
 /// Restarted GMRES for `A x = b` right-preconditioned by `lu`, at most `max_its` iterations;
 /// `x` starts at 0. Returns the iterations and the final relative residual.
 #[allow(clippy::too_many_arguments)]
-fn gmres(prob: &mut Problem, p: &[f64], v: &Fields, active: &[bool], c: &[f64], lu: &Precond, b: &[f64], x: &mut [f64], buf: &mut Buffers, tol: f64, max_its: usize, from_x: bool) -> (usize, f64) {
+fn gmres(prob: &mut Problem, p: &[f64], v: &Fields, active: &[u8], c: &[f64], lu: &Precond, b: &[f64], x: &mut [f64], buf: &mut Buffers, tol: f64, max_its: usize, from_x: bool) -> (usize, f64) {
     let lw = prob.load_weight();
     // A kept factor carries its own row scales `c_old`: `M⁻¹ = (C_old J_old)⁻¹ C_old C⁻¹` keeps
     // `C J M⁻¹ ≈ I` where the scales moved (rows inactive in both; others unscaled).
     let rescale: Vec<f64> = if lu.c.as_slice() == c && lu.active.as_slice() == active {
         Vec::new()
     } else {
-        (0..c.len()).map(|u| if !active[u] && !lu.active[u] { lu.c[u] / c[u] } else { 1.0 }).collect()
+        (0..c.len()).map(|u| if active[u] == FLUID && lu.active[u] == FLUID { lu.c[u] / c[u] } else { 1.0 }).collect()
     };
     let n = b.len();
     let bnorm = dot(b, b).sqrt();
@@ -924,7 +992,7 @@ fn newton(prob: &mut Problem, p: &mut [f64], h0: &mut f64, tol: f64, max_iter: u
     if !prob.evaluate(p, *h0, &mut v) {
         return Ok(Run { iterations: 0, residual: f64::INFINITY, history, converged: false, gmres: 0 });
     }
-    let mut active = vec![false; m];
+    let mut active = vec![FLUID; m];
     let mut c = vec![0.0; m];
     let mut phi = Vec::with_capacity(m);
     let mut phi_t = Vec::with_capacity(m);
@@ -956,7 +1024,11 @@ fn newton(prob: &mut Problem, p: &mut [f64], h0: &mut f64, tol: f64, max_iter: u
             return Ok(Run { iterations: iter, residual: res, history, converged: false, gmres: gm_total });
         }
         for (u, &k) in prob.nodes.iter().enumerate() {
-            rhs[u] = if active[u] { -p[k] } else { -c[u] * v.f[k] };
+            rhs[u] = match active[u] {
+                CAVITATED => -p[k],
+                CONTACT => -prob.contact_scale() * (v.hraw[k] - prob.floor),
+                _ => -c[u] * v.f[k],
+            };
         }
         rhs[m] = -v.g;
         // Forcing term: 1e-3, tighter near the solution (the inexact step stalled the line
@@ -1018,7 +1090,7 @@ fn newton(prob: &mut Problem, p: &mut [f64], h0: &mut f64, tol: f64, max_iter: u
         // with a kept one factorised at another active set — and a cavitated node left at
         // `P ≈ ±1e-12` instead of 0 would count as a loaded traction node. So set it exactly.
         for (u, &k) in prob.nodes.iter().enumerate() {
-            if active[u] {
+            if active[u] == CAVITATED {
                 sol[u] = -p[k];
             }
         }
@@ -1027,7 +1099,7 @@ fn newton(prob: &mut Problem, p: &mut [f64], h0: &mut f64, tol: f64, max_iter: u
             refresh = true;
         }
         if trace() {
-            eprintln!("ehl2d {}x{} κ {:.3e} iter {iter} res {res:.3e} g {:.2e} gtol {gtol:.1e} gmres {its} rel {rel:.2e} fresh {fresh} active {} lu {t_lu:.3} s gmres {t_gm:.3} s", prob.nx, prob.ny, prob.kappa, v.g, active.iter().filter(|a| **a).count());
+            eprintln!("ehl2d {}x{} κ {:.3e} iter {iter} res {res:.3e} g {:.2e} gtol {gtol:.1e} gmres {its} rel {rel:.2e} fresh {fresh} active {} contact {} lu {t_lu:.3} s gmres {t_gm:.3} s", prob.nx, prob.ny, prob.kappa, v.g, active.iter().filter(|a| **a == CAVITATED).count(), active.iter().filter(|a| **a == CONTACT).count());
             if iter == 0 {
                 let (u, _) = phi.iter().enumerate().fold((0, 0.0f64), |b, (u, v)| if v.abs() > b.1 { (u, v.abs()) } else { b });
                 let k = prob.nodes[u];
@@ -1039,7 +1111,7 @@ fn newton(prob: &mut Problem, p: &mut [f64], h0: &mut f64, tol: f64, max_iter: u
                 }
                 let mut jx = vec![0.0; m + 1];
                 let mut inactive = active.clone();
-                inactive.iter_mut().for_each(|a| *a = false);
+                inactive.iter_mut().for_each(|a| *a = FLUID);
                 prob.apply(p, &v, &inactive, &c, &x, &mut jx, &mut buf);
                 let t = 1e-4;
                 let mut pt = p.to_vec();
@@ -1449,7 +1521,7 @@ fn merit_at(prob: &mut Problem, p: &[f64], h0: f64) -> f64 {
         return f64::INFINITY;
     }
     let m = prob.nodes.len();
-    let (mut active, mut c, mut phi) = (vec![false; m], vec![0.0; m], Vec::with_capacity(m));
+    let (mut active, mut c, mut phi) = (vec![FLUID; m], vec![0.0; m], Vec::with_capacity(m));
     prob.precondition(p, &v, &mut active, &mut c, false);
     prob.phi(p, &v, &c, &mut phi);
     dot(&phi, &phi) * prob.dx * prob.dy + v.g * v.g
