@@ -230,9 +230,10 @@ fn straight_roller(rx: f64, length: f64, relief: f64) -> Geometry2d {
 /// preconditioner does not reach its tolerance in 160 iterations). The grid tolerance is 0.1: the
 /// minimum film, at the relieved ends, changes by 24 % from 65×65 (central film 3.5 %).
 /// Measured (session 30): h_c 277.47 nm against 279.83 nm (1-D, 512 nodes), −0.84 %; the peak
-/// pressure 1.23 GPa at y = −1.23 mm, where the end relief begins.
+/// pressure 1.23 GPa at y = ±1.23 mm, where the end relief begins. No coarse level passes the
+/// resolution check (the y spacing); the cold start fails its 15-step trial on 129² and the solve
+/// goes through 65² (session 34): 59 Newton steps, 29.8 s wall dev (140 steps cold, ehl2d-13).
 #[test]
-#[ignore = "issue 16: converges, but 140 Newton steps, 143 s CPU in the dev profile under load (ehl2d-13; 127 steps, 119 s CPU in ehl2d-12): no coarse level passes the resolution check (the y spacing), the steady Newton diverges from the cold start and the pseudo-time march takes ≈ 80 steps; through a 65² level it would take 44 steps, 15 s CPU (measured, not kept: the seed 000 nose cases then slow down, see BENCHMARKS.md); measured h_c 277.47 nm, −0.84 % against the 1-D line solution (279.83 nm)"]
 fn ehl2d_long_straight_roller_mid_section_matches_the_line_solution() {
     use tribod::physics::ehl::{solve as solve_1d, EhlInput, EhlOptions, Rheology};
     // w' = 2e5 N/m on R = 10 mm, u_m = 1 m/s, Roelands/DH oil.

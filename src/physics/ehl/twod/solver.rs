@@ -1288,6 +1288,9 @@ const MAX_STEPS: u32 = 60;
 const STEP_TOL: f64 = 1e-5;
 const STEP_ITER: u32 = 10;
 const NESTED_ITER: u32 = 15;
+/// Newton cap of the cold trial on a grid whose half grid resolves the film only along x
+/// ([`solve_levels`]).
+const COLD_TRIAL: u32 = 15;
 /// Coarsest grid of the nested iteration: at least `MIN_LEVEL` nodes per side and a spacing `h`
 /// with `h² ≤ RESOLVED · H_est` (the film estimate in units of `a²/R_x`).
 const MIN_LEVEL: usize = 17;
@@ -1761,23 +1764,58 @@ fn solve_levels(input: &Ehl2dInput, options: &Ehl2dOptions, s: &Scales, d: Domai
     let tol = options.tolerance;
     let mut total = 0u32;
     let mut gmres_total = 0usize;
+    // No coarse level passes the check, but the half grid resolves the film along x (cells long
+    // across a long roller: only y fails): the cold start is tried on the finest grid for a few
+    // Newton steps (at θ = 0, [`solve_level`]); if it does not converge, the solve goes through
+    // that half grid instead. Measured (issue 16, ehl2d-13): the 129² long straight roller takes
+    // 140 steps cold and 44 through 65² with the same films; the seed 000 nose on 65×129 converges
+    // cold in 18–20 steps and takes 25–65 through its half grid, so it keeps the cold start.
+    let mut trial: Option<(Problem, Vec<f64>, f64)> = None;
+    if levels.len() == 1 {
+        let (lx, ly) = levels[0];
+        let (cx, cy) = ((lx - 1) / 2 + 1, (ly - 1) / 2 + 1);
+        let dx = (d.x_out - d.x_in) / (cx - 1) as f64;
+        if (lx - 1) % 2 == 0 && (ly - 1) % 2 == 0 && cx >= MIN_LEVEL && cy >= MIN_LEVEL && dx * dx <= RESOLVED * s.h_est {
+            let mut prob = Problem::new(input, &s, d, lx, ly, options.near_field);
+            let (mut p, mut h0) = cold(&mut prob, input, &s);
+            prob.theta = 0.0;
+            match newton(&mut prob, &mut p, &mut h0, tol, COLD_TRIAL.min(options.max_iterations), observer) {
+                Ok(r) if r.converged => {
+                    total += r.iterations;
+                    trial = Some((prob, p, h0));
+                }
+                Ok(r) => {
+                    total += r.iterations;
+                    levels.insert(0, (cx, cy));
+                }
+                Err(_) => levels.insert(0, (cx, cy)),
+            }
+        }
+    }
     // Coarse solution: nodes, pressure and central film.
     let mut guess: Option<(Vec<f64>, Vec<f64>, Vec<f64>, f64)> = None;
     let mut coarse = None;
     let nlev = levels.len();
     for (li, &(lx, ly)) in levels.iter().enumerate() {
         let finest = li + 1 == nlev;
-        let mut prob = Problem::new(input, &s, d, lx, ly, options.near_field);
         let level_tol = if finest { tol } else { tol.max(1e-5) };
-        let (mut p, mut h0) = match &guess {
-            // The coarse pressure, and `H0` that keeps the coarse central film (the coarse
-            // grid's `H0` carries its deflection discretisation error).
-            Some((gx, gy, gp, hc)) => {
-                let p = prolong(&prob, gx, gy, gp);
-                let h0 = h0_for(&mut prob, &p, *hc);
-                (p, h0)
+        let (mut prob, mut p, mut h0) = match trial.take() {
+            // The cold start's θ = 0 solution from the trial above (the only level).
+            Some(t) => t,
+            None => {
+                let mut prob = Problem::new(input, &s, d, lx, ly, options.near_field);
+                let (p, h0) = match &guess {
+                    // The coarse pressure, and `H0` that keeps the coarse central film (the coarse
+                    // grid's `H0` carries its deflection discretisation error).
+                    Some((gx, gy, gp, hc)) => {
+                        let p = prolong(&prob, gx, gy, gp);
+                        let h0 = h0_for(&mut prob, &p, *hc);
+                        (p, h0)
+                    }
+                    None => cold(&mut prob, input, &s),
+                };
+                (prob, p, h0)
             }
-            None => cold(&mut prob, input, &s),
         };
         let cap = if guess.is_some() { options.max_iterations.min(NESTED_ITER) } else { options.max_iterations };
         let dt0 = if guess.is_some() { DT_NESTED } else { DT_COLD };
