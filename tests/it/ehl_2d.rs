@@ -90,7 +90,7 @@ fn ehl2d_dry_limit_is_hertz_for_a_circular_contact() {
 /// The near-dry case at a low L (≈ 0.45: η0 = 0.01 Pa·s, u_m = 2 mm/s, M ≈ 3000) with a short
 /// inlet (2 a): p_max and the contact radius against Hertz.
 #[test]
-#[ignore = "issue 16: low-L near dry: at M ≈ 3000 (L ≈ 0.45) on 97² NotConverged, 3.2e-4 after 422 steps (ehl2d-8); this family (η0 = 0.01 Pa·s, inlet 2 a) does not converge even at M ≈ 95, L ≈ 1.4 (65², inlet 2 a: 8.4e-3 after 341 steps; 97², default domain: 7.0e-2 after 324 steps, 184 s; M ≈ 270: 4.9e-2; ehl2d-9): the failure is the low L, not the high M. The dry limit is shown at L ≈ 6–11 by ehl2d_dry_limit_is_hertz_for_a_circular_contact; at M ≈ 2870, L ≈ 5.3 the solver converges on 129² (23 steps, 60 s dev)"]
+#[ignore = "issue 16: low-L near dry: at M ≈ 3000 (L ≈ 0.45) on 97² NotConverged, 3.2e-4 after 422 steps (ehl2d-8; 0.49 after 367 steps, 63 s, with the contact rows, session 34); this family (η0 = 0.01 Pa·s, inlet 2 a) does not converge even at M ≈ 95, L ≈ 1.4 (65², inlet 2 a: 8.4e-3 after 341 steps; 97², default domain: 7.0e-2 after 324 steps, 184 s; M ≈ 270: 4.9e-2; ehl2d-9): the failure is the low L, not the high M. The dry limit is shown at L ≈ 6–11 by ehl2d_dry_limit_is_hertz_for_a_circular_contact; at M ≈ 2870, L ≈ 5.3 the solver converges on 129² (23 steps, 60 s dev)"]
 fn ehl2d_near_dry_isoviscous_circular_contact_converges() {
     // F = 100 N on R = 10 mm: p0 = 1.37 GPa, a = 0.187 mm; u_m = 2 mm/s: M ≈ 3000 (near dry).
     let lub = oil(0.01, 2e-8);
