@@ -224,6 +224,19 @@ fn straight_roller(rx: f64, length: f64, relief: f64) -> Geometry2d {
     Geometry2d::Finite { rx, crown: Crown { length, middle_length: length - 2.0 * relief, crown_height: 0.0, end_radius: rx, profile: Default::default() } }
 }
 
+/// The long straight roller of the two tests below (20 half-widths long, ends relieved over 2
+/// half-widths): w' = 2e5 N/m on R = 10 mm, u_m = 1 m/s, Roelands/DH oil. Returns the input, R_x
+/// and the load per length.
+fn long_straight_roller() -> (Ehl2dInput, f64, f64) {
+    let lub = oil(0.04, 2e-8);
+    let (rx, w) = (0.01, 2.0e5);
+    let hz = tribod::physics::contact::hertz_line(w, rx, 0.5 * E_PRIME);
+    let length = 20.0 * hz.half_width;
+    let geometry = straight_roller(rx, length, 2.0 * hz.half_width);
+    let input = Ehl2dInput { load: w * length, geometry, effective_modulus: E_PRIME, entrainment_velocity: 1.0, lubricant: lub, temperature: lub.reference_temperature };
+    (input, rx, w)
+}
+
 /// The mid-section of a long straight roller (20 half-widths, ends relieved over 2 half-widths)
 /// against the 1-D line solution at the same load per length. 129×129 (cells 0.055 a × 0.156 a;
 /// on 129×65 with a 40 a roller, cells 11× longer across than along, GMRES with the near-field
@@ -236,13 +249,8 @@ fn straight_roller(rx: f64, length: f64, relief: f64) -> Geometry2d {
 #[test]
 fn ehl2d_long_straight_roller_mid_section_matches_the_line_solution() {
     use tribod::physics::ehl::{solve as solve_1d, EhlInput, EhlOptions, Rheology};
-    // w' = 2e5 N/m on R = 10 mm, u_m = 1 m/s, Roelands/DH oil.
-    let lub = oil(0.04, 2e-8);
-    let (rx, w) = (0.01, 2.0e5);
-    let hz = tribod::physics::contact::hertz_line(w, rx, 0.5 * E_PRIME);
-    let length = 20.0 * hz.half_width;
-    let geometry = straight_roller(rx, length, 2.0 * hz.half_width);
-    let input = Ehl2dInput { load: w * length, geometry, effective_modulus: E_PRIME, entrainment_velocity: 1.0, lubricant: lub, temperature: lub.reference_temperature };
+    let (input, rx, w) = long_straight_roller();
+    let lub = input.lubricant;
     let o = Ehl2dOptions { inlet: Some(5.0), outlet: Some(2.0), grid_tolerance: 0.1, ..opts(129, 129) };
     let t = std::time::Instant::now();
     let s = solve(&input, &o, &Silent).unwrap();
@@ -270,12 +278,7 @@ fn ehl2d_long_straight_roller_mid_section_matches_the_line_solution() {
 #[test]
 #[ignore = "probe: Newton steps of the long roller on 65² (issue 16), not a check"]
 fn probe_long_straight_roller_on_65() {
-    let lub = oil(0.04, 2e-8);
-    let (rx, w) = (0.01, 2.0e5);
-    let hz = tribod::physics::contact::hertz_line(w, rx, 0.5 * E_PRIME);
-    let length = 20.0 * hz.half_width;
-    let geometry = straight_roller(rx, length, 2.0 * hz.half_width);
-    let input = Ehl2dInput { load: w * length, geometry, effective_modulus: E_PRIME, entrainment_velocity: 1.0, lubricant: lub, temperature: lub.reference_temperature };
+    let (input, _, _) = long_straight_roller();
     let o = Ehl2dOptions { inlet: Some(5.0), outlet: Some(2.0), grid_tolerance: 1.0, ..opts(65, 65) };
     let t = std::time::Instant::now();
     let s = solve(&input, &o, &Silent).unwrap();
