@@ -10,7 +10,7 @@
 //! * film (seed 000 eq. 3): `H = H0 + X²/2 + S(Y) + c ∫∫ P(X', Y')/sqrt((X−X')² + (Y−Y')²)`,
 //!   `c = 2 p_ref R_x/(π E' a)` with `E' = 2/Σ(1−ν²)/E` (Hamrock–Dowson); `S = (R_x/R_y) Y²/2`
 //!   for a point contact, `S = g(aY) R_x/a²` for the crowned roller (`physics::roller::Crown::gap`,
-//!   seed 000 eq. 3 with its sign slip corrected);
+//!   seed 000 eq. 3 read as a convex crown, or as printed: `CrownProfile`);
 //! * load balance (seed 000 eq. 6): `∫∫ P dX dY = F/(p_ref a²)`;
 //! * cavitation as complementarity: `P ≥ 0`, Reynolds residual `≤ 0`, product zero; `P = 0` on
 //!   the domain boundary (for the roller: at its end faces, seed 000's boundary condition);
@@ -26,13 +26,17 @@
 //! boundary), central Poiseuille terms with the face coefficient the geometric mean of the two
 //! nodes' `ε` (`solver::face_of`: the arithmetic mean's error where the pressure rises into the
 //! contact was the cause of the slow grid convergence, measured); the deflection by DC-FFT
-//! ([`elastic`]). The discrete system — one complementarity function `min(P, −F/|J_ii|)` per
-//! interior node and the load balance, unknowns `P` and `H0` — is solved by a damped semismooth
+//! ([`elastic`]). The discrete system — one complementarity function `min(P, −c F, s (H − floor))`
+//! per interior node (cavitated, lubricated, or held at the film floor with `P` free; `c = 1/|J_ii|`,
+//! `s` the inverse deflection self-coefficient) and the load balance, unknowns `P` and `H0` — is
+//! solved by a damped semismooth
 //! Newton method ([`solver`]) whose steps are computed by restarted GMRES with the exact Jacobian
 //! product (two FFTs) and a sparse preconditioner: the Jacobian with the elastic kernel truncated
 //! to a `(2r+1)²` near field, factorised by faer's supernodal sparse LU (the `H0` border by its Schur
 //! complement) with a nested-dissection column ordering and a symbolic factorisation computed once
-//! per grid (`solver::NearPattern`). Nested iteration from the coarsest grid that resolves the film; on each grid the
+//! per grid (`solver::NearPattern`). Nested iteration from the coarsest grid that resolves the film
+//! (when none does but the half grid resolves it along `x`, a 15-step cold trial on the finest
+//! grid first, then that half grid); on each grid the
 //! arithmetic-mean problem first, then continuation in the weight of the geometric mean; when
 //! Newton fails, pseudo-time continuation: backward-Euler steps of the transient problem (squeeze
 //! term) with a growing step.
