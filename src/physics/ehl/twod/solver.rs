@@ -1750,15 +1750,14 @@ fn solve_levels(input: &Ehl2dInput, options: &Ehl2dOptions, s: &Scales, d: Domai
     // its discrete problem pinches the film to zero (measured: 25² at M ≈ 60 stalls, 49² converges
     // in 9 Newton steps; `BENCHMARKS.md`, issue 16).
     let spacing = |lx: usize, ly: usize| ((d.x_out - d.x_in) / (lx - 1) as f64).max((d.y_hi - d.y_lo) / (ly - 1) as f64);
-    let mut levels = vec![(options.nx, options.ny)];
-    loop {
-        let (lx, ly) = levels[levels.len() - 1];
+    // The grid with half the intervals, if both node counts allow it and it keeps `MIN_LEVEL`.
+    let half = |(lx, ly): (usize, usize)| {
         let (cx, cy) = ((lx - 1) / 2 + 1, (ly - 1) / 2 + 1);
-        if (lx - 1) % 2 == 0 && (ly - 1) % 2 == 0 && cx >= MIN_LEVEL && cy >= MIN_LEVEL && levels.len() < 4 && spacing(cx, cy).powi(2) <= RESOLVED * s.h_est {
-            levels.push((cx, cy));
-        } else {
-            break;
-        }
+        ((lx - 1) % 2 == 0 && (ly - 1) % 2 == 0 && cx >= MIN_LEVEL && cy >= MIN_LEVEL).then_some((cx, cy))
+    };
+    let mut levels = vec![(options.nx, options.ny)];
+    while let Some((cx, cy)) = half(levels[levels.len() - 1]).filter(|&(cx, cy)| levels.len() < 4 && spacing(cx, cy).powi(2) <= RESOLVED * s.h_est) {
+        levels.push((cx, cy));
     }
     levels.reverse();
     let tol = options.tolerance;
@@ -1773,9 +1772,8 @@ fn solve_levels(input: &Ehl2dInput, options: &Ehl2dOptions, s: &Scales, d: Domai
     let mut trial: Option<(Problem, Vec<f64>, f64)> = None;
     if levels.len() == 1 {
         let (lx, ly) = levels[0];
-        let (cx, cy) = ((lx - 1) / 2 + 1, (ly - 1) / 2 + 1);
-        let dx = (d.x_out - d.x_in) / (cx - 1) as f64;
-        if (lx - 1) % 2 == 0 && (ly - 1) % 2 == 0 && cx >= MIN_LEVEL && cy >= MIN_LEVEL && dx * dx <= RESOLVED * s.h_est {
+        let along_x = |&(cx, _): &(usize, usize)| ((d.x_out - d.x_in) / (cx - 1) as f64).powi(2) <= RESOLVED * s.h_est;
+        if let Some((cx, cy)) = half((lx, ly)).filter(along_x) {
             let mut prob = Problem::new(input, &s, d, lx, ly, options.near_field);
             let (mut p, mut h0) = cold(&mut prob, input, &s);
             prob.theta = 0.0;
