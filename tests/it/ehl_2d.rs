@@ -13,9 +13,9 @@ use tribod::physics::roller::Crown;
 use tribod::physics::Silent;
 
 /// Steel on steel: E' = 210e9/0.91 = 230.8 GPa.
-const E_PRIME: f64 = 210e9 / 0.91;
+pub const E_PRIME: f64 = 210e9 / 0.91;
 
-fn oil(eta0: f64, alpha: f64) -> Lubricant {
+pub fn oil(eta0: f64, alpha: f64) -> Lubricant {
     Lubricant { viscosity: eta0, pressure_viscosity: alpha, ..Lubricant::SEED000 }
 }
 
@@ -23,15 +23,15 @@ fn barus_incompressible(eta0: f64, alpha: f64) -> Lubricant {
     Lubricant { viscosity_model: ViscosityModel::Barus, density_model: DensityModel::Incompressible, ..oil(eta0, alpha) }
 }
 
-fn point(load: f64, rx: f64, ry: f64, u: f64, lub: Lubricant) -> Ehl2dInput {
+pub fn point(load: f64, rx: f64, ry: f64, u: f64, lub: Lubricant) -> Ehl2dInput {
     Ehl2dInput { load, geometry: Geometry2d::Point { rx, ry }, effective_modulus: E_PRIME, entrainment_velocity: u, lubricant: lub, temperature: lub.reference_temperature }
 }
 
-fn opts(nx: usize, ny: usize) -> Ehl2dOptions {
+pub fn opts(nx: usize, ny: usize) -> Ehl2dOptions {
     Ehl2dOptions { nx, ny, ..Default::default() }
 }
 
-fn rel(a: f64, b: f64) -> f64 {
+pub fn rel(a: f64, b: f64) -> f64 {
     (a - b).abs() / b.abs()
 }
 
@@ -227,7 +227,7 @@ fn straight_roller(rx: f64, length: f64, relief: f64) -> Geometry2d {
 /// The long straight roller of the two tests below (20 half-widths long, ends relieved over 2
 /// half-widths): w' = 2e5 N/m on R = 10 mm, u_m = 1 m/s, Roelands/DH oil. Returns the input, R_x
 /// and the load per length.
-fn long_straight_roller() -> (Ehl2dInput, f64, f64) {
+pub fn long_straight_roller() -> (Ehl2dInput, f64, f64) {
     let lub = oil(0.04, 2e-8);
     let (rx, w) = (0.01, 2.0e5);
     let hz = tribod::physics::contact::hertz_line(w, rx, 0.5 * E_PRIME);
@@ -235,6 +235,44 @@ fn long_straight_roller() -> (Ehl2dInput, f64, f64) {
     let geometry = straight_roller(rx, length, 2.0 * hz.half_width);
     let input = Ehl2dInput { load: w * length, geometry, effective_modulus: E_PRIME, entrainment_velocity: 1.0, lubricant: lub, temperature: lub.reference_temperature };
     (input, rx, w)
+}
+
+/// Options of the long straight roller's 129² solves: inlet 5 a, outlet 2 a, grid tolerance 0.1.
+pub fn long_straight_roller_options() -> Ehl2dOptions {
+    Ehl2dOptions { inlet: Some(5.0), outlet: Some(2.0), grid_tolerance: 0.1, ..opts(129, 129) }
+}
+
+/// The long straight roller's cold 129² solve and its warm start, computed once per test binary
+/// (≈ 30 s dev; shared with `ehl_2d_transient`).
+pub fn long_straight_roller_steady() -> &'static (tribod::physics::ehl::twod::Ehl2dSolution, tribod::physics::ehl::twod::Warm2d) {
+    static STEADY: std::sync::OnceLock<(tribod::physics::ehl::twod::Ehl2dSolution, tribod::physics::ehl::twod::Warm2d)> = std::sync::OnceLock::new();
+    STEADY.get_or_init(|| {
+        let (input, _, _) = long_straight_roller();
+        tribod::physics::ehl::twod::solve_from(&input, &long_straight_roller_options(), None, &Silent).unwrap()
+    })
+}
+
+/// The 1-D line contact of the long roller's mid-section at load per length `w` (N/m).
+pub fn line_section(rx: f64, w: f64) -> tribod::physics::ehl::EhlInput<'static> {
+    let lub = long_straight_roller().0.lubricant;
+    tribod::physics::ehl::EhlInput {
+        load_per_length: w,
+        reduced_radius: rx,
+        effective_modulus: E_PRIME,
+        entrainment_velocity: 1.0,
+        sliding_velocity: 0.0,
+        lubricant: lub,
+        temperature: lub.reference_temperature,
+        rheology: tribod::physics::ehl::Rheology::default(),
+        transient: None,
+        warm_start: None,
+        asperity: None,
+    }
+}
+
+/// The 1-D solver's options for [`line_section`]: 512 nodes, the 2-D domain's inlet and outlet.
+pub fn line_options() -> tribod::physics::ehl::EhlOptions {
+    tribod::physics::ehl::EhlOptions { nodes: 512, inlet: Some(5.0), outlet: Some(2.0), ..Default::default() }
 }
 
 /// The mid-section of a long straight roller (20 half-widths, ends relieved over 2 half-widths)
@@ -248,26 +286,11 @@ fn long_straight_roller() -> (Ehl2dInput, f64, f64) {
 /// goes through 65² (session 34): 59 Newton steps, 29.8 s wall dev (140 steps cold, ehl2d-13).
 #[test]
 fn ehl2d_long_straight_roller_mid_section_matches_the_line_solution() {
-    use tribod::physics::ehl::{solve as solve_1d, EhlInput, EhlOptions, Rheology};
-    let (input, rx, w) = long_straight_roller();
-    let lub = input.lubricant;
-    let o = Ehl2dOptions { inlet: Some(5.0), outlet: Some(2.0), grid_tolerance: 0.1, ..opts(129, 129) };
+    use tribod::physics::ehl::solve as solve_1d;
+    let (_, rx, w) = long_straight_roller();
     let t = std::time::Instant::now();
-    let s = solve(&input, &o, &Silent).unwrap();
-    let line = EhlInput {
-        load_per_length: w,
-        reduced_radius: rx,
-        effective_modulus: E_PRIME,
-        entrainment_velocity: 1.0,
-        sliding_velocity: 0.0,
-        lubricant: lub,
-        temperature: lub.reference_temperature,
-        rheology: Rheology::default(),
-        transient: None,
-        warm_start: None,
-        asperity: None,
-    };
-    let l1 = solve_1d(&line, &EhlOptions { nodes: 512, inlet: Some(5.0), outlet: Some(2.0), ..Default::default() }, &Silent).unwrap();
+    let s = &long_straight_roller_steady().0;
+    let l1 = solve_1d(&line_section(rx, w), &line_options(), &Silent).unwrap();
     println!("roller hc {} vs 1-D {} ; hmin(centre line) ; pmax {:?} vs {} ; {:?} in {:?}", s.central_film, l1.central_film, s.max_pressure, l1.max_pressure, s.convergence, t.elapsed());
     assert!(rel(s.central_film, l1.central_film) < 0.01, "{} vs {}", s.central_film, l1.central_film);
 }

@@ -16,6 +16,7 @@ mod ehl_validation;
 mod ehl_2d;
 mod ehl_2d_cam;
 mod ehl_2d_fields;
+mod ehl_2d_transient;
 mod examples_run;
 mod house;
 mod http_api;

@@ -1,12 +1,14 @@
-//! Steady isothermal EHL of point contacts (elliptic, spherical followers) and finite line contacts
-//! (the crowned roller of seed 000), solved over a 2-D grid.
+//! Steady and transient isothermal EHL of point contacts (elliptic, spherical followers) and
+//! finite line contacts (the crowned roller of seed 000), solved over a 2-D grid.
 //!
 //! # Equations (dimensionless with a Hertzian length `a` and pressure `p_ref`)
 //! `X = x/a`, `Y = y/a`, `P = p/p_ref`, `H = h R_x/a²`, `ρ̄ = ρ/ρ0`, `η̄ = η/η(0, T)`; the
 //! entrainment is along `x` (a negative `u_m` mirrors the solution in `x`):
-//! * compressible Reynolds (seed 000 eq. 2, isothermal, steady):
-//!   `∂/∂X(ε ∂P/∂X) + ∂/∂Y(ε ∂P/∂Y) − λ ∂(ρ̄H)/∂X = 0`, `ε = ρ̄H³/η̄`,
-//!   `λ = 12 η0 u_m R_x²/(a³ p_ref)`;
+//! * compressible Reynolds (seed 000 eq. 2, isothermal):
+//!   `∂/∂X(ε ∂P/∂X) + ∂/∂Y(ε ∂P/∂Y) − λ ∂(ρ̄H)/∂X − κ (ρ̄H − (ρ̄H)_old) = 0`, `ε = ρ̄H³/η̄`,
+//!   `λ = 12 η0 u_m R_x²/(a³ p_ref)`; steady: `κ = 0`; a transient step ([`solve_transient`]):
+//!   backward Euler in `t` with `κ = 12 η0 R_x²/(a² p_ref Δt)` and `(ρ̄H)_old` the previous time
+//!   level's `ρ̄h` at the same physical position (`solver::previous_mass`) over `a²/R_x`;
 //! * film (seed 000 eq. 3): `H = H0 + X²/2 + S(Y) + c ∫∫ P(X', Y')/sqrt((X−X')² + (Y−Y')²)`,
 //!   `c = 2 p_ref R_x/(π E' a)` with `E' = 2/Σ(1−ν²)/E` (Hamrock–Dowson); `S = (R_x/R_y) Y²/2`
 //!   for a point contact, `S = g(aY) R_x/a²` for the crowned roller (`physics::roller::Crown::gap`,
@@ -49,6 +51,14 @@
 //! nested iteration's previous level, or a check solve from the injected solution). The change
 //! is reported as [`Ehl2dSolution::grid_error`].
 //!
+//! # Transient steps
+//! [`solve_transient`] solves one backward-Euler step from a previous level ([`Squeeze2d`]: its
+//! [`Warm2d`], which carries the mass per area, and `Δt`) at the step's end load, speed and
+//! geometry: Newton from the previous level's pressure on the finest grid, the continuation of a
+//! warm start when that fails (its pseudo-time steps added on top of the physical squeeze term),
+//! and, when that fails too, the step split into 2, 4, 8 backward-Euler sub-steps
+//! ([`Ehl2dSolution::substeps`]). `Δt → ∞` is the steady problem, `Δt → 0` freezes `ρ̄h`.
+//!
 //! # Status (issue 16)
 //! Grid convergence (`BENCHMARKS.md`, "Finite-length and point EHL"): on the circular M ≈ 300,
 //! L ≈ 11 contact the central film is within −5 % (65²), −1.6 % (129²), −0.4 % (257²) of the
@@ -60,14 +70,15 @@
 //! test ignored): near-dry (M ≈ 3000) on 97².
 //!
 //! # Not modelled
-//! Transient (squeeze) terms, thermal and non-Newtonian effects, grid grading and mixed
-//! lubrication are the 1-D solver's only: this solver is steady, isothermal, Newtonian, smooth.
+//! Thermal and non-Newtonian effects, grid grading and mixed lubrication are the 1-D solver's
+//! only: this solver is isothermal, Newtonian, smooth; its transient steps are first order in
+//! time (backward Euler) with the load held at the step's end value.
 
 pub mod elastic;
 mod geometry;
 pub mod solver;
 
-pub use solver::{solve, solve_from, solve_kept, Kept2d};
+pub use solver::{solve, solve_from, solve_kept, solve_transient, Kept2d};
 
 use crate::physics::lubricant::Lubricant;
 use crate::physics::roller::Crown;
@@ -204,13 +215,19 @@ pub struct Ehl2dSolution {
     pub grid_error: Option<f64>,
     /// Whether the warm start of [`solve_from`] converged (false: the cold nested iteration ran).
     pub warm_started: bool,
+    /// A transient step ([`solve_transient`]): the backward-Euler sub-steps it took (1: the
+    /// whole time step at once; 2, 4, 8: the step split after a failed solve); `None`: steady.
+    pub substeps: Option<u32>,
     pub convergence: Convergence,
 }
 
-/// A converged solution kept as the warm start of a neighbouring problem ([`solve_from`]): the
-/// dimensionless pressure `P = p/p_ref` on the nodes `X = x/a`, `Y = y/a` (the solver's frame:
-/// inlet at negative `X`), the length scale `a` (m), the central film and the closed-form film
-/// estimate in units of `a²/R_x`, and whether it is a finite line contact.
+/// A converged solution kept as the warm start of a neighbouring problem ([`solve_from`]) and as
+/// the previous time level of a transient step ([`solve_transient`]): the dimensionless pressure
+/// `P = p/p_ref` on the nodes `X = x/a`, `Y = y/a` (the solver's frame: inlet at negative `X`),
+/// the length scale `a` (m), the central film and the closed-form film estimate in units of
+/// `a²/R_x`, whether it is a finite line contact, the mass per area `ρ̄h` (m, `ρ̄ = ρ/ρ0`, the
+/// film the Reynolds terms see) at the nodes, and the solver frame's orientation `sign` (±1: the
+/// physical position along the entrainment axis is `x = sign·X·a`, negative for `u_m < 0`).
 #[derive(Debug, Clone, PartialEq)]
 pub struct Warm2d {
     pub x: Vec<f64>,
@@ -220,6 +237,16 @@ pub struct Warm2d {
     pub central: f64,
     pub h_est: f64,
     pub finite: bool,
+    pub mass: Vec<f64>,
+    pub sign: f64,
+}
+
+/// The previous time level of a transient step ([`solve_transient`]): its converged solution and
+/// the time elapsed since, s (finite, > 0).
+#[derive(Debug, Clone, Copy)]
+pub struct Squeeze2d<'a> {
+    pub previous: &'a Warm2d,
+    pub time_step: f64,
 }
 
 /// Memory estimate of a solve on `nx × ny` nodes, bytes: about 40 node arrays, the padded FFT

@@ -20,7 +20,7 @@
 
 use super::elastic::Deflection;
 use super::geometry::{domain, scales, side_gap, Domain, Scales};
-use super::{Ehl2dInput, Ehl2dOptions, Ehl2dSolution, Fields2d, Geometry2d, Located, Warm2d};
+use super::{Ehl2dInput, Ehl2dOptions, Ehl2dSolution, Fields2d, Geometry2d, Located, Squeeze2d, Warm2d};
 use crate::physics::ehl::rheology::PressureRheology;
 use crate::physics::{Convergence, Observer, SolveError, Termination};
 use faer::sparse::linalg::lu::supernodal::{self, SupernodalLu, SymbolicSupernodalLu};
@@ -165,6 +165,10 @@ struct Problem {
     kappa: f64,
     /// `ρ̄H` of the previous pseudo-time step at the nodes.
     q_old: Vec<f64>,
+    /// The problem's own squeeze term, `(κ, (ρ̄H)_old)`: a physical transient step's
+    /// ([`solve_transient`]); `None`: steady. The pseudo-time steps of [`march`] add theirs on
+    /// top of it and [`Problem::restore_target`] puts it back.
+    target: Option<(f64, Vec<f64>)>,
     load: f64,
     p_ref: f64,
     rheo: PressureRheology,
@@ -266,6 +270,7 @@ impl Problem {
             lambda: s.lambda,
             kappa: 0.0,
             q_old: vec![0.0; nx * ny],
+            target: None,
             load: s.load,
             p_ref: s.p_ref,
             rheo: PressureRheology::new(&input.lubricant, input.temperature),
@@ -281,6 +286,42 @@ impl Problem {
             factorisations: 0,
             forcing: None,
         }
+    }
+
+    /// The squeeze term of the problem itself: none (`κ = 0`, steady) or the transient step's
+    /// ([`Problem::target`]).
+    fn restore_target(&mut self) {
+        match &self.target {
+            None => self.kappa = 0.0,
+            Some((kappa, q)) => {
+                self.kappa = *kappa;
+                self.q_old.copy_from_slice(q);
+            }
+        }
+    }
+
+    /// A pseudo-time step `ΔT` ([`march`]) from the iterate with fields `v`: `κ_ps = λ/ΔT`,
+    /// `(ρ̄H)_ps` the iterate's, on top of the problem's own squeeze term `(κ_t, q_t)`, if any:
+    /// `κ = κ_t + κ_ps`, `q_old = (κ_t q_t + κ_ps (ρ̄H)_ps)/κ` (the residual's
+    /// `−κ_t (ρ̄H − q_t) − κ_ps (ρ̄H − (ρ̄H)_ps)` in one term).
+    fn pseudo_step(&mut self, dt: f64, v: &Fields) {
+        for (q, (r, h)) in self.q_old.iter_mut().zip(v.rho.iter().zip(&v.h)) {
+            *q = r * h;
+        }
+        self.kappa = self.lambda / dt;
+        if let Some((kt, qt)) = &self.target {
+            let kp = self.kappa;
+            self.kappa = kt + kp;
+            for (q, b) in self.q_old.iter_mut().zip(qt) {
+                *q = (kt * b + kp * *q) / self.kappa;
+            }
+        }
+    }
+
+    /// `ρ̄H` at the nodes (the film the Reynolds terms see) at `(p, h0)`; `None` when not finite.
+    fn mass(&mut self, p: &[f64], h0: f64) -> Option<Vec<f64>> {
+        let mut v = Fields::default();
+        self.evaluate(p, h0, &mut v).then(|| v.rho.iter().zip(&v.h).map(|(r, h)| r * h).collect())
     }
 
     /// Upwind stencil of `∂Q/∂X` at column `i`: `(offset back, weight)`.
@@ -1300,9 +1341,10 @@ const RESOLVED: f64 = 0.3;
 /// physical squeeze term: backward-Euler steps of the transient Reynolds equation (seed 000
 /// eq. 2 with `∂(ρh)/∂t`) at fixed load, each solved by [`newton`] from the last state; `ΔT`
 /// doubles (quadruples after a quick step) on success and is quartered on failure; from
-/// `ΔT ≥ DT_STEADY` each step first tries the steady problem (`κ = 0`) and returns when it
-/// converges. The squeeze term damps the changes of `ρ̄H` that stall the steady Newton
-/// iteration from a Hertzian start (see `BENCHMARKS.md`, issue 16).
+/// `ΔT ≥ DT_STEADY` each step first tries the problem itself (`κ = 0`, or a transient step's own
+/// squeeze term, [`Problem::pseudo_step`]) and returns when it converges. The squeeze term damps
+/// the changes of `ρ̄H` that stall the steady Newton iteration from a Hertzian start (see
+/// `BENCHMARKS.md`, issue 16).
 fn march(prob: &mut Problem, p: &mut [f64], h0: &mut f64, tol: f64, max_iter: u32, dt0: f64, observer: &dyn Observer) -> Result<Run, SolveError> {
     let mut dt = dt0;
     let (mut its, mut gm) = (0u32, 0usize);
@@ -1313,7 +1355,7 @@ fn march(prob: &mut Problem, p: &mut [f64], h0: &mut f64, tol: f64, max_iter: u3
         if dt >= DT_STEADY {
             saved.copy_from_slice(p);
             let h0_saved = *h0;
-            prob.kappa = 0.0;
+            prob.restore_target();
             let r = newton(prob, p, h0, tol, max_iter.min(NESTED_ITER), observer)?;
             its += r.iterations;
             gm += r.gmres;
@@ -1333,14 +1375,11 @@ fn march(prob: &mut Problem, p: &mut [f64], h0: &mut f64, tol: f64, max_iter: u3
         if !prob.evaluate(p, *h0, &mut v) {
             break;
         }
-        for (q, (r, h)) in prob.q_old.iter_mut().zip(v.rho.iter().zip(&v.h)) {
-            *q = r * h;
-        }
-        prob.kappa = prob.lambda / dt;
+        prob.pseudo_step(dt, &v);
         saved.copy_from_slice(p);
         let h0_saved = *h0;
         let r = newton(prob, p, h0, tol.max(STEP_TOL), STEP_ITER, observer)?;
-        prob.kappa = 0.0;
+        prob.restore_target();
         its += r.iterations;
         gm += r.gmres;
         if trace() {
@@ -1359,7 +1398,7 @@ fn march(prob: &mut Problem, p: &mut [f64], h0: &mut f64, tol: f64, max_iter: u3
             }
         }
     }
-    prob.kappa = 0.0;
+    prob.restore_target();
     Ok(Run { iterations: its, residual: last.residual, history: last.history, converged: false, gmres: gm })
 }
 
@@ -1665,21 +1704,49 @@ fn solve_inner(input: &Ehl2dInput, options: &Ehl2dOptions, warm: Option<&Warm2d>
             }
         }
     }
-    let (mut prob, p, h0, total, residual, coarse, warm_used) = match warm_run {
-        Some((prob, p, h0, its, res)) => (prob, p, h0, its, res, None, true),
+    let solved = match warm_run {
+        Some((prob, p, h0, iterations, residual)) => Solved { prob, p, h0, iterations, residual, coarse: None, warm_used: true },
         None => {
-            let (prob, p, h0, its, res, coarse) = solve_levels(input, options, &s, d, observer)?;
-            (prob, p, h0, its + failed_steps, res, coarse, false)
+            let (prob, p, h0, its, residual, coarse) = solve_levels(input, options, &s, d, observer)?;
+            Solved { prob, p, h0, iterations: its + failed_steps, residual, coarse, warm_used: false }
         }
     };
+    conclude(input, options, &s, d, solved, kept, kept_pattern, observer)
+}
+
+/// A converged problem on the finest grid: its pressure, `H0`, the Newton steps and the final
+/// residual, the previous level's films ([`solve_levels`]) and whether a warm start was used.
+struct Solved {
+    prob: Problem,
+    p: Vec<f64>,
+    h0: f64,
+    iterations: u32,
+    residual: f64,
+    coarse: Option<(f64, f64, usize, usize)>,
+    warm_used: bool,
+}
+
+/// The solution and warm start of a converged problem, after the resolution check (the pinch
+/// and, unless the nested iteration measured it or `options.grid_check` is off after a warm
+/// start, the check solve on the grid with half the intervals — of the same problem, a transient
+/// step's squeeze term included); `kept` takes the problem's preconditioner.
+#[allow(clippy::too_many_arguments)]
+fn conclude(input: &Ehl2dInput, options: &Ehl2dOptions, s: &Scales, d: Domain, solved: Solved, kept: &mut Kept2d, kept_pattern: Option<std::sync::Arc<NearPattern>>, observer: &dyn Observer) -> Result<(Ehl2dSolution, Warm2d), SolveError> {
+    let Solved { mut prob, p, h0, iterations: total, residual, coarse, warm_used } = solved;
+    let finite = matches!(input.geometry, Geometry2d::Finite { .. });
     let pattern = prob.pattern.borrow().clone().or(kept_pattern);
     *kept = Kept2d { pc: prob.kept.take().filter(|_| reuse_policy().2), pattern, nx: prob.nx, ny: prob.ny };
-    let mut sol = finish(input, options, &s, &mut prob, &p, h0, total, residual)?;
+    let mut sol = finish(input, options, s, &mut prob, &p, h0, total, residual)?;
     sol.warm_started = warm_used;
     let next = {
         let mut v = Fields::default();
-        let hc = if prob.evaluate(&p, h0, &mut v) { bilinear(&prob.x, &prob.y, &v.h, 0.0, 0.0) } else { sol.central_film * s.rx / (s.a * s.a) };
-        Warm2d { x: prob.x.clone(), y: prob.y.clone(), pressure: p.clone(), a: s.a, central: hc, h_est: s.h_est, finite }
+        let film_scale = s.a * s.a / s.rx;
+        let (hc, mass) = if prob.evaluate(&p, h0, &mut v) {
+            (bilinear(&prob.x, &prob.y, &v.h, 0.0, 0.0), v.rho.iter().zip(&v.h).map(|(r, h)| r * h * film_scale).collect())
+        } else {
+            (sol.central_film / film_scale, Vec::new())
+        };
+        Warm2d { x: prob.x.clone(), y: prob.y.clone(), pressure: p.clone(), a: s.a, central: hc, h_est: s.h_est, finite, mass, sign: frame_sign(input) }
     };
     let unresolved = |what: String| SolveError::invalid("Ehl2dOptions.nx", format!("the {}×{} grid does not resolve the film: {what}; refine the grid (nx, ny)", prob.nx, prob.ny));
     // A film pinched at a node is the discrete problem's, not the contact's (seed-free check:
@@ -1689,7 +1756,7 @@ fn solve_inner(input: &Ehl2dInput, options: &Ehl2dOptions, warm: Option<&Warm2d>
     }
     let coarse = match coarse {
         Some(c) => Some(c),
-        None if options.grid_check || !warm_used => check_half(&s, d, input, options, &p, h0, observer)?,
+        None if options.grid_check || !warm_used => check_half(s, d, input, options, &p, h0, prob.target.as_ref(), observer)?,
         None => None,
     };
     if let Some((hc, hm, cnx, cny)) = coarse {
@@ -1711,6 +1778,160 @@ fn solve_inner(input: &Ehl2dInput, options: &Ehl2dOptions, warm: Option<&Warm2d>
     Ok((sol, next))
 }
 
+/// The solver frame's orientation: `+1` when `u_m ≥ 0`, else `−1` (the inlet is always at
+/// negative `X`; physical `x = sign·X·a`).
+fn frame_sign(input: &Ehl2dInput) -> f64 {
+    if input.entrainment_velocity >= 0.0 {
+        1.0
+    } else {
+        -1.0
+    }
+}
+
+/// Most halvings of a transient step that does not converge whole ([`solve_transient`]):
+/// 1, 2, 4 or 8 backward-Euler sub-steps.
+const MAX_SUBSTEP_HALVINGS: u32 = 3;
+
+/// One backward-Euler step of the transient problem (seed 000 eq. 2 with `∂(ρh)/∂t`): from the
+/// previous time level `squeeze.previous` over `squeeze.time_step`, at this input's load, speed
+/// and geometry (held over the step). The squeeze term's `(ρ̄h)_old` is the previous level's
+/// mass per area at the same **physical** position ([`previous_mass`]), `κ` the dimensionless
+/// coefficient of [`squeeze_kappa`]. Newton starts from `warm` (default: the previous level;
+/// with `prior`, the secant extrapolation of [`solve_kept`]) on the finest grid, with the
+/// continuation of [`solve_from`]'s warm start (geometric face means, else from the arithmetic
+/// ones; pseudo-time steps — on top of the physical squeeze term — when Newton fails). When that
+/// fails, the step is split into 2, 4, 8 equal sub-steps, each a full backward-Euler step from the
+/// last ([`Ehl2dSolution::substeps`]); the load is the step's end value in each. The resolution
+/// check runs as after a warm start (the check solve on the half grid is of the same step: its
+/// last sub-step's squeeze term injected) unless `options.grid_check` is off.
+/// `kept`: as in [`solve_kept`].
+pub fn solve_transient(input: &Ehl2dInput, options: &Ehl2dOptions, squeeze: Squeeze2d, warm: Option<&Warm2d>, prior: Option<&Warm2d>, kept: &mut Kept2d, observer: &dyn Observer) -> Result<(Ehl2dSolution, Warm2d), SolveError> {
+    validate(input, options)?;
+    let finite = matches!(input.geometry, Geometry2d::Finite { .. });
+    validate_squeeze(&squeeze, finite)?;
+    let kept_pc = kept.take_for(options.nx, options.ny);
+    let kept_pattern = kept.pattern_for(options.nx, options.ny);
+    let s = scales(input)?;
+    let d = domain(input, options, &s);
+    let mut prob = Problem::new(input, &s, d, options.nx, options.ny, options.near_field);
+    prob.kept = kept_pc;
+    prob.pattern = std::cell::RefCell::new(kept_pattern.clone());
+    prob.forcing = warm_forcing();
+    let kappa = squeeze_kappa(input, &s, squeeze.time_step);
+    let q_prev = previous_mass(&prob, input, &s, squeeze.previous);
+    let usable = |w: &&Warm2d| w.finite == finite && w.central > 0.0 && w.h_est > 0.0;
+    let start = warm.filter(usable).unwrap_or(squeeze.previous);
+    let prior = prior.filter(usable);
+    let (mut iterations, mut last) = (0u32, None);
+    for halvings in 0..=MAX_SUBSTEP_HALVINGS {
+        let n = 1u32 << halvings;
+        // κ ∝ 1/Δt: the sub-step's is n times the step's.
+        let kappa_n = kappa * n as f64;
+        prob.target = Some((kappa_n, q_prev.clone()));
+        prob.restore_target();
+        let Some((mut p, mut h0)) = warm_start(&mut prob, &s, start, prior) else { break };
+        let mut converged = false;
+        for sub in 0..n {
+            if sub > 0 {
+                prob.restore_target();
+            }
+            let run = solve_level(&mut prob, &mut p, &mut h0, options.tolerance, options.max_iterations.min(NESTED_ITER), options.max_iterations, DT_NESTED, true, observer)?;
+            iterations += run.iterations;
+            if trace() {
+                eprintln!("ehl2d transient: {n} sub-steps, κ {kappa_n:.3e}: converged {} in {} steps", run.converged, run.iterations);
+            }
+            converged = run.converged;
+            last = Some(run);
+            if !converged {
+                break;
+            }
+            if sub + 1 < n {
+                // The next sub-step's previous level: this one's `ρ̄H` on the same grid (the
+                // last sub-step's target stays for the resolution check).
+                match prob.mass(&p, h0) {
+                    Some(m) => prob.target = Some((kappa_n, m)),
+                    None => {
+                        converged = false;
+                        break;
+                    }
+                }
+            }
+        }
+        if converged {
+            let residual = last.as_ref().map_or(0.0, |r| r.residual);
+            let solved = Solved { prob, p, h0, iterations, residual, coarse: None, warm_used: true };
+            let (mut sol, next) = conclude(input, options, &s, d, solved, kept, kept_pattern, observer)?;
+            sol.substeps = Some(n);
+            return Ok((sol, next));
+        }
+    }
+    let (residual, mut history) = last.map_or((f64::INFINITY, Vec::new()), |r| (r.residual, r.history));
+    if history.len() > 20 {
+        history.drain(..history.len() - 20);
+    }
+    Err(SolveError::NotConverged { solver: "ehl 2-D transient step (Newton–Krylov, 1–8 sub-steps)", iterations, residual, tolerance: options.tolerance, history })
+}
+
+/// A transient step's time step and previous level: `time_step` finite and > 0, the previous
+/// level a converged solution of the same contact kind with its pressure and mass per area.
+fn validate_squeeze(squeeze: &Squeeze2d, finite: bool) -> Result<(), SolveError> {
+    if !(squeeze.time_step.is_finite() && squeeze.time_step > 0.0) {
+        return Err(SolveError::invalid("Squeeze2d.time_step", "must be a finite number > 0 (s)"));
+    }
+    let w = squeeze.previous;
+    let sized = w.x.len() >= 2 && w.y.len() >= 2 && w.mass.len() == w.x.len() * w.y.len() && w.pressure.len() == w.mass.len();
+    let finite_values = w.a.is_finite() && w.a > 0.0 && w.mass.iter().all(|m| m.is_finite() && *m >= 0.0) && (w.sign == 1.0 || w.sign == -1.0);
+    if !(sized && finite_values) {
+        return Err(SolveError::invalid("Squeeze2d.previous", "must be a converged 2-D solution with its mass per area at every node"));
+    }
+    if w.finite != finite {
+        return Err(SolveError::invalid("Squeeze2d.previous", "must be of the same contact kind (point or finite line) as the input"));
+    }
+    Ok(())
+}
+
+/// The dimensionless squeeze coefficient `κ = 12 η0 R_x²/(a² p_ref Δt)` of the backward-Euler
+/// term `−κ (ρ̄H − (ρ̄H)_old)` (seed 000 eq. 2's `∂(ρh)/∂t`). Dimensions: the Poiseuille term
+/// `∂/∂x(ρh³/(12η) ∂p/∂x)` is `ρ0 a⁴ p_ref/(12 η0 R_x³)·∂/∂X(ε ∂P/∂X)` (kg m⁻² s⁻¹) with
+/// `h = H a²/R_x`, `x = X a`; the squeeze term `(ρ0 a²/R_x)(ρ̄H − (ρ̄H)_old)/Δt` (kg m⁻² s⁻¹);
+/// their ratio `12 η0 R_x²/(a² p_ref Δt)` is dimensionless (Pa s · m² / (m² · Pa · s)). It is
+/// the wedge's `λ = 12 η0 u_m R_x²/(a³ p_ref)` times the passage time `a/u_m` over `Δt`, the
+/// pseudo-time `κ = λ/ΔT` of [`march`] with `ΔT = Δt u_m/a`; as the 1-D solver's
+/// (`super::super::newton`, `12 η0 R²/(b² p_h Δt)`).
+fn squeeze_kappa(input: &Ehl2dInput, s: &Scales, time_step: f64) -> f64 {
+    let eta0 = input.lubricant.viscosity_at(0.0, input.temperature);
+    12.0 * eta0 * s.rx * s.rx / (s.a * s.a * s.p_ref * time_step)
+}
+
+/// The previous level's mass per area on `prob`'s nodes in units of `a²/R_x`: `ρ̄h` of `w` at
+/// the node's physical position (`x = sign·X·a`, `y = Y·a` of this problem; `X_old = sign_old·x/a_old`,
+/// `Y_old = y/a_old`), bilinear. Outside the old domain (a larger contact reaches further up the
+/// inlet or to the sides): the nearest boundary node's value plus the change of the undeformed
+/// gap `x²/(2R_x) + S(y)` of this geometry from there — the old boundary's pressure is 0
+/// (`ρ̄ = 1`), so this is the 1-D solver's `EhlState::mass_per_area` (the end film continued along
+/// the undeformed parabola at `ρ̄ = 1`), not a frozen boundary value that would put a thinner film
+/// far up the inlet than at its edge; the deflection's change beyond the old edge is neglected
+/// (there `q_old` barely matters: the squeeze term is small against the inlet's wedge term).
+fn previous_mass(prob: &Problem, input: &Ehl2dInput, s: &Scales, w: &Warm2d) -> Vec<f64> {
+    let film_scale = s.a * s.a / s.rx;
+    let sign = frame_sign(input);
+    let gap = |x: f64, y: f64| x * x / (2.0 * s.rx) + side_gap(input, s, y / s.a) * film_scale;
+    let (xl, xh) = (w.x[0], w.x[w.x.len() - 1]);
+    let (yl, yh) = (w.y[0], w.y[w.y.len() - 1]);
+    let mut q = vec![0.0; prob.nx * prob.ny];
+    for (k, qk) in q.iter_mut().enumerate() {
+        let (x, y) = (sign * prob.x[k % prob.nx] * s.a, prob.y[k / prob.nx] * s.a);
+        let (xo, yo) = (w.sign * x / w.a, y / w.a);
+        let (xc, yc) = (xo.clamp(xl, xh), yo.clamp(yl, yh));
+        let mut m = bilinear(&w.x, &w.y, &w.mass, xc, yc);
+        if xc != xo || yc != yo {
+            m += gap(x, y) - gap(w.sign * xc * w.a, yc * w.a);
+        }
+        *qk = m.max(0.0) / film_scale;
+    }
+    q
+}
+
 /// Smallest accepted ratio of the minimum to the central film: below it the film is pinched at a
 /// node by the discretisation (measured: the arithmetic-mean scheme's 33² solution of the
 /// circular M ≈ 300 contact had h_min/h_c ≈ 0.9 at 4.9 nm against 220 nm converged).
@@ -1720,14 +1941,20 @@ pub const PINCH: f64 = 0.1;
 /// the intervals, started from the injected solution; `None` when that grid has fewer than 9
 /// nodes per side, the node counts are even, or Newton does not converge there.
 #[allow(clippy::too_many_arguments)]
-fn check_half(s: &Scales, d: Domain, input: &Ehl2dInput, options: &Ehl2dOptions, p: &[f64], h0: f64, observer: &dyn Observer) -> Result<Option<(f64, f64, usize, usize)>, SolveError> {
+fn check_half(s: &Scales, d: Domain, input: &Ehl2dInput, options: &Ehl2dOptions, p: &[f64], h0: f64, target: Option<&(f64, Vec<f64>)>, observer: &dyn Observer) -> Result<Option<(f64, f64, usize, usize)>, SolveError> {
     let (nx, ny) = (options.nx, options.ny);
     if (nx - 1) % 2 != 0 || (ny - 1) % 2 != 0 || (nx - 1) / 2 + 1 < 9 || (ny - 1) / 2 + 1 < 9 {
         return Ok(None);
     }
     let (cx, cy) = ((nx - 1) / 2 + 1, (ny - 1) / 2 + 1);
     let mut prob = Problem::new(input, s, d, cx, cy, options.near_field);
-    let mut pc: Vec<f64> = (0..cx * cy).map(|k| p[(k / cx) * 2 * nx + (k % cx) * 2]).collect();
+    let inject = |f: &[f64]| -> Vec<f64> { (0..cx * cy).map(|k| f[(k / cx) * 2 * nx + (k % cx) * 2]).collect() };
+    let mut pc = inject(p);
+    // A transient step's squeeze term, at the coinciding nodes.
+    if let Some((kappa, q)) = target {
+        prob.target = Some((*kappa, inject(q)));
+        prob.restore_target();
+    }
     let mut h0c = h0;
     let run = solve_level(&mut prob, &mut pc, &mut h0c, options.tolerance.max(1e-6), options.max_iterations.min(NESTED_ITER), options.max_iterations, DT_NESTED, true, observer)?;
     let mut v = Fields::default();
@@ -1932,6 +2159,7 @@ fn finish(input: &Ehl2dInput, options: &Ehl2dOptions, s: &Scales, prob: &mut Pro
         fields,
         grid_error: None,
         warm_started: false,
+        substeps: None,
         convergence: Convergence { iterations, residual, tolerance: options.tolerance, termination: Termination::Converged },
     };
     let scalars = [sol.central_film, sol.min_film.value, sol.max_pressure.value, sol.load, residual];

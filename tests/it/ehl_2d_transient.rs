@@ -1,0 +1,219 @@
+//! Transient steps of the 2-D EHL solver (`physics::ehl::twod::solve_transient`, issue 16
+//! deliverable 1): the large-Δt limit is the steady solve, a small Δt freezes the film after a
+//! load step and the steps relax to the new steady film, the long straight roller's mid-section
+//! follows the 1-D transient line solution through the same load step, and a property test over
+//! load jumps and time steps.
+
+use crate::ehl_2d::{line_options, line_section, long_straight_roller, long_straight_roller_options, long_straight_roller_steady, oil, opts, point, rel};
+use tribod::physics::ehl::twod::{solve_from, solve_transient, Ehl2dInput, Ehl2dOptions, Ehl2dSolution, Kept2d, Squeeze2d, Warm2d};
+use tribod::physics::Silent;
+
+/// The circular contact of these tests: R = 10 mm, u_m = 1 m/s, Roelands + Dowson–Higginson
+/// (η0 = 0.04 Pa·s, α = 2e-8 1/Pa), at load `f` (N); 65², no half-grid check.
+fn circular(f: f64) -> Ehl2dInput {
+    point(f, 0.01, 0.01, 1.0, oil(0.04, 2e-8))
+}
+
+fn circular_options() -> Ehl2dOptions {
+    Ehl2dOptions { grid_tolerance: 1.0, grid_check: false, ..opts(65, 65) }
+}
+
+/// The passage time `a/u_m` of a solution, s.
+fn passage(s: &Ehl2dSolution, u: f64) -> f64 {
+    s.hertz_half_width / u
+}
+
+/// One transient step from `previous` over `dt` (s).
+fn step(input: &Ehl2dInput, o: &Ehl2dOptions, previous: &Warm2d, dt: f64, kept: &mut Kept2d) -> (Ehl2dSolution, Warm2d) {
+    solve_transient(input, o, Squeeze2d { previous, time_step: dt }, None, None, kept, &Silent).unwrap()
+}
+
+/// The circular contact's steady solution at 100 N, shared by the tests below.
+fn circular_steady() -> &'static (Ehl2dSolution, Warm2d) {
+    static STEADY: std::sync::OnceLock<(Ehl2dSolution, Warm2d)> = std::sync::OnceLock::new();
+    STEADY.get_or_init(|| solve_from(&circular(100.0), &circular_options(), None, &Silent).unwrap())
+}
+
+/// Δt → ∞ is the steady solve of the new load: after a +30 % load step, the step's films differ
+/// from the steady ones by `O(1/ΔT)` (`ΔT = Δt u_m/a`, the squeeze term `κ = λ/ΔT` against the
+/// wedge term). Measured (65², dev): 1.43e-4 (h_c) and 3.19e-4 (h_min) at ΔT = 1e3; asserted:
+/// below 1e-4 at ΔT = 1e4, and ten times less than at 1e3 within a factor 2 (first order).
+#[test]
+fn ehl2d_transient_large_time_step_is_the_steady_solution() {
+    let (s0, w0) = circular_steady();
+    let o = circular_options();
+    let (steady, _) = solve_from(&circular(130.0), &o, Some(w0), &Silent).unwrap();
+    let mut errors = Vec::new();
+    for passages in [1e3, 1e4] {
+        let (s, _) = step(&circular(130.0), &o, w0, passages * passage(s0, 1.0), &mut Kept2d::default());
+        let (dc, dm) = (rel(s.central_film, steady.central_film), rel(s.min_film.value, steady.min_film.value));
+        println!("ΔT {passages:e}: h_c {:.7e} vs steady {:.7e} ({dc:.2e}), h_min {:.7e} vs {:.7e} ({dm:.2e}); {:?}, {:?} sub-steps; steady {:?}", s.central_film, steady.central_film, s.min_film.value, steady.min_film.value, s.convergence, s.substeps, steady.convergence);
+        assert_eq!(s.substeps, Some(1));
+        errors.push((dc, dm));
+    }
+    let ((c3, m3), (c4, m4)) = (errors[0], errors[1]);
+    assert!(c4 < 1e-4 && m4 < 1e-4, "ΔT 1e4: h_c {c4:e}, h_min {m4:e}");
+    for ratio in [c3 / c4, m3 / m4] {
+        assert!((5.0..20.0).contains(&ratio), "{errors:?}");
+    }
+}
+
+/// After a +30 % load step a step of 0.01 passage times keeps the central film within 1 % of the
+/// previous one (the squeeze term resists; measured −0.36 %). Steps of 0.5 passage times then
+/// relax it to the new steady film, not monotonically: the central film first rises above the old
+/// one (to 2.2 times the old film's distance from the new steady one at t = 1–1.5 a/u_m, measured)
+/// — the 1-D transient line solution does the same through the same load step
+/// (`ehl2d_transient_long_roller_follows_the_line_solution`: 279.8 → 278.2 → 288.3 → 274.2 nm
+/// at 0.05, 0.25, 1.25, 6.25 a/u_m) — and from there decays geometrically, by 0.51, 0.47, 0.46 per step
+/// (backward Euler's `1/(1 + Δt/τ)`: a time constant `τ ≈ 0.44 a/u_m`). Asserted: the
+/// overshoot peak 1.5–3, a monotone decay after it with ratios 0.35–0.6 per step, and a distance
+/// below 0.15 after 4 a/u_m.
+#[test]
+fn ehl2d_transient_small_time_step_freezes_the_film_and_relaxes_to_steady() {
+    let (s0, w0) = circular_steady();
+    let o = circular_options();
+    let input = circular(130.0);
+    let (steady, _) = solve_from(&input, &o, Some(w0), &Silent).unwrap();
+    let tp = passage(s0, 1.0);
+    let mut kept = Kept2d::default();
+    let (frozen, _) = step(&input, &o, w0, 0.01 * tp, &mut kept);
+    println!("Δt 0.01 a/u: h_c {:.5e} (previous {:.5e}, new steady {:.5e})", frozen.central_film, s0.central_film, steady.central_film);
+    assert!(rel(frozen.central_film, s0.central_film) < 0.01);
+    let mut h = vec![s0.central_film];
+    let mut w = w0.clone();
+    for _ in 0..8 {
+        let (s, next) = step(&input, &o, &w, 0.5 * tp, &mut kept);
+        h.push(s.central_film);
+        w = next;
+    }
+    let gap: Vec<f64> = h.iter().map(|hk| (hk - steady.central_film) / (s0.central_film - steady.central_film)).collect();
+    println!("Δt 0.5 a/u: h_c {h:?}; relative distance to the new steady film {gap:?}");
+    let peak = (0..gap.len()).max_by(|&a, &b| gap[a].total_cmp(&gap[b])).unwrap();
+    assert!((1.5..3.0).contains(&gap[peak]), "{gap:?}");
+    for k in peak + 1..gap.len() {
+        assert!(gap[k] > 0.0 && gap[k] < gap[k - 1], "{gap:?}");
+    }
+    for k in gap.len() - 3..gap.len() {
+        assert!((0.35..0.6).contains(&(gap[k] / gap[k - 1])), "{gap:?}");
+    }
+    assert!(gap[gap.len() - 1] < 0.15, "{gap:?}");
+}
+
+/// The long straight roller (`ehl_2d::long_straight_roller`, 129²) through a +30 % load step
+/// and time steps of 0.05, 0.2, 1 and 5 passage times, against the 1-D transient line solution
+/// (512 nodes, `physics::ehl::Transient`) at the same load per length and time steps: the
+/// mid-section's central film follows the line solution's within the steady agreement
+/// (−0.84 %) plus a margin. Measured (dev, session 35): −0.78, −0.80, −1.23, −1.20 % at
+/// 0.05, 0.25, 1.25, 6.25 a/u_m (the film's rise and fall of 288.3/274.2 nm followed within
+/// 0.4 points of the steady offset; 4–10 Newton steps per step, no sub-steps); asserted: within
+/// 1.5 % at every step (the steady offset, the 129² grid's, plus 0.66 points for the moving film's).
+#[test]
+fn ehl2d_transient_long_roller_follows_the_line_solution() {
+    use tribod::physics::ehl::{solve as solve_1d, Transient};
+    let (input, rx, w) = long_straight_roller();
+    let (s0, w0) = long_straight_roller_steady();
+    let o = Ehl2dOptions { grid_check: false, ..long_straight_roller_options() };
+    let l0 = solve_1d(&line_section(rx, w), &line_options(), &Silent).unwrap();
+    let stepped = Ehl2dInput { load: 1.3 * input.load, ..input };
+    let tp = passage(s0, 1.0);
+    let (mut warm, mut state) = (w0.clone(), l0.state.clone());
+    let mut kept = Kept2d::default();
+    let mut worst = rel(s0.central_film, l0.central_film);
+    println!("steady: h_c {:.5e} vs 1-D {:.5e}", s0.central_film, l0.central_film);
+    for dt in [0.05, 0.2, 1.0, 5.0].map(|f| f * tp) {
+        let (s, next) = step(&stepped, &o, &warm, dt, &mut kept);
+        let mut line = line_section(rx, 1.3 * w);
+        line.transient = Some(Transient { previous: &state, time_step: dt });
+        let l = solve_1d(&line, &line_options(), &Silent).unwrap();
+        let d = rel(s.central_film, l.central_film);
+        println!("Δt {:.3e} s: h_c {:.5e} vs 1-D {:.5e} ({:+.2} %), {} Newton steps, {:?} sub-steps", dt, s.central_film, l.central_film, 100.0 * (s.central_film / l.central_film - 1.0), s.convergence.iterations, s.substeps);
+        worst = worst.max(d);
+        warm = next;
+        state = l.state;
+    }
+    assert!(worst < 0.015, "largest difference {worst}");
+}
+
+mod stability {
+    use super::*;
+    use proptest::prelude::*;
+    use tribod::physics::SolveError;
+
+    proptest! {
+        #![proptest_config(ProptestConfig { cases: 4, .. ProptestConfig::default() })]
+        /// Load jumps ×0.5…×2 and time steps 0.01…1000 passage times from the circular contact's
+        /// steady solution: converged with finite, positive films and the load carried, or a
+        /// typed error — never NaN.
+        #[test]
+        fn ehl2d_transient_step_converges_or_fails_typed(jump in 0.5f64..2.0, log_dt in -2.0f64..3.0) {
+            let (s0, w0) = circular_steady();
+            let dt = 10f64.powf(log_dt) * passage(s0, 1.0);
+            let input = circular(100.0 * jump);
+            let squeeze = Squeeze2d { previous: w0, time_step: dt };
+            match solve_transient(&input, &circular_options(), squeeze, None, None, &mut Kept2d::default(), &Silent) {
+                Ok((s, next)) => {
+                    println!("×{jump:.2}, Δt {:.1e} a/u: h_c {:.4e} h_min {:.4e}, {} steps, {:?} sub-steps", 10f64.powf(log_dt), s.central_film, s.min_film.value, s.convergence.iterations, s.substeps);
+                    prop_assert!(s.convergence.residual <= 1e-7);
+                    for v in [s.central_film, s.min_film.value, s.max_pressure.value, s.load] {
+                        prop_assert!(v.is_finite());
+                    }
+                    prop_assert!(s.min_film.value > 0.0 && s.min_film.value <= s.central_film);
+                    prop_assert!((s.load / input.load - 1.0).abs() < 1e-5, "load {} vs {}", s.load, input.load);
+                    prop_assert!(next.mass.iter().all(|m| m.is_finite() && *m > 0.0));
+                }
+                Err(e) => {
+                    println!("×{jump:.2}, Δt {:.1e} a/u: {e}", 10f64.powf(log_dt));
+                    match e {
+                        SolveError::NotConverged { residual, .. } => prop_assert!(!residual.is_nan()),
+                        SolveError::Physical { .. } => {}
+                        SolveError::InvalidInput { field, .. } => prop_assert_eq!(field, "Ehl2dOptions.nx"),
+                        e => prop_assert!(false, "unexpected error {e}"),
+                    }
+                }
+            }
+        }
+    }
+}
+
+/// A time step that is not finite and positive, and a previous level without its mass per area
+/// or of the other contact kind, are refused naming the field.
+#[test]
+fn ehl2d_transient_inputs_are_validated() {
+    use tribod::physics::SolveError;
+    let (_, w0) = circular_steady();
+    let o = circular_options();
+    let refused = |input: &Ehl2dInput, previous: &Warm2d, dt: f64| match solve_transient(input, &o, Squeeze2d { previous, time_step: dt }, None, None, &mut Kept2d::default(), &Silent) {
+        Err(SolveError::InvalidInput { field, .. }) => field,
+        other => panic!("accepted: {other:?}"),
+    };
+    for dt in [0.0, -1e-6, f64::NAN, f64::INFINITY] {
+        assert_eq!(refused(&circular(100.0), w0, dt), "Squeeze2d.time_step");
+    }
+    let empty = Warm2d { mass: Vec::new(), ..w0.clone() };
+    assert_eq!(refused(&circular(100.0), &empty, 1e-6), "Squeeze2d.previous");
+    let (roller, _, _) = long_straight_roller();
+    assert_eq!(refused(&roller, w0, 1e-6), "Squeeze2d.previous");
+}
+
+/// Probe (development aid, `BENCHMARKS.md` issue 16, `ehl2d-14`): Newton steps, GMRES iterations
+/// and factorisations of a warm steady solve and of transient steps at several Δt, the circular
+/// contact's +30 % load step on 65² (no half-grid check). Counts are process-wide: run alone
+/// (`cargo test --test it probe_transient_work -- --ignored --nocapture --test-threads 1`).
+#[test]
+#[ignore = "probe: counted work of transient steps (issue 16), not a check"]
+fn probe_transient_work() {
+    use std::sync::atomic::Ordering::Relaxed;
+    use tribod::physics::film::work::{FINITE_FACTORISATIONS, FINITE_GMRES_ITERATIONS};
+    let (s0, w0) = circular_steady();
+    let o = circular_options();
+    let input = circular(130.0);
+    let counted = |what: &str, run: &dyn Fn() -> Ehl2dSolution| {
+        let (g, f) = (FINITE_GMRES_ITERATIONS.load(Relaxed), FINITE_FACTORISATIONS.load(Relaxed));
+        let s = run();
+        println!("{what}: {} Newton steps, {} GMRES iterations, {} factorisations, {:?} sub-steps, h_c {:.5e}", s.convergence.iterations, FINITE_GMRES_ITERATIONS.load(Relaxed) - g, FINITE_FACTORISATIONS.load(Relaxed) - f, s.substeps, s.central_film);
+    };
+    counted("warm steady", &|| solve_from(&input, &o, Some(w0), &Silent).unwrap().0);
+    for passages in [0.01, 0.1, 0.5, 1.0, 10.0, 1e3] {
+        counted(&format!("transient Δt {passages} a/u"), &|| step(&input, &o, w0, passages * passage(s0, 1.0), &mut Kept2d::default()).0);
+    }
+}
