@@ -496,10 +496,36 @@ mod stability {
     }
 }
 
+/// A converged 2-D solution (property tests): residual within the default tolerance, finite
+/// scalars, a positive minimum film not above the central one, the load `load` (N) carried.
+pub fn check_converged(s: &tribod::physics::ehl::twod::Ehl2dSolution, load: f64) -> Result<(), proptest::test_runner::TestCaseError> {
+    use proptest::prop_assert;
+    prop_assert!(s.convergence.residual <= 1e-7);
+    for v in [s.central_film, s.min_film.value, s.max_pressure.value, s.load] {
+        prop_assert!(v.is_finite());
+    }
+    prop_assert!(s.min_film.value > 0.0 && s.min_film.value <= s.central_film);
+    prop_assert!((s.load / load - 1.0).abs() < 1e-5, "load {} vs {load}", s.load);
+    Ok(())
+}
+
+/// A 2-D solve's failure the service reports (property tests): not converged with a residual
+/// that is not NaN, a physical failure, or the resolution check's refusal naming the grid.
+pub fn check_typed_failure(e: tribod::physics::SolveError) -> Result<(), proptest::test_runner::TestCaseError> {
+    use proptest::{prop_assert, prop_assert_eq};
+    use tribod::physics::SolveError;
+    match e {
+        SolveError::NotConverged { residual, .. } => prop_assert!(!residual.is_nan()),
+        SolveError::Physical { .. } => {}
+        SolveError::InvalidInput { field, .. } => prop_assert_eq!(field, "Ehl2dOptions.nx"),
+        e => prop_assert!(false, "unexpected error {e}"),
+    }
+    Ok(())
+}
+
 mod loads {
     use super::*;
     use proptest::prelude::*;
-    use tribod::physics::SolveError;
 
     proptest! {
         #![proptest_config(ProptestConfig { cases: 6, .. ProptestConfig::default() })]
@@ -515,21 +541,11 @@ mod loads {
                 Ok(s) => {
                     println!("F {load:.1} N u {u:.2}: p0 {:.3e} hc {:.4e} hmin {:.4e} in {} steps", s.hertz_pressure, s.central_film, s.min_film.value, s.convergence.iterations);
                     prop_assert!(s.hertz_pressure < 1.75e9);
-                    prop_assert!(s.convergence.residual <= 1e-7);
-                    for v in [s.central_film, s.min_film.value, s.max_pressure.value, s.load] {
-                        prop_assert!(v.is_finite());
-                    }
-                    prop_assert!(s.min_film.value > 0.0 && s.min_film.value <= s.central_film);
-                    prop_assert!((s.load / load - 1.0).abs() < 1e-5, "load {} vs {load}", s.load);
+                    check_converged(&s, load)?;
                 }
                 Err(e) => {
                     println!("F {load:.1} N u {u:.2}: {e}");
-                    match e {
-                        SolveError::NotConverged { residual, .. } => prop_assert!(!residual.is_nan()),
-                        SolveError::Physical { .. } => {}
-                        SolveError::InvalidInput { field, .. } => prop_assert_eq!(field, "Ehl2dOptions.nx"),
-                        e => prop_assert!(false, "unexpected error {e}"),
-                    }
+                    check_typed_failure(e)?;
                 }
             }
         }

@@ -136,8 +136,8 @@ fn ehl2d_transient_long_roller_follows_the_line_solution() {
 
 mod stability {
     use super::*;
+    use crate::ehl_2d::{check_converged, check_typed_failure};
     use proptest::prelude::*;
-    use tribod::physics::SolveError;
 
     proptest! {
         #![proptest_config(ProptestConfig { cases: 4, .. ProptestConfig::default() })]
@@ -153,22 +153,12 @@ mod stability {
             match solve_transient(&input, &circular_options(), squeeze, None, None, &mut Kept2d::default(), &Silent) {
                 Ok((s, next)) => {
                     println!("×{jump:.2}, Δt {:.1e} a/u: h_c {:.4e} h_min {:.4e}, {} steps, {:?} sub-steps", 10f64.powf(log_dt), s.central_film, s.min_film.value, s.convergence.iterations, s.substeps);
-                    prop_assert!(s.convergence.residual <= 1e-7);
-                    for v in [s.central_film, s.min_film.value, s.max_pressure.value, s.load] {
-                        prop_assert!(v.is_finite());
-                    }
-                    prop_assert!(s.min_film.value > 0.0 && s.min_film.value <= s.central_film);
-                    prop_assert!((s.load / input.load - 1.0).abs() < 1e-5, "load {} vs {}", s.load, input.load);
+                    check_converged(&s, input.load)?;
                     prop_assert!(next.mass.iter().all(|m| m.is_finite() && *m > 0.0));
                 }
                 Err(e) => {
                     println!("×{jump:.2}, Δt {:.1e} a/u: {e}", 10f64.powf(log_dt));
-                    match e {
-                        SolveError::NotConverged { residual, .. } => prop_assert!(!residual.is_nan()),
-                        SolveError::Physical { .. } => {}
-                        SolveError::InvalidInput { field, .. } => prop_assert_eq!(field, "Ehl2dOptions.nx"),
-                        e => prop_assert!(false, "unexpected error {e}"),
-                    }
+                    check_typed_failure(e)?;
                 }
             }
         }
@@ -216,4 +206,22 @@ fn probe_transient_work() {
     for passages in [0.01, 0.1, 0.5, 1.0, 10.0, 1e3] {
         counted(&format!("transient Δt {passages} a/u"), &|| step(&input, &o, w0, passages * passage(s0, 1.0), &mut Kept2d::default()).0);
     }
+}
+
+/// The sub-step fallback: a load drop to half in 0.1 a/u_m with Newton capped at 3 steps per
+/// stage does not converge as one step but as two of Δt/2 (measured, dev: 103 Newton steps in
+/// all, failed attempt included; the cap 2 takes 4 sub-steps, 213 steps), and the film is the
+/// whole step's (cap 5: one step, 32 Newton steps) up to the time discretisation: 208.304 against
+/// 208.253 nm (+0.025 %, backward Euler's first-order error). Asserted: 2 sub-steps, within 0.1 %.
+/// (The case is chosen by the cap: a better Newton may converge it whole; then pick a smaller cap.)
+#[test]
+fn ehl2d_transient_failed_step_is_split_into_sub_steps() {
+    let (s0, w0) = circular_steady();
+    let input = circular(50.0);
+    let squeeze = Squeeze2d { previous: w0, time_step: 0.1 * passage(s0, 1.0) };
+    let capped = |cap: u32| solve_transient(&input, &Ehl2dOptions { max_iterations: cap, ..circular_options() }, squeeze, None, None, &mut Kept2d::default(), &Silent).unwrap().0;
+    let (split, whole) = (capped(3), capped(5));
+    println!("cap 3: {:?} sub-steps, {} Newton steps, h_c {:.6e}; cap 5: {:?}, {}, h_c {:.6e}", split.substeps, split.convergence.iterations, split.central_film, whole.substeps, whole.convergence.iterations, whole.central_film);
+    assert_eq!((split.substeps, whole.substeps), (Some(2), Some(1)));
+    assert!(rel(split.central_film, whole.central_film) < 1e-3);
 }
