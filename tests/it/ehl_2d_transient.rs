@@ -56,6 +56,14 @@ fn ehl2d_transient_large_time_step_is_the_steady_solution() {
     for ratio in [c3 / c4, m3 / m4] {
         assert!((5.0..20.0).contains(&ratio), "{errors:?}");
     }
+    // The resolution check (`grid_check`) of a step is the check solve of the same step on 33²:
+    // at ΔT = 1e4 its estimate is the steady one's.
+    let checked = Ehl2dOptions { grid_check: true, ..o };
+    let (steady, _) = solve_from(&circular(130.0), &checked, Some(w0), &Silent).unwrap();
+    let (s, _) = step(&circular(130.0), &checked, w0, 1e4 * passage(s0, 1.0), &mut Kept2d::default());
+    println!("grid error: steady {:?}, step {:?}", steady.grid_error, s.grid_error);
+    let (e_steady, e_step) = (steady.grid_error.unwrap(), s.grid_error.unwrap());
+    assert!((e_step - e_steady).abs() < 1e-3 * e_steady, "{e_step} vs {e_steady}");
 }
 
 /// After a +30 % load step a step of 0.01 passage times keeps the central film within 1 % of the
