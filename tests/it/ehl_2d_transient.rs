@@ -233,3 +233,21 @@ fn ehl2d_transient_failed_step_is_split_into_sub_steps() {
     assert_eq!((split.substeps, whole.substeps), (Some(2), Some(1)));
     assert!(rel(split.central_film, whole.central_film) < 1e-3);
 }
+
+/// The previous level is mapped by physical position also through a reversal of the entrainment
+/// (`Warm2d::sign`; the solver's frame is mirrored for `u_m < 0`): a step of 0.01 a/u_m after the
+/// speed flips from +1 to −1 m/s keeps the old film, its minimum in the old exit at x > 0 (the
+/// steady solve at −1 m/s has it at x < 0, mirrored).
+#[test]
+fn ehl2d_transient_step_through_a_reversal_keeps_the_film_in_place() {
+    let (s0, w0) = circular_steady();
+    let o = circular_options();
+    let reversed = Ehl2dInput { entrainment_velocity: -1.0, ..circular(100.0) };
+    let (steady, _) = solve_from(&reversed, &o, None, &Silent).unwrap();
+    let (s, next) = step(&reversed, &o, w0, 0.01 * passage(s0, 1.0), &mut Kept2d::default());
+    println!("min film before {:?}, after the flip {:?}, steady reversed {:?}; h_c {:.5e} → {:.5e}", s0.min_film, s.min_film, steady.min_film, s0.central_film, s.central_film);
+    assert!(s0.min_film.x > 0.0 && steady.min_film.x < 0.0);
+    assert!(s.min_film.x > 0.0, "{:?}", s.min_film);
+    assert!(rel(s.central_film, s0.central_film) < 0.01);
+    assert_eq!((w0.sign, next.sign), (1.0, -1.0));
+}
