@@ -121,6 +121,7 @@ fn ehl2d_transient_long_roller_follows_the_line_solution() {
     let (input, rx, w) = long_straight_roller();
     let (s0, w0) = long_straight_roller_steady();
     let o = Ehl2dOptions { grid_check: false, ..long_straight_roller_options() };
+    let t = std::time::Instant::now();
     let l0 = solve_1d(&line_section(rx, w), &line_options(), &Silent).unwrap();
     let stepped = Ehl2dInput { load: 1.3 * input.load, ..input };
     let tp = passage(s0, 1.0);
@@ -139,6 +140,7 @@ fn ehl2d_transient_long_roller_follows_the_line_solution() {
         warm = next;
         state = l.state;
     }
+    println!("the steps and the 1-D solves (the shared cold solve not counted) in {:?}", t.elapsed());
     assert!(worst < 0.015, "largest difference {worst}");
 }
 
