@@ -7,13 +7,14 @@
 //! crowned roller at the cam nose (`-- roller`). Times are the best of a few repetitions, one
 //! thread for the solver's own work (faer's sparse LU may use the rayon pool).
 //!
-//! `-- cycle [angles=360] [nx=65] [ny=129] [stride=30] [reference] [cycle-only]`: the seed 000 roller cycle
-//! (`examples/seed000_roller_accurate.json`) with `ehl.geometry: finite` through the `cam_cycle`
-//! kind — wall time, Newton steps per angle, warm/cold solves; then the film model alone along the
-//! cycle's contact points (smooth surfaces): the warm-started chain against cold solves at every
-//! `stride`-th angle (Newton steps and time saved by the warm start); with `reference` the films
-//! at the largest-load, nose and base-circle angles against the Richardson extrapolation of this
-//! grid and the one with twice the intervals (cold solves).
+//! `-- cycle [angles=360] [nx=65] [ny=129] [stride=30] [reference] [cycle-only] [steady] [auto]`:
+//! the seed 000 roller cycle (`examples/seed000_roller_accurate.json`) with `ehl.geometry: finite`
+//! through the `cam_cycle` kind (with the squeeze term; `steady`: `ehl.squeeze: false`; `auto`:
+//! `fidelity: auto`) — wall time, Newton steps per angle, warm/cold solves; then the film model
+//! alone along the cycle's contact points (smooth surfaces): the warm-started chain against cold
+//! solves at every `stride`-th angle (Newton steps and time saved by the warm start); with
+//! `reference` the films at the largest-load, nose and base-circle angles against the Richardson
+//! extrapolation of this grid and the one with twice the intervals (cold solves).
 
 use std::time::Instant;
 use tribod::physics::ehl::twod::{solve, Ehl2dInput, Ehl2dOptions, Geometry2d};
@@ -128,6 +129,14 @@ fn cycle(args: &[String]) {
     let mut spec: Value = serde_json::from_str::<Value>(&text).unwrap()["spec"].clone();
     spec["angles"] = json!(angles);
     spec["ehl"] = json!({"geometry": "finite", "nx": nx, "ny": ny, "tolerance": 1e-6});
+    // `steady`: the quasi-steady cycle (no squeeze term; the default is the transient one).
+    if args.iter().any(|a| a == "steady") {
+        spec["ehl"]["squeeze"] = json!(false);
+    }
+    // `auto`: the 2-D model only where the contact's ends matter, the 1-D `auto` elsewhere.
+    if args.iter().any(|a| a == "auto") {
+        spec["fidelity"] = json!("auto");
+    }
     let kind = registry::find("cam_cycle").unwrap();
     let prepared = kind.prepare(&spec, &Limits::default()).expect("valid spec");
     tribod::physics::film::work::reset();

@@ -495,7 +495,7 @@ pub struct EhlSpec {
     pub thermal: Option<EhlThermalSpec>,
     /// The contact model of the numerical fidelities: `line` (default) the 1-D line-contact solver
     /// above; `finite` the 2-D finite-length / point solver (`physics::ehl::twod`, isothermal,
-    /// steady, Newtonian): a roller follower as a finite line contact with its `crown` profile
+    /// Newtonian; transient along a cycle, see `squeeze`): a roller follower as a finite line contact with its `crown` profile
     /// (without a crown: a straight roller of the contact length), a spherical follower as a point
     /// contact (which the line model leaves to the closed form). Each angle starts from the
     /// previous angle's 2-D solution. Results gain the edge pressure peak along the roller and
@@ -521,6 +521,13 @@ pub struct EhlSpec {
     /// default 0.05 (seed 000's roller: 33×65 changes by 6.8 % from 17×33, 65×129 by ≈ 3 %).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub grid_tolerance: Option<f64>,
+    /// `finite`: the squeeze term of seed 000 eq. 2 (`12 ∂(ρh)/∂t`) along a cam cycle — each
+    /// angle one backward-Euler step of the transient 2-D problem from the previous angle's film,
+    /// as the line model always does. `false`: quasi-steady (each angle a steady solve started
+    /// from the previous one; a dwell reuses its film). Default true. A single contact point
+    /// (`cam_point`, `ehl_point`) has no time step and is steady either way.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub squeeze: Option<bool>,
 }
 
 /// The contact model of the numerical fidelities (see [`EhlSpec::geometry`]).
@@ -630,6 +637,7 @@ impl Default for EhlSpec {
             nx: None,
             ny: None,
             grid_tolerance: None,
+            squeeze: None,
         }
     }
 }
@@ -649,7 +657,7 @@ impl EhlSpec {
                 ExtrapolationSpec::None => Extrapolation::None,
             },
             thermal: None,
-            finite: (self.geometry == EhlGeometry::Finite).then(|| FiniteSettings { options: self.grid_options(false), crown: None }),
+            finite: (self.geometry == EhlGeometry::Finite).then(|| FiniteSettings { options: self.grid_options(false), crown: None, squeeze: self.squeeze.unwrap_or(true) }),
         }
     }
 
@@ -687,6 +695,7 @@ impl EhlSpec {
             v.memory(&format!("{path}/nx"), crate::physics::ehl::twod::memory_bytes(o.nx, o.ny), limits, "the 2-D EHL solver");
         } else {
             v.check(self.nx.is_none() && self.ny.is_none() && self.grid_tolerance.is_none(), &format!("{path}/nx"), "nx, ny and grid_tolerance set the grid of geometry finite");
+            v.check(self.squeeze.is_none(), &format!("{path}/squeeze"), "squeeze is an option of geometry finite (the line model always carries the squeeze term along a cycle)");
         }
     }
 }

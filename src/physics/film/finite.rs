@@ -13,9 +13,15 @@
 //! the secant extrapolation through it and the point before (the film carries the warm start it
 //! was solved from, [`FiniteFilm::prior`]) when that has the smaller Newton residual
 //! ([`twod::solve_kept`]); the
-//! cold nested iteration runs only at the first point or when the warm start fails. The model is
-//! steady (no squeeze term) and Newtonian; its film does not depend on the sliding velocity or on
-//! the previous point beyond the Newton tolerance, so it is history-free (a dwell reuses a film).
+//! cold nested iteration runs only at the first point or when the warm start fails.
+//!
+//! Squeeze ([`Finite::squeeze`], `ehl.squeeze`, on in the cam kinds by default): a point with a
+//! time step and a previous 2-D film is one backward-Euler step of the transient problem (seed 000
+//! eq. 2's `12 ∂(ρh)/∂t`) from that film ([`twod::solve_transient`]), as the 1-D line model steps
+//! along a cycle; the first point (and a point after a closed-form one) is steady. Without it the
+//! model is steady (quasi-steady along a cycle) and Newtonian; its film then does not depend on
+//! the sliding velocity or on the previous point beyond the Newton tolerance, so it is
+//! history-free (a dwell reuses a film).
 //! Optional (off by default, [`Finite::with_rescale_range`]): a film at the same load and shape
 //! and an entrainment within [`RESCALE_RANGE`] is rescaled `h ∝ u^0.69` instead of solved.
 //!
@@ -67,6 +73,9 @@ pub struct FiniteFilm {
     pub entrainment: f64,
     /// Load (N), shape and temperature (K) of that solve: a rescale needs them equal.
     pub solved_at: (f64, ContactShape, f64),
+    /// The time step (s) of the backward-Euler squeeze step this film was solved by, from the
+    /// film `prior` was taken from (`None`: a steady solve).
+    pub squeeze_step: Option<f64>,
 }
 
 /// The finite-length / point film model. See the module docs.
@@ -89,6 +98,10 @@ pub struct Finite {
     /// the entrainment: at 0.5 % the seed 000 cycle's periodic roller speed stalled at a
     /// residual of 1.5e-6 against 1e-8, BENCHMARKS.md issue 16, `ehl2d-6`).
     pub rescale_range: f64,
+    /// The squeeze term of seed 000 eq. 2 (`12 ∂(ρh)/∂t`): a point with a time step and a previous
+    /// 2-D film is solved as one backward-Euler step from that film ([`twod::solve_transient`]);
+    /// false: every point steady (quasi-steady, history-free). [`Finite::with_squeeze`].
+    pub squeeze: bool,
     checked: AtomicBool,
     /// The 2-D Newton preconditioner of the last solve, for the next one on the same grid (the
     /// next contact point; [`twod::solve_kept`]). Taken out for a solve and put back after it: a
@@ -98,7 +111,12 @@ pub struct Finite {
 
 impl Finite {
     pub fn new(options: Ehl2dOptions, crown: Option<Crown>, fallback: ClosedForm) -> Self {
-        Finite { options, crown, fallback, check_first_only: false, rescale_range: 0.0, checked: AtomicBool::new(false), kept: Mutex::new(Kept2d::default()) }
+        Finite { options, crown, fallback, check_first_only: false, rescale_range: 0.0, squeeze: false, checked: AtomicBool::new(false), kept: Mutex::new(Kept2d::default()) }
+    }
+
+    /// The same model with the squeeze term on (`true`) or off.
+    pub fn with_squeeze(self, squeeze: bool) -> Self {
+        Finite { squeeze, ..self }
     }
 
     /// The same model with the entrainment rescale over `range` (0: off, every film solved).
@@ -231,17 +249,26 @@ impl FilmModel for Finite {
     /// Steady and Newtonian: the film depends on load, shape and entrainment alone (the warm start
     /// changes it by less than the Newton tolerance; the optional entrainment rescale by ≲ 1e-3, see
     /// [`RESCALE_RANGE`]).
+    /// With the squeeze term the film depends on the previous point's: not history-free.
     fn history_free(&self) -> bool {
-        true
+        !self.squeeze
     }
 
     /// Re-enters the converged solution at the film's entrainment (its warm start at its own
-    /// problem: no Newton step moves it; a rescaled film is solved there) with the fields on.
+    /// problem: no Newton step moves it; a rescaled film is solved there) with the fields on; a
+    /// squeeze step re-enters the same step (from the film it started from).
     fn fields(&self, film: &FilmSolution, input: &ContactInput) -> Result<Option<Fields2d>, SolveError> {
         let Some(f) = film.finite.as_deref() else { return Ok(None) };
         let ehl = Ehl2dInput { entrainment_velocity: f.entrainment, ..self.problem(input) };
         let options = Ehl2dOptions { fields: true, grid_check: false, ..self.options };
-        Ok(twod::solve_from(&ehl, &options, Some(&*f.warm), &Silent)?.0.fields)
+        let solved = match (f.squeeze_step, f.prior.as_deref()) {
+            (Some(time_step), Some(previous)) => {
+                let squeeze = twod::Squeeze2d { previous, time_step };
+                twod::solve_transient(&ehl, &options, squeeze, Some(&*f.warm), None, &mut Kept2d::default(), &Silent)?
+            }
+            _ => twod::solve_from(&ehl, &options, Some(&*f.warm), &Silent)?,
+        };
+        Ok(solved.0.fields)
     }
 
     /// The default nodal traction, counted ([`super::work`]).
@@ -259,7 +286,7 @@ impl FilmModel for Finite {
         if input.entrainment_velocity == 0.0 {
             return self.fallback.solve(input, previous);
         }
-        if let Some(r) = previous.filter(|_| self.rescale_range > 0.0).and_then(|p| self.rescaled(input, p)) {
+        if let Some(r) = previous.filter(|_| self.rescale_range > 0.0 && !self.squeeze).and_then(|p| self.rescaled(input, p)) {
             return Ok(r);
         }
         let es = input.contact_modulus;
@@ -272,7 +299,12 @@ impl FilmModel for Finite {
         let grid_check = self.options.grid_check && (!self.check_first_only || first || warm.is_none());
         let options = Ehl2dOptions { fields: true, grid_check, ..self.options };
         let mut kept = self.kept.lock().map(|mut k| std::mem::take(&mut *k)).unwrap_or_default();
-        let solved = twod::solve_kept(&ehl, &options, warm, prior, &mut kept, &Silent);
+        // The squeeze step from the previous point's 2-D film (seed 000 eq. 2's ∂(ρh)/∂t).
+        let squeeze_step = (self.squeeze && input.time_step > 0.0 && warm.is_some()).then_some(input.time_step);
+        let solved = match (squeeze_step, warm) {
+            (Some(time_step), Some(previous)) => twod::solve_transient(&ehl, &options, twod::Squeeze2d { previous, time_step }, warm, prior, &mut kept, &Silent),
+            _ => twod::solve_kept(&ehl, &options, warm, prior, &mut kept, &Silent),
+        };
         if let Ok(mut k) = self.kept.lock() {
             *k = kept;
         }
@@ -354,6 +386,7 @@ impl FilmModel for Finite {
                 solved_entrainment: input.entrainment_velocity,
                 entrainment: input.entrainment_velocity,
                 solved_at: (load, input.shape, input.temperature),
+                squeeze_step,
             })),
         })
     }

@@ -409,6 +409,8 @@ pub struct FiniteSettings {
     /// The roller's axial profile (`None`: a straight roller of the contact length, or a point
     /// contact).
     pub crown: Option<crate::physics::roller::Crown>,
+    /// The squeeze term along a cycle ([`Finite::squeeze`]).
+    pub squeeze: bool,
 }
 
 /// The film model for a fidelity: `fast` the closed form; `accurate` the numerical EHL solver on
@@ -422,7 +424,7 @@ pub struct FiniteSettings {
 pub fn model_for(fidelity: Fidelity, fast: ClosedForm, settings: AccurateSettings) -> Box<dyn FilmModel> {
     let numerical = Numerical::new(settings.options, fast).with_extrapolation(settings.extrapolation);
     if let Some(f) = settings.finite {
-        let finite = Finite::new(f.options, f.crown, fast).check_first_only();
+        let finite = Finite::new(f.options, f.crown, fast).check_first_only().with_squeeze(f.squeeze);
         match fidelity {
             Fidelity::Fast => {}
             Fidelity::Accurate => return Box::new(finite),
