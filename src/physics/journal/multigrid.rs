@@ -204,18 +204,8 @@ pub struct Level {
     fixed: Vec<u8>,
     /// 1 at free nodes, 0 at fixed ones (branch-free loops).
     mask: Vec<f64>,
-    /// `1/diag` at free nodes, 0 at fixed ones, in single precision: the V-cycle's copy (it
-    /// only preconditions CG, whose residual stays in double precision), which also serves as
-    /// its mask (non-zero exactly at the free nodes).
-    inv_d: Vec<f32>,
-    /// `ce`, `cn` and `diag` in single precision, the operator of the V-cycle's smoothing and
-    /// residual passes: half the bytes per pass of the double-precision arrays (the passes are
-    /// bound by data movement, BENCHMARKS.md, speed eleventh round). The preconditioner stays
-    /// a symmetric V-cycle of a symmetric M-matrix within 1e-7 of `A`; CG, `λ` and the
-    /// coarsest dense factor use the double-precision arrays.
-    ce32: Vec<f32>,
-    cn32: Vec<f32>,
-    d32: Vec<f32>,
+    /// `1/diag` at free nodes, 0 at fixed ones.
+    inv_d: Vec<f64>,
     /// `1/diag` at every node (set with the coefficients; `inv_d` is it masked).
     inv_diag: Vec<f64>,
     /// Per row, two ascending column ranges `a₁..b₁`, `a₂..b₂` that hold every free node: the
@@ -291,9 +281,6 @@ impl Level {
             fixed: vec![FREE; n],
             mask: vec![0.0; n],
             inv_d: vec![0.0; n],
-            ce32: vec![0.0; n],
-            cn32: vec![0.0; n],
-            d32: vec![0.0; n],
             inv_diag: vec![0.0; n],
             free_span: vec![[(0, nt), (nt, nt)]; nz],
             dirty: vec![true; nz],
@@ -336,10 +323,9 @@ impl Level {
                 *f = FREE;
             }
         }
-        for v in [&mut self.u, &mut self.x, &mut self.b, &mut self.r, &mut self.mask] {
+        for v in [&mut self.u, &mut self.x, &mut self.b, &mut self.r, &mut self.mask, &mut self.inv_d] {
             v.fill(0.0);
         }
-        self.inv_d.fill(0.0);
         self.free_span.fill([(0, self.nt), (self.nt, self.nt)]);
         self.dirty.fill(true);
         self.theta0 = 0.0;
@@ -453,11 +439,6 @@ impl Level {
                 self.src[k] = 0.0;
             }
         }
-        for (wide, single) in [(&self.ce, &mut self.ce32), (&self.cn, &mut self.cn32), (&self.diag, &mut self.d32)] {
-            for (s, w) in single.iter_mut().zip(wide.iter()) {
-                *s = *w as f32;
-            }
-        }
         self.cos_f = cos_f;
         self.sin_f = sin_f;
         // `fixed` is not changed here, so the masks and free spans of the rows not marked dirty
@@ -468,7 +449,7 @@ impl Level {
             if !dirty {
                 let row = j * nt..(j + 1) * nt;
                 for ((inv, m), id) in self.inv_d[row.clone()].iter_mut().zip(&self.mask[row.clone()]).zip(&self.inv_diag[row]) {
-                    *inv = if *m != 0.0 { *id as f32 } else { 0.0 };
+                    *inv = if *m != 0.0 { *id } else { 0.0 };
                 }
             }
         }
@@ -544,7 +525,7 @@ impl Level {
             for i in 0..nt {
                 let free = f[i] == FREE;
                 m[i] = if free { 1.0 } else { 0.0 };
-                inv[i] = if free { id[i] as f32 } else { 0.0 };
+                inv[i] = if free { id[i] } else { 0.0 };
                 if free {
                     if first != usize::MAX && i - last - 1 > gap {
                         (gap, gap_start) = (i - last - 1, last + 1);
@@ -888,12 +869,12 @@ impl Level {
         }
         let row = j * nt;
         let (ta, tb) = (&self.tmp[a * nt..(a + 1) * nt], &self.tmp[b * nt..(b + 1) * nt]);
-        let m = &self.inv_d[row..row + nt];
+        let m = &self.mask[row..row + nt];
         let x = &mut self.x[row..row + nt];
         // outside the free ranges the mask is 0 (the correction adds nothing)
         for (lo, hi) in self.free_span[j] {
             for i in lo..hi {
-                x[i] += m[i].gate() * ((1.0 - w) * ta[i] + w * tb[i]);
+                x[i] += m[i] * ((1.0 - w) * ta[i] + w * tb[i]);
             }
         }
     }
@@ -913,19 +894,17 @@ impl Level {
         for (lo, hi) in span {
             let mut i = lo + (color + j + lo) % 2;
             while i < hi {
-                cur[i] = b[i] * inv[i] as f64;
+                cur[i] = b[i] * inv[i];
                 i += 2;
             }
         }
     }
 
-    /// `r = b − A x` on row `j` (free nodes; 0 at fixed ones), with the V-cycle's
-    /// single-precision operator.
+    /// `r = b − A x` on row `j` (free nodes; 0 at fixed ones).
     #[inline(always)]
     fn residual_row(&mut self, j: usize) {
         let mut r = std::mem::take(&mut self.r);
-        let op = Operator { ce: &self.ce32, cn: &self.cn32, d: &self.d32 };
-        kernel_row::<{ Self::SUB_MINUS }, _, _>(op, self.nt, j, self.free_span[j], &self.x, &mut r, &self.inv_d, &self.b);
+        self.kernel_row::<{ Self::SUB_MINUS }>(j, self.free_span[j], &self.x, &mut r, &self.mask, &self.b);
         self.r = r;
     }
 
@@ -943,9 +922,9 @@ impl Level {
     fn smooth_range(&mut self, j: usize, color: usize, lo: usize, hi: usize) {
         let nt = self.nt;
         let row = j * nt;
-        let ce = &self.ce32[row..row + nt];
-        let cn_s = &self.cn32[row - nt..row];
-        let cn_n = &self.cn32[row..row + nt];
+        let ce = &self.ce[row..row + nt];
+        let cn_s = &self.cn[row - nt..row];
+        let cn_n = &self.cn[row..row + nt];
         let inv = &self.inv_d[row..row + nt];
         let b = &self.b[row..row + nt];
         let (below, rest) = self.x.split_at_mut(row);
@@ -954,9 +933,9 @@ impl Level {
         let above = &above[..nt];
         #[inline(always)]
         #[allow(clippy::too_many_arguments)]
-        fn upd(cur: &mut [f64], b: &[f64], ce: &[f32], cn_n: &[f32], cn_s: &[f32], above: &[f64], below: &[f64], inv: &[f32], i: usize, iw: usize, ie: usize) {
-            let s = b[i] + ce[i] as f64 * cur[ie] + ce[iw] as f64 * cur[iw] + cn_n[i] as f64 * above[i] + cn_s[i] as f64 * below[i];
-            cur[i] = s * inv[i] as f64;
+        fn upd(cur: &mut [f64], b: &[f64], ce: &[f64], cn_n: &[f64], cn_s: &[f64], above: &[f64], below: &[f64], inv: &[f64], i: usize, iw: usize, ie: usize) {
+            let s = b[i] + ce[i] * cur[ie] + ce[iw] * cur[iw] + cn_n[i] * above[i] + cn_s[i] * below[i];
+            cur[i] = s * inv[i];
         }
         let mut i = lo + (color + j + lo) % 2;
         if i >= hi {
@@ -973,11 +952,11 @@ impl Level {
             // SAFETY: 1 ≤ k − 1 < k + 1 < nt and every slice has length nt.
             unsafe {
                 let s = *b.get_unchecked(k)
-                    + *ce.get_unchecked(k) as f64 * *cur.get_unchecked(k + 1)
-                    + *ce.get_unchecked(k - 1) as f64 * *cur.get_unchecked(k - 1)
-                    + *cn_n.get_unchecked(k) as f64 * *above.get_unchecked(k)
-                    + *cn_s.get_unchecked(k) as f64 * *below.get_unchecked(k);
-                *cur.get_unchecked_mut(k) = s * *inv.get_unchecked(k) as f64;
+                    + *ce.get_unchecked(k) * *cur.get_unchecked(k + 1)
+                    + *ce.get_unchecked(k - 1) * *cur.get_unchecked(k - 1)
+                    + *cn_n.get_unchecked(k) * *above.get_unchecked(k)
+                    + *cn_s.get_unchecked(k) * *below.get_unchecked(k);
+                *cur.get_unchecked_mut(k) = s * *inv.get_unchecked(k);
             }
             k += 2;
         }
@@ -1049,105 +1028,59 @@ impl Level {
     #[inline(always)]
     #[allow(clippy::too_many_arguments)]
     fn kernel_row<const MODE: u8>(&self, j: usize, span: Span, v: &[f64], out: &mut [f64], mask: &[f64], sub: &[f64]) {
-        let op = Operator { ce: &self.ce, cn: &self.cn, d: &self.diag };
-        kernel_row::<MODE, _, _>(op, self.nt, j, span, v, out, mask, sub);
-    }
-}
-
-/// A stored value read into the double-precision arithmetic of the operator kernels.
-trait Stored: Copy {
-    fn wide(self) -> f64;
-    /// 1 where a mask array marks a free node, else 0: a double-precision `mask` holds exactly
-    /// that; a single-precision `inv_d` is non-zero exactly at the free nodes.
-    fn gate(self) -> f64;
-}
-
-impl Stored for f64 {
-    #[inline(always)]
-    fn wide(self) -> f64 {
-        self
-    }
-    #[inline(always)]
-    fn gate(self) -> f64 {
-        self
-    }
-}
-
-impl Stored for f32 {
-    #[inline(always)]
-    fn wide(self) -> f64 {
-        self as f64
-    }
-    #[inline(always)]
-    fn gate(self) -> f64 {
-        if self != 0.0 { 1.0 } else { 0.0 }
-    }
-}
-
-/// The five-point operator's coefficient arrays of one level (`ce`, `cn`, `diag`), in double
-/// precision (CG, `λ`) or in the V-cycle's single precision.
-#[derive(Clone, Copy)]
-struct Operator<'a, C> {
-    ce: &'a [C],
-    cn: &'a [C],
-    d: &'a [C],
-}
-
-/// [`Level::kernel_row`] for the operator `op` of a level with `nt` columns.
-#[inline(always)]
-#[allow(clippy::too_many_arguments)]
-fn kernel_row<const MODE: u8, C: Stored, M: Stored>(op: Operator<C>, nt: usize, j: usize, span: Span, v: &[f64], out: &mut [f64], mask: &[M], sub: &[f64]) {
-    let row = j * nt;
-    fill_gaps(&mut out[row..row + nt], span);
-    for (lo, hi) in span {
-        kernel_range::<MODE, C, M>(op, nt, j, lo, hi, v, out, mask, sub);
-    }
-}
-
-/// [`kernel_row`] on the columns `lo..hi` (the others untouched).
-#[inline(always)]
-#[allow(clippy::too_many_arguments)]
-fn kernel_range<const MODE: u8, C: Stored, M: Stored>(op: Operator<C>, nt: usize, j: usize, lo: usize, hi: usize, v: &[f64], out: &mut [f64], mask: &[M], sub: &[f64]) {
-    #[inline(always)]
-    fn finish<const MODE: u8>(m: f64, a: f64, s: f64) -> f64 {
-        match MODE {
-            0 => m * a,
-            1 => m * (a - s),
-            _ => m * (s - a),
+        let row = j * self.nt;
+        fill_gaps(&mut out[row..row + self.nt], span);
+        for (lo, hi) in span {
+            self.kernel_range::<MODE>(j, lo, hi, v, out, mask, sub);
         }
     }
-    let row = j * nt;
-    let ce = &op.ce[row..row + nt];
-    let cs = &op.cn[row - nt..row];
-    let cnn = &op.cn[row..row + nt];
-    let d = &op.d[row..row + nt];
-    let m = &mask[row..row + nt];
-    let sb = &sub[row..row + nt];
-    let vb = &v[row - nt..row];
-    let vc = &v[row..row + nt];
-    let va = &v[row + nt..row + 2 * nt];
-    let o = &mut out[row..row + nt];
-    if lo == 0 && hi > 0 {
-        let a0 = d[0].wide() * vc[0] - ce[0].wide() * vc[1] - ce[nt - 1].wide() * vc[nt - 1] - cnn[0].wide() * va[0] - cs[0].wide() * vb[0];
-        o[0] = finish::<MODE>(m[0].gate(), a0, sb[0]);
-    }
-    if hi == nt && lo < nt {
-        let an = d[nt - 1].wide() * vc[nt - 1] - ce[nt - 1].wide() * vc[0] - ce[nt - 2].wide() * vc[nt - 2] - cnn[nt - 1].wide() * va[nt - 1] - cs[nt - 1].wide() * vb[nt - 1];
-        o[nt - 1] = finish::<MODE>(m[nt - 1].gate(), an, sb[nt - 1]);
-    }
-    // the interior columns of the range, 1 ≤ i ≤ nt − 2
-    let (a, b) = (lo.max(1), hi.min(nt - 1));
-    if a >= b {
-        return;
-    }
-    let (d1, ce0, ce1, cn1, cs1) = (&d[a..b], &ce[a - 1..b - 1], &ce[a..b], &cnn[a..b], &cs[a..b]);
-    let (vw, vcc, ve, va1, vb1) = (&vc[a - 1..b - 1], &vc[a..b], &vc[a + 1..b + 1], &va[a..b], &vb[a..b]);
-    let (m1, s1) = (&m[a..b], &sb[a..b]);
-    let o1 = &mut o[a..b];
-    let n = b - a;
-    for i in 0..n {
-        let a = d1[i].wide() * vcc[i] - ce1[i].wide() * ve[i] - ce0[i].wide() * vw[i] - cn1[i].wide() * va1[i] - cs1[i].wide() * vb1[i];
-        o1[i] = finish::<MODE>(m1[i].gate(), a, s1[i]);
+
+    /// [`Level::kernel_row`] on the columns `lo..hi` (the others untouched).
+    #[inline(always)]
+    #[allow(clippy::too_many_arguments)]
+    fn kernel_range<const MODE: u8>(&self, j: usize, lo: usize, hi: usize, v: &[f64], out: &mut [f64], mask: &[f64], sub: &[f64]) {
+        #[inline(always)]
+        fn finish<const MODE: u8>(m: f64, a: f64, s: f64) -> f64 {
+            match MODE {
+                0 => m * a,
+                1 => m * (a - s),
+                _ => m * (s - a),
+            }
+        }
+        let nt = self.nt;
+        let row = j * nt;
+        let ce = &self.ce[row..row + nt];
+        let cs = &self.cn[row - nt..row];
+        let cnn = &self.cn[row..row + nt];
+        let d = &self.diag[row..row + nt];
+        let m = &mask[row..row + nt];
+        let sb = &sub[row..row + nt];
+        let vb = &v[row - nt..row];
+        let vc = &v[row..row + nt];
+        let va = &v[row + nt..row + 2 * nt];
+        let o = &mut out[row..row + nt];
+        if lo == 0 && hi > 0 {
+            let a0 = d[0] * vc[0] - ce[0] * vc[1] - ce[nt - 1] * vc[nt - 1] - cnn[0] * va[0] - cs[0] * vb[0];
+            o[0] = finish::<MODE>(m[0], a0, sb[0]);
+        }
+        if hi == nt && lo < nt {
+            let an = d[nt - 1] * vc[nt - 1] - ce[nt - 1] * vc[0] - ce[nt - 2] * vc[nt - 2] - cnn[nt - 1] * va[nt - 1] - cs[nt - 1] * vb[nt - 1];
+            o[nt - 1] = finish::<MODE>(m[nt - 1], an, sb[nt - 1]);
+        }
+        // the interior columns of the range, 1 ≤ i ≤ nt − 2
+        let (a, b) = (lo.max(1), hi.min(nt - 1));
+        if a >= b {
+            return;
+        }
+        let (d1, ce0, ce1, cn1, cs1) = (&d[a..b], &ce[a - 1..b - 1], &ce[a..b], &cnn[a..b], &cs[a..b]);
+        let (vw, vcc, ve, va1, vb1) = (&vc[a - 1..b - 1], &vc[a..b], &vc[a + 1..b + 1], &va[a..b], &vb[a..b]);
+        let (m1, s1) = (&m[a..b], &sb[a..b]);
+        let o1 = &mut o[a..b];
+        let n = b - a;
+        for i in 0..n {
+            let a = d1[i] * vcc[i] - ce1[i] * ve[i] - ce0[i] * vw[i] - cn1[i] * va1[i] - cs1[i] * vb1[i];
+            o1[i] = finish::<MODE>(m1[i], a, s1[i]);
+        }
     }
 }
 
