@@ -1039,10 +1039,10 @@ impl Level {
         }
     }
 
-    /// [`Level::kernel_row`] on the columns `lo..hi` (the others untouched). `FACE_DIAG` (the
-    /// V-cycle's residual): the diagonal summed from the face coefficients in the order of
-    /// `set_film` (its value at every non-boundary node) instead of read from `diag`, and
-    /// `mask` read through [`gate`] (`inv_d` as the mask).
+    /// [`Level::kernel_row`] on the columns `lo..hi` (the others untouched). `mask` is read
+    /// through [`gate`] (any array non-zero exactly where the mask is 1 will do);
+    /// `FACE_DIAG`: the diagonal summed from the face coefficients in the order of `set_film`
+    /// (its value at every non-boundary node) instead of read from `diag`.
     #[inline(always)]
     #[allow(clippy::too_many_arguments)]
     fn kernel_range<const MODE: u8, const FACE_DIAG: bool>(&self, j: usize, lo: usize, hi: usize, v: &[f64], out: &mut [f64], mask: &[f64], sub: &[f64]) {
@@ -1066,9 +1066,8 @@ impl Level {
         let vc = &v[row..row + nt];
         let va = &v[row + nt..row + 2 * nt];
         let o = &mut out[row..row + nt];
-        // the diagonal at column `i` with west neighbour `iw`, and the mask
+        // the diagonal at column `i` with west neighbour `iw`
         let diag = |i: usize, iw: usize| if FACE_DIAG { ce[i] + ce[iw] + cnn[i] + cs[i] } else { d[i] };
-        let gate = |m: f64| if FACE_DIAG { gate(m) } else { m };
         if lo == 0 && hi > 0 {
             let a0 = diag(0, nt - 1) * vc[0] - ce[0] * vc[1] - ce[nt - 1] * vc[nt - 1] - cnn[0] * va[0] - cs[0] * vb[0];
             o[0] = finish::<MODE>(gate(m[0]), a0, sb[0]);
