@@ -646,7 +646,7 @@ impl Level {
         let mut n_changed = 0usize;
         for j in 0..nz {
             if j + 2 < nz {
-                self.kernel_row::<{ Self::MINUS_SUB }, false>(j + 1, [(0, nt), (nt, nt)], &self.u, lam, &self.interior, &self.src);
+                self.kernel_row::<{ Self::MINUS_SUB }>(j + 1, [(0, nt), (nt, nt)], &self.u, lam, &self.interior, &self.src);
             }
             let row = j * nt..(j + 1) * nt;
             let before = n_changed;
@@ -693,7 +693,7 @@ impl Level {
         let mut s = 0.0;
         for j in 1..nz - 1 {
             update(v, j + 1);
-            self.kernel_row::<{ Self::PLAIN }, false>(j, self.free_span[j], v, out, &self.mask, &self.src);
+            self.kernel_row::<{ Self::PLAIN }>(j, self.free_span[j], v, out, &self.mask, &self.src);
             let row = j * nt;
             for (lo, hi) in self.free_span[j] {
                 for (a, b) in v[row + lo..row + hi].iter().zip(&out[row + lo..row + hi]) {
@@ -718,7 +718,7 @@ impl Level {
         out[(self.nz - 1) * nt..].fill(0.0);
         let mut acc = 0.0;
         for j in 1..self.nz - 1 {
-            self.kernel_row::<{ Self::SUB_MINUS }, false>(j, [(0, nt), (nt, nt)], v, out, &self.mask, &self.src);
+            self.kernel_row::<{ Self::SUB_MINUS }>(j, [(0, nt), (nt, nt)], v, out, &self.mask, &self.src);
             for r in &out[j * nt..(j + 1) * nt] {
                 acc += r * r;
             }
@@ -869,13 +869,12 @@ impl Level {
         }
         let row = j * nt;
         let (ta, tb) = (&self.tmp[a * nt..(a + 1) * nt], &self.tmp[b * nt..(b + 1) * nt]);
-        // `inv_d` as the mask (non-zero exactly at the free nodes; the smoother reads it next)
-        let m = &self.inv_d[row..row + nt];
+        let m = &self.mask[row..row + nt];
         let x = &mut self.x[row..row + nt];
         // outside the free ranges the mask is 0 (the correction adds nothing)
         for (lo, hi) in self.free_span[j] {
             for i in lo..hi {
-                x[i] += gate(m[i]) * ((1.0 - w) * ta[i] + w * tb[i]);
+                x[i] += m[i] * ((1.0 - w) * ta[i] + w * tb[i]);
             }
         }
     }
@@ -901,14 +900,11 @@ impl Level {
         }
     }
 
-    /// `r = b − A x` on row `j` (free nodes; 0 at fixed ones). Inside the smoothing pass, so
-    /// it streams no array of its own: the diagonal is summed from the face coefficients (as
-    /// `set_film` sums it) and `inv_d` (non-zero exactly at the free nodes) is the mask, both
-    /// read by the smoother from the same rows; the values of `diag` and `mask` bit for bit.
+    /// `r = b − A x` on row `j` (free nodes; 0 at fixed ones).
     #[inline(always)]
     fn residual_row(&mut self, j: usize) {
         let mut r = std::mem::take(&mut self.r);
-        self.kernel_row::<{ Self::SUB_MINUS }, true>(j, self.free_span[j], &self.x, &mut r, &self.inv_d, &self.b);
+        self.kernel_row::<{ Self::SUB_MINUS }>(j, self.free_span[j], &self.x, &mut r, &self.mask, &self.b);
         self.r = r;
     }
 
@@ -1023,29 +1019,26 @@ impl Level {
         out[..nt].fill(0.0);
         out[(self.nz - 1) * nt..].fill(0.0);
         for j in 1..self.nz - 1 {
-            self.kernel_row::<MODE, false>(j, [(0, nt), (nt, nt)], v, out, mask, sub);
+            self.kernel_row::<MODE>(j, [(0, nt), (nt, nt)], v, out, mask, sub);
         }
     }
 
     /// Row `j` (not an edge row) of [`Level::kernel`] on the column ranges `span`; 0 on the
-    /// other columns (where `mask` is 0). `FACE_DIAG`: see [`Level::kernel_range`].
+    /// other columns (where `mask` is 0).
     #[inline(always)]
     #[allow(clippy::too_many_arguments)]
-    fn kernel_row<const MODE: u8, const FACE_DIAG: bool>(&self, j: usize, span: Span, v: &[f64], out: &mut [f64], mask: &[f64], sub: &[f64]) {
+    fn kernel_row<const MODE: u8>(&self, j: usize, span: Span, v: &[f64], out: &mut [f64], mask: &[f64], sub: &[f64]) {
         let row = j * self.nt;
         fill_gaps(&mut out[row..row + self.nt], span);
         for (lo, hi) in span {
-            self.kernel_range::<MODE, FACE_DIAG>(j, lo, hi, v, out, mask, sub);
+            self.kernel_range::<MODE>(j, lo, hi, v, out, mask, sub);
         }
     }
 
-    /// [`Level::kernel_row`] on the columns `lo..hi` (the others untouched). `mask` is read
-    /// through [`gate`] (any array non-zero exactly where the mask is 1 will do);
-    /// `FACE_DIAG`: the diagonal summed from the face coefficients in the order of `set_film`
-    /// (its value at every non-boundary node) instead of read from `diag`.
+    /// [`Level::kernel_row`] on the columns `lo..hi` (the others untouched).
     #[inline(always)]
     #[allow(clippy::too_many_arguments)]
-    fn kernel_range<const MODE: u8, const FACE_DIAG: bool>(&self, j: usize, lo: usize, hi: usize, v: &[f64], out: &mut [f64], mask: &[f64], sub: &[f64]) {
+    fn kernel_range<const MODE: u8>(&self, j: usize, lo: usize, hi: usize, v: &[f64], out: &mut [f64], mask: &[f64], sub: &[f64]) {
         #[inline(always)]
         fn finish<const MODE: u8>(m: f64, a: f64, s: f64) -> f64 {
             match MODE {
@@ -1066,15 +1059,13 @@ impl Level {
         let vc = &v[row..row + nt];
         let va = &v[row + nt..row + 2 * nt];
         let o = &mut out[row..row + nt];
-        // the diagonal at column `i` with west neighbour `iw`
-        let diag = |i: usize, iw: usize| if FACE_DIAG { ce[i] + ce[iw] + cnn[i] + cs[i] } else { d[i] };
         if lo == 0 && hi > 0 {
-            let a0 = diag(0, nt - 1) * vc[0] - ce[0] * vc[1] - ce[nt - 1] * vc[nt - 1] - cnn[0] * va[0] - cs[0] * vb[0];
-            o[0] = finish::<MODE>(gate(m[0]), a0, sb[0]);
+            let a0 = d[0] * vc[0] - ce[0] * vc[1] - ce[nt - 1] * vc[nt - 1] - cnn[0] * va[0] - cs[0] * vb[0];
+            o[0] = finish::<MODE>(m[0], a0, sb[0]);
         }
         if hi == nt && lo < nt {
-            let an = diag(nt - 1, nt - 2) * vc[nt - 1] - ce[nt - 1] * vc[0] - ce[nt - 2] * vc[nt - 2] - cnn[nt - 1] * va[nt - 1] - cs[nt - 1] * vb[nt - 1];
-            o[nt - 1] = finish::<MODE>(gate(m[nt - 1]), an, sb[nt - 1]);
+            let an = d[nt - 1] * vc[nt - 1] - ce[nt - 1] * vc[0] - ce[nt - 2] * vc[nt - 2] - cnn[nt - 1] * va[nt - 1] - cs[nt - 1] * vb[nt - 1];
+            o[nt - 1] = finish::<MODE>(m[nt - 1], an, sb[nt - 1]);
         }
         // the interior columns of the range, 1 ≤ i ≤ nt − 2
         let (a, b) = (lo.max(1), hi.min(nt - 1));
@@ -1087,9 +1078,8 @@ impl Level {
         let o1 = &mut o[a..b];
         let n = b - a;
         for i in 0..n {
-            let di = if FACE_DIAG { ce1[i] + ce0[i] + cn1[i] + cs1[i] } else { d1[i] };
-            let a = di * vcc[i] - ce1[i] * ve[i] - ce0[i] * vw[i] - cn1[i] * va1[i] - cs1[i] * vb1[i];
-            o1[i] = finish::<MODE>(gate(m1[i]), a, s1[i]);
+            let a = d1[i] * vcc[i] - ce1[i] * ve[i] - ce0[i] * vw[i] - cn1[i] * va1[i] - cs1[i] * vb1[i];
+            o1[i] = finish::<MODE>(m1[i], a, s1[i]);
         }
     }
 }
@@ -1118,13 +1108,6 @@ fn face_means(film: &Film, z0: f64, z1: f64, m: usize, north: bool, k: f64, cs: 
         let mean = acc * inv_m;
         *o = if north { k / mean } else { mean * k };
     }
-}
-
-/// 1 where `m` is non-zero, else 0: a mask array (1 or 0, returned as it is) or `inv_d`
-/// (non-zero exactly at the free nodes) read as the mask.
-#[inline(always)]
-fn gate(m: f64) -> f64 {
-    if m != 0.0 { 1.0 } else { 0.0 }
 }
 
 /// Two ascending column ranges of one row (see `Level::free_span`).
