@@ -78,10 +78,12 @@
 //! only: this solver is isothermal, Newtonian, smooth; its transient steps are first order in
 //! time (backward Euler) with the load held at the step's end value.
 
+pub mod dry;
 pub mod elastic;
 mod geometry;
 pub mod solver;
 
+pub use dry::{solve_dry, DryOptions, DrySolution};
 pub use solver::{solve, solve_from, solve_kept, solve_transient, Kept2d};
 
 use crate::physics::lubricant::Lubricant;
