@@ -5,7 +5,7 @@
 
 use crate::ehl_2d::{oil, opts, point, rel, rows, seed000_nose, E_PRIME};
 use tribod::physics::contact::hertz_point;
-use tribod::physics::ehl::twod::{solve, solve_dry, DryOptions, DrySolution, Ehl2dInput, Ehl2dOptions, Fields2d, Geometry2d};
+use tribod::physics::ehl::twod::{solve, solve_dry, DryOptions, DrySolution, Ehl2dInput, Ehl2dOptions, Fields2d, Geometry2d, Located};
 use tribod::physics::roller::{Crown, CrownProfile};
 use tribod::physics::Silent;
 
@@ -48,11 +48,20 @@ fn dry_point_errors(rx: f64, ry: f64, n: usize) -> [f64; 4] {
     e
 }
 
+/// Dry circular (R = 10 mm) and elliptic (R_x = 10 mm, R_y = 40 mm: a_y/a_x = 2.47) point
+/// contacts, F = 100 N, E' = 230.8 GPa, on a ±1.5-semi-axis square, against Hertz (Johnson
+/// eq. 4.39–4.41 via `contact::hertz_point`). Measured (ehl2d-15), 65² / 129²:
+/// p_max +1e-4 / +3e-5; semi-axes −0.52 % / −0.10 % (circle), a_x −0.54 % / −0.09 %, a_y −0.48 % /
+/// −0.13 % (ellipse; the edge from `p²` extrapolated between nodes, so the error is the
+/// discretisation's, ∝ h² measured 5.2×); approach −1e-4 / −4e-5; 47–71 iterations, < 0.6 s dev.
 #[test]
 fn ehl2d_dry_point_contacts_are_hertz() {
     for (rx, ry) in [(0.01, 0.01), (0.01, 0.04)] {
-        for n in [65, 129] {
-            dry_point_errors(rx, ry, n);
+        for (n, axes) in [(65, 0.008), (129, 0.002)] {
+            let [p, ax, ay, delta] = dry_point_errors(rx, ry, n);
+            assert!(p.abs() < 1e-3, "{n}²: p_max {p}");
+            assert!(ax.abs() < axes && ay.abs() < axes, "{n}²: semi-axes {ax} {ay}");
+            assert!(delta.abs() < 1e-3, "{n}²: approach {delta}");
         }
     }
 }
@@ -64,7 +73,9 @@ fn load_per_length(f: &Fields2d) -> Vec<f64> {
     (0..f.y.len()).map(|j| f.pressure[j * nx..(j + 1) * nx].iter().sum::<f64>() * dx).collect()
 }
 
-fn dry_roller_against_slices(input: &Ehl2dInput, ny: usize) -> DrySolution {
+/// The dry roller against the slice model: (loaded length, peak load per length, approach) of the
+/// 2-D solution over the slice model's, minus 1, and `∫|w − w_slice| dy / F`.
+fn dry_roller_against_slices(input: &Ehl2dInput, ny: usize) -> (DrySolution, [f64; 4]) {
     let Geometry2d::Finite { rx, crown } = input.geometry else { unreachable!() };
     let slices = crown.distribute(input.load, rx, 0.5 * input.effective_modulus);
     let t = std::time::Instant::now();
@@ -90,19 +101,48 @@ fn dry_roller_against_slices(input: &Ehl2dInput, ny: usize) -> DrySolution {
         s.max_pressure,
         s.edge_pressure_peak
     );
-    s
+    assert!(rel(s.load, input.load) < 1e-9, "{}", s.load);
+    let e = [loaded / slices.effective_length - 1.0, w_max / slices.peak_load_per_length - 1.0, s.approach / slices.approach - 1.0, dist];
+    (s, e)
 }
 
+pub fn printed(mut input: Ehl2dInput) -> Ehl2dInput {
+    if let Geometry2d::Finite { crown, .. } = &mut input.geometry {
+        crown.profile = CrownProfile::Seed000Eq3;
+    }
+    input
+}
+
+/// The seed 000 roller at the nose (954 N), dry, on 65×129 and 65×257, against the thin-slice
+/// model (`Crown::distribute`: independent slices, each a 2-D Hertz contact with Johnson's
+/// cylinder compliance). Measured (ehl2d-15), 65×129 / 65×257:
+/// * convex crown: loaded length 10.39 / 10.45 mm against 11.37 (−8.6 % / −8.2 %), peak load per
+///   length +9.3 % / +9.3 %, approach +4.4 %, `∫|w − w_slice|/F` 0.102 / 0.102, p_max 0.664 GPa on
+///   the centre, no edge peak. The slices carry their load independently; the half-space couples
+///   them (a slice's load deflects its neighbours), which concentrates the load towards the centre
+///   of a convex crown: the slice model's shape is 10 % off, asserted within 15 %.
+/// * eq. 3 as printed: loaded length 12.58 / 12.52 mm against 12.73 (−1.2 % / −1.6 %), approach
+///   +0.2 %, but the peak load per length at the transitions is 2.28 / 2.31 times the slice
+///   model's (the profile's slope jumps there, from `−2h_td/(L1/2)` to 0, a ridge the slices
+///   cannot concentrate load on; `∫|w − w_slice|/F` 0.38): the edge peak 1.209 / 1.224 GPa at
+///   y = ±6.016 mm (the transition, within a cell; the EHL solution at 2.77 m/s: 1.097 / 1.102 GPa).
+/// 47–53 iterations, < 0.4 s each.
 #[test]
 fn ehl2d_dry_seed000_roller_against_the_slice_model() {
+    let half1 = 0.5 * Crown::SEED000.middle_length;
+    let mut edges = Vec::new();
     for ny in [129, 257] {
-        dry_roller_against_slices(&seed000_nose(), ny);
-        let mut printed = seed000_nose();
-        if let Geometry2d::Finite { crown, .. } = &mut printed.geometry {
-            crown.profile = CrownProfile::Seed000Eq3;
-        }
-        dry_roller_against_slices(&printed, ny);
+        let (s, [len, w, delta, dist]) = dry_roller_against_slices(&seed000_nose(), ny);
+        assert!(len.abs() < 0.15 && w.abs() < 0.15 && delta.abs() < 0.1 && dist < 0.15, "convex 65×{ny}: {len} {w} {delta} {dist}");
+        assert!(s.edge_pressure_peak.is_none() && s.max_pressure.y.abs() < 1e-12, "{:?}", s.max_pressure);
+        let (s, [len, w, delta, _]) = dry_roller_against_slices(&printed(seed000_nose()), ny);
+        assert!(len.abs() < 0.05 && delta.abs() < 0.02, "printed 65×{ny}: {len} {delta}");
+        assert!(w > 1.0, "printed 65×{ny}: the transition's load per length {w} above the slices'");
+        let edge = s.edge_pressure_peak.expect("an edge peak at the transition");
+        assert!((edge.y.abs() - half1).abs() <= 0.014 / (ny - 1) as f64, "{edge:?}");
+        edges.push(edge.value);
     }
+    assert!(rel(edges[0], edges[1]) < 0.02, "{edges:?}");
 }
 
 /// `∫∫|p − q| dA / F` on common nodes.
@@ -111,36 +151,74 @@ fn distance(a: &Fields2d, b: &Fields2d, load: f64) -> f64 {
     a.pressure.iter().zip(&b.pressure).map(|(p, q)| (p - q).abs()).sum::<f64>() * cell / load
 }
 
-fn ehl_roller_dry_limit(input0: Ehl2dInput, speeds: &[f64]) {
-    for &u in speeds {
-        let input = Ehl2dInput { entrainment_velocity: u, ..input0 };
-        let o = Ehl2dOptions { fields: true, grid_tolerance: 1.0, ..opts(65, 129) };
-        let dry = solve_dry(&input, &o, &DryOptions::default(), &Silent).unwrap();
-        let t = std::time::Instant::now();
-        match solve(&input, &o, &Silent) {
-            Ok(s) => {
-                let f = s.fields.as_ref().unwrap();
-                assert_eq!(f.x, dry.fields.x);
-                let d = distance(f, &dry.fields, input.load);
-                let (re, rd) = (rows(f), rows(&dry.fields));
-                let prof: f64 = re.iter().zip(&rd).map(|(a, b)| (a.1 - b.1).abs()).fold(0.0, f64::max);
-                println!(
-                    "u_m {u}: M {:.0} L {:.2} ∫|p − p_dry|/F {d:.4}; max_y |max_x p − dry| {:.4e}; p_max {:.4e} (dry {:.4e}); edge {:?} (dry {:?}); hc {:.3e} hmin {:.3e}; {} steps in {:.1?}",
-                    s.moes_m, s.moes_l, prof, s.max_pressure.value, dry.max_pressure.value, s.edge_pressure_peak, dry.edge_pressure_peak, s.central_film, s.min_film.value, s.convergence.iterations, t.elapsed()
-                );
-            }
-            Err(e) => println!("u_m {u}: EHL failed after {:.1?}: {e}", t.elapsed()),
-        }
+/// One EHL solve against the dry one on the same nodes (65×129).
+struct DryLimitPoint {
+    moes_m: f64,
+    /// `∫∫|p_EHL − p_dry| dA / F`.
+    distance: f64,
+    /// `max_y |max_x p_EHL − max_x p_dry|` over the peak dry pressure.
+    profile: f64,
+    edge: Option<Located>,
+    dry_edge: Option<Located>,
+}
+
+fn dry_limit_point(input: &Ehl2dInput) -> DryLimitPoint {
+    let o = Ehl2dOptions { fields: true, grid_tolerance: 1.0, ..opts(65, 129) };
+    let dry = solve_dry(input, &o, &DryOptions::default(), &Silent).unwrap();
+    let t = std::time::Instant::now();
+    let s = solve(input, &o, &Silent).unwrap();
+    let f = s.fields.as_ref().unwrap();
+    assert_eq!((&f.x, &f.y), (&dry.fields.x, &dry.fields.y), "the same nodes");
+    let distance = distance(f, &dry.fields, input.load);
+    let profile = rows(f).iter().zip(rows(&dry.fields)).map(|(a, b)| (a.1 - b.1).abs()).fold(0.0, f64::max) / dry.max_pressure.value;
+    println!(
+        "u_m {}: M {:.1} L {:.2}: ∫|p − p_dry|/F {distance:.4}, axial profile max |Δ|/p_dry {profile:.4}; p_max {:.4e} (dry {:.4e}); edge {:?} (dry {:?}); h_c {:.3e} h_min {:.3e}; {} steps in {:.1?}",
+        input.entrainment_velocity, s.moes_m, s.moes_l, s.max_pressure.value, dry.max_pressure.value, s.edge_pressure_peak, dry.edge_pressure_peak, s.central_film, s.min_film.value, s.convergence.iterations, t.elapsed()
+    );
+    DryLimitPoint { moes_m: s.moes_m, distance, profile, edge: s.edge_pressure_peak, dry_edge: dry.edge_pressure_peak }
+}
+
+fn at_speed(input: Ehl2dInput, u: f64) -> Ehl2dInput {
+    Ehl2dInput { entrainment_velocity: u, ..input }
+}
+
+/// The EHL roller's dry limit (seed 000 nose, convex crown, 65×129, the dry solution on the same
+/// nodes): u_m 2.77 → 0.3 m/s, M 2.9 → 8.9 (L 20.5 → 11.8). Measured (ehl2d-15):
+/// `∫|p − p_dry|/F` 0.464 → 0.163, the axial profile's largest difference 22 % → 9.8 % of the dry
+/// peak; the EHL solution's off-centre maximum of the axial profile at 2.77 m/s (0.621 GPa at
+/// ±2.4 mm, the film's, not the crown's) is gone at 0.3 m/s, as in the dry solution (none: the
+/// convex crown's load does not reach the transitions). 18 + 16 Newton steps, ≈ 22 s dev.
+/// At 0.03 m/s (M 28, L 6.6): 0.049, 3.7 %, but 201 steps and 240 s
+/// (`ehl2d_roller_dry_limit_to_m_28`, ignored).
+#[test]
+fn ehl2d_roller_dry_limit() {
+    let fast = dry_limit_point(&at_speed(seed000_nose(), 2.77));
+    let slow = dry_limit_point(&at_speed(seed000_nose(), 0.3));
+    assert!(slow.moes_m > 2.5 * fast.moes_m, "{} {}", fast.moes_m, slow.moes_m);
+    assert!(slow.distance < 0.45 * fast.distance, "{} → {}", fast.distance, slow.distance);
+    assert!(slow.profile < 0.6 * fast.profile && slow.profile < 0.13, "{} → {}", fast.profile, slow.profile);
+    assert!(slow.dry_edge.is_none() && slow.edge.is_none(), "{:?} {:?}", slow.edge, slow.dry_edge);
+}
+
+/// The series of [`ehl2d_roller_dry_limit`] continued to 0.03 m/s: `∫|p − p_dry|/F` falls like
+/// M^−1 (measured 0.464, 0.163, 0.049 at M 2.9, 8.9, 28).
+#[test]
+#[ignore = "issue 16: 0.03 m/s (M 28, L 6.6) on 65×129 takes 201 Newton steps, 240 s dev (ehl2d-15); ehl2d_roller_dry_limit runs 2.77 and 0.3 m/s"]
+fn ehl2d_roller_dry_limit_to_m_28() {
+    let series: Vec<DryLimitPoint> = [2.77, 0.3, 0.03].iter().map(|&u| dry_limit_point(&at_speed(seed000_nose(), u))).collect();
+    for w in series.windows(2) {
+        assert!(w[1].distance < 0.45 * w[0].distance && w[1].profile < 0.6 * w[0].profile, "{} → {}", w[0].distance, w[1].distance);
     }
+    let (first, last) = (&series[0], &series[2]);
+    let slope = (last.distance / first.distance).ln() / (last.moes_m / first.moes_m).ln();
+    println!("∫|p − p_dry|/F ∝ M^{slope:.2}");
+    assert!(slope < -0.8 && last.distance < 0.07 && last.profile < 0.06, "{slope} {} {}", last.distance, last.profile);
 }
 
 #[test]
-fn ehl2d_roller_dry_limit_probe() {
-    ehl_roller_dry_limit(seed000_nose(), &[2.77, 0.3, 0.03]);
-    let mut printed = seed000_nose();
-    if let Geometry2d::Finite { crown, .. } = &mut printed.geometry {
-        crown.profile = CrownProfile::Seed000Eq3;
+fn ehl2d_roller_dry_limit_probe_printed() {
+    for u in [2.77, 0.3] {
+        dry_limit_point(&at_speed(printed(seed000_nose()), u));
     }
-    ehl_roller_dry_limit(printed, &[2.77, 0.3, 0.03]);
-    let _ = Crown::SEED000;
 }
+
