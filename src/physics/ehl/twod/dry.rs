@@ -238,3 +238,25 @@ fn mean_over_contact(f: &[f64], p: &[f64]) -> f64 {
         0.0
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::physics::lubricant::Lubricant;
+    use crate::physics::Silent;
+
+    fn ball() -> Ehl2dInput {
+        Ehl2dInput { load: 100.0, geometry: Geometry2d::Point { rx: 0.01, ry: 0.01 }, effective_modulus: 2.3e11, entrainment_velocity: 1.0, lubricant: Lubricant::SEED000, temperature: 313.0 }
+    }
+
+    #[test]
+    fn bad_options_and_the_iteration_cap_fail_typed() {
+        let grid = Ehl2dOptions { nx: 33, ny: 33, ..Default::default() };
+        let bad = DryOptions { tolerance: 0.0, ..Default::default() };
+        assert!(matches!(solve_dry(&ball(), &grid, &bad, &Silent), Err(SolveError::InvalidInput { field, .. }) if field == "DryOptions.tolerance"));
+        let capped = DryOptions { max_iterations: 2, ..Default::default() };
+        assert!(matches!(solve_dry(&ball(), &grid, &capped, &Silent), Err(SolveError::NotConverged { iterations: 2, .. })));
+        let few = Ehl2dOptions { nx: 5, ..grid };
+        assert!(matches!(solve_dry(&ball(), &few, &DryOptions::default(), &Silent), Err(SolveError::InvalidInput { field, .. }) if field == "Ehl2dOptions.nx"));
+    }
+}
