@@ -225,8 +225,8 @@ mod stability {
     proptest! {
         #![proptest_config(ProptestConfig { cases: 24, .. ProptestConfig::default() })]
         /// Loads, ellipticity and crown geometries (both readings of eq. 3) on 33² / 33×65: the
-        /// dry solve converges with `p ≥ 0`, the load carried, the gap non-negative and zero under
-        /// the pressure (to 1e-6 of the Hertzian film scale `a²/R_x`), or fails typed — never NaN.
+        /// dry solve converges with `p ≥ 0`, the load carried, the gap non-negative at the interior nodes and zero
+        /// under the pressure (to 1e-6 of the Hertzian film scale `a²/R_x`), or fails typed — never NaN.
         #[test]
         fn ehl2d_dry_converges_or_fails_typed(
             load in 1.0f64..5000.0,
@@ -249,9 +249,14 @@ mod stability {
                     prop_assert!(s.convergence.residual <= 1e-10);
                     prop_assert!((s.load / load - 1.0).abs() < 1e-9, "load {} vs {load}", s.load);
                     let film_scale = s.hertz_half_width * s.hertz_half_width / 0.01;
-                    for (p, g) in s.fields.pressure.iter().zip(&s.fields.film) {
+                    let (nx, ny) = (s.nx, s.ny);
+                    for (k, (p, g)) in s.fields.pressure.iter().zip(&s.fields.film).enumerate() {
                         prop_assert!(p.is_finite() && *p >= 0.0 && g.is_finite());
-                        prop_assert!(*g > -1e-6 * film_scale, "gap {g} (scale {film_scale})");
+                        // The boundary's pressure is 0 by the boundary condition (a roller's end
+                        // faces), so its gap is not constrained (measured −1.6 a²/R_x at the end
+                        // of a printed profile whose transition is 40 µm from it).
+                        let interior = (1..nx - 1).contains(&(k % nx)) && (1..ny - 1).contains(&(k / nx));
+                        prop_assert!(!interior || *g > -1e-6 * film_scale, "gap {g} (scale {film_scale})");
                         prop_assert!(*p == 0.0 || g.abs() < 1e-6 * film_scale, "gap {g} under p {p}");
                     }
                     prop_assert!(s.approach.is_finite() && s.contact_area > 0.0);

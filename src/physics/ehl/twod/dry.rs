@@ -59,8 +59,10 @@ pub struct DrySolution {
     pub load: f64,
     pub nx: usize,
     pub ny: usize,
-    /// Pressure (Pa) and gap (m, `film`: zero in the contact) on the EHL solver's nodes (m, the
-    /// same frame and orientation as its fields).
+    /// Pressure (Pa) and gap (m, `film`: zero in the contact, ≥ 0 at the interior nodes; the
+    /// boundary's pressure is 0 by the boundary condition, as in the EHL solver — a roller's end
+    /// faces — so its gap is not constrained) on the EHL solver's nodes (m, the same frame and
+    /// orientation as its fields).
     pub fields: Fields2d,
     /// Iterations, the last relative pressure change, the tolerance.
     pub convergence: Convergence,
