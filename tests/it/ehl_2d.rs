@@ -366,7 +366,7 @@ pub fn seed000_nose() -> Ehl2dInput {
 }
 
 /// Largest pressure and smallest film of each row across the roller (`y`, p_max, h_min).
-fn rows(f: &tribod::physics::ehl::twod::Fields2d) -> Vec<(f64, f64, f64)> {
+pub fn rows(f: &tribod::physics::ehl::twod::Fields2d) -> Vec<(f64, f64, f64)> {
     let nx = f.x.len();
     f.y.iter()
         .enumerate()

@@ -15,6 +15,7 @@ mod ehl_stability;
 mod ehl_validation;
 mod ehl_2d;
 mod ehl_2d_cam;
+mod ehl_2d_dry;
 mod ehl_2d_fields;
 mod ehl_2d_transient;
 mod examples_run;

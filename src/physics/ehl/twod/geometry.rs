@@ -104,3 +104,29 @@ pub(crate) fn side_gap(input: &Ehl2dInput, s: &Scales, y: f64) -> f64 {
         Geometry2d::Finite { crown, .. } => crown.gap(y * s.a) * s.rx / (s.a * s.a),
     }
 }
+
+/// The uniform node grid of a domain: spacings, node positions (units of `a`) and the undeformed
+/// gap `X²/2 + S(Y)` at each node (row-major `[j·nx + i]`). The EHL and the dry solver build their
+/// nodes here, so both solutions of one input sit on the same nodes.
+pub(crate) struct NodeGrid {
+    pub dx: f64,
+    pub dy: f64,
+    pub x: Vec<f64>,
+    pub y: Vec<f64>,
+    pub geom: Vec<f64>,
+}
+
+pub(crate) fn node_grid(input: &Ehl2dInput, s: &Scales, d: Domain, nx: usize, ny: usize) -> NodeGrid {
+    let dx = (d.x_out - d.x_in) / (nx - 1) as f64;
+    let dy = (d.y_hi - d.y_lo) / (ny - 1) as f64;
+    let x: Vec<f64> = (0..nx).map(|i| d.x_in + i as f64 * dx).collect();
+    let y: Vec<f64> = (0..ny).map(|j| d.y_lo + j as f64 * dy).collect();
+    let mut geom = vec![0.0; nx * ny];
+    for j in 0..ny {
+        let sy = side_gap(input, s, y[j]);
+        for i in 0..nx {
+            geom[j * nx + i] = 0.5 * x[i] * x[i] + sy;
+        }
+    }
+    NodeGrid { dx, dy, x, y, geom }
+}

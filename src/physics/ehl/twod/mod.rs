@@ -73,15 +73,21 @@
 //! transient line solution through a +30 % load step within 1.23 % (steady: 0.84 %); a step costs
 //! about a warm steady solve (4–10 Newton steps).
 //!
+//! Dry limit (`ehl2d-15`): [`solve_dry`] solves the dry contact on the same nodes ([`dry`],
+//! Polonsky–Keer conjugate gradient); the seed 000 roller's EHL pressure approaches it as M grows
+//! (`∫|p − p_dry|/F` 0.46 → 0.16 → 0.05 at M 2.9 → 8.9 → 28 on 65×129).
+//!
 //! # Not modelled
 //! Thermal and non-Newtonian effects, grid grading and mixed lubrication are the 1-D solver's
 //! only: this solver is isothermal, Newtonian, smooth; its transient steps are first order in
 //! time (backward Euler) with the load held at the step's end value.
 
+pub mod dry;
 pub mod elastic;
 mod geometry;
 pub mod solver;
 
+pub use dry::{solve_dry, DryOptions, DrySolution};
 pub use solver::{solve, solve_from, solve_kept, solve_transient, Kept2d};
 
 use crate::physics::lubricant::Lubricant;

@@ -19,7 +19,7 @@
 //! (measured: ≤ 7e-8 on the seed 000 finite cycle, `BENCHMARKS.md` issue 16, `ehl2d-7`).
 
 use super::elastic::Deflection;
-use super::geometry::{domain, scales, side_gap, Domain, Scales};
+use super::geometry::{domain, node_grid, scales, side_gap, Domain, NodeGrid, Scales};
 use super::{Ehl2dInput, Ehl2dOptions, Ehl2dSolution, Fields2d, Geometry2d, Located, Squeeze2d, Warm2d};
 use crate::physics::ehl::rheology::PressureRheology;
 use crate::physics::{Convergence, Observer, SolveError, Termination};
@@ -240,17 +240,7 @@ struct Fields {
 
 impl Problem {
     fn new(input: &Ehl2dInput, s: &Scales, d: Domain, nx: usize, ny: usize, near: usize) -> Self {
-        let dx = (d.x_out - d.x_in) / (nx - 1) as f64;
-        let dy = (d.y_hi - d.y_lo) / (ny - 1) as f64;
-        let x: Vec<f64> = (0..nx).map(|i| d.x_in + i as f64 * dx).collect();
-        let y: Vec<f64> = (0..ny).map(|j| d.y_lo + j as f64 * dy).collect();
-        let mut geom = vec![0.0; nx * ny];
-        for j in 0..ny {
-            let sy = side_gap(input, s, y[j]);
-            for i in 0..nx {
-                geom[j * nx + i] = 0.5 * x[i] * x[i] + sy;
-            }
-        }
+        let NodeGrid { dx, dy, x, y, geom } = node_grid(input, s, d, nx, ny);
         let mut unk = vec![usize::MAX; nx * ny];
         let mut nodes = Vec::with_capacity((nx - 2) * (ny - 2));
         for j in 1..ny - 1 {
@@ -1402,7 +1392,7 @@ fn march(prob: &mut Problem, p: &mut [f64], h0: &mut f64, tol: f64, max_iter: u3
     Ok(Run { iterations: its, residual: last.residual, history: last.history, converged: false, gmres: gm })
 }
 
-fn validate(input: &Ehl2dInput, options: &Ehl2dOptions) -> Result<(), SolveError> {
+pub(super) fn validate(input: &Ehl2dInput, options: &Ehl2dOptions) -> Result<(), SolveError> {
     let pos = |v: f64, path: &str| if v.is_finite() && v > 0.0 { Ok(()) } else { Err(SolveError::invalid(path, "must be a finite number > 0")) };
     pos(input.load, "Ehl2dInput.load")?;
     pos(input.effective_modulus, "Ehl2dInput.effective_modulus")?;
@@ -1470,7 +1460,7 @@ fn h0_for(prob: &mut Problem, p: &[f64], target: f64) -> f64 {
 }
 
 /// Bilinear interpolation of a node field at `(x, y)` (clamped to the grid).
-fn bilinear(xs: &[f64], ys: &[f64], f: &[f64], x: f64, y: f64) -> f64 {
+pub(super) fn bilinear(xs: &[f64], ys: &[f64], f: &[f64], x: f64, y: f64) -> f64 {
     let (nx, ny) = (xs.len(), ys.len());
     let loc = |v: &[f64], at: f64| {
         let n = v.len();
@@ -1780,7 +1770,7 @@ fn conclude(input: &Ehl2dInput, options: &Ehl2dOptions, s: &Scales, d: Domain, s
 
 /// The solver frame's orientation: `+1` when `u_m ≥ 0`, else `−1` (the inlet is always at
 /// negative `X`; physical `x = sign·X·a`).
-fn frame_sign(input: &Ehl2dInput) -> f64 {
+pub(super) fn frame_sign(input: &Ehl2dInput) -> f64 {
     if input.entrainment_velocity >= 0.0 {
         1.0
     } else {
@@ -2079,7 +2069,7 @@ fn solve_levels(input: &Ehl2dInput, options: &Ehl2dOptions, s: &Scales, d: Domai
 /// `(i, ny − 1 − j)` that differs only by the solver's tolerance. Where the two agree to 1e-6
 /// relative, the node at y ≥ 0 is reported, so the reported position does not flip sign with the
 /// last digits of the solution (the roller's two ends).
-fn mirror_tie(nx: usize, ny: usize, k: usize, f: &[f64]) -> usize {
+pub(super) fn mirror_tie(nx: usize, ny: usize, k: usize, f: &[f64]) -> usize {
     let (i, j) = (k % nx, k / nx);
     let m = (ny - 1 - j) * nx + i;
     if m > k && (f[m] - f[k]).abs() <= 1e-6 * f[k].abs() {
@@ -2087,6 +2077,30 @@ fn mirror_tie(nx: usize, ny: usize, k: usize, f: &[f64]) -> usize {
     } else {
         k
     }
+}
+
+/// The node of the largest off-centre local maximum of the axial pressure profile `max_X P(X, Y)`
+/// of a finite line contact (half-length `ky`, units of `a`) above the centre's pressure (the
+/// edge pressure peak), the mirror-symmetric tie resolved to one side; `None` when the profile
+/// has none.
+pub(super) fn edge_peak_node(xs: &[f64], ys: &[f64], p: &[f64], ky: f64) -> Option<usize> {
+    let (nx, ny) = (xs.len(), ys.len());
+    let line: Vec<(f64, usize)> = (0..ny)
+        .map(|j| {
+            let i = (0..nx).max_by(|&a, &b| p[j * nx + a].total_cmp(&p[j * nx + b])).unwrap_or(0);
+            (p[j * nx + i], j * nx + i)
+        })
+        .collect();
+    let centre = bilinear(xs, ys, p, 0.0, 0.0);
+    let mut best: Option<(f64, usize)> = None;
+    for j in 1..ny - 1 {
+        let (pv, k) = line[j];
+        let off = ys[j].abs() > 0.1 * ky;
+        if off && pv >= line[j - 1].0 && pv >= line[j + 1].0 && pv > centre * (1.0 + 1e-3) && best.is_none_or(|(b, _)| pv > b) {
+            best = Some((pv, k));
+        }
+    }
+    best.map(|(_, k)| mirror_tie(nx, ny, k, p))
 }
 
 /// GMRES iterations of the last [`solve`] are not reported; this is the count of Newton steps.
@@ -2113,28 +2127,7 @@ fn finish(input: &Ehl2dInput, options: &Ehl2dOptions, s: &Scales, prob: &mut Pro
         return Err(SolveError::physical(crate::physics::PhysicalFailure::FilmCollapse, "the converged 2-D EHL film is not positive"));
     }
     let edge = match input.geometry {
-        Geometry2d::Finite { .. } => {
-            // max_x P along y, its off-centre local maxima.
-            let line: Vec<(f64, usize)> = (0..ny)
-                .map(|j| {
-                    let i = (0..nx).max_by(|&a, &b| p[j * nx + a].total_cmp(&p[j * nx + b])).unwrap_or(0);
-                    (p[j * nx + i], j * nx + i)
-                })
-                .collect();
-            let centre = bilinear(&prob.x, &prob.y, p, 0.0, 0.0);
-            let mut best: Option<(f64, usize)> = None;
-            for j in 1..ny - 1 {
-                let (pv, k) = line[j];
-                let off = prob.y[j].abs() > 0.1 * s.ky;
-                if off && pv >= line[j - 1].0 && pv >= line[j + 1].0 && pv > centre * (1.0 + 1e-3) && best.is_none_or(|(b, _)| pv > b) {
-                    best = Some((pv, k));
-                }
-            }
-            best.map(|(_, k)| {
-                let k = mirror_tie(nx, ny, k, p);
-                loc(k, p[k] * s.p_ref)
-            })
-        }
+        Geometry2d::Finite { .. } => edge_peak_node(&prob.x, &prob.y, p, s.ky).map(|k| loc(k, p[k] * s.p_ref)),
         Geometry2d::Point { .. } => None,
     };
     let load = p.iter().sum::<f64>() * prob.dx * prob.dy * s.p_ref * s.a * s.a;
