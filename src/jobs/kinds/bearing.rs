@@ -931,8 +931,9 @@ fn aligned_reference_in(spec: &BearingSpec, e: f64, workspace: Option<&mut Works
     let mut b = spec.bearing();
     b.misalignment = Misalignment::default();
     b.profile = None;
-    let a = journal::analyse(&b, &Operating::Eccentricity(e), &spec.settings(), workspace, None, false, observer)?;
-    Ok((a.load, Guess { eccentricity: a.eccentricity, attitude: a.attitude }))
+    // aligned and unprofiled: symmetric about the mid-plane, solved on half the axial grid
+    // (the same discrete equations; an even axial node count takes the full grid)
+    journal::symmetric_load(&b, &Operating::Eccentricity(e), &spec.settings(), workspace, None, observer)
 }
 
 /// Turn an analysis into the result document.

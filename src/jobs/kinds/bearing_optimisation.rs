@@ -373,12 +373,11 @@ fn optimise(spec: &OptimisationSpec, observer: &dyn Observer) -> Result<Optimisa
     let profile = |r: &[usize; 3]| BearingProfileSpec { order: f.order[r[0]], height: f.height[r[1]], length_fraction: f.length_fraction[r[2]] };
     let cases: Vec<Option<BearingProfileSpec>> = std::iter::once(None).chain(rows.iter().map(|r| Some(profile(r)))).collect();
     let workers = rayon::current_num_threads().clamp(1, cases.len());
-    // the reference analysis on one thread while the others allocate the array's workspaces
-    // (the first worker takes the reference's)
-    let mut ws0 = Workspace::new(&base.bearing(), &base.settings());
-    let (reference_load, others) = rayon::join(
-        || resolve_load_in(base, Some(&mut ws0), observer),
-        || (1..workers).map(|_| Workspace::new(&base.bearing(), &base.settings())).collect::<Vec<_>>(),
+    // the reference analysis on one thread (aligned and unprofiled: on the mirrored half of
+    // the grid, with grids of its own) while the other allocates the array's workspaces
+    let (reference_load, spares) = rayon::join(
+        || resolve_load_in(base, None, observer),
+        || (0..workers).map(|_| Workspace::new(&base.bearing(), &base.settings())).collect::<Vec<_>>(),
     );
     let (op, guess, target) = reference_load?;
     let mut evaluations = if base.load.aligned_eccentricity_ratio.is_some() { 1 } else { 0 };
@@ -401,7 +400,7 @@ fn optimise(spec: &OptimisationSpec, observer: &dyn Observer) -> Result<Optimisa
     let speculating = AtomicBool::new(false);
     let speculation: Mutex<Option<([usize; 3], Design)>> = Mutex::new(None);
     let combo_index = |c: &[usize; 3]| 1 + (c[0] * levels + c[1]) * levels + c[2];
-    let spare = Mutex::new(std::iter::once(ws0).chain(others).collect::<Vec<_>>());
+    let spare = Mutex::new(spares);
     let workspaces: Vec<Workspace> = (0..workers)
         .into_par_iter()
         .map(|_| -> Result<Workspace, SolveError> {

@@ -58,6 +58,14 @@ impl Bearing {
         self.misalignment.is_zero() && !matches!(self.supply, Supply::Angle(_) | Supply::TwoGrooves(_))
     }
 
+    /// The film, its supply lines and the edge conditions are symmetric about the mid-plane
+    /// `Z = ½`: aligned (no tilt) and without an axial profile. Every supply is an axial line
+    /// over the whole length and both edges are at ambient pressure, so the discrete problem is
+    /// symmetric on a grid with an odd number of axial nodes ([`analyse_symmetric`]).
+    pub fn axially_symmetric(&self) -> bool {
+        self.misalignment.is_zero() && self.profile.is_none()
+    }
+
     /// Rotation invariant with the grid following the journal (supply line at the largest
     /// film): the discrete pressure field, relative to the supply line, depends on ε only.
     pub fn turns_with_journal(&self) -> bool {
@@ -204,6 +212,8 @@ pub struct Analysis {
 /// The solver state that can be reused between nearby analyses of one grid and L/D.
 pub struct Workspace {
     hierarchy: Hierarchy,
+    /// The mirrored half's grids of [`analyse_symmetric`] (made when first needed).
+    half: Option<Hierarchy>,
     grooves: usize,
     alpha: f64,
     dims: (usize, usize),
@@ -215,6 +225,7 @@ impl Workspace {
         let nz = settings.axial;
         Workspace {
             hierarchy: Hierarchy::with_grooves(nt, nz, bearing.alpha(), bearing.grooves()),
+            half: None,
             grooves: bearing.grooves(),
             alpha: bearing.alpha(),
             dims: (settings.circumferential, settings.axial),
@@ -225,10 +236,25 @@ impl Workspace {
     /// whatever this one solved before (the L9's cases, scheduled dynamically).
     pub fn reset(&mut self) {
         self.hierarchy.reset_state();
+        if let Some(h) = &mut self.half {
+            h.reset_state();
+        }
+    }
+    /// The mirrored half's grids ([`analyse_symmetric`]), made when first needed.
+    fn half_mut(&mut self, bearing: &Bearing, settings: &Settings) -> &mut Hierarchy {
+        let sweeps = self.hierarchy.sweeps;
+        self.half.get_or_insert_with(|| {
+            let mut h = Hierarchy::mirrored(settings.circumferential - 1, settings.axial, bearing.alpha(), bearing.grooves());
+            h.sweeps = sweeps;
+            h
+        })
     }
     /// Red–black sweeps before and after each coarse-grid correction (default 1).
     pub fn set_smoothing_sweeps(&mut self, n: usize) {
         self.hierarchy.sweeps = n.max(1);
+        if let Some(h) = &mut self.half {
+            h.sweeps = n.max(1);
+        }
     }
     /// V-cycles spent per level (finest first) since the workspace was built.
     pub fn cycles(&self) -> Vec<u32> {
@@ -279,15 +305,98 @@ pub fn analyse(
             &mut own
         }
     };
-    let nlev = ws.hierarchy.levels.len();
+    let (film, eps, beta, ev, conv, steps_per_grid) = position(&mut ws.hierarchy, bearing, operating, settings, guess, observer)?;
+    figures(&ws.hierarchy.levels[0], bearing, &film, eps, beta, &ev, conv, steps_per_grid, want_fields)
+}
+
+/// [`analyse`] of an axially symmetric bearing ([`Bearing::axially_symmetric`]) on a grid with
+/// an odd number of axial nodes, solved on the half `Z ∈ [0, ½]` with a mirror condition on
+/// the mid-plane (a node row): the same discrete equations as the full grid (the mid-plane's
+/// equation halved; [`Hierarchy::mirrored`]), so the same solution to the solver tolerances, for
+/// about half the work. The figures are those of the full grid, from the half's pressure
+/// unfolded onto it. Any other bearing or grid: [`analyse`].
+pub fn analyse_symmetric(
+    bearing: &Bearing,
+    operating: &Operating,
+    settings: &Settings,
+    workspace: Option<&mut Workspace>,
+    guess: Option<Guess>,
+    want_fields: bool,
+    observer: &dyn Observer,
+) -> Result<Analysis, SolveError> {
+    if !(bearing.axially_symmetric() && settings.axial % 2 == 1) {
+        return analyse(bearing, operating, settings, workspace, guess, want_fields, observer);
+    }
+    validate(bearing, operating, settings)?;
+    let mut own;
+    let ws = match workspace {
+        Some(w) if w.fits(bearing, settings) => w,
+        _ => {
+            own = Workspace::new(bearing, settings);
+            &mut own
+        }
+    };
+    let half = ws.half_mut(bearing, settings);
+    let (film, eps, beta, ev, conv, steps_per_grid) = position(half, bearing, operating, settings, guess, observer)?;
+    let full = &mut ws.hierarchy.levels[0];
+    ws.half.as_ref().unwrap().unfold_into(full);
+    figures(full, bearing, &film, eps, beta, &ev, conv, steps_per_grid, want_fields)
+}
+
+/// The load `|W̄|` and the position (ε, β) of [`analyse_symmetric`] without its figures (so
+/// without the full grid): the same numbers bit for bit (the figures take the load as
+/// `hypot(F_v, F_h)` of the last evaluation and wrap β). With `workspace`, its mirrored half
+/// is used; without, a half alone is made (no full-grid storage). The load that an aligned
+/// reference gives the L9 and the `aligned_eccentricity_ratio` load.
+pub fn symmetric_load(
+    bearing: &Bearing,
+    operating: &Operating,
+    settings: &Settings,
+    workspace: Option<&mut Workspace>,
+    guess: Option<Guess>,
+    observer: &dyn Observer,
+) -> Result<(f64, Guess), SolveError> {
+    if !(bearing.axially_symmetric() && settings.axial % 2 == 1) {
+        let a = analyse(bearing, operating, settings, workspace, guess, false, observer)?;
+        return Ok((a.load, Guess { eccentricity: a.eccentricity, attitude: a.attitude }));
+    }
+    validate(bearing, operating, settings)?;
+    let mut own;
+    let half = match workspace {
+        Some(w) if w.fits(bearing, settings) => w.half_mut(bearing, settings),
+        _ => {
+            own = Hierarchy::mirrored(settings.circumferential - 1, settings.axial, bearing.alpha(), bearing.grooves());
+            &mut own
+        }
+    };
+    let (_, eps, beta, ev, _, _) = position(half, bearing, operating, settings, guess, observer)?;
+    Ok((ev.fv.hypot(ev.fh), Guess { eccentricity: eps, attitude: wrap_pm(beta) }))
+}
+
+/// The position search of [`analyse`] on the grids of `h` (the full grids or a mirrored half):
+/// the film at the end, ε, β, the last finest-grid evaluation, its convergence and the steps
+/// per grid (full-grid sizes).
+#[allow(clippy::type_complexity)]
+fn position(
+    h: &mut Hierarchy,
+    bearing: &Bearing,
+    operating: &Operating,
+    settings: &Settings,
+    guess: Option<Guess>,
+    observer: &dyn Observer,
+) -> Result<(Film, f64, f64, Eval, Convergence, Vec<(usize, usize, u32)>), SolveError> {
+    // the full grid's axial node count of a level (a mirrored half: its rows up to the
+    // mid-plane, mirrored)
+    let full_nz = |l: &super::multigrid::Level| if l.mirror { 2 * (l.nz - 2) + 1 } else { l.nz };
+    let nlev = h.levels.len();
     // start level: the coarsest grid with at least ~1000 nodes (or the finest); ~500 for a
     // load on a bearing that turns with the journal, whose balance is one secant iteration in ε
     // that the next grids only correct (BENCHMARKS.md, journal speed)
     let one_dimensional_load = matches!(operating, Operating::Load(_)) && bearing.turns_with_journal();
     let min_nodes = if one_dimensional_load { 500 } else { 1000 };
     let mut ks = 0;
-    for (k, l) in ws.hierarchy.levels.iter().enumerate() {
-        if l.nt * l.nz >= min_nodes && l.nt >= 24 && l.nz >= 9 {
+    for (k, l) in h.levels.iter().enumerate() {
+        if l.nt * full_nz(l) >= min_nodes && l.nt >= 24 && full_nz(l) >= 9 {
             ks = k;
         }
     }
@@ -298,9 +407,9 @@ pub fn analyse(
     // a load balance solves each pressure to the full tolerance as soon as its cavitation set
     // nearly settles (`Hierarchy::eager_tight`); the fixed-eccentricity and fixed-position
     // analyses keep the plain active-set schedule (the roller–pin tables are built on them)
-    ws.hierarchy.eager_tight = matches!(operating, Operating::Load(_));
+    h.eager_tight = matches!(operating, Operating::Load(_));
     let reuse_coarse = matches!(operating, Operating::Load(_));
-    let mut prob = BalanceSearch { bearing, settings, h: &mut ws.hierarchy, coarse_loose, start_level: ks, reuse_coarse };
+    let mut prob = BalanceSearch { bearing, settings, h, coarse_loose, start_level: ks, reuse_coarse };
     let mut steps_per_grid = Vec::new();
 
     // unknowns and starting point
@@ -350,7 +459,7 @@ pub fn analyse(
         }
     }
 
-    let dims = |p: &BalanceSearch, k: usize| (p.h.levels[k].nt + 1, p.h.levels[k].nz);
+    let dims = |p: &BalanceSearch, k: usize| (p.h.levels[k].nt + 1, full_nz(&p.h.levels[k]));
     let mut jac: Option<[[f64; 2]; 2]> = None;
     let mut slope: Option<f64> = None;
     let mut invariant_failed = false;
@@ -460,8 +569,7 @@ pub fn analyse(
         let (_, theta0) = bearing.groove_angle(beta);
         prob.h.set_film_level(0, &film, theta0);
     }
-    let out = figures(prob.h, bearing, &film, eps, beta, &ev, conv, steps_per_grid, want_fields)?;
-    Ok(out)
+    Ok((film, eps, beta, ev, conv, steps_per_grid))
 }
 
 fn validate(bearing: &Bearing, operating: &Operating, s: &Settings) -> Result<(), SolveError> {
@@ -504,6 +612,127 @@ fn validate(bearing: &Bearing, operating: &Operating, s: &Settings) -> Result<()
 mod tests {
     use super::*;
     use crate::physics::Silent;
+    use proptest::prelude::*;
+
+    /// Largest relative difference between the half-domain and the full-domain analyses over
+    /// the pressure field (relative to the peak), the load, ε, the attitude (rad, against 1),
+    /// the peak pressure, both flows and, where `friction`, both frictions; the fields compared
+    /// on the same full grid. At a fixed eccentricity ratio the attitude search leaves the grid at
+    /// the attitude of its last solve and turns the journal after it ([`analyse`]); the
+    /// friction's pressure term is taken on that grid, so it differs by the order of the last
+    /// turn, which depends on the coarse grids (not the same on the half): there the frictions
+    /// are compared through fixed-position analyses at each result's (ε, β).
+    fn half_against_full(b: &Bearing, op: &Operating, s: &Settings, friction: bool) -> f64 {
+        let full = analyse(b, op, s, None, None, true, &Silent).unwrap();
+        let half = analyse_symmetric(b, op, s, None, None, true, &Silent).unwrap();
+        let (pf, ph) = (full.fields.as_ref().unwrap(), half.fields.as_ref().unwrap());
+        assert_eq!((pf.theta.len(), pf.z.len()), (ph.theta.len(), ph.z.len()));
+        assert_eq!(full.steps_per_grid.last().map(|g| (g.0, g.1)), half.steps_per_grid.last().map(|g| (g.0, g.1)));
+        let pmax = full.max_pressure.max(1e-300);
+        let mut worst = pf.pressure.iter().zip(&ph.pressure).map(|(a, b)| (a - b).abs() / pmax).fold(0.0, f64::max);
+        let rel = |a: f64, b: f64| (a - b).abs() / a.abs().max(b.abs()).max(1e-300);
+        let mut pairs = vec![
+            (full.load, half.load),
+            (full.flow_variable, half.flow_variable),
+            (full.side_flow_variable, half.side_flow_variable),
+            (full.max_pressure, half.max_pressure),
+            (full.eccentricity, half.eccentricity),
+        ];
+        if friction {
+            pairs.push((full.friction_force, half.friction_force));
+            pairs.push((full.friction_variable_seed002.unwrap(), half.friction_variable_seed002.unwrap()));
+        }
+        for (a, b) in pairs {
+            worst = worst.max(rel(a, b));
+        }
+        worst.max(wrap_pm(full.attitude - half.attitude).abs())
+    }
+
+    /// [`half_against_full`] at a fixed eccentricity ratio (no frictions), then the frictions
+    /// (and all else) through fixed-position analyses at each one's (ε, β), and a load
+    /// balance for the full domain's load.
+    fn all_against_full(b: &Bearing, eps: f64, s: &Settings) -> f64 {
+        let mut worst = half_against_full(b, &Operating::Eccentricity(eps), s, false);
+        let full = analyse(b, &Operating::Eccentricity(eps), s, None, None, false, &Silent).unwrap();
+        let at = Operating::Position { eccentricity: full.eccentricity, attitude: full.attitude };
+        worst = worst.max(half_against_full(b, &at, s, true));
+        if b.turns_with_journal() {
+            worst = worst.max(half_against_full(b, &Operating::Load(full.load), s, true));
+        }
+        worst
+    }
+
+    /// The seed case's reference (L/D 1.25, ε 0.6, supply at the largest film) on a 121×61 grid:
+    /// solved tightly, the half domain gives the full domain's solution to 1e-9 (the discrete
+    /// equations are the same); at the default tolerances to their size (1e-6 / 1e-5). Also a
+    /// fixed groove, two grooves and a periodic film.
+    #[test]
+    fn the_mirrored_half_solves_the_full_grid_equations() {
+        let b = Bearing::plain(1.25);
+        let tight = Settings { circumferential: 121, axial: 61, pressure_tolerance: 1e-11, load_tolerance: 1e-10, ..Settings::default() };
+        let d = all_against_full(&b, 0.6, &tight);
+        assert!(d < 1e-9, "tight: {d:e}");
+        let loose = Settings { circumferential: 121, axial: 61, ..Settings::default() };
+        let d = all_against_full(&b, 0.6, &loose);
+        assert!(d < 2e-5, "default tolerances: {d:e}");
+        for (b, eps) in [
+            (Bearing { supply: Supply::Angle(1.0), ..Bearing::plain(0.8) }, 0.5),
+            (Bearing { supply: Supply::TwoGrooves(std::f64::consts::FRAC_PI_2), ..Bearing::plain(1.0) }, 0.7),
+            (Bearing { supply: Supply::Periodic, ..Bearing::plain(1.5) }, 0.4),
+        ] {
+            let d = all_against_full(&b, eps, &tight);
+            assert!(d < 1e-8, "{b:?} ε {eps}: {d:e}");
+        }
+    }
+
+    /// `symmetric_load` gives `analyse_symmetric`'s load and position bit for bit, with and
+    /// without a workspace.
+    #[test]
+    fn the_symmetric_load_is_that_of_the_symmetric_analysis() {
+        let s = Settings { circumferential: 91, axial: 45, ..Settings::default() };
+        let b = Bearing::plain(1.25);
+        let op = Operating::Eccentricity(0.6);
+        let a = analyse_symmetric(&b, &op, &s, None, None, false, &Silent).unwrap();
+        let mut ws = Workspace::new(&b, &s);
+        for w in [None, Some(&mut ws)] {
+            let (load, g) = symmetric_load(&b, &op, &s, w, None, &Silent).unwrap();
+            assert_eq!([load, g.eccentricity, g.attitude].map(f64::to_bits), [a.load, a.eccentricity, a.attitude].map(f64::to_bits));
+        }
+    }
+
+    /// Not symmetric (tilted or profiled) or an even axial node count: the full grid, bit for bit.
+    #[test]
+    fn an_asymmetric_problem_or_an_even_grid_takes_the_full_domain() {
+        let s = Settings { circumferential: 61, axial: 31, ..Settings::default() };
+        let even = Settings { axial: 30, ..s };
+        let tilted = Bearing { misalignment: Misalignment { vertical: 0.3, horizontal: 0.2 }, ..Bearing::plain(1.0) };
+        let profiled = Bearing { profile: Some(Profile { order: 2, height: 0.4, length_fraction: 0.2 }), ..Bearing::plain(1.0) };
+        assert!(!tilted.axially_symmetric() && !profiled.axially_symmetric() && Bearing::plain(1.0).axially_symmetric());
+        for (b, s) in [(tilted, s), (profiled, s), (Bearing::plain(1.0), even)] {
+            let op = Operating::Eccentricity(0.5);
+            let a = analyse(&b, &op, &s, None, None, false, &Silent).unwrap();
+            let h = analyse_symmetric(&b, &op, &s, None, None, false, &Silent).unwrap();
+            assert_eq!(a, h);
+        }
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig { cases: 24, ..ProptestConfig::default() })]
+        /// Over ε, L/D and grids (odd axial counts, coarse to medium, so that the hierarchies'
+        /// coarsening differs): the half domain's analyses (fixed ε, fixed position, load)
+        /// equal the full domain's to the (tight) solver tolerance.
+        #[test]
+        fn the_mirrored_half_equals_the_full_domain(
+            eps in 0.05f64..0.9,
+            ld in 0.25f64..2.0,
+            nt in 24usize..100,
+            half_rows in 2usize..40,
+        ) {
+            let s = Settings { circumferential: nt + 1, axial: 2 * half_rows + 1, pressure_tolerance: 1e-11, load_tolerance: 1e-10, ..Settings::default() };
+            let d = all_against_full(&Bearing::plain(ld), eps, &s);
+            prop_assert!(d < 1e-8, "ε {eps}, L/D {ld}, grid {}×{}: {d:e}", s.circumferential, s.axial);
+        }
+    }
 
     /// After `Workspace::reset` an analysis gives bit for bit what it gives on a new workspace,
     /// whatever the workspace solved before (the L9 schedules its cases dynamically on it).

@@ -83,12 +83,25 @@ impl BalanceSearch<'_> {
         }
         let l = &self.h.levels[k];
         let (mut fv, mut fh) = (0.0, 0.0);
-        for j in 1..l.nz - 1 {
+        // a mirrored half (rows up to the mid-plane `m = nz − 2`, a ghost row above it): the
+        // rows below the mid-plane count twice (their mirror images), the mid-plane once
+        let last = if l.mirror { l.nz - 2 } else { l.nz - 1 };
+        for j in 1..last {
             let row = &l.u[j * l.nt..(j + 1) * l.nt];
             for i in 0..l.nt {
                 fv += row[i] * l.cos_n[i];
                 fh += row[i] * l.sin_n[i];
             }
+        }
+        if l.mirror {
+            let row = &l.u[last * l.nt..(last + 1) * l.nt];
+            let (mut mv, mut mh) = (0.0, 0.0);
+            for i in 0..l.nt {
+                mv += row[i] * l.cos_n[i];
+                mh += row[i] * l.sin_n[i];
+            }
+            fv = 2.0 * fv + mv;
+            fh = 2.0 * fh + mh;
         }
         let s = l.dt * l.dz;
         // seed 002 eq. (6)-(7): film force components on the journal

@@ -5,13 +5,13 @@
 use super::analysis::*;
 use super::balance::{wrap_pm, Eval};
 use super::film::{wrap_angle, Film};
-use super::multigrid::Hierarchy;
+use super::multigrid::Level;
 use crate::physics::{ensure_finite, Convergence, SolveError};
 use std::f64::consts::{PI, TAU};
 
 #[allow(clippy::too_many_arguments)]
 pub(super) fn figures(
-    h: &Hierarchy,
+    l: &Level,
     bearing: &Bearing,
     film: &Film,
     eps: f64,
@@ -21,7 +21,6 @@ pub(super) fn figures(
     steps_per_grid: Vec<(usize, usize, u32)>,
     want_fields: bool,
 ) -> Result<Analysis, SolveError> {
-    let l = &h.levels[0];
     let (nt, nz, dt, dz) = (l.nt, l.nz, l.dt, l.dz);
     let alpha = bearing.alpha();
     let u = &l.u;

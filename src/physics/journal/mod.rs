@@ -28,7 +28,7 @@ mod balance;
 mod figures;
 pub mod taguchi;
 
-pub use analysis::{analyse, Analysis, Bearing, Fields, Guess, Operating, Settings, Supply, Workspace};
+pub use analysis::{analyse, analyse_symmetric, symmetric_load, Analysis, Bearing, Fields, Guess, Operating, Settings, Supply, Workspace};
 pub use dimensions::Dimensions;
 pub use film::{Film, Misalignment, Profile};
 

@@ -104,6 +104,19 @@ impl Transfer1D {
         Transfer1D { p_lo, p_hi, p_w, s_lo, s_hi, s_w, kind: GENERAL }
     }
 
+    /// [`Transfer1D::open`] on `nf` and `nc` nodes plus a ghost node after each (the mirrored
+    /// half's ghost row, fixed at 0): the ghosts map to each other only.
+    fn open_with_ghost(nf: usize, nc: usize) -> Self {
+        let mut t = Self::open(nf, nc);
+        t.p_lo.push(nc);
+        t.p_hi.push(nc);
+        t.p_w.push(0.0);
+        t.s_lo.push(nf);
+        t.s_hi.push(nf);
+        t.s_w.push(0.0);
+        t
+    }
+
     /// `out[i] = (1 − w_i) c[lo_i] + w_i c[hi_i]`: interpolation of the coarse row `c` to the
     /// fine row `out`.
     #[inline]
@@ -186,6 +199,10 @@ pub struct Level {
     pub groove: bool,
     /// A second supply line held at ambient pressure (two axial grooves 180° apart).
     pub second_groove: Option<usize>,
+    /// Half of an axially symmetric film (`Z` in `[0, ½]`): row `nz − 2` lies on the mid-plane
+    /// `Z = ½` with a mirror condition and row `nz − 1` is a ghost row (fixed at 0, joined to the
+    /// mid-plane by a zero conductance). See [`Hierarchy::mirrored`].
+    pub mirror: bool,
     /// Absolute angle of node 0.
     pub theta0: f64,
     pub cos_n: Vec<f64>,
@@ -258,7 +275,7 @@ const FREE: u8 = 0;
 impl Level {
     /// `grooves`: 0 (periodic film), 1 (ambient line at column 0) or 2 (also at column
     /// `round(nt/2)`, the opposite line when `nt` is even).
-    fn new(nt: usize, nz: usize, grooves: usize) -> Self {
+    fn new(nt: usize, nz: usize, grooves: usize, mirror: bool) -> Self {
         let n = nt * nz;
         let groove = grooves > 0;
         let second = (grooves > 1).then(|| (nt + 1) / 2 % nt);
@@ -266,9 +283,12 @@ impl Level {
             nt,
             nz,
             dt: std::f64::consts::TAU / nt as f64,
-            dz: 1.0 / (nz - 1) as f64,
+            // the mirrored half: `nz − 2` intervals over `[0, ½]` (0.5/m and 1/(2m) are the
+            // same double: both the correctly rounded 1/(2m))
+            dz: if mirror { 0.5 / (nz - 2) as f64 } else { 1.0 / (nz - 1) as f64 },
             groove,
             second_groove: second,
+            mirror,
             theta0: 0.0,
             cos_n: vec![0.0; nt],
             sin_n: vec![0.0; nt],
@@ -415,6 +435,23 @@ impl Level {
             for i in 1..nt {
                 src[i] = -dz * (r.x * (cos_f[i] - cos_f[i - 1]) + r.y * (sin_f[i] - sin_f[i - 1]));
             }
+        }
+        if self.mirror {
+            // Mirror condition on the mid-plane row `m = nz − 2` (the full grid's row with
+            // `P_{m+1} = P_{m−1}` and `c_{n,m} = c_{n,m−1}`): the full grid's equation of row `m`
+            // halved, `½ c_e` east/west, `c_{n,m−1}` to the south, `½ f`, and no face to the
+            // ghost row. `A` stays symmetric: it is `EᵀA_full E` (E: the even extension) with the
+            // rows `j < m` halved, and the complementarity is node-wise, so the half problem's
+            // solution is the full one's restricted (a positive row scale does not change it).
+            let m = nz - 2;
+            let row = m * nt..(m + 1) * nt;
+            for v in &mut self.ce[row.clone()] {
+                *v *= 0.5;
+            }
+            for v in &mut self.src[row.clone()] {
+                *v *= 0.5;
+            }
+            self.cn[row].fill(0.0);
         }
         // the diagonal on the interior rows (on slices, so that the loop vectorises), then the
         // boundary nodes (edge rows, supply lines) set to the identity row
@@ -1185,12 +1222,29 @@ impl Hierarchy {
 
     /// [`Hierarchy::new`] with 0, 1 or 2 supply lines (the second opposite the first).
     pub fn with_grooves(nt: usize, nz: usize, alpha: f64, grooves: usize) -> Self {
-        let mut levels = vec![Level::new(nt, nz, grooves)];
+        Self::build(nt, nz, alpha, grooves, false)
+    }
+
+    /// The hierarchy of the half `Z ∈ [0, ½]` of an axially symmetric problem whose full grid
+    /// has `nz_full = 2m + 1` axial nodes (odd: the mid-plane is a node row): `m + 1` rows up to
+    /// the mid-plane, which carries the mirror condition, plus a ghost row (see
+    /// [`Level::mirror`]). On the finest level the discrete equations are the full grid's
+    /// (row `m` halved); the coarser levels are the halves of grids with about the full
+    /// hierarchy's spacings and only precondition.
+    pub fn mirrored(nt: usize, nz_full: usize, alpha: f64, grooves: usize) -> Self {
+        assert!(nz_full % 2 == 1 && nz_full >= 5, "the mirrored half needs an odd axial node count");
+        Self::build(nt, nz_full / 2 + 2, alpha, grooves, true)
+    }
+
+    fn build(nt: usize, nz: usize, alpha: f64, grooves: usize, mirror: bool) -> Self {
+        let mut levels = vec![Level::new(nt, nz, grooves, mirror)];
+        // rows that are not the ghost row
+        let real = |nz: usize| if mirror { nz - 1 } else { nz };
         loop {
             let l = levels.last().unwrap();
             let (nt, nz) = (l.nt, l.nz);
             let can_t = nt >= 8;
-            let can_z = nz > 4;
+            let can_z = real(nz) > 4;
             if (!can_t && !can_z) || nt * nz <= 80 {
                 break;
             }
@@ -1211,9 +1265,13 @@ impl Hierarchy {
                 ct = true;
             }
             let nt_c = if ct { nt.div_ceil(2) } else { nt };
-            let nz_c = if cz { (nz - 1).div_ceil(2) + 1 } else { nz };
+            let nz_c = if cz { (real(nz) - 1).div_ceil(2) + 1 + (nz - real(nz)) } else { nz };
             let tt = if ct { Transfer1D::periodic(nt, nt_c) } else { Transfer1D::identity(nt) };
-            let tz = if cz { Transfer1D::open(nz, nz_c) } else { Transfer1D::identity(nz) };
+            let tz = match (cz, mirror) {
+                (false, _) => Transfer1D::identity(nz),
+                (true, false) => Transfer1D::open(nz, nz_c),
+                (true, true) => Transfer1D::open_with_ghost(nz - 1, nz_c - 1),
+            };
             let fine = levels.last_mut().unwrap();
             let nearest = |t: &Transfer1D| (0..t.s_w.len()).map(|m| if t.s_w[m] < 0.5 { t.s_lo[m] } else { t.s_hi[m] }).collect();
             fine.inj_t = nearest(&tt);
@@ -1221,7 +1279,7 @@ impl Hierarchy {
             fine.tt = Some(tt);
             fine.tz = Some(tz);
             fine.tmp = vec![0.0; nz_c * nt];
-            levels.push(Level::new(nt_c, nz_c, grooves));
+            levels.push(Level::new(nt_c, nz_c, grooves, mirror));
         }
         let dz0 = levels[0].dz;
         for l in &mut levels[1..] {
@@ -1229,6 +1287,29 @@ impl Hierarchy {
         }
         let n = levels.len();
         Hierarchy { levels, alpha, sweeps: 2, cycle_count: vec![0; n], step_count: vec![0; n], eager_tight: false, scratch: Default::default() }
+    }
+
+    /// A new full-grid finest level for this mirrored half (see [`Hierarchy::unfold_into`]).
+    pub fn full_level(&self) -> Level {
+        let h = &self.levels[0];
+        let grooves = if h.second_groove.is_some() { 2 } else { h.groove as usize };
+        Level::new(h.nt, 2 * (h.nz - 2) + 1, grooves, false)
+    }
+
+    /// The finest level of this mirrored half unfolded onto `full`, the full grid's finest
+    /// level: its coefficients and film set for the same film and node angles, and its
+    /// pressure the even extension `P_{m+j} = P_{m−j}` of the half's (the figures of the
+    /// analysis are then those of the full grid).
+    pub fn unfold_into(&self, full: &mut Level) {
+        let h = &self.levels[0];
+        assert!(h.mirror && full.nt == h.nt && full.nz == 2 * (h.nz - 2) + 1 && !full.mirror);
+        let (film, alpha, theta0) = h.coeffs_of.expect("the half has been solved");
+        full.set_film(&film, alpha, theta0);
+        let (nt, m) = (h.nt, h.nz - 2);
+        for j in 0..full.nz {
+            let s = if j <= m { j } else { 2 * m - j };
+            full.u[j * nt..(j + 1) * nt].copy_from_slice(&h.u[s * nt..(s + 1) * nt]);
+        }
     }
 
     /// Rebuild the coefficients of every level for `film`, node 0 at angle `theta0`.
@@ -1851,7 +1932,7 @@ mod tests {
     #[test]
     fn free_span_drops_the_longest_cyclic_run_of_fixed_nodes() {
         // 12 columns, supply line at column 0, three interior rows
-        let mut l = Level::new(12, 5, 1);
+        let mut l = Level::new(12, 5, 1, false);
         let (f, c) = (FREE, CAVITATED);
         // row 1: free on both sides of a cavitated middle: the middle run (5) is dropped
         // row 2: free in 1..6 with a short inner run: the run around column 0 (7) is dropped
