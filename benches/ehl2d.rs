@@ -15,6 +15,10 @@
 //! solves at every `stride`-th angle (Newton steps and time saved by the warm start); with
 //! `reference` the films at the largest-load, nose and base-circle angles against the Richardson
 //! extrapolation of this grid and the one with twice the intervals (cold solves).
+//! `grids=65x129,129x129:in=8:out=2,…`: cold steady solves at those three angles' contact points
+//! on each grid (`in`/`out`: inlet/outlet distance in units of `a`), with the domain used;
+//! `pts=F:u:R/F:u:R/F:u:R` (load N, entrainment m/s, R_x mm of the three points, as the cycle
+//! prints them) runs the `grids=` solves without the cycle (BENCHMARKS.md issue 16, `ehl2d-16`).
 
 use std::time::Instant;
 use tribod::physics::ehl::twod::{solve, Ehl2dInput, Ehl2dOptions, Geometry2d};
@@ -137,6 +141,16 @@ fn cycle(args: &[String]) {
     if args.iter().any(|a| a == "auto") {
         spec["fidelity"] = json!("auto");
     }
+    // `pts=F:u:R/F:u:R/F:u:R` (load N, entrainment m/s, R_x mm at the max load, nose and base
+    // circle angles, as the cycle prints them): the `grids=` solves only, without the cycle.
+    if let Some(pts) = args.iter().find_map(|a| a.strip_prefix("pts=")) {
+        let v: Vec<Vec<f64>> = pts.split('/').map(|p| p.split(':').map(|x| x.parse().expect("number")).collect()).collect();
+        let load: Vec<f64> = v.iter().map(|p| p[0]).collect();
+        let ue: Vec<f64> = v.iter().map(|p| p[1]).collect();
+        let rx: Vec<f64> = v.iter().map(|p| p[2] * 1e-3).collect();
+        grids(args, &load, &ue, &rx, 0, 1, 2);
+        return;
+    }
     let kind = registry::find("cam_cycle").unwrap();
     let prepared = kind.prepare(&spec, &Limits::default()).expect("valid spec");
     tribod::physics::film::work::reset();
@@ -166,8 +180,9 @@ fn cycle(args: &[String]) {
     for (what, i) in [("max load", imax), ("nose 127°", inose), ("base circle 300°", ibase)] {
         // A null edge peak (none found at that angle) reads as NaN in `col`.
         let peak = if edge[i].is_finite() { format!("{:.3} GPa", edge[i] * 1e-9) } else { "none".to_string() };
-        println!("  {what} (angle {i}): load {:.1} N, u_e {:.3} m/s, h_c {:.4} µm, h_min {:.4} µm at y = {:.2} mm, edge peak {peak}", load[i], ue[i], hc[i] * 1e6, hm[i] * 1e6, ymin[i] * 1e3);
+        println!("  {what} (angle {i}): load {:.1} N, u_e {:.3} m/s, R_x {:.3} mm, h_c {:.4} µm, h_min {:.4} µm at y = {:.2} mm, edge peak {peak}", load[i], ue[i], rx[i] * 1e3, hc[i] * 1e6, hm[i] * 1e6, ymin[i] * 1e3);
     }
+    grids(args, &load, &ue, &rx, imax, inose, ibase);
     // `cycle-only`: stop here (the counters and the cycle's time only).
     if args.iter().any(|a| a == "cycle-only") {
         return;
@@ -260,6 +275,56 @@ fn cycle(args: &[String]) {
                     );
                 }
                 (c, f) => println!("  {what}: reference failed: {:?} / {:?}", c.err(), f.err()),
+            }
+        }
+    }
+}
+
+/// Cold steady solves at the cycle's max load, nose and base-circle contact points on the grids of
+/// `grids=` (see `cycle`).
+fn grids(args: &[String], load: &[f64], ue: &[f64], rx: &[f64], imax: usize, inose: usize, ibase: usize) {
+    use tribod::physics::film::{ClosedForm, ContactShape, Finite, FilmFormula, FilmModel, SmoothContact};
+    // `grids=65x129,129x129:in=6:out=2,...`: each grid (and domain: `in`/`out` the inlet/outlet
+    // distance in units of `a`), with the domain the solver used and the Newton steps.
+    let Some(list) = args.iter().find_map(|a| a.strip_prefix("grids=")) else { return };
+    let smooth = SmoothContact::seed000();
+    let fallback = ClosedForm { formula: FilmFormula::PanHamrock, squeeze: false };
+    for item in list.split(',') {
+        let mut parts = item.split(':');
+        let Some((gx, gy)) = parts.next().and_then(|g| g.split_once('x')) else { continue };
+        let (gx, gy): (usize, usize) = (gx.parse().expect("nx"), gy.parse().expect("ny"));
+        let mut o = Ehl2dOptions { nx: gx, ny: gy, tolerance: 1e-6, max_iterations: 60, ..Default::default() };
+        for p in parts {
+            if let Some(v) = p.strip_prefix("in=") {
+                o.inlet = Some(v.parse().expect("inlet"));
+            }
+            if let Some(v) = p.strip_prefix("out=") {
+                o.outlet = Some(v.parse().expect("outlet"));
+            }
+        }
+        let model = Finite::new(o, Some(Crown::SEED000), fallback);
+        for (what, i) in [("max load", imax), ("nose 127°", inose), ("base circle 300°", ibase)] {
+            let input = smooth.input(load[i], ContactShape::Line { reduced_radius: rx[i], length: 0.014 }, ue[i]);
+            let t = Instant::now();
+            match model.solve(&input, None) {
+                Ok(f) => {
+                    let ff = f.finite.as_deref().expect("2-D film");
+                    let w = &ff.warm;
+                    let (x0, x1) = (w.x[0], w.x[w.x.len() - 1]);
+                    println!(
+                        "  grid {item} {what}: h_c {:.4} µm, h_min {:.4} µm at y {:.2} mm, {} Newton steps, {:.2} s; a {:.1} µm, H_est {:.3}, x in [{x0:.2}, {x1:.2}] a, dx {:.3} a, dy {:.3} a",
+                        f.central_film * 1e6,
+                        f.min_film * 1e6,
+                        ff.min_film_position.1 * 1e3,
+                        f.iterations.unwrap_or(0),
+                        t.elapsed().as_secs_f64(),
+                        w.a * 1e6,
+                        w.h_est,
+                        w.x[1] - w.x[0],
+                        w.y[1] - w.y[0]
+                    );
+                }
+                Err(e) => println!("  grid {item} {what}: failed: {e}"),
             }
         }
     }
