@@ -238,7 +238,7 @@ fn finite_seed000_cycle_with_squeeze_against_quasi_steady() {
 /// seed 000 cycle's step) at constant conditions. The first step (a load change) moves the film by
 /// percents and has no step change; the film settles within a few steps (measured: step 5, the
 /// film relaxing by r ≈ 0.33 per step); a step from a settled film is settled again, and the
-/// first settled film is the steady film at these conditions within `SETTLED` (measured 3e-4) —
+/// first settled film is the steady film at these conditions within SETTLED/4 (measured 3e-4) —
 /// the error the cycle accepts when it reuses it on a dwell instead of stepping.
 #[test]
 fn a_settled_squeeze_step_stands_for_the_next_on_a_dwell() {
@@ -284,7 +284,7 @@ fn a_settled_squeeze_step_stands_for_the_next_on_a_dwell() {
     let steady = steady_model.solve(&smooth.input(600.0, shape, 2.0), Some(&film)).unwrap();
     let (dc, dm) = (rel(settled.central_film, steady.central_film), rel(settled.min_film, steady.min_film));
     println!("settled at step {k}; against the steady film: h_c {dc:.2e}, h_min {dm:.2e}");
-    assert!(dc < SETTLED && dm < SETTLED, "{dc:.2e} {dm:.2e}");
+    assert!(dc < 0.25 * SETTLED && dm < 0.25 * SETTLED, "{dc:.2e} {dm:.2e}");
     // Another entrainment (beyond the tolerance) or load is a new stretch: no step change.
     let other = model.solve(&{ let mut i = step(600.0); i.entrainment_velocity = 2.02; i }, Some(&film)).unwrap();
     assert!(other.finite.as_ref().unwrap().step_change.is_none() && !other.settled());
