@@ -734,10 +734,13 @@ impl<'a> Context<'a> {
             if cache[i].as_ref().is_none_or(|(ue, _)| !close(entrainment(guess), *ue)) {
                 let ue = entrainment(guess);
                 // On a stretch of unchanging conditions (a dwell) a history-free model's film at
-                // the previous angle stands for this one when its entrainment is close enough.
+                // the previous angle stands for this one when its entrainment is close enough; so
+                // does a transient film that has settled there (`FilmSolution::settled`: its last
+                // step moved it by less than the model's settling tolerance).
                 let reuse = prev
-                    .filter(|&j| history_free && self.loads[j].contact == self.loads[i].contact && self.shapes[j] == self.shapes[i])
+                    .filter(|&j| self.loads[j].contact == self.loads[i].contact && self.shapes[j] == self.shapes[i])
                     .and_then(|j| cache[j].as_ref())
+                    .filter(|(_, film)| history_free || film.settled())
                     .filter(|(ue_j, _)| close(ue, *ue_j))
                     .cloned();
                 cache[i] = Some(match reuse {

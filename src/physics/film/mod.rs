@@ -288,6 +288,16 @@ pub struct FilmSolution {
     pub finite: Option<Box<FiniteFilm>>,
 }
 
+impl FilmSolution {
+    /// A transient film that has stopped changing on a stretch of unchanging conditions
+    /// ([`FiniteFilm::settled`]): a further step at the same load, shape and entrainment would
+    /// return it within the model's settling tolerance, so the roller march reuses it on a dwell
+    /// as it reuses a history-free model's film.
+    pub fn settled(&self) -> bool {
+        self.finite.as_deref().is_some_and(|f| f.settled)
+    }
+}
+
 /// Traction at one contact point for one sliding velocity.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Traction {
