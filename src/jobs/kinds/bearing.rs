@@ -1037,7 +1037,7 @@ pub fn solve_spec(
 
 impl Kind for BearingKind {
     const NAME: &'static str = "bearing";
-    const SOLVER_VERSION: &'static str = "bearing-9";
+    const SOLVER_VERSION: &'static str = "bearing-10";
     const DESCRIPTION: &'static str = "Finite-length hydrodynamic journal bearing (seed 002): Reynolds \
         equation with Reynolds cavitation solved as a complementarity problem (active set + multigrid), \
         misalignment, axial edge profiles, load balance; Raimondi–Boyd figures and SI values; optional \

@@ -291,7 +291,7 @@ fn criteria(d: &Design) -> Criteria {
 
 impl Kind for BearingOptimisation {
     const NAME: &'static str = "bearing_optimisation";
-    const SOLVER_VERSION: &'static str = "bearing_optimisation-10";
+    const SOLVER_VERSION: &'static str = "bearing_optimisation-11";
     const DESCRIPTION: &'static str = "Axial edge profile design of a journal bearing (seed 002): Taguchi \
         L4/L9/L27 array with the weighted-sum score of eq. (19), main effects and S/N ratios, then a \
         continuous Nelder–Mead search over height and length fraction for each profile order.";
