@@ -285,6 +285,22 @@ pub struct Guess {
     pub attitude: f64,
 }
 
+/// Validate the problem, then take the caller's workspace when it fits the bearing's grids, or
+/// a new one kept in `own` (the start of [`analyse`] and [`analyse_symmetric`]).
+fn checked_workspace<'a>(
+    bearing: &Bearing,
+    operating: &Operating,
+    settings: &Settings,
+    workspace: Option<&'a mut Workspace>,
+    own: &'a mut Option<Workspace>,
+) -> Result<&'a mut Workspace, SolveError> {
+    validate(bearing, operating, settings)?;
+    Ok(match workspace {
+        Some(w) if w.fits(bearing, settings) => w,
+        _ => own.insert(Workspace::new(bearing, settings)),
+    })
+}
+
 /// Analyse a bearing at an operating point. `workspace` (optional) keeps the grids and the last
 /// pressure between calls; `guess` starts the position search.
 pub fn analyse(
@@ -296,15 +312,8 @@ pub fn analyse(
     want_fields: bool,
     observer: &dyn Observer,
 ) -> Result<Analysis, SolveError> {
-    validate(bearing, operating, settings)?;
-    let mut own;
-    let ws = match workspace {
-        Some(w) if w.fits(bearing, settings) => w,
-        _ => {
-            own = Workspace::new(bearing, settings);
-            &mut own
-        }
-    };
+    let mut own = None;
+    let ws = checked_workspace(bearing, operating, settings, workspace, &mut own)?;
     let (film, eps, beta, ev, conv, steps_per_grid) = position(&mut ws.hierarchy, bearing, operating, settings, guess, observer)?;
     figures(&ws.hierarchy.levels[0], bearing, &film, eps, beta, &ev, conv, steps_per_grid, want_fields)
 }
@@ -327,15 +336,8 @@ pub fn analyse_symmetric(
     if !(bearing.axially_symmetric() && settings.axial % 2 == 1) {
         return analyse(bearing, operating, settings, workspace, guess, want_fields, observer);
     }
-    validate(bearing, operating, settings)?;
-    let mut own;
-    let ws = match workspace {
-        Some(w) if w.fits(bearing, settings) => w,
-        _ => {
-            own = Workspace::new(bearing, settings);
-            &mut own
-        }
-    };
+    let mut own = None;
+    let ws = checked_workspace(bearing, operating, settings, workspace, &mut own)?;
     let half = ws.half_mut(bearing, settings);
     let (film, eps, beta, ev, conv, steps_per_grid) = position(half, bearing, operating, settings, guess, observer)?;
     let full = &mut ws.hierarchy.levels[0];
