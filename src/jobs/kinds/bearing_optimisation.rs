@@ -384,65 +384,113 @@ fn optimise(spec: &OptimisationSpec, observer: &dyn Observer) -> Result<Optimisa
     let load = target.unwrap_or(0.0);
     let ev = Evaluator { friction: spec.friction, op, guess };
     observer.progress(0.1, "orthogonal array");
-    // The unprofiled base and the runs in parallel: each worker takes the next case from a
-    // shared counter and analyses it on its workspace after `Workspace::reset`, so a case's
-    // result is the same bit for bit whichever worker runs it after whichever case (and for any
-    // pool size). A worker that finds no case left while others still run theirs predicts the
-    // best-level combination from the runs done (`predicted_best_levels`) and analyses it
-    // speculatively: the confirmation run then overlaps the array's last cases instead of
-    // following them on one thread (BENCHMARKS.md, journal speed, ninth round). A wrong
-    // prediction is abandoned as soon as the last run is in; it only costs the idle worker.
+    // The array on the pool, every analysis on a reset workspace (`Workspace::reset`), so its
+    // result is the same bit for bit whichever worker runs it after whichever analysis, for any
+    // pool size. The order (BENCHMARKS.md, journal speed, fourteenth round):
+    // 1. the runs, each worker taking the next from a shared counter;
+    // 2. the unprofiled baseline, which nothing else needs, by the first worker without a run;
+    // 3. the confirmation of the best-level combination (when it is not a run), by the worker
+    //    that completes the array. It then overlaps the baseline instead of following the array
+    //    on one thread.
+    // A worker left with nothing while runs are still in flight (more workers than these
+    // tasks) guesses the best levels (`predicted_best_levels`) and starts that confirmation
+    // speculatively; a wrong guess is abandoned as soon as the last run is in and costs only
+    // that idle worker's time.
+    let runs_total = cases.len() - 1;
     let next = AtomicUsize::new(0);
     let failed = AtomicBool::new(false);
+    let baseline_taken = AtomicBool::new(false);
     let done: Mutex<Vec<Option<Design>>> = Mutex::new(vec![None; cases.len()]);
     // 0: the array is not complete; else 1 + the index of its best-level combination
     let known_best = AtomicUsize::new(0);
-    let speculating = AtomicBool::new(false);
-    let speculation: Mutex<Option<([usize; 3], Design)>> = Mutex::new(None);
+    // 0: no speculation started; else 1 + the index of the combination speculated on
+    let speculated = AtomicUsize::new(0);
+    let confirmation_taken = AtomicBool::new(false);
+    let confirmation: Mutex<Option<([usize; 3], Design)>> = Mutex::new(None);
     let combo_index = |c: &[usize; 3]| 1 + (c[0] * levels + c[1]) * levels + c[2];
+    let combo_of = |index: usize| {
+        let i = index - 1;
+        [i / (levels * levels), (i / levels) % levels, i % levels]
+    };
     let spare = Mutex::new(spares);
     let workspaces: Vec<Workspace> = (0..workers)
         .into_par_iter()
         .map(|_| -> Result<Workspace, SolveError> {
             let mut ws = spare.lock().ok().and_then(|mut s| s.pop()).unwrap_or_else(|| Workspace::new(&base.bearing(), &base.settings()));
+            let fail = |e: SolveError| {
+                failed.store(true, Ordering::SeqCst);
+                e
+            };
+            let confirm = |ws: &mut Workspace, combo: [usize; 3], observer: &dyn Observer| -> Result<(), SolveError> {
+                ws.reset();
+                let (d, _) = ev.design(base, Some(profile(&combo)), Some(ws), observer)?;
+                *confirmation.lock().unwrap_or_else(|e| e.into_inner()) = Some((combo, d));
+                Ok(())
+            };
             loop {
-                let i = next.fetch_add(1, Ordering::Relaxed);
-                if i >= cases.len() || failed.load(Ordering::Relaxed) {
+                if failed.load(Ordering::SeqCst) {
                     break;
                 }
-                ws.reset();
-                let d = observer.check().map_err(SolveError::from).and_then(|_| ev.design(base, cases[i], Some(&mut ws), observer));
-                match d {
-                    Ok((d, _)) => {
-                        let mut all = done.lock().unwrap_or_else(|e| e.into_inner());
-                        all[i] = Some(d);
-                        if all.iter().all(Option::is_some) {
-                            let designs: Vec<Design> = all[1..].iter().flatten().copied().collect();
-                            let best = best_levels(&rows, levels, &sn_ratios(&designs, &weights));
-                            known_best.store(combo_index(&best), Ordering::Relaxed);
-                        }
+                let run = next.fetch_add(1, Ordering::SeqCst);
+                let case = if run < runs_total {
+                    Some(run + 1)
+                } else if !baseline_taken.swap(true, Ordering::SeqCst) {
+                    Some(0)
+                } else {
+                    None
+                };
+                if let Some(i) = case {
+                    ws.reset();
+                    let (d, _) = observer.check().map_err(SolveError::from).and_then(|_| ev.design(base, cases[i], Some(&mut ws), observer)).map_err(fail)?;
+                    let mut all = done.lock().unwrap_or_else(|e| e.into_inner());
+                    all[i] = Some(d);
+                    if i > 0 && all[1..].iter().all(Option::is_some) {
+                        let designs: Vec<Design> = all[1..].iter().flatten().copied().collect();
+                        drop(all);
+                        let best = best_levels(&rows, levels, &sn_ratios(&designs, &weights));
+                        known_best.store(combo_index(&best), Ordering::SeqCst);
                     }
-                    Err(e) => {
-                        failed.store(true, Ordering::Relaxed);
-                        return Err(e);
+                    continue;
+                }
+                let known = known_best.load(Ordering::SeqCst);
+                if known != 0 {
+                    // the array is complete: its confirmation, unless it is a run or a
+                    // speculation on the right combination is under way
+                    let best = combo_of(known);
+                    if !rows.contains(&best) && speculated.load(Ordering::SeqCst) != known && !confirmation_taken.swap(true, Ordering::SeqCst) {
+                        confirm(&mut ws, best, observer).map_err(fail)?;
                     }
+                    break;
                 }
-            }
-            if failed.load(Ordering::Relaxed) || speculating.swap(true, Ordering::Relaxed) {
-                return Ok(ws);
-            }
-            let runs_so_far: Vec<Option<Design>> = done.lock().unwrap_or_else(|e| e.into_inner())[1..].to_vec();
-            if runs_so_far.iter().all(Option::is_some) {
-                return Ok(ws);
-            }
-            if let Some(combo) = predicted_best_levels(&rows, levels, &runs_so_far, &weights) {
-                ws.reset();
-                let abandon = Abandon { inner: observer, known_best: &known_best, failed: &failed, mine: combo_index(&combo) };
-                // an error here (a wrong guess abandoned, a cancel, a failure) is not kept: the
-                // confirmation after the array runs again and reports it
-                if let Ok((d, _)) = ev.design(base, Some(profile(&combo)), Some(&mut ws), &abandon) {
-                    *speculation.lock().unwrap_or_else(|e| e.into_inner()) = Some((combo, d));
+                if speculated.load(Ordering::SeqCst) != 0 {
+                    break;
                 }
+                let runs_so_far: Vec<Option<Design>> = done.lock().unwrap_or_else(|e| e.into_inner())[1..].to_vec();
+                let Some(combo) = predicted_best_levels(&rows, levels, &runs_so_far, &weights) else { break };
+                let mine = combo_index(&combo);
+                if speculated.compare_exchange(0, mine, Ordering::SeqCst, Ordering::SeqCst).is_err() {
+                    break;
+                }
+                let known = known_best.load(Ordering::SeqCst);
+                if known != 0 && known != mine {
+                    // the array completed meanwhile with another best: the loop takes its
+                    // confirmation
+                    continue;
+                }
+                if confirmation_taken.swap(true, Ordering::SeqCst) {
+                    // the worker that completed the array took it before seeing this guess
+                    break;
+                }
+                let abandon = Abandon { inner: observer, known_best: &known_best, failed: &failed, mine };
+                // an error here (a wrong guess abandoned, a cancel, a failure) is not kept:
+                // the confirmation runs again (below or after the array) and reports it
+                if confirm(&mut ws, combo, &abandon).is_err() && known_best.load(Ordering::SeqCst) != mine {
+                    // abandoned for another combination: take the true confirmation
+                    confirmation_taken.store(false, Ordering::SeqCst);
+                    speculated.store(usize::MAX, Ordering::SeqCst);
+                    continue;
+                }
+                break;
             }
             Ok(ws)
         })
@@ -499,7 +547,7 @@ fn optimise(spec: &OptimisationSpec, observer: &dyn Observer) -> Result<Optimisa
         Some(i) => designs[i],
         None => {
             evaluations += 1;
-            match speculation.into_inner().unwrap_or_else(|e| e.into_inner()) {
+            match confirmation.into_inner().unwrap_or_else(|e| e.into_inner()) {
                 Some((combo, d)) if combo == best => d,
                 _ => {
                     if let Some(ws) = ws_confirm.as_mut() {
