@@ -133,14 +133,14 @@ fn ross_case() -> (f64, f64) {
 /// coefficients; the misaligned profiled case at 361×181; the L9 on two cores.
 /// `cargo bench --bench journal -- speed`.
 fn speed_section(reps: usize) {
-    use tribod::physics::journal::dynamics::coefficients;
+    use tribod::physics::journal::dynamics::{coefficients, tilt_coefficients};
     let (ld, w) = ross_case();
     let b = Bearing::plain(ld);
     let fine = settings(721, 241);
     let r = analyse(&b, &Operating::Load(w), &fine, None, None, false, &Silent).unwrap();
     println!("\n## ROSS plain-bearing case: L/D = {ld:.5}, W̄ = {w:.6} (S = {:.4}); 721×241: ε = {:.6}, β = {:.4}°\n", 1.0 / (6.0 * std::f64::consts::PI * w), r.eccentricity, r.attitude.to_degrees());
-    println!("| grid | cold equilibrium CPU ms (wall) | warm workspace CPU ms | coefficients CPU ms | ratio | ε err | β err | steps per grid | V-cycles per level |");
-    println!("| --- | ---: | ---: | ---: | ---: | ---: | ---: | --- | --- |");
+    println!("| grid | cold equilibrium CPU ms (wall) | warm workspace CPU ms | coefficients CPU ms | ratio | force + moment (4×4) CPU ms | ratio | ε err | β err | steps per grid | V-cycles per level |");
+    println!("| --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | --- | --- |");
     for (nt, nz) in [(121, 41), (41, 121), (241, 81)] {
         let s = settings(nt, nz);
         let (ce, we, a) = best_of(reps * 4, || analyse(&b, &Operating::Load(w), &s, None, None, false, &Silent).unwrap());
@@ -151,9 +151,10 @@ fn speed_section(reps: usize) {
         let mut ws2 = Workspace::new(&b, &s);
         analyse(&b, &Operating::Load(w), &s, Some(&mut ws2), None, false, &Silent).unwrap();
         let (cc, _, _) = best_of(reps * 4, || coefficients(&b, &a, &s, &mut ws2, &Silent).unwrap());
+        let (ct, _, _) = best_of(reps * 4, || tilt_coefficients(&b, &a, &s, &mut ws2, &Silent).unwrap());
         println!(
-            "| {nt}×{nz} | {:.3} ({:.3}) | {:.3} | {:.3} | {:.2} | {:.1e} | {:.1e} | {:?} | {:?} |",
-            ce * 1e3, we * 1e3, cw * 1e3, cc * 1e3, cc / ce,
+            "| {nt}×{nz} | {:.3} ({:.3}) | {:.3} | {:.3} | {:.2} | {:.3} | {:.2} | {:.1e} | {:.1e} | {:?} | {:?} |",
+            ce * 1e3, we * 1e3, cw * 1e3, cc * 1e3, cc / ce, ct * 1e3, ct / ce,
             (a.eccentricity / r.eccentricity - 1.0).abs(), (a.attitude / r.attitude - 1.0).abs(),
             a.steps_per_grid, c0
         );
@@ -165,6 +166,9 @@ fn speed_section(reps: usize) {
     analyse(&seed_case(), &Operating::Load(wa), &s, Some(&mut ws), None, false, &Silent).unwrap();
     println!("\nmisaligned profiled 361×181, cold: {:.2} ms CPU ({:.2} wall); P0 {:.6}, H0 {:.6}; steps per grid {:?}; V-cycles {:?}; active-set steps {:?}",
         c * 1e3, wl * 1e3, m.max_pressure, m.min_film, m.steps_per_grid, ws.cycles(), ws.steps());
+    let (cc, _, _) = best_of(reps * 2, || coefficients(&seed_case(), &m, &s, &mut ws, &Silent).unwrap());
+    let (ct, _, _) = best_of(reps * 2, || tilt_coefficients(&seed_case(), &m, &s, &mut ws, &Silent).unwrap());
+    println!("misaligned profiled 361×181: coefficients {:.2} ms CPU ({:.2}× the equilibrium), force and moment coefficients (4×4) {:.2} ms CPU ({:.2}×)", cc * 1e3, cc / c, ct * 1e3, ct / c);
     let spec_json = serde_json::json!({
         "base": {
             "geometry": {"length_to_diameter": 1.25},

@@ -3,7 +3,7 @@
 //! solves, damping symmetry, grid convergence and the rigid-rotor stability threshold.
 
 use std::f64::consts::PI;
-use tribod::physics::journal::dynamics::{coefficients, stability, Coefficients};
+use tribod::physics::journal::dynamics::{coefficients, stability, tilt_coefficients, Coefficients};
 use tribod::physics::journal::*;
 use tribod::physics::Silent;
 
@@ -147,6 +147,204 @@ fn damping_symmetric_dissipative_and_grid_converged() {
     }
 }
 
+/// The generalised forces `(F̄x, F̄y, M̄x, M̄y)` of a pressure field: the force quadrature of
+/// `dynamics` over the interior rows, the moments with the lever `Z − ½`.
+fn generalised_forces(f: &Fields) -> [f64; 4] {
+    let (nt, nz) = (f.theta.len(), f.z.len());
+    let ds = (f.theta[1] - f.theta[0]) * (f.z[1] - f.z[0]);
+    let mut q = [0.0; 4];
+    for j in 1..nz - 1 {
+        for i in 0..nt {
+            let p = f.pressure[j * nt + i] * ds;
+            let (c, s) = (f.theta[i].cos(), f.theta[i].sin());
+            let lever = f.z[j] - 0.5;
+            q[0] += p * c;
+            q[1] += p * s;
+            q[2] += p * c * lever;
+            q[3] += p * s * lever;
+        }
+    }
+    q
+}
+
+/// Of each 2×2 block of two 4×4 matrices (forces/moments × translations/tilts): the largest
+/// difference over the block's largest reference entry (or 1e-3 of the whole matrix's, for a
+/// block that vanishes).
+fn block_errors(a: &[[f64; 4]; 4], r: &[[f64; 4]; 4]) -> [f64; 4] {
+    let whole = r.iter().flatten().fold(0.0f64, |m, v| m.max(v.abs()));
+    let mut out = [0.0; 4];
+    for (b, o) in out.iter_mut().enumerate() {
+        let (i0, j0) = (2 * (b / 2), 2 * (b % 2));
+        let (mut diff, mut size) = (0.0f64, 0.0f64);
+        for i in i0..i0 + 2 {
+            for j in j0..j0 + 2 {
+                diff = diff.max((a[i][j] - r[i][j]).abs());
+                size = size.max(r[i][j].abs());
+            }
+        }
+        *o = diff / size.max(1e-3 * whole);
+    }
+    out
+}
+
+/// The force and moment coefficients of translations and tilts are the derivative of the
+/// discrete problem: the 4×4 stiffness against central differences (δ = 1e-4) of whole
+/// complementarity solves at fixed positions — the translations move the mid-plane centre, the
+/// tilts the misalignment (`Γx = 2 Δv0`, `Γy = −2 Δh0`) — with the forces and moments summed
+/// from the pressure fields; the supply groove held where the equilibrium has it. L/D 1 aligned
+/// (the translation–tilt blocks vanish by symmetry: ≤ 1e-9 of the largest entry) and L/D 1.25
+/// misaligned + profiled. Every 2×2 block within 2e-3 of its largest entry. Damping: symmetric
+/// (the squeeze source of each coordinate is its force quadrature times a constant) and positive
+/// definite; the translations' blocks equal `coefficients` bit for bit.
+#[test]
+fn moment_coefficients_are_the_derivative_of_whole_solves() {
+    let s = Settings { circumferential: 121, axial: 41, pressure_tolerance: 1e-12, load_tolerance: 1e-10, ..Settings::default() };
+    let cases = [
+        (Bearing::plain(1.0), 0.6),
+        (
+            Bearing {
+                length_to_diameter: 1.25,
+                misalignment: Misalignment { vertical: 0.2, horizontal: 0.2 },
+                profile: Some(Profile { order: 2, height: 0.4, length_fraction: 0.2 }),
+                supply: Supply::MaxFilm,
+            },
+            0.5,
+        ),
+    ];
+    for (b0, e) in cases {
+        let eq = analyse(&b0, &Operating::Eccentricity(e), &s, None, None, false, &Silent).unwrap();
+        let b = Bearing { supply: Supply::Angle(eq.attitude), ..b0 };
+        let (x0, y0) = (eq.eccentricity * eq.attitude.cos(), eq.eccentricity * eq.attitude.sin());
+        let m0 = b.misalignment;
+        // q = (X, Y, Γx, Γy) moved by `dq`
+        let at = |dq: [f64; 4]| {
+            let (x, y) = (x0 + dq[0], y0 + dq[1]);
+            let bm = Bearing { misalignment: Misalignment { vertical: m0.vertical + 0.5 * dq[2], horizontal: m0.horizontal - 0.5 * dq[3] }, ..b };
+            let a = analyse(&bm, &Operating::Position { eccentricity: x.hypot(y), attitude: y.atan2(x) }, &s, None, None, true, &Silent).unwrap();
+            generalised_forces(a.fields.as_ref().unwrap())
+        };
+        // the 4×4 and the 2×2 set, each after the same analysis on a new workspace
+        let pos = Operating::Position { eccentricity: eq.eccentricity, attitude: eq.attitude };
+        let mut ws = Workspace::new(&b, &s);
+        let a = analyse(&b, &pos, &s, Some(&mut ws), None, false, &Silent).unwrap();
+        let t = tilt_coefficients(&b, &a, &s, &mut ws, &Silent).unwrap();
+        let mut ws2 = Workspace::new(&b, &s);
+        let a2 = analyse(&b, &pos, &s, Some(&mut ws2), None, false, &Silent).unwrap();
+        let c2 = coefficients(&b, &a2, &s, &mut ws2, &Silent).unwrap();
+        assert_eq!(t.translation().stiffness, c2.stiffness);
+        assert_eq!(t.translation().damping, c2.damping);
+        let d = 1e-4;
+        let mut fd = [[0.0; 4]; 4];
+        for j in 0..4 {
+            let mut dq = [0.0; 4];
+            dq[j] = d;
+            let p = at(dq);
+            dq[j] = -d;
+            let m = at(dq);
+            for i in 0..4 {
+                fd[i][j] = -(p[i] - m[i]) / (2.0 * d);
+            }
+        }
+        let err = block_errors(&t.stiffness, &fd);
+        eprintln!("L/D {} eps {e}: linearised {:?}\n fd {:?}\n block errors (FX, FΓ, MX, MΓ) {err:?}; damping {:?}", b.length_to_diameter, t.stiffness, fd, t.damping);
+        for e in err {
+            assert!(e < 2e-3, "{err:?}");
+        }
+        let (k, c) = (t.stiffness, t.damping);
+        let largest = k.iter().flatten().fold(0.0f64, |m, v| m.max(v.abs()));
+        let largest_c = c.iter().flatten().fold(0.0f64, |m, v| m.max(v.abs()));
+        if b0.misalignment.is_zero() {
+            for (i, j) in [(0, 2), (0, 3), (1, 2), (1, 3), (2, 0), (2, 1), (3, 0), (3, 1)] {
+                assert!(k[i][j].abs() < 1e-9 * largest && c[i][j].abs() < 1e-9 * largest_c, "aligned: K[{i}][{j}] = {}, C = {}", k[i][j], c[i][j]);
+            }
+        }
+        for i in 0..4 {
+            assert!(c[i][i] > 0.0);
+            for j in 0..4 {
+                assert!((c[i][j] - c[j][i]).abs() < 1e-8 * largest_c, "C[{i}][{j}] {} vs {}", c[i][j], c[j][i]);
+            }
+        }
+        // positive definite: Cholesky of the symmetric damping
+        let mut l = [[0.0f64; 4]; 4];
+        for i in 0..4 {
+            for j in 0..=i {
+                let sum: f64 = (0..j).map(|m| l[i][m] * l[j][m]).sum();
+                if i == j {
+                    let v = c[i][i] - sum;
+                    assert!(v > 0.0, "damping not positive definite: {c:?}");
+                    l[i][j] = v.sqrt();
+                } else {
+                    l[i][j] = (c[i][j] - sum) / l[j][j];
+                }
+            }
+        }
+    }
+}
+
+/// Short-bearing limit of the tilt coefficients (aligned film, `H0` independent of `Z`; derived
+/// here from Ocvirk's short-bearing equation `∂/∂Z(H³ ∂P/∂Z) ∝ ∂H/∂θ + 2 ∂H/∂τ` linearised in
+/// `H1 = (Z − ½) Γ cos/sin θ`): the perturbation pressure of a tilt has the axial shape
+/// `(Z − ½)³/6 − (Z − ½)/24` where a translation has `Z(Z − 1)/2`, and its Poiseuille term
+/// `∂/∂Z(3H0² H1 ∂P0/∂Z)` is twice the translation's. With `∫ shape·(Z − ½) = −1/720` against
+/// `∫ Z(Z − 1)/2 = −1/12`, the tilt block (moments against tilts) is
+/// `C_MΓ = C_FX/60` and `K_MΓ = (2 K_FX − Ω)/60`, where `Ω` is the wedge part of `K_FX`:
+/// `Ω_iX = −C_iY/2`, `Ω_iY = C_iX/2` (the wedge source of a displacement along X is −½ the
+/// squeeze source of a velocity along Y, exactly, also in the discretisation). With the
+/// short-bearing `K_FX`, `C_FX` of Childs (`short_bearing`) this gives closed forms. On 361×31
+/// the tilt block converges to them as L/D falls (0.2, 0.1, 0.05, 0.025: the largest error of
+/// each block over its largest entry falls at every step, to < 1 % at 0.025; measured in the
+/// output), and the translation–tilt blocks vanish (< 1e-8).
+#[test]
+fn tilt_coefficients_in_the_short_bearing_limit() {
+    let s = Settings { circumferential: 361, axial: 31, pressure_tolerance: 1e-10, load_tolerance: 1e-9, ..Settings::default() };
+    let tilt_of = |k: [[f64; 2]; 2], c: [[f64; 2]; 2]| {
+        let omega = [[-c[0][1] / 2.0, c[0][0] / 2.0], [-c[1][1] / 2.0, c[1][0] / 2.0]];
+        let mut kt = [[0.0; 2]; 2];
+        let mut ct = [[0.0; 2]; 2];
+        for i in 0..2 {
+            for j in 0..2 {
+                kt[i][j] = (2.0 * k[i][j] - omega[i][j]) / 60.0;
+                ct[i][j] = c[i][j] / 60.0;
+            }
+        }
+        (kt, ct)
+    };
+    let block = |m: &[[f64; 4]; 4], i0: usize, j0: usize| [[m[i0][j0], m[i0][j0 + 1]], [m[i0 + 1][j0], m[i0 + 1][j0 + 1]]];
+    let mut previous = [None; 4];
+    for ld in [0.2, 0.1, 0.05, 0.025] {
+        for (ei, e) in [0.2, 0.4, 0.6, 0.8].into_iter().enumerate() {
+            let b = Bearing::plain(ld);
+            let mut ws = Workspace::new(&b, &s);
+            let a = analyse(&b, &Operating::Eccentricity(e), &s, Some(&mut ws), None, false, &Silent).unwrap();
+            let t = tilt_coefficients(&b, &a, &s, &mut ws, &Silent).unwrap();
+            let (k, c) = t.dimensionless(a.load).unwrap();
+            let (kt, ct) = (block(&k, 2, 2), block(&c, 2, 2));
+            // against the closed forms, and against the relations applied to this solution's own
+            // translation block (the finite-length effect on the relations alone)
+            let (kr, cr) = short_bearing(e);
+            let (ktr, ctr) = tilt_of(kr, cr);
+            let (kts, cts) = tilt_of(block(&k, 0, 0), block(&c, 0, 0));
+            let (ek, ec) = (max_err(&kt, &ktr), max_err(&ct, &ctr));
+            let (eks, ecs) = (max_err(&kt, &kts), max_err(&ct, &cts));
+            eprintln!("L/D {ld} eps {e}: K_MΓ {kt:?} closed {ktr:?} err {ek:.4} (own {eks:.4}); C_MΓ {ct:?} closed {ctr:?} err {ec:.4} (own {ecs:.4})");
+            let largest = k.iter().flatten().fold(0.0f64, |m, v| m.max(v.abs()));
+            for (i, j) in [(0, 2), (0, 3), (1, 2), (1, 3), (2, 0), (2, 1), (3, 0), (3, 1)] {
+                assert!(k[i][j].abs() < 1e-8 * largest, "K[{i}][{j}] = {}", k[i][j]);
+            }
+            // the finite-length effect shrinks with every halving of L/D (at ε 0.8, C: 16.5 %,
+            // 6.8 %, 3.5 %, 0.85 %), and is below 1 % of each block's largest entry at L/D 0.025
+            let worst = ek.max(ec);
+            if let Some(p) = previous[ei] {
+                assert!(worst < p, "L/D {ld} eps {e}: {worst} not below {p} at twice the L/D");
+            }
+            previous[ei] = Some(worst);
+            if ld == 0.025 {
+                assert!(worst < 0.01, "L/D {ld} eps {e}: K err {ek}, C err {ec}");
+            }
+        }
+    }
+}
+
 /// The coefficients at the default tolerances against the same equilibrium position solved
 /// and linearised at a tight one (pressure 1e-12): the linear solves' tolerance moves every
 /// coefficient by far less than the grid does (~1e-3 of the largest at 121×41, BENCHMARKS.md).
@@ -200,6 +398,44 @@ fn kind_reports_coefficients_in_si() {
     }
     assert!((w - 5000.0).abs() < 5000.0 * 1e-5);
     assert!(dc["stiffness"]["kxx"].as_f64().unwrap() > 0.0);
+}
+
+/// The `bearing` kind's force and moment coefficients (`outputs: ["moment_coefficients"]`, the
+/// example on seed 002's misaligned, profiled bearing): SI consistent with the dimensionless
+/// (`K_ij = K̄_ij W/c · l_i l_j`, `C_ij = C̄_ij W/(cω) · l_i l_j`, `l = (1, 1, L, L)`), the
+/// translations' block equal to `dynamic_coefficients`, the damping symmetric; refused in an
+/// optimisation's base.
+#[test]
+fn kind_reports_moment_coefficients_in_si() {
+    let spec = crate::in_process::example("bearing_moment_coefficients");
+    let r = crate::in_process::run("bearing", &spec).unwrap();
+    let m = &r["moment_coefficients"];
+    let w = r["load"]["force"].as_f64().unwrap();
+    let (c, length) = (1.175e-4, 0.08);
+    let omega = 3000.0 * 2.0 * PI / 60.0;
+    let l = [1.0, 1.0, length, length];
+    let at = |block: &str, i: usize, j: usize| m[block][i][j].as_f64().unwrap();
+    assert_eq!(m["coordinates"], serde_json::json!(["x", "y", "tilt_x", "tilt_y"]));
+    for i in 0..4 {
+        for j in 0..4 {
+            let (k, kb) = (at("stiffness", i, j), at("stiffness_dimensionless", i, j));
+            assert!((k - kb * w / c * l[i] * l[j]).abs() <= 1e-9 * k.abs(), "K[{i}][{j}]");
+            let (d, db) = (at("damping", i, j), at("damping_dimensionless", i, j));
+            assert!((d - db * w / (c * omega) * l[i] * l[j]).abs() <= 1e-9 * d.abs(), "C[{i}][{j}]");
+            assert!((d - at("damping", j, i)).abs() <= 1e-6 * at("damping", 0, 0), "C[{i}][{j}] symmetric");
+        }
+    }
+    let dc = &r["dynamic_coefficients"];
+    for (n, (i, j)) in [("kxx", (0, 0)), ("kxy", (0, 1)), ("kyx", (1, 0)), ("kyy", (1, 1))] {
+        assert_eq!(dc["stiffness"][n].as_f64().unwrap(), at("stiffness", i, j), "{n}");
+    }
+    // the tilts of a misaligned bearing couple to the force (seed 002's case: |K_FΓ| up to 16 %
+    // of K̄xx in dimensionless terms)
+    assert!(at("stiffness_dimensionless", 0, 2).abs() > 0.01 * at("stiffness_dimensionless", 0, 0));
+    let mut opt = crate::in_process::example("seed002_taguchi_l9");
+    opt["base"]["outputs"] = serde_json::json!(["moment_coefficients"]);
+    let e = crate::in_process::run("bearing_optimisation", &opt).unwrap_err();
+    assert!(format!("{e:?}").contains("moment_coefficients"), "{e:?}");
 }
 
 /// The heat balance closes: with κ = 0 and no housing the friction power equals
@@ -270,6 +506,23 @@ mod properties {
                 if let Some((k, cc)) = c.dimensionless(a.load) {
                     let st = stability(k, cc);
                     prop_assert!(st.whirl_ratio.is_finite() && st.equivalent_stiffness.is_finite());
+                }
+                // the translations and tilts: finite, the translations' block the same numbers,
+                // the damping symmetric with a positive diagonal
+                let t = tilt_coefficients(&b, &a, &s, &mut ws, &Silent).map_err(|e| TestCaseError::fail(format!("{e:?}")))?;
+                prop_assert!(t.stiffness.iter().chain(t.damping.iter()).flatten().all(|v| v.is_finite()));
+                let kmax = c.stiffness.iter().flatten().fold(0.0f64, |m, v| m.max(v.abs()));
+                for i in 0..2 {
+                    for j in 0..2 {
+                        prop_assert!((t.stiffness[i][j] - c.stiffness[i][j]).abs() <= 1e-5 * kmax, "{:?} vs {:?}", t.stiffness, c.stiffness);
+                    }
+                }
+                let largest = t.damping.iter().flatten().fold(0.0f64, |m, v| m.max(v.abs()));
+                for i in 0..4 {
+                    prop_assert!(t.damping[i][i] >= 0.0, "{:?}", t.damping);
+                    for j in 0..4 {
+                        prop_assert!((t.damping[i][j] - t.damping[j][i]).abs() <= 1e-5 * largest, "{:?}", t.damping);
+                    }
                 }
                 Ok(())
             }

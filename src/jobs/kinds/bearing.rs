@@ -22,6 +22,11 @@
 //!   `K̄ = K c/W`, `C̄ = C c ω/W` (W the film load, Lund's convention). From the Reynolds equation
 //!   linearised about the equilibrium with its cavitation set (the rupture boundary's motion has
 //!   no first-order effect); a supply groove stays where the equilibrium put it.
+//! - Force and moment coefficients (`outputs: ["moment_coefficients"]`): the 4×4 stiffness and
+//!   damping of the coordinates `(x, y, tilt_x, tilt_y)` — the mid-plane centre and the slopes
+//!   `dx/dz`, `dy/dz` of the journal axis — against `(F_x, F_y, M_x, M_y)`, the film force and
+//!   its moments about the mid-plane `M = ∫ (z − L/2) dF`; the same linearisation with a tilt as
+//!   a translation varying as `z − L/2`, twice the linear solves of `dynamic_coefficients`.
 //! - Heat balance (`thermal`): bulk model of ISO 7902-1 / DIN 31652-2, temperatures in K
 //!   (`physics::journal::heat`); `checks` (with `limits`) compare the minimum film, the specific
 //!   load and the maximum bulk temperature with configurable limits.
@@ -339,6 +344,10 @@ pub enum BearingOutput {
     /// Stiffness and damping coefficients at the equilibrium (linearised Reynolds), block
     /// `dynamic_coefficients`.
     DynamicCoefficients,
+    /// The 4×4 stiffness and damping of the journal's translations and tilts (force and moment
+    /// coefficients), block `moment_coefficients`; twice the linear solves of
+    /// `dynamic_coefficients`, which then comes from the same solves.
+    MomentCoefficients,
 }
 
 /// Keep every n-th node of the fields (the last node of each direction is always kept).
@@ -508,6 +517,39 @@ pub struct DynamicCoefficientsResult {
     pub convergence: Convergence,
 }
 
+/// Force and moment coefficients of the film at the equilibrium (`outputs:
+/// ["moment_coefficients"]`): the journal's four small motions, the translations `x`, `y` of the
+/// mid-plane centre (the frame of `dynamic_coefficients`) and the tilts `tilt_x = dx/dz`,
+/// `tilt_y = dy/dz` of the journal axis (rad), against the film force `F_x`, `F_y` and its
+/// moments about the mid-plane, `M_x = ∫ (z − L/2) dF_x`, `M_y = ∫ (z − L/2) dF_y` (each moment
+/// the generalised force of its tilt). For small motions `ΔQ = −K Δq − C Δq̇` with
+/// `q = (x, y, tilt_x, tilt_y)` and `Q = (F_x, F_y, M_x, M_y)`. Rows and columns in that order;
+/// the upper-left 2×2 blocks are `dynamic_coefficients`' numbers. Linearised Reynolds on the
+/// equilibrium's cavitation set, a tilt being a translation that varies as `(z − L/2)` along
+/// the bearing.
+#[derive(Debug, Clone, PartialEq, Serialize, ToSchema)]
+pub struct MomentCoefficientsResult {
+    /// `["x", "y", "tilt_x", "tilt_y"]`: the rows and columns of the matrices.
+    pub coordinates: Vec<String>,
+    /// `K_ij = −∂Q_i/∂q_j` (with dimensions): N/m in the force–translation block, N/rad in the
+    /// force–tilt block, N (N·m/m) in the moment–translation block, N·m/rad in the moment–tilt block.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub stiffness: Option<Vec<Vec<f64>>>,
+    /// `C_ij = −∂Q_i/∂q̇_j` (with dimensions): the units of `stiffness` times s.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub damping: Option<Vec<Vec<f64>>>,
+    /// `K̄ = K_ij c/(W l_i l_j)` with `l = (1, 1, L, L)`: the coefficients of the dimensionless
+    /// coordinates `(x/c, y/c, tilt_x L/c, tilt_y L/c)` per unit load (`K̄ = K c/W` in the
+    /// translation block, as in `dynamic_coefficients`); absent at zero load.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub stiffness_dimensionless: Option<Vec<Vec<f64>>>,
+    /// `C̄ = C_ij c ω/(W l_i l_j)`; absent at zero load.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub damping_dimensionless: Option<Vec<Vec<f64>>>,
+    /// The four adjoint linear solves: CG iterations, largest relative residual, tolerance.
+    pub convergence: Convergence,
+}
+
 /// Heat balance result.
 #[derive(Debug, Clone, PartialEq, Serialize, ToSchema)]
 pub struct BearingThermalResult {
@@ -626,6 +668,9 @@ pub struct BearingResult {
     /// Stiffness and damping (`outputs: ["dynamic_coefficients"]`).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub dynamic_coefficients: Option<DynamicCoefficientsResult>,
+    /// Force and moment coefficients of translations and tilts (`outputs: ["moment_coefficients"]`).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub moment_coefficients: Option<MomentCoefficientsResult>,
     /// Heat balance (with `thermal`).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub thermal: Option<BearingThermalResult>,
@@ -819,6 +864,7 @@ pub fn validate_bearing(spec: &BearingSpec, limits: &Limits, v: &mut Validation,
         v.check(spec.thermal.is_none(), &px("/thermal"), "not available in an optimisation");
         v.check(spec.limits.is_none(), &px("/limits"), "not available in an optimisation");
         v.check(!spec.outputs.contains(&BearingOutput::DynamicCoefficients), &px("/outputs"), "dynamic_coefficients is not available in an optimisation");
+        v.check(!spec.outputs.contains(&BearingOutput::MomentCoefficients), &px("/outputs"), "moment_coefficients is not available in an optimisation");
     }
     if let Some(t) = &spec.thermal {
         v.check(spec.has_size_and_speed(), &px("/thermal"), "needs geometry.radius, geometry.length, geometry.radial_clearance and operating.speed_rpm");
@@ -1017,6 +1063,7 @@ pub fn to_result(spec: &BearingSpec, a: &Analysis, target: Option<f64>) -> Beari
             .collect(),
         field,
         dynamic_coefficients: None,
+        moment_coefficients: None,
         thermal: None,
         checks: None,
     }
@@ -1063,6 +1110,7 @@ impl Kind for BearingKind {
             OutputInfo { name: "pressure_field", description: "dimensionless pressure at the grid nodes (table `field`, downsampled by `field_stride`)" },
             OutputInfo { name: "film_field", description: "dimensionless film at the grid nodes (table `field`, downsampled by `field_stride`)" },
             OutputInfo { name: "dynamic_coefficients", description: "stiffness and damping coefficients at the equilibrium (linearised Reynolds; x along the load, y 90° ahead in rotation), dimensionless and SI, rigid-rotor stability threshold" },
+            OutputInfo { name: "moment_coefficients", description: "4×4 stiffness and damping of the journal's translations and tilts against the film force and its moments about the mid-plane (linearised Reynolds), dimensionless and SI" },
         ]
     }
 
@@ -1091,7 +1139,15 @@ impl Kind for BearingKind {
                     (spec.clone(), a, r)
                 }
             };
-            if spec.outputs.contains(&BearingOutput::DynamicCoefficients) {
+            if spec.outputs.contains(&BearingOutput::MomentCoefficients) {
+                // the 4×4 set; its translations block is `coefficients`' computation from the same state
+                observer.progress(0.8, "moment coefficients");
+                let c = journal::dynamics::tilt_coefficients(&bearing, &a, &settings, &mut ws, observer)?;
+                if spec.outputs.contains(&BearingOutput::DynamicCoefficients) {
+                    r.dynamic_coefficients = Some(dynamic_result(&spec_eff, &a, &c.translation()));
+                }
+                r.moment_coefficients = Some(moment_result(&spec_eff, &a, &c));
+            } else if spec.outputs.contains(&BearingOutput::DynamicCoefficients) {
                 observer.progress(0.8, "dynamic coefficients");
                 let c = journal::dynamics::coefficients(&bearing, &a, &settings, &mut ws, observer)?;
                 r.dynamic_coefficients = Some(dynamic_result(&spec_eff, &a, &c));
@@ -1193,6 +1249,27 @@ fn dynamic_result(spec: &BearingSpec, a: &Analysis, c: &journal::dynamics::Coeff
         critical_mass_dimensionless: stab.and_then(|s| s.critical_mass),
         critical_mass,
         threshold_speed_rpm,
+        convergence: c.convergence.clone(),
+    }
+}
+
+/// The force and moment coefficients block: dimensionless always (at a positive load), SI with
+/// dimensions. Generalised coordinates `(X, Y, Γx, Γy)` with `Γ = ψ L/c` and forces
+/// `(F̄, M̄/L)` in the solver (`journal::dynamics::TiltCoefficients`), so
+/// `K_ij = stiffness_ij · (W_scale/c) · l_i l_j` with `l = (1, 1, L, L)`, `C_ij` the same over ω.
+fn moment_result(spec: &BearingSpec, a: &Analysis, c: &journal::dynamics::TiltCoefficients) -> MomentCoefficientsResult {
+    let d = spec.dimensions();
+    let scaled = |m: &[[f64; 4]; 4], s: f64, length: f64| -> Vec<Vec<f64>> {
+        let l = [1.0, 1.0, length, length];
+        (0..4).map(|i| (0..4).map(|j| m[i][j] * s * l[i] * l[j]).collect()).collect()
+    };
+    let nondim = c.dimensionless(a.load);
+    MomentCoefficientsResult {
+        coordinates: ["x", "y", "tilt_x", "tilt_y"].iter().map(|s| s.to_string()).collect(),
+        stiffness: d.map(|d| scaled(&c.stiffness, d.load_scale() / d.clearance, d.length)),
+        damping: d.map(|d| scaled(&c.damping, d.load_scale() / (d.clearance * d.omega), d.length)),
+        stiffness_dimensionless: nondim.map(|(k, _)| scaled(&k, 1.0, 1.0)),
+        damping_dimensionless: nondim.map(|(_, cc)| scaled(&cc, 1.0, 1.0)),
         convergence: c.convergence.clone(),
     }
 }

@@ -91,6 +91,75 @@ pub fn coefficients(
     workspace: &mut Workspace,
     observer: &dyn Observer,
 ) -> Result<Coefficients, SolveError> {
+    let (stiffness, damping, convergence) = matrices::<2>(bearing, analysis, settings, workspace, observer)?;
+    Ok(Coefficients { stiffness, damping, convergence })
+}
+
+/// Stiffness and damping of the journal's four small motions at an equilibrium: the two
+/// translations of [`Coefficients`] and the two tilts of the journal axis about the mid-plane.
+///
+/// Coordinates `q = (X, Y, Γx, Γy)`: the mid-plane centre `X = x/c`, `Y = y/c` in the frame of
+/// [`Coefficients`], and the tilts `Γx = ψx L/c`, `Γy = ψy L/c`, where `ψx = dx/dz` and `ψy = dy/dz`
+/// are the slopes of the journal axis (rad): a tilt moves the centre of the cross-section at
+/// `Z = z/L` by `(Z − ½) Γ` clearances, so `Γ` is the difference of the displacements of the two
+/// edges. (Seed 002's misalignment is such a tilt: `Γx = 2 Δv0`, `Γy = −2 Δh0`.)
+/// Generalised forces `Q = (F̄x, F̄y, M̄x, M̄y)`, conjugate to `q`: the film force and its moments
+/// about the mid-plane, `M̄x = ∫∫ P cos θ (Z − ½) dθ dZ` (the lever in `L` units), so
+/// `Mx = ∫ (z − L/2) dFx`. For small motions `ΔQ = −K Δq − C Δq'` with `q' = dq/d(ωt)`.
+/// Scaling as in [`Coefficients`], with a factor `L` for each moment row and each tilt column.
+///
+/// Method: four adjoint solves (one per generalised force) instead of two, dotted with eight
+/// right-hand sides; the tilt sources are the translation's with the axial shape `Z − ½`
+/// ([`super::multigrid::Level::linearised_sources`]). The first two rows and columns are
+/// [`coefficients`] bit for bit from the same workspace state.
+#[derive(Debug, Clone, PartialEq)]
+pub struct TiltCoefficients {
+    /// `−∂Q_i/∂q_j`, rows and columns `(X, Y, Γx, Γy)`.
+    pub stiffness: [[f64; 4]; 4],
+    /// `−∂Q_i/∂q'_j`.
+    pub damping: [[f64; 4]; 4],
+    /// The four adjoint linear solves: CG iterations (total), the largest relative residual, the tolerance.
+    pub convergence: Convergence,
+}
+
+impl TiltCoefficients {
+    /// `K̄ = K/W̄` and `C̄ = C/W̄` in the coordinates `q` for the film load `W̄`.
+    pub fn dimensionless(&self, load: f64) -> Option<([[f64; 4]; 4], [[f64; 4]; 4])> {
+        if !(load > 0.0) {
+            return None;
+        }
+        let s = |m: [[f64; 4]; 4]| m.map(|row| row.map(|v| v / load));
+        Some((s(self.stiffness), s(self.damping)))
+    }
+    /// The translations' block: [`coefficients`]' numbers.
+    pub fn translation(&self) -> Coefficients {
+        let block = |m: &[[f64; 4]; 4]| [[m[0][0], m[0][1]], [m[1][0], m[1][1]]];
+        Coefficients { stiffness: block(&self.stiffness), damping: block(&self.damping), convergence: self.convergence.clone() }
+    }
+}
+
+/// [`TiltCoefficients`] at the equilibrium of `analysis` (as [`coefficients`], twice the
+/// linear solves).
+pub fn tilt_coefficients(
+    bearing: &Bearing,
+    analysis: &Analysis,
+    settings: &Settings,
+    workspace: &mut Workspace,
+    observer: &dyn Observer,
+) -> Result<TiltCoefficients, SolveError> {
+    let (stiffness, damping, convergence) = matrices::<4>(bearing, analysis, settings, workspace, observer)?;
+    Ok(TiltCoefficients { stiffness, damping, convergence })
+}
+
+/// The `N × N` stiffness and damping in the coordinates `(X, Y, Γx, Γy)[..N]` (N = 2 or 4).
+#[allow(clippy::type_complexity)]
+fn matrices<const N: usize>(
+    bearing: &Bearing,
+    analysis: &Analysis,
+    settings: &Settings,
+    workspace: &mut Workspace,
+    observer: &dyn Observer,
+) -> Result<([[f64; N]; N], [[f64; N]; N], Convergence), SolveError> {
     let film = analysis.film;
     let h = workspace.hierarchy_mut(bearing, settings);
     let (_, theta0) = bearing.groove_angle(analysis.attitude);
@@ -111,35 +180,40 @@ pub fn coefficients(
     let l = &h.levels[0];
     let n = l.u.len();
     let p0 = l.u.clone();
-    let (nt, nz, ds) = (l.nt, l.nz, l.dt * l.dz);
-    // The force is linear in the pressure, `F_i = g_iᵀ P` (seed 002 eq. (6)-(7) as quadrature
-    // over the interior rows), and the perturbed pressure is `δP = A_II⁻¹ b` for each of the
-    // four right-hand sides `b` (displacement and velocity in X and Y). `A_II` is symmetric
-    // (face conductances shared by both nodes), so `g_iᵀ A_II⁻¹ b = (A_II⁻¹ g_i)ᵀ b`: two
-    // adjoint solves `y_i = A_II⁻¹ g_i` (one per force component) give all eight coefficients
-    // as dot products — the same numbers as four forward solves, at half the linear solves.
-    let mut g = [vec![0.0; n], vec![0.0; n]];
-    for j in 1..nz - 1 {
-        for i in 0..nt {
-            g[0][j * nt + i] = l.cos_n[i] * ds;
-            g[1][j * nt + i] = l.sin_n[i] * ds;
+    let (nt, nz, ds, dz) = (l.nt, l.nz, l.dt * l.dz, l.dz);
+    // The generalised forces are linear in the pressure, `Q_i = g_iᵀ P` (seed 002 eq. (6)-(7)
+    // as quadrature over the interior rows; a moment row has the lever `Z − ½`), and the
+    // perturbed pressure is `δP = A_II⁻¹ b` for each right-hand side `b` (displacement and
+    // velocity of each coordinate). `A_II` is symmetric (face conductances shared by both
+    // nodes), so `g_iᵀ A_II⁻¹ b = (A_II⁻¹ g_i)ᵀ b`: N adjoint solves `y_i = A_II⁻¹ g_i` (one per
+    // generalised force) give all 2N² coefficients as dot products — the same numbers as 2N
+    // forward solves, at half the linear solves.
+    let lever = |c: usize, j: usize| if c < 2 { 1.0 } else { j as f64 * dz - 0.5 };
+    let mut g: Vec<Vec<f64>> = vec![vec![0.0; n]; N];
+    for (c, gc) in g.iter_mut().enumerate() {
+        for j in 1..nz - 1 {
+            for i in 0..nt {
+                let trig = if c % 2 == 0 { l.cos_n[i] } else { l.sin_n[i] };
+                gc[j * nt + i] = if c < 2 { trig * ds } else { trig * ds * lever(c, j) };
+            }
         }
     }
     // linear solves to the pressure tolerance (relative residual of each adjoint problem)
     let tol = settings.pressure_tolerance.max(1e-12);
     let one = |_: f64| 1.0;
-    let mut disp = [vec![0.0; n], vec![0.0; n]];
-    let mut vel = [vec![0.0; n], vec![0.0; n]];
-    for dir in 0..2 {
-        let (d, v) = (&mut disp[dir], &mut vel[dir]);
-        h.levels[0].linearised_sources(&film, alpha, dir, &one, &p0, d, v);
+    let tilt = |z: f64| z - 0.5;
+    let mut disp: Vec<Vec<f64>> = vec![vec![0.0; n]; N];
+    let mut vel: Vec<Vec<f64>> = vec![vec![0.0; n]; N];
+    for (c, (d, v)) in disp.iter_mut().zip(vel.iter_mut()).enumerate() {
+        let shape: &dyn Fn(f64) -> f64 = if c < 2 { &one } else { &tilt };
+        h.levels[0].linearised_sources(&film, alpha, c % 2, shape, &p0, d, v);
     }
     let mut y = vec![0.0; n];
-    let mut k = [[0.0; 2]; 2];
-    let mut c = [[0.0; 2]; 2];
+    let mut k = [[0.0; N]; N];
+    let mut c = [[0.0; N]; N];
     let (mut iters, mut worst) = (0u32, 0.0f64);
     let dot = |a: &[f64], b: &[f64]| a.iter().zip(b).map(|(x, y)| x * y).sum::<f64>();
-    for comp in 0..2 {
+    for comp in 0..N {
         let (it, ok, res) = h.solve_free(0, &g[comp], &mut y, tol, settings.max_cycles);
         iters += it;
         worst = worst.max(res);
@@ -152,17 +226,13 @@ pub fn coefficients(
                 history: vec![res],
             });
         }
-        // K_ij = −∂F_i/∂X_j = −y_iᵀ b_j (the sources vanish at fixed nodes, `y` too)
-        for dir in 0..2 {
+        // K_ij = −∂Q_i/∂q_j = −y_iᵀ b_j (the sources vanish at fixed nodes, `y` too)
+        for dir in 0..N {
             k[comp][dir] = -dot(&y, &disp[dir]);
             c[comp][dir] = -dot(&y, &vel[dir]);
         }
         observer.check()?;
     }
     ensure_finite("dynamic coefficients", k.iter().chain(c.iter()).flatten())?;
-    Ok(Coefficients {
-        stiffness: k,
-        damping: c,
-        convergence: Convergence { iterations: iters, residual: worst, tolerance: tol, termination: Termination::Converged },
-    })
+    Ok((k, c, Convergence { iterations: iters, residual: worst, tolerance: tol, termination: Termination::Converged }))
 }
