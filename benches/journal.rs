@@ -193,6 +193,50 @@ fn speed_section(reps: usize) {
     println!("L9 ({ev} analyses, 2 threads): {:.1} ms wall, {:.1} ms CPU over both threads (best of {reps})", wall * 1e3, cpu * 1e3);
 }
 
+/// Run time against error of the force and moment coefficients (`cargo bench --bench journal --
+/// moments`): seed 002's misaligned, profiled design at the load of the aligned ε = 0.6, the
+/// load solved on each grid, then the 2×2 and the 4×4 coefficients; the error of each 2×2 block
+/// of the dimensionless 4×4 (`K̄ = K/W̄`) over that block's largest entry, against 721×361.
+fn moments() {
+    use tribod::physics::journal::dynamics::{coefficients, tilt_coefficients};
+    let b = seed_case();
+    let solve = |nt: usize, nz: usize| {
+        let s = settings(nt, nz);
+        let w = analyse(&Bearing::plain(1.25), &Operating::Eccentricity(0.6), &s, None, None, false, &Silent).unwrap().load;
+        let (te, _, a) = best_of(3, || analyse(&b, &Operating::Load(w), &s, None, None, false, &Silent).unwrap());
+        let mut ws = Workspace::new(&b, &s);
+        analyse(&b, &Operating::Load(w), &s, Some(&mut ws), None, false, &Silent).unwrap();
+        let (tc, _, _) = best_of(3, || coefficients(&b, &a, &s, &mut ws, &Silent).unwrap());
+        let (tt, _, t) = best_of(3, || tilt_coefficients(&b, &a, &s, &mut ws, &Silent).unwrap());
+        let (k, c) = t.dimensionless(a.load).unwrap();
+        (te, tc, tt, k, c)
+    };
+    let (_, _, _, kr, cr) = solve(721, 361);
+    let blocks = |m: &[[f64; 4]; 4], r: &[[f64; 4]; 4]| -> Vec<f64> {
+        (0..4)
+            .map(|bk| {
+                let (i0, j0) = (2 * (bk / 2), 2 * (bk % 2));
+                let (mut d, mut size) = (0.0f64, 0.0f64);
+                for i in i0..i0 + 2 {
+                    for j in j0..j0 + 2 {
+                        d = d.max((m[i][j] - r[i][j]).abs());
+                        size = size.max(r[i][j].abs());
+                    }
+                }
+                d / size
+            })
+            .collect()
+    };
+    println!("reference 721×361: K̄ {kr:?}\n C̄ {cr:?}\n");
+    println!("| grid | equilibrium CPU ms | 2×2 CPU ms | 4×4 CPU ms | 4×4 / equilibrium | K̄ error FX / FΓ / MX / MΓ | C̄ error FX / FΓ / MX / MΓ |");
+    println!("| --- | ---: | ---: | ---: | ---: | --- | --- |");
+    for (nt, nz) in [(61, 31), (121, 61), (181, 91), (241, 121), (361, 181)] {
+        let (te, tc, tt, k, c) = solve(nt, nz);
+        let f = |v: Vec<f64>| v.iter().map(|x| format!("{x:.1e}")).collect::<Vec<_>>().join(" / ");
+        println!("| {nt}×{nz} | {:.2} | {:.2} | {:.2} | {:.2} | {} | {} |", te * 1e3, tc * 1e3, tt * 1e3, tt / te, f(blocks(&k, &kr)), f(blocks(&c, &cr)));
+    }
+}
+
 /// The L9's nine profiled cases one by one on one thread (`cargo bench --bench journal --
 /// l9-cases`), with the unprofiled baseline before them and the confirmation after: each a cold analysis at 361×181 under seed 002's misalignment and the load of the
 /// aligned ε = 0.6, started at the aligned position (as the L9 runs are), with its work counters:
@@ -449,6 +493,10 @@ fn main() {
                 s.pressure_tolerance, s.load_tolerance, a.eccentricity, a.attitude, a.max_pressure, a.min_film, a.friction_force, a.steps_per_grid
             );
         }
+        return;
+    }
+    if std::env::args().any(|a| a == "moments") {
+        moments();
         return;
     }
     if std::env::args().any(|a| a == "l9-cases") {
