@@ -4,7 +4,7 @@ use super::error::{ApiError, ApiResult};
 use super::extract::{ApiJson, ApiQuery, JobIdPath};
 use super::AppState;
 use crate::jobs::queue::{Cancellation, Submitted};
-use crate::jobs::{registry, table};
+use crate::jobs::{registry, table, Estimate};
 use crate::problem::{ErrorCode, Problem};
 use crate::store::{JobRow, JobStatus, ListFilter};
 use axum::extract::State;
@@ -81,6 +81,10 @@ pub struct JobView {
     /// Why the job failed.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub error: Option<Problem>,
+    /// What the job was expected to cost when it was accepted (the work and memory models; a
+    /// dashboard can say "about 40 s"). Absent for jobs stored before the models existed.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub estimate: Option<Estimate>,
     pub links: JobLinks,
 }
 
@@ -110,6 +114,10 @@ impl JobView {
             spec_hash: row.spec_hash,
             spec: row.spec.and_then(|s| serde_json::from_str(&s).ok()),
             error: row.error.and_then(|e| serde_json::from_str(&e).ok()),
+            estimate: match (row.estimate_cpu_seconds, row.estimate_memory_bytes) {
+                (Some(cpu_seconds), Some(memory_bytes)) => Some(Estimate { cpu_seconds, memory_bytes }),
+                _ => None,
+            },
             links: JobLinks { self_: format!("/v1/jobs/{id}"), result: format!("/v1/jobs/{id}/result") },
         }
     }

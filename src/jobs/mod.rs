@@ -1,12 +1,15 @@
 //! Job kinds (spec → validated → solved → result) and the machinery that runs them.
 
+pub mod cost;
 pub mod kind;
 pub mod kinds;
+pub mod quantity;
 pub mod queue;
 pub mod registry;
 pub mod runner;
 pub mod table;
 
+pub use cost::{Cost, Estimate};
 pub use kind::{DynKind, Kind, Limits, OutputInfo, Prepared, Validation};
 /// The convergence report every result carries (defined by the solvers), for the API's schemas:
 /// the API sees physics only through the job layer.

@@ -76,6 +76,10 @@ pub struct JobRow {
     pub cancel_requested: bool,
     /// problem+json of a failed job.
     pub error: Option<String>,
+    /// The work model's CPU seconds and the memory model's bytes at submission (absent for jobs
+    /// stored before the models existed).
+    pub estimate_cpu_seconds: Option<f64>,
+    pub estimate_memory_bytes: Option<f64>,
 }
 
 /// What the API writes when it accepts a job.
@@ -92,6 +96,9 @@ pub struct NewJob {
     pub idempotency_key: Option<String>,
     /// Virtual deadline for fair scheduling (unix ms); queued jobs are claimed by `due_at`, `seq`.
     pub due_at: i64,
+    /// The work model's CPU seconds and the memory model's bytes.
+    pub estimate_cpu_seconds: f64,
+    pub estimate_memory_bytes: f64,
 }
 
 impl NewJob {
@@ -114,6 +121,8 @@ impl NewJob {
             stage: None,
             cancel_requested: false,
             error: None,
+            estimate_cpu_seconds: Some(self.estimate_cpu_seconds),
+            estimate_memory_bytes: Some(self.estimate_memory_bytes),
         }
     }
 }
@@ -312,7 +321,8 @@ impl Store {
 
 /// Columns of a [`JobRow`] (both backends).
 pub(crate) const ROW_COLUMNS: &str = "seq, id, kind, label, status, spec_hash, solver_version, created_at, \
-    started_at, finished_at, attempts, progress, stage, cancel_requested, error";
+    started_at, finished_at, attempts, progress, stage, cancel_requested, error, estimate_cpu_seconds, \
+    estimate_memory_bytes";
 
 pub(crate) fn parse_uuid(s: &str) -> StoreResult<Uuid> {
     Uuid::parse_str(s).map_err(|e| StoreError::Corrupt(format!("job id {s}: {e}")))

@@ -123,7 +123,8 @@ impl PgStore {
     async fn insert_one(&self, job: &NewJob) -> StoreResult<JobRow> {
         let r = sqlx::query(
             "WITH ins AS (INSERT INTO jobs (id, kind, label, status, spec, spec_hash, solver_version, created_at, \
-             idempotency_key, due_at) VALUES ($1, $2, $3, 'queued', $4, $5, $6, $7, $8, $9) RETURNING seq) \
+             idempotency_key, due_at, estimate_cpu_seconds, estimate_memory_bytes) \
+             VALUES ($1, $2, $3, 'queued', $4, $5, $6, $7, $8, $9, $11, $12) RETURNING seq) \
              SELECT seq, pg_notify($10, 'queued')::text FROM ins",
         )
         .bind(job.id.to_string())
@@ -136,6 +137,8 @@ impl PgStore {
         .bind(&job.idempotency_key)
         .bind(job.due_at)
         .bind(CHANNEL)
+        .bind(job.estimate_cpu_seconds)
+        .bind(job.estimate_memory_bytes)
         .fetch_one(&self.pool)
         .await;
         let row = match r {
@@ -525,11 +528,12 @@ async fn insert_batches(
     while queue.recv_many(&mut batch, INSERT_BATCH).await > 0 {
         let r = sqlx::query(
             "WITH ins AS (INSERT INTO jobs (id, kind, label, status, spec, spec_hash, solver_version, created_at, \
-             idempotency_key, due_at) \
-             SELECT u.id, u.kind, u.label, 'queued', u.spec, u.spec_hash, u.solver_version, u.created_at, u.key, u.due_at \
+             idempotency_key, due_at, estimate_cpu_seconds, estimate_memory_bytes) \
+             SELECT u.id, u.kind, u.label, 'queued', u.spec, u.spec_hash, u.solver_version, u.created_at, u.key, u.due_at, \
+                    u.cpu, u.mem \
              FROM UNNEST($1::text[], $2::text[], $3::text[], $4::text[], $5::text[], $6::text[], $7::bigint[], \
-                         $8::text[], $9::bigint[]) \
-                  AS u(id, kind, label, spec, spec_hash, solver_version, created_at, key, due_at) \
+                         $8::text[], $9::bigint[], $11::float8[], $12::float8[]) \
+                  AS u(id, kind, label, spec, spec_hash, solver_version, created_at, key, due_at, cpu, mem) \
              ON CONFLICT DO NOTHING RETURNING id, seq) \
              SELECT id, seq, (SELECT pg_notify($10, 'queued'))::text FROM ins",
         )
@@ -543,6 +547,8 @@ async fn insert_batches(
         .bind(batch.iter().map(|(j, _)| j.idempotency_key.clone()).collect::<Vec<_>>())
         .bind(batch.iter().map(|(j, _)| j.due_at).collect::<Vec<_>>())
         .bind(CHANNEL)
+        .bind(batch.iter().map(|(j, _)| j.estimate_cpu_seconds).collect::<Vec<_>>())
+        .bind(batch.iter().map(|(j, _)| j.estimate_memory_bytes).collect::<Vec<_>>())
         .fetch_all(&pool)
         .await;
         match r {
@@ -613,5 +619,7 @@ fn job_from_row(r: &PgRow) -> StoreResult<JobRow> {
         stage: r.try_get("stage")?,
         cancel_requested: r.try_get("cancel_requested")?,
         error: r.try_get("error")?,
+        estimate_cpu_seconds: r.try_get("estimate_cpu_seconds")?,
+        estimate_memory_bytes: r.try_get("estimate_memory_bytes")?,
     })
 }

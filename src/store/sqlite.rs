@@ -103,7 +103,8 @@ async fn insert_on(conn: &mut SqliteConnection, jobs: &[&NewJob]) -> StoreResult
     for job in jobs {
         let row = sqlx::query(
             "INSERT INTO jobs (id, kind, label, status, spec, spec_hash, solver_version, created_at, \
-             idempotency_key, due_at) VALUES (?, ?, ?, 'queued', ?, ?, ?, ?, ?, ?) RETURNING seq",
+             idempotency_key, due_at, estimate_cpu_seconds, estimate_memory_bytes) \
+             VALUES (?, ?, ?, 'queued', ?, ?, ?, ?, ?, ?, ?, ?) RETURNING seq",
         )
         .bind(job.id.to_string())
         .bind(&job.kind)
@@ -114,6 +115,8 @@ async fn insert_on(conn: &mut SqliteConnection, jobs: &[&NewJob]) -> StoreResult
         .bind(job.created_at)
         .bind(&job.idempotency_key)
         .bind(job.due_at)
+        .bind(job.estimate_cpu_seconds)
+        .bind(job.estimate_memory_bytes)
         .fetch_one(&mut *tx)
         .await
         .map_err(unique_violation)?;
@@ -584,5 +587,7 @@ fn job_from_row(r: &SqliteRow, with_spec: bool) -> StoreResult<JobRow> {
         stage: r.try_get("stage")?,
         cancel_requested: r.try_get::<i64, _>("cancel_requested")? != 0,
         error: r.try_get("error")?,
+        estimate_cpu_seconds: r.try_get("estimate_cpu_seconds")?,
+        estimate_memory_bytes: r.try_get("estimate_memory_bytes")?,
     })
 }

@@ -1,6 +1,8 @@
 //! `hertz`: dry Hertzian contact of two elastic bodies — line or point — with the sub-surface
 //! stress maxima. Closed forms only (`physics::contact`).
 
+use crate::jobs::cost::{Cost, JOB_OVERHEAD_S};
+use crate::jobs::quantity as Q;
 use crate::jobs::kind::{Kind, Limits, OutputInfo, Validation};
 use super::common::Material;
 use crate::physics::contact::{
@@ -215,7 +217,7 @@ impl Kind for Hertz {
     fn validate(spec: &HertzSpec, _limits: &Limits, v: &mut Validation) {
         // Upper bounds far above any machine element, low enough that no intermediate overflows
         // (a load of 1e308 N used to end as an internal error instead of a 422).
-        v.positive("/load", spec.load).check(spec.load <= 1e9, "/load", "must be at most 1e9 N");
+        v.quantity("/load", spec.load, Q::FORCE);
         for (name, body) in [("/body_1", &spec.body_1), ("/body_2", &spec.body_2)] {
             body.material.validate(&format!("{name}/material"), v);
             let needs_radius = body.shape != Shape::Flat;
@@ -249,7 +251,7 @@ impl Kind for Hertz {
         }
         match (spec.contact, spec.length) {
             (ContactType::Line, Some(l)) => {
-                v.positive("/length", l);
+                v.quantity("/length", l, Q::LENGTH);
             }
             (ContactType::Line, None) => {
                 v.error("/length", "is required for a line contact");
@@ -276,6 +278,11 @@ impl Kind for Hertz {
                 );
             }
         }
+    }
+
+    fn cost(_spec: &HertzSpec) -> Cost {
+        // Closed forms; the sub-surface stress field (output `stress_field`) is a few thousand points.
+        Cost::new(JOB_OVERHEAD_S, 1.0 * crate::jobs::cost::MIB)
     }
 
     fn solve(spec: &HertzSpec, _observer: &dyn Observer) -> Result<HertzResult, SolveError> {

@@ -882,7 +882,8 @@ fn dot(a: &[f64], b: &[f64]) -> f64 {
 /// Restarted GMRES for `A x = b` right-preconditioned by `lu`, at most `max_its` iterations;
 /// `x` starts at 0. Returns the iterations and the final relative residual.
 #[allow(clippy::too_many_arguments)]
-fn gmres(prob: &mut Problem, p: &[f64], v: &Fields, active: &[u8], c: &[f64], lu: &Precond, b: &[f64], x: &mut [f64], buf: &mut Buffers, tol: f64, max_its: usize, from_x: bool) -> (usize, f64) {
+#[allow(clippy::too_many_arguments)]
+fn gmres(prob: &mut Problem, p: &[f64], v: &Fields, active: &[u8], c: &[f64], lu: &Precond, b: &[f64], x: &mut [f64], buf: &mut Buffers, tol: f64, max_its: usize, from_x: bool, observer: &dyn Observer) -> Result<(usize, f64), SolveError> {
     let lw = prob.load_weight();
     // A kept factor carries its own row scales `c_old`: `M⁻¹ = (C_old J_old)⁻¹ C_old C⁻¹` keeps
     // `C J M⁻¹ ≈ I` where the scales moved (rows inactive in both; others unscaled).
@@ -895,7 +896,7 @@ fn gmres(prob: &mut Problem, p: &[f64], v: &Fields, active: &[u8], c: &[f64], lu
     let bnorm = dot(b, b).sqrt();
     if bnorm == 0.0 {
         x.iter_mut().for_each(|v| *v = 0.0);
-        return (0, 0.0);
+        return Ok((0, 0.0));
     }
     let mut w = vec![0.0; n];
     let mut z = vec![0.0; n];
@@ -924,6 +925,9 @@ fn gmres(prob: &mut Problem, p: &[f64], v: &Fields, active: &[u8], c: &[f64], lu
         let mut zs: Vec<Vec<f64>> = Vec::new();
         let mut k = 0;
         while k < RESTART && iters < max_its {
+            // One operator application (FFT of the padded grid) per iteration: a cancel takes
+            // effect within one (≈ 50 ms at 513²).
+            observer.check()?;
             z.copy_from_slice(&basis[k]);
             lu.apply(&mut z, lw, &rescale);
             prob.apply(p, v, active, c, &z, &mut w, buf);
@@ -989,7 +993,7 @@ fn gmres(prob: &mut Problem, p: &[f64], v: &Fields, active: &[u8], c: &[f64], lu
             r[ii] = b[ii] - w[ii];
         }
     }
-    (iters, rel)
+    Ok((iters, rel))
 }
 
 /// `TRIBOD_EHL2D_TRACE` set: print each Newton step, the line search and (first step) a
@@ -1089,6 +1093,7 @@ fn newton(prob: &mut Problem, p: &mut [f64], h0: &mut f64, tol: f64, max_iter: u
             let pc = match kept {
                 Some(pc) => pc,
                 None => {
+                    observer.check()?;
                     let t = std::time::Instant::now();
                     let lu = prob.precondition(p, &v, &mut active, &mut c, true);
                     t_lu += t.elapsed().as_secs_f64();
@@ -1105,7 +1110,7 @@ fn newton(prob: &mut Problem, p: &mut [f64], h0: &mut f64, tol: f64, max_iter: u
                 }
             };
             let t = std::time::Instant::now();
-            (its, rel) = gmres(prob, p, &v, &active, &c, &pc, &rhs, &mut sol, &mut buf, gtol, if fresh { GMRES_MAX } else { reuse_max }, from_x);
+            (its, rel) = gmres(prob, p, &v, &active, &c, &pc, &rhs, &mut sol, &mut buf, gtol, if fresh { GMRES_MAX } else { reuse_max }, from_x, observer)?;
             t_gm += t.elapsed().as_secs_f64();
             gm_total += its;
             crate::physics::film::work::add(&crate::physics::film::work::FINITE_GMRES_ITERATIONS, its as u64);
@@ -1173,6 +1178,7 @@ fn newton(prob: &mut Problem, p: &mut [f64], h0: &mut f64, tol: f64, max_iter: u
         let m0 = dot(&phi, &phi) * cell + v.g * v.g;
         let mut accepted = false;
         for _ in 0..MAX_HALVINGS {
+            observer.check()?;
             for k in 0..p.len() {
                 p_trial[k] = p[k] + alpha * dpn[k];
             }
@@ -2003,6 +2009,7 @@ fn solve_levels(input: &Ehl2dInput, options: &Ehl2dOptions, s: &Scales, d: Domai
                     total += r.iterations;
                     levels.insert(0, (cx, cy));
                 }
+                Err(e @ SolveError::Interrupted(_)) => return Err(e),
                 Err(_) => levels.insert(0, (cx, cy)),
             }
         }
@@ -2011,8 +2018,15 @@ fn solve_levels(input: &Ehl2dInput, options: &Ehl2dOptions, s: &Scales, d: Domai
     let mut guess: Option<(Vec<f64>, Vec<f64>, Vec<f64>, f64)> = None;
     let mut coarse = None;
     let nlev = levels.len();
+    // Progress: each level's share of the work (≈ nodes^1.4).
+    let work: Vec<f64> = levels.iter().map(|&(lx, ly)| ((lx * ly) as f64).powf(1.4)).collect();
+    let total_work: f64 = work.iter().sum::<f64>().max(1.0);
     for (li, &(lx, ly)) in levels.iter().enumerate() {
         let finest = li + 1 == nlev;
+        let lo = work[..li].iter().sum::<f64>() / total_work;
+        let name = format!("2-D EHL on {lx}×{ly}");
+        let stage = crate::physics::Stage::new(observer, 0.9 * lo, 0.9 * (lo + work[li] / total_work), 200.0, &name);
+        let observer: &dyn Observer = &stage;
         let level_tol = if finest { tol } else { tol.max(1e-5) };
         let (mut prob, mut p, mut h0) = match trial.take() {
             // The cold start's θ = 0 solution from the trial above (the only level).
