@@ -1,5 +1,6 @@
 //! Job kinds (spec → validated → solved → result) and the machinery that runs them.
 
+pub mod idempotency;
 pub mod kind;
 pub mod kinds;
 pub mod queue;

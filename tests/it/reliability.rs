@@ -6,6 +6,12 @@ use serde_json::{json, Value};
 use std::time::{Duration, Instant};
 use tokio::io::{AsyncReadExt, AsyncWriteExt};
 
+on_both_backends!(
+    idempotency_key_makes_a_retried_post_safe,
+    an_idempotency_key_is_kept_when_the_first_answer_is_an_existing_job,
+    idempotency_keys_stored_before_the_keys_table_still_answer,
+);
+
 fn kind_example(name: &str) -> Value {
     tribod::jobs::registry::find(name).expect("kind").example()
 }
@@ -132,7 +138,6 @@ async fn the_backlog_limit_holds_under_concurrent_submissions() {
     s.stop().await;
 }
 
-#[tokio::test]
 async fn idempotency_key_makes_a_retried_post_safe() {
     let s = start().await;
     let post = |body: &Value, key: &str| s.client.post(s.url("/v1/jobs")).header("idempotency-key", key).json(body).send();
@@ -282,5 +287,122 @@ async fn slow_clients_cannot_lock_others_out() {
         }
     }
     assert!(closed >= 45, "only {closed} of 50 slow connections were closed by the header timeout");
+    s.stop().await;
+}
+
+/// Issue 40: a key whose first answer was an existing job (a finished job reused, an in-flight job
+/// joined) is recorded like a key that created its job: the same request again replays that job,
+/// another request under the key is refused. A key lives as long as its job: deleting the
+/// (finished) job forgets the key, which then starts afresh.
+async fn an_idempotency_key_is_kept_when_the_first_answer_is_an_existing_job() {
+    let s = start().await;
+    let post = |body: &Value, key: &str| s.client.post(s.url("/v1/jobs")).header("idempotency-key", key).json(body).send();
+    let id_and_reused = |v: &Value| (v["id"].clone(), v["reused"].clone());
+
+    // A finished job; the same spec under a new key is reused, and the key records it.
+    let res = s.client.post(s.url("/v1/jobs")).header("prefer", "wait=10").json(&hertz_job(4321.0)).send().await.unwrap();
+    let done: Value = res.json().await.unwrap();
+    assert_eq!(done["status"], "succeeded", "{done}");
+    let first = post(&hertz_job(4321.0), "reuse-1").await.unwrap();
+    assert_eq!(first.status(), 200);
+    assert!(first.headers().get("idempotent-replayed").is_none());
+    let first: Value = first.json().await.unwrap();
+    assert_eq!(id_and_reused(&first), (done["id"].clone(), json!(true)), "{first}");
+    let again = post(&hertz_job(4321.0), "reuse-1").await.unwrap();
+    assert_eq!(again.status(), 200);
+    assert_eq!(again.headers()["idempotent-replayed"], "true");
+    let again: Value = again.json().await.unwrap();
+    assert_eq!(id_and_reused(&again), (done["id"].clone(), json!(true)), "the repeat replays the reuse: {again}");
+    let other = post(&hertz_job(4322.0), "reuse-1").await.unwrap();
+    expect_problem(other, 422, "idempotency_key_reused").await;
+    let mut labelled = hertz_job(4321.0);
+    labelled["label"] = json!("another label");
+    expect_problem(post(&labelled, "reuse-1").await.unwrap(), 422, "idempotency_key_reused").await;
+
+    // A job in flight, joined under a new key (also by a burst of concurrent first attempts).
+    let running: Value = s.post_job(&sleep_job(1.0, 4001)).await.json().await.unwrap();
+    let joined = post(&sleep_job(1.0, 4001), "join-1").await.unwrap();
+    assert_eq!(joined.status(), 202);
+    let joined: Value = joined.json().await.unwrap();
+    assert_eq!(id_and_reused(&joined), (running["id"].clone(), json!(true)), "{joined}");
+    expect_problem(post(&sleep_job(1.0, 4002), "join-1").await.unwrap(), 422, "idempotency_key_reused").await;
+    let mut tasks = Vec::new();
+    for _ in 0..8 {
+        let req = s.client.post(s.url("/v1/jobs")).header("idempotency-key", "join-burst").json(&sleep_job(1.0, 4001));
+        tasks.push(tokio::spawn(async move { req.send().await.unwrap().json::<Value>().await.unwrap()["id"].clone() }));
+    }
+    for t in tasks {
+        assert_eq!(t.await.unwrap(), running["id"], "every concurrent first attempt joins the one job");
+    }
+    expect_problem(post(&sleep_job(1.0, 4003), "join-burst").await.unwrap(), 422, "idempotency_key_reused").await;
+    let id = running["id"].as_str().unwrap();
+    assert_eq!(s.wait_finished(id, Duration::from_secs(20)).await["status"], "succeeded");
+    // Finished since: the key still answers that job.
+    let again = post(&sleep_job(1.0, 4001), "join-1").await.unwrap();
+    assert_eq!(again.status(), 200);
+    assert_eq!(again.headers()["idempotent-replayed"], "true");
+    let again: Value = again.json().await.unwrap();
+    assert_eq!(id_and_reused(&again), (running["id"].clone(), json!(true)), "{again}");
+    expect_problem(post(&sleep_job(1.0, 4002), "join-1").await.unwrap(), 422, "idempotency_key_reused").await;
+
+    // Deleting the job forgets its keys: the key then answers whatever request comes first.
+    assert_eq!(s.client.delete(s.url(&format!("/v1/jobs/{id}"))).send().await.unwrap().status(), 204);
+    let fresh = post(&sleep_job(0.1, 4002), "join-1").await.unwrap();
+    assert_eq!(fresh.status(), 202);
+    assert!(fresh.headers().get("idempotent-replayed").is_none());
+    let fresh: Value = fresh.json().await.unwrap();
+    assert_ne!(fresh["id"], running["id"]);
+    assert_eq!(fresh["reused"], false);
+    expect_problem(post(&sleep_job(1.0, 4001), "join-1").await.unwrap(), 422, "idempotency_key_reused").await;
+    s.stop().await;
+}
+
+/// Keys stored with their jobs before the keys table existed (the `jobs.idempotency_key` column
+/// up to SQLite migration 0003 / PostgreSQL 0001) keep answering after the upgrade.
+async fn idempotency_keys_stored_before_the_keys_table_still_answer() {
+    use sqlx::migrate::Migrator;
+    let dir = tempfile::tempdir().unwrap();
+    let cfg = test_config(&dir).await;
+    // The job a client submitted with key `legacy-1` under the old schema.
+    let job = hertz_job(2468.0);
+    let kind = tribod::jobs::registry::find("hertz").unwrap();
+    let canonical = kind.prepare(&job["spec"], &tribod::jobs::Limits::default()).unwrap().canonical;
+    let hash = tribod::jobs::runner::spec_hash("hertz", &serde_json::to_string(&canonical).unwrap());
+    let id = uuid::Uuid::now_v7().to_string();
+    let now = std::time::SystemTime::now().duration_since(std::time::UNIX_EPOCH).unwrap().as_millis() as i64;
+    let (migrations, old_version) = match backend() {
+        Backend::Sqlite => ("sqlite", 3),
+        Backend::Postgres => ("postgres", 1),
+    };
+    let dir_of = std::path::PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("migrations").join(migrations);
+    let migrator = Migrator::new(dir_of.as_path()).await.unwrap();
+    let insert = "INSERT INTO jobs (id, kind, status, spec, spec_hash, solver_version, created_at, idempotency_key, due_at) \
+                  VALUES ($1, 'hertz', 'queued', $2, $3, $4, $5, 'legacy-1', 0)";
+    match backend() {
+        Backend::Sqlite => {
+            let options = sqlx::sqlite::SqliteConnectOptions::new().filename(&cfg.database_url).create_if_missing(true);
+            let pool = sqlx::sqlite::SqlitePoolOptions::new().max_connections(1).connect_with(options).await.unwrap();
+            migrator.run_to(old_version, &pool).await.unwrap();
+            let q = sqlx::query(insert).bind(&id).bind(canonical.to_string()).bind(&hash).bind(kind.solver_version()).bind(now);
+            q.execute(&pool).await.unwrap();
+            pool.close().await;
+        }
+        Backend::Postgres => {
+            let pool = sqlx::postgres::PgPoolOptions::new().max_connections(1).connect(&cfg.database_url).await.unwrap();
+            migrator.run_to(old_version, &pool).await.unwrap();
+            let q = sqlx::query(insert).bind(&id).bind(canonical.to_string()).bind(&hash).bind(kind.solver_version()).bind(now);
+            q.execute(&pool).await.unwrap();
+            pool.close().await;
+        }
+    }
+    let s = start_in(dir, cfg).await;
+    let post = |body: &Value, key: &str| s.client.post(s.url("/v1/jobs")).header("idempotency-key", key).json(body).send();
+    let again = post(&job, "legacy-1").await.unwrap();
+    assert!(matches!(again.status().as_u16(), 200 | 202), "{}", again.status());
+    assert_eq!(again.headers()["idempotent-replayed"], "true");
+    let again: Value = again.json().await.unwrap();
+    assert_eq!((again["id"].as_str(), again["reused"].as_bool()), (Some(id.as_str()), Some(false)), "{again}");
+    expect_problem(post(&hertz_job(2469.0), "legacy-1").await.unwrap(), 422, "idempotency_key_reused").await;
+    assert_eq!(s.wait_finished(&id, Duration::from_secs(20)).await["status"], "succeeded");
     s.stop().await;
 }
