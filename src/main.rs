@@ -117,10 +117,11 @@ struct ServeArgs {
     /// Open connections served at once (more are answered 503); lowered to fit the open-files limit.
     #[arg(long, env = "TRIBOD_MAX_CONNECTIONS", default_value_t = 4096)]
     max_connections: usize,
-    /// Seconds a client has to send a request's headers (also closes idle keep-alive connections).
+    /// Seconds a client has to send a request's headers, in total (also closes idle keep-alive
+    /// connections).
     #[arg(long, env = "TRIBOD_HEADER_TIMEOUT", default_value_t = 10.0)]
     header_timeout: f64,
-    /// Seconds a client has to send a request's body.
+    /// Seconds a client has to send a request's body, in total, counted from its headers (408).
     #[arg(long, env = "TRIBOD_BODY_TIMEOUT", default_value_t = 30.0)]
     body_timeout: f64,
 }

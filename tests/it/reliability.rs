@@ -406,3 +406,76 @@ async fn idempotency_keys_stored_before_the_keys_table_still_answer() {
     assert_eq!(s.wait_finished(&id, Duration::from_secs(20)).await["status"], "succeeded");
     s.stop().await;
 }
+
+/// Read from `conn` until the server closes it (EOF or reset) or `within` passes; what arrived
+/// and whether it was closed.
+async fn read_until_closed(conn: &mut tokio::net::tcp::OwnedReadHalf, within: Duration) -> (String, bool) {
+    let deadline = tokio::time::Instant::now() + within;
+    let mut got = Vec::new();
+    loop {
+        let mut buf = [0u8; 4096];
+        match tokio::time::timeout_at(deadline, conn.read(&mut buf)).await {
+            Ok(Ok(0)) | Ok(Err(_)) => return (String::from_utf8_lossy(&got).into_owned(), true),
+            Ok(Ok(n)) => got.extend_from_slice(&buf[..n]),
+            Err(_) => return (String::from_utf8_lossy(&got).into_owned(), false),
+        }
+    }
+}
+
+/// Issue 40, defect A: a body has a total deadline counted from its headers, however it trickles
+/// (a per-read timeout never fires on one byte every 0.4 s); past it the answer is `408
+/// request_timeout` and the connection is closed.
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn a_trickling_body_is_answered_408_and_closed_at_its_total_deadline() {
+    let s = start_with(|c| c.api.body_timeout = Duration::from_secs(2)).await;
+    let stream = tokio::net::TcpStream::connect(s.base.trim_start_matches("http://")).await.unwrap();
+    let (mut read, mut write) = stream.into_split();
+    let started = Instant::now();
+    write.write_all(b"POST /v1/jobs HTTP/1.1\r\nhost: x\r\ncontent-type: application/json\r\ncontent-length: 100\r\n\r\n{").await.unwrap();
+    let trickle = tokio::spawn(async move {
+        for _ in 0..100 {
+            tokio::time::sleep(Duration::from_millis(400)).await;
+            if write.write_all(b" ").await.is_err() {
+                return;
+            }
+        }
+    });
+    let (answer, closed) = read_until_closed(&mut read, Duration::from_secs(6)).await;
+    let took = started.elapsed();
+    trickle.abort();
+    assert!(answer.starts_with("HTTP/1.1 408 "), "{answer}");
+    let lower = answer.to_ascii_lowercase();
+    assert!(lower.contains("content-type: application/problem+json") && lower.contains("connection: close"), "{answer}");
+    assert!(answer.contains(r#""code":"request_timeout""#), "{answer}");
+    assert!(closed, "the connection stays open after the 408");
+    assert!(took >= Duration::from_millis(1900) && took < Duration::from_millis(3500), "closed after {took:?} with a 2 s body deadline");
+    // The server is fine meanwhile and after.
+    assert_eq!(s.client.get(s.url("/healthz")).send().await.unwrap().status(), 200);
+    s.stop().await;
+}
+
+/// The header timeout is a total deadline too (hyper's `header_read_timeout` is set once per
+/// request, not per read): headers trickling one byte every 0.2 s are cut off at the deadline.
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn trickling_headers_are_closed_at_their_total_deadline() {
+    let s = start_with(|c| c.connections.header_timeout = Duration::from_secs(1)).await;
+    let stream = tokio::net::TcpStream::connect(s.base.trim_start_matches("http://")).await.unwrap();
+    let (mut read, mut write) = stream.into_split();
+    let started = Instant::now();
+    write.write_all(b"GET /healthz HTTP/1.1\r\nhost: x\r\nx-slow: ").await.unwrap();
+    let trickle = tokio::spawn(async move {
+        for _ in 0..100 {
+            tokio::time::sleep(Duration::from_millis(200)).await;
+            if write.write_all(b"a").await.is_err() {
+                return;
+            }
+        }
+    });
+    let (answer, closed) = read_until_closed(&mut read, Duration::from_secs(5)).await;
+    let took = started.elapsed();
+    trickle.abort();
+    assert!(closed, "still open after {took:?}");
+    assert!(!answer.contains(" 200 "), "{answer}");
+    assert!(took >= Duration::from_millis(900) && took < Duration::from_millis(2500), "closed after {took:?} with a 1 s header deadline");
+    s.stop().await;
+}
