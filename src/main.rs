@@ -114,7 +114,8 @@ struct ServeArgs {
     /// Longest `Prefer: wait=N` honoured, seconds.
     #[arg(long, env = "TRIBOD_MAX_WAIT", default_value_t = 300.0)]
     max_wait: f64,
-    /// Open connections served at once (more are answered 503); lowered to fit the open-files limit.
+    /// Open connections at once; at the cap a new one takes the place of the connection waiting
+    /// longest on its client (503 only when all are busy); lowered to fit the open-files limit.
     #[arg(long, env = "TRIBOD_MAX_CONNECTIONS", default_value_t = 4096)]
     max_connections: usize,
     /// Seconds a client has to send a request's headers, in total (also closes idle keep-alive

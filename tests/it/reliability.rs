@@ -259,34 +259,68 @@ async fn slow_clients_cannot_lock_others_out() {
     })
     .await;
     let addr = s.base.trim_start_matches("http://").to_string();
-    // 200 clients that never finish their headers.
+    // 200 clients that never finish their headers: over the cap, each new one takes the place of
+    // the one that has waited longest (issue 40; they used to be refused with 503 until the slow
+    // ones timed out, so 4,096 tricklers locked everyone out).
     let mut slow = Vec::new();
     for _ in 0..200 {
         let mut c = tokio::net::TcpStream::connect(&addr).await.unwrap();
         let _ = c.write_all(b"GET /healthz HTTP/1.1\r\nhost: x\r\n").await;
         slow.push(c);
     }
-    // Those over the cap are told so at once.
-    let mut busy = 0;
-    for c in slow.iter_mut().skip(100) {
-        let mut buf = [0u8; 64];
-        if let Ok(Ok(n)) = tokio::time::timeout(Duration::from_millis(200), c.read(&mut buf)).await {
-            busy += String::from_utf8_lossy(&buf[..n]).contains(" 503 ") as usize;
+    let mut closed_at_once = 0;
+    for c in slow.iter_mut().take(140) {
+        let mut buf = [0u8; 256];
+        match tokio::time::timeout(Duration::from_millis(100), c.read(&mut buf)).await {
+            Ok(Ok(n)) => closed_at_once += (!String::from_utf8_lossy(&buf[..n]).contains(" 200 ")) as usize,
+            Ok(Err(_)) => closed_at_once += 1,
+            Err(_) => {}
         }
     }
-    assert!(busy >= 90, "{busy} of 100 connections over the cap were answered 503");
-    // After the header timeout the slow ones are gone and a normal client is served.
-    tokio::time::sleep(Duration::from_millis(800)).await;
+    assert!(closed_at_once >= 130, "{closed_at_once} of the 140 oldest slow connections were closed for newer ones");
+    // A normal client is served at once, before any header timeout.
+    let started = Instant::now();
     let res = s.client.get(s.url("/healthz")).send().await.unwrap();
     assert_eq!(res.status(), 200);
+    assert!(started.elapsed() < Duration::from_millis(400), "{:?}", started.elapsed());
+    // After the header timeout the slow ones still open are gone too.
+    tokio::time::sleep(Duration::from_millis(800)).await;
     let mut closed = 0;
-    for c in slow.iter_mut().take(50) {
+    for c in slow.iter_mut().skip(150) {
         let mut buf = [0u8; 256];
-        if let Ok(Ok(_)) = tokio::time::timeout(Duration::from_millis(100), c.read(&mut buf)).await {
+        if let Ok(Ok(_) | Err(_)) = tokio::time::timeout(Duration::from_millis(100), c.read(&mut buf)).await {
             closed += 1;
         }
     }
-    assert!(closed >= 45, "only {closed} of 50 slow connections were closed by the header timeout");
+    assert!(closed >= 45, "only {closed} of the 50 newest slow connections were closed by the header timeout");
+    s.stop().await;
+}
+
+/// Only when every connection is being served (none waits on its client) is a new connection
+/// refused: `503 too_many_connections` with `Retry-After`, and closed.
+#[tokio::test(flavor = "multi_thread", worker_threads = 4)]
+async fn a_table_full_of_busy_connections_answers_503() {
+    let s = start_with(|c| {
+        c.connections.max_connections = 4;
+        c.queue.workers = 1;
+    })
+    .await;
+    // Four requests held open by the server (`Prefer: wait` on a 2 s job), each on its own connection.
+    let mut waits = Vec::new();
+    for _ in 0..4 {
+        let client = reqwest::Client::builder().pool_max_idle_per_host(0).build().unwrap();
+        let req = client.post(s.url("/v1/jobs")).header("prefer", "wait=10").json(&sleep_job(2.0, 4100));
+        waits.push(tokio::spawn(async move { req.send().await.map(|r| r.status().as_u16()) }));
+    }
+    tokio::time::sleep(Duration::from_millis(500)).await;
+    let mut c = tokio::net::TcpStream::connect(s.base.trim_start_matches("http://")).await.unwrap();
+    let mut buf = [0u8; 512];
+    let n = tokio::time::timeout(Duration::from_secs(1), c.read(&mut buf)).await.expect("answered at once").unwrap();
+    let answer = String::from_utf8_lossy(&buf[..n]).to_string();
+    assert!(answer.starts_with("HTTP/1.1 503 ") && answer.contains("too_many_connections") && answer.contains("retry-after: 1"), "{answer}");
+    for w in waits {
+        assert_eq!(w.await.unwrap().ok(), Some(200), "the busy requests are not disturbed");
+    }
     s.stop().await;
 }
 
@@ -477,5 +511,77 @@ async fn trickling_headers_are_closed_at_their_total_deadline() {
     assert!(closed, "still open after {took:?}");
     assert!(!answer.contains(" 200 "), "{answer}");
     assert!(took >= Duration::from_millis(900) && took < Duration::from_millis(2500), "closed after {took:?} with a 1 s header deadline");
+    s.stop().await;
+}
+
+/// One trickling client: a request whose headers (`body: false`) or body (`body: true`) arrive one
+/// byte every `every`; when the server closes it, it waits `pause` and starts over. Counts its
+/// connections.
+async fn trickler(addr: String, body: bool, every: Duration, pause: Duration, connections: std::sync::Arc<std::sync::atomic::AtomicUsize>) {
+    let head: &[u8] = if body {
+        b"POST /v1/jobs HTTP/1.1\r\nhost: x\r\ncontent-type: application/json\r\ncontent-length: 10000\r\n\r\n{"
+    } else {
+        b"GET /healthz HTTP/1.1\r\nhost: x\r\n"
+    };
+    loop {
+        if let Ok(mut c) = tokio::net::TcpStream::connect(&addr).await {
+            connections.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+            let mut ok = c.write_all(head).await.is_ok();
+            while ok {
+                let mut buf = [0u8; 1024];
+                // Anything from the server (an answer, EOF, a reset) ends this connection.
+                ok = tokio::time::timeout(every, c.read(&mut buf)).await.is_err() && c.write_all(if body { b" " } else { b"x" }).await.is_ok();
+            }
+        }
+        tokio::time::sleep(pause).await;
+    }
+}
+
+/// Issue 40, defect B: trickling clients that fill the connection table cannot lock normal clients
+/// out. 200 tricklers (half sending headers, half bodies, one byte a second, reconnecting when
+/// closed) against a table of 64 places: `GET /healthz` and `POST /v1/jobs` of a tiny job on a
+/// fresh connection are each served within 1 s throughout.
+#[tokio::test(flavor = "multi_thread", worker_threads = 4)]
+async fn trickling_clients_cannot_starve_normal_ones() {
+    let s = start_with(|c| {
+        c.connections.max_connections = 64;
+        c.connections.header_timeout = Duration::from_secs(3);
+        c.api.body_timeout = Duration::from_secs(3);
+    })
+    .await;
+    let addr = s.base.trim_start_matches("http://").to_string();
+    let connections = std::sync::Arc::new(std::sync::atomic::AtomicUsize::new(0));
+    let tricklers: Vec<_> = (0..200)
+        .map(|i| tokio::spawn(trickler(addr.clone(), i % 2 == 1, Duration::from_secs(1), Duration::from_millis(200), connections.clone())))
+        .collect();
+    tokio::time::sleep(Duration::from_millis(1500)).await;
+    // A fresh connection for every request: each needs a place in the full table.
+    let client = reqwest::Client::builder().pool_max_idle_per_host(0).timeout(Duration::from_secs(5)).build().unwrap();
+    let mut latencies = Vec::new();
+    let until = Instant::now() + Duration::from_secs(10);
+    let mut n = 0u32;
+    while Instant::now() < until {
+        n += 1;
+        let t = Instant::now();
+        let res = client.get(s.url("/healthz")).send().await;
+        let health = res.map(|r| r.status().as_u16());
+        latencies.push(t.elapsed());
+        assert_eq!(health.as_ref().ok(), Some(&200), "GET /healthz #{n}: {health:?} after {:?}", t.elapsed());
+        let t = Instant::now();
+        let res = client.post(s.url("/v1/jobs")).json(&hertz_job(1000.0 + f64::from(n))).send().await;
+        let post = res.map(|r| r.status().as_u16());
+        latencies.push(t.elapsed());
+        assert!(matches!(post, Ok(200 | 202)), "POST /v1/jobs #{n}: {post:?} after {:?}", t.elapsed());
+        tokio::time::sleep(Duration::from_millis(100)).await;
+    }
+    for t in &tricklers {
+        t.abort();
+    }
+    latencies.sort();
+    let (p50, max) = (latencies[latencies.len() / 2], latencies[latencies.len() - 1]);
+    let opened = connections.load(std::sync::atomic::Ordering::Relaxed);
+    eprintln!("{} normal requests beside 200 tricklers ({opened} trickling connections) on 64 places: p50 {p50:?}, max {max:?}", latencies.len());
+    assert!(max < Duration::from_secs(1), "a normal request took {max:?}");
+    assert!(opened > 200, "the tricklers were never cut off ({opened} connections)");
     s.stop().await;
 }
