@@ -129,55 +129,98 @@ pub fn describe_seconds(s: f64) -> String {
 /// A kind's fixed cost: parsing, result assembly and serialisation, s.
 pub const JOB_OVERHEAD_S: f64 = 2e-4;
 
-/// One cam angle by the closed forms (kinematics, Hertz, film, friction, temperature), s.
+/// The process-wide tables of the asperity contact (Greenwood–Tripp integrals), built once per
+/// process (a server builds them at start, `Queue::start`), s: not part of any job's estimate;
+/// `benches/cost.rs` takes them off a `tribod run` of a cam kind.
+pub const PROCESS_TABLES_S: f64 = 0.12;
+
+/// A cam cycle's fixed cost (profile tables, closed-form setup, result assembly), s.
+pub const CYCLE_BASE_S: f64 = 0.02;
+
+/// One cam angle by the closed forms (kinematics, Hertz, film, friction, temperature, the
+/// roller's slip), s, in a `cam_cycle` job (its series serialised).
 pub const FAST_ANGLE_S: f64 = 2.0e-5;
 
-/// One numerical line-contact solve (`physics::ehl`, dense Newton) on `nodes` nodes, s: the LU
-/// of the dense Newton matrix dominates (≈ nodes³), the continuation and the kernel the rest.
-/// `richardson`: plus the half grid.
+/// One cam angle by the closed forms inside a wear run's cycles (no series kept), s: the seed 003
+/// flat-faced wear run of 101 cycles × 720 angles takes 1.8 s, the seed 000 roller's 1.0 s.
+pub const WEAR_ANGLE_S: f64 = 2.0e-5;
+
+/// One numerical line-contact solve (`physics::ehl`, dense Newton) on `nodes` nodes from a cold
+/// start, s (with `richardson`, plus the half grid): 23 ms at 385 nodes growing as nodes^1.96
+/// (fitted to `ehl_point` at 129–2049 nodes), plus 5 ms of set-up.
 pub fn ehl_line_seconds(nodes: usize, richardson: bool) -> f64 {
-    let one = |n: f64| 4.0e-3 * (n / 256.0).powf(1.6) + 2.5e-10 * n * n * n;
     let n = nodes as f64;
-    one(n) + if richardson { one((n - 1.0) / 2.0 + 1.0) } else { 0.0 }
+    let one = 0.0232 * (n / 385.0).powf(1.96);
+    5e-3 + if richardson { one } else { one / 1.25 }
 }
 
-/// One thermal line-contact solve (`physics::ehl::thermal`) on `nodes` nodes with `film_points`
-/// levels across the film and `solid_points` in each solid, s.
+/// A line-contact film along a cycle against a cold solve: the warm start from the previous
+/// angle, and films reused by the roller's later passes (the seed 000 roller at 360 angles and
+/// the seed 003 wear run fit 0.1–0.15).
+pub const WARM_LINE_FRACTION: f64 = 0.12;
+
+/// The thermal line-contact model (`physics::ehl::thermal`) on `nodes` nodes with `film_points`
+/// levels across the film and `solid_points` in each solid: its fixed cost per run (the first
+/// coupled solve and the traction table's energy solves), s.
 pub fn ehl_thermal_seconds(nodes: usize, film_points: usize, solid_points: usize) -> f64 {
-    let n = nodes as f64 / 192.0;
-    let layers = (film_points as f64 + 2.0 * solid_points as f64) / (7.0 + 32.0);
-    0.07 * n.powf(1.3) * layers.max(0.2)
+    1.2 * (nodes as f64 / 96.0).powf(1.5) * thermal_layers(film_points, solid_points)
+}
+
+/// The thermal model's cost per cam angle solved in full, s: 14 ms at 96 nodes and the default
+/// layers (the seed 000 thermal cycle: 1.8 s at 36 angles, 2.5 s at 72, 6.2 s at 360).
+pub fn ehl_thermal_angle_seconds(nodes: usize, film_points: usize, solid_points: usize) -> f64 {
+    0.014 * (nodes as f64 / 96.0).powf(2.0) * thermal_layers(film_points, solid_points)
+}
+
+fn thermal_layers(film_points: usize, solid_points: usize) -> f64 {
+    ((film_points as f64 + 2.0 * solid_points as f64) / 39.0).max(0.2)
 }
 
 /// One cold 2-D EHL solve (`physics::ehl::twod`, nested iteration, resolution check) on
-/// `nx × ny` nodes, s: ≈ nodes^1.4 (BENCHMARKS.md, "One point solve, run time against error").
+/// `nx × ny` nodes, s: ≈ nodes^1.4 (the seed 000 roller at 65×129: 0.75–0.85 s; the circular
+/// point contact at 129²: 1.65 s; BENCHMARKS.md, "One point solve, run time against error").
 pub fn ehl_2d_seconds(nx: usize, ny: usize) -> f64 {
     let n = (nx * ny) as f64;
     0.3 * (n / 4225.0).powf(1.4)
 }
 
-/// One warm 2-D step along a cam cycle (steady or backward-Euler from the previous angle), s.
-pub fn ehl_2d_step_seconds(nx: usize, ny: usize) -> f64 {
-    let n = (nx * ny) as f64;
-    0.05 * (n / 8385.0).powf(1.3)
+/// One 2-D film along a cam cycle against a cold solve, by the angle step (degrees): a step of
+/// 45° is as costly as a cold solve; the warm start (and the squeeze step's short pseudo-time)
+/// makes fine steps cheap (the seed 000 finite cycle at 33×65: 0.13 s an angle at 8 angles,
+/// 37 ms at 36, 18 ms at 90).
+pub fn ehl_2d_step_fraction(step_deg: f64) -> f64 {
+    (0.05 + 0.02 * step_deg).min(1.0)
 }
 
 /// Peak memory of one 2-D EHL solve on `nx × ny` nodes, bytes: node arrays, the padded FFT
-/// buffers of the elastic kernel, the near-field sparse LU and GMRES' basis (flexible GMRES keeps
-/// two vectors per iteration). Fitted to peak resident memory of `tribod run` (129² … 513²).
+/// buffers of the elastic kernel, the near-field sparse LU and flexible GMRES' basis (two vectors
+/// per iteration): ≈ 9.2 kB per node (peak resident memory of `tribod run` above idle: 140 MB at
+/// 129², 563 MB at 257², 2.57 GB at 513²).
 pub fn ehl_2d_bytes(nx: usize, ny: usize) -> f64 {
     let n = (nx * ny) as f64;
-    8.0 * n * 1300.0 + 8.0 * MIB
+    8.0 * n * 1150.0 + 8.0 * MIB
 }
 
-/// Memory a cam cycle keeps per angle of a 2-D film (its converged pressure and mass fields as
-/// the next angle's warm start, and its loaded traction nodes), bytes per grid node.
-pub const EHL_2D_KEPT_BYTES_PER_NODE: f64 = 80.0;
+/// Memory a cam cycle keeps per angle of a 2-D film (the converged pressure and mass fields as
+/// the next pass's warm start), bytes per grid node.
+pub const EHL_2D_KEPT_BYTES_PER_NODE: f64 = 32.0;
 
 /// Peak memory of one dense line-contact solve on `nodes` nodes (with its Richardson half grid),
-/// bytes: the influence and Newton matrices (`physics::ehl::dense_memory_bytes`).
+/// bytes: the influence and Newton matrices (`physics::ehl::dense_memory_bytes`) and 35 % of
+/// scratch, plus 3 MiB of threads and tables (measured 6 MiB at 385 nodes, 32 at 1025, 118 at
+/// 2049).
 pub fn ehl_line_bytes(nodes: usize) -> f64 {
-    crate::physics::ehl::dense_memory_bytes(nodes)
+    1.35 * crate::physics::ehl::dense_memory_bytes(nodes) + 3.0 * MIB
+}
+
+/// A cam-kind job's resident baseline above an idle process (the rayon pool's threads, the
+/// profile tables), bytes.
+pub const CAM_BASE_BYTES: f64 = 4.0 * MIB;
+
+/// One load-balanced bearing analysis on `nodes` grid nodes, s: 2 ms and 0.4 µs per node
+/// (the seed 002 bearing at 91×45, 181×91, 361×181 and 721×361).
+pub fn bearing_analysis_seconds(nodes: usize) -> f64 {
+    2e-3 + 0.4e-6 * nodes as f64
 }
 
 #[cfg(test)]

@@ -21,6 +21,7 @@
 //! large spec never stalls the async threads that answer health checks and other requests.
 
 use super::cost::Estimate;
+use super::idempotency::{self, Keyed, Replay, Verdict};
 use super::kind::Limits;
 use super::registry;
 use super::runner::{self, spec_hash, Outcome};
@@ -82,8 +83,8 @@ pub enum Submitted {
     Accepted(JobRow),
     /// An identical succeeded job, returned instead of recomputing.
     Reused(JobRow),
-    /// The job stored earlier under the same `Idempotency-Key` with the same request.
-    Replayed(JobRow),
+    /// The answer to the same request sent earlier under the same `Idempotency-Key`.
+    Replayed(Replay),
     /// An identical job already queued or running (on any instance): one solve serves both.
     Joined(JobRow),
 }
@@ -192,6 +193,9 @@ impl Queue {
     /// Recover interrupted jobs, then start the dispatcher and the writer on the current tokio
     /// runtime.
     pub async fn start(store: Store, config: QueueConfig, metrics: Arc<Metrics>) -> Result<Queue, StoreError> {
+        // The solvers' process-wide tables (Greenwood–Tripp integrals, ≈ 0.12 s), built now so
+        // that the first job does not pay for them (the work models leave them out).
+        tokio::task::spawn_blocking(super::warm_up);
         let interrupted = Problem::new(
             ErrorCode::Interrupted,
             format!("the job was interrupted {} times (service restarts) and was given up", config.max_attempts),
@@ -261,8 +265,9 @@ impl Queue {
     /// Validate, dedup, persist and signal. Problems carry field paths under `/spec`.
     ///
     /// With an `idempotency_key`, a repeated request (same kind, spec and label) answers the job
-    /// stored under that key ([`Submitted::Replayed`]); another request under the same key is
-    /// refused with `idempotency_key_reused`.
+    /// that answered the first one, whether it was created, reused or joined
+    /// ([`Submitted::Replayed`]); another request under the same key is refused with
+    /// `idempotency_key_reused` (see [`super::idempotency`]).
     pub async fn submit(
         &self,
         kind: &str,
@@ -284,18 +289,15 @@ impl Queue {
         let (prepared, estimate) = self.validate(k, spec).await?;
         let spec_text = serde_json::to_string(&prepared).unwrap_or_default();
         let hash = spec_hash(k.name(), &spec_text);
-        if let Some(key) = &idempotency_key {
-            if let Some(row) = self.inner.store.find_by_idempotency_key(key).await.map_err(storage_problem)? {
-                return replay(row, &hash, &label);
-            }
+        let keyed = idempotency_key.clone().map(|key| Keyed { key, spec_hash: hash.clone(), label: label.clone() });
+        if let Some(answer) = self.earlier(&keyed).await? {
+            return Ok(answer);
         }
-        match self.inner.store.find_same(&hash, k.solver_version(), !fresh).await.map_err(storage_problem)? {
-            Some(row) if row.status == JobStatus::Succeeded => {
-                self.inner.metrics.reused.get_or_create(&KindLabel { kind: k.name().into() }).inc();
-                return Ok(Submitted::Reused(row));
+        if let Some(row) = self.inner.store.find_same(&hash, k.solver_version(), !fresh).await.map_err(storage_problem)? {
+            // None: deleted meanwhile (before its key could be recorded): a new job after all.
+            if let Some(answer) = self.existing(row, &keyed).await? {
+                return Ok(answer);
             }
-            Some(row) => return Ok(Submitted::Joined(row)),
-            None => {}
         }
         // Reserve a backlog place before the insert, so concurrent submissions cannot overshoot.
         // A shared database counts every instance's queue: re-read at most every
@@ -334,16 +336,16 @@ impl Queue {
             Ok(row) => row,
             Err(e) => {
                 self.inner.backlog.fetch_sub(1, Ordering::Relaxed);
-                // A concurrent request with the same key won the insert: answer its job.
-                if let (StoreError::DuplicateKey, Some(key)) = (&e, &idempotency_key) {
-                    if let Some(row) = self.inner.store.find_by_idempotency_key(key).await.map_err(storage_problem)? {
-                        return replay(row, &hash, &label);
-                    }
+                // A concurrent request with the same key won the insert: answer as its record says.
+                if let (StoreError::DuplicateKey, Some(answer)) = (&e, self.earlier(&keyed).await?) {
+                    return Ok(answer);
                 }
                 // An identical job was queued meanwhile (here or on another instance): join it.
                 if let StoreError::InFlight = e {
                     if let Some(row) = self.inner.store.find_in_flight(&hash, k.solver_version()).await.map_err(storage_problem)? {
-                        return Ok(Submitted::Joined(row));
+                        if let Some(answer) = self.existing(row, &keyed).await? {
+                            return Ok(answer);
+                        }
                     }
                 }
                 return Err(storage_problem(e));
@@ -353,6 +355,28 @@ impl Queue {
         self.inner.metrics.submitted.get_or_create(&KindLabel { kind: job.kind.clone() }).inc();
         self.inner.wake.notify_one();
         Ok(Submitted::Accepted(row))
+    }
+
+    /// The replay (or refusal) an earlier request under the same `Idempotency-Key` gives, if any.
+    async fn earlier(&self, keyed: &Option<Keyed>) -> Result<Option<Submitted>, Problem> {
+        let Some(request) = keyed else { return Ok(None) };
+        Ok(idempotency::look_up(&self.inner.store, request).await.map_err(storage_problem)?.into_replay()?.map(Submitted::Replayed))
+    }
+
+    /// The answer for an identical existing job (reused if it succeeded, else joined), once the
+    /// request's key is recorded for it; or the key's earlier answer; `None`: the job was deleted.
+    async fn existing(&self, row: JobRow, keyed: &Option<Keyed>) -> Result<Option<Submitted>, Problem> {
+        if let Some(request) = keyed {
+            match idempotency::attach(&self.inner.store, request, &row, now_ms()).await.map_err(storage_problem)? {
+                Verdict::Recorded => {}
+                other => return Ok(other.into_replay()?.map(Submitted::Replayed)),
+            }
+        }
+        if row.status == JobStatus::Succeeded {
+            self.inner.metrics.reused.get_or_create(&KindLabel { kind: row.kind.clone() }).inc();
+            return Ok(Some(Submitted::Reused(row)));
+        }
+        Ok(Some(Submitted::Joined(row)))
     }
 
     /// Parse and validate a spec on a blocking thread (at most `validators` at once); the
@@ -742,19 +766,6 @@ impl Queue {
             inner.wake.notify_one();
             inner.idle.notify_waiters();
         }
-    }
-}
-
-/// The answer to a repeated `Idempotency-Key`: its job when the request is the same.
-fn replay(row: JobRow, spec_hash: &str, label: &Option<String>) -> Result<Submitted, Problem> {
-    if row.spec_hash == spec_hash && &row.label == label {
-        Ok(Submitted::Replayed(row))
-    } else {
-        Err(Problem::new(
-            ErrorCode::IdempotencyKeyReused,
-            format!("this Idempotency-Key was used for job {} with another kind, spec or label", row.id),
-        )
-        .with_errors(vec![crate::problem::FieldError::new("/", "differs from the request first sent with this Idempotency-Key")]))
     }
 }
 

@@ -45,8 +45,9 @@ async fn a_job_over_the_work_limit_is_refused_with_its_estimate_and_an_accepted_
     let one = json!({"kind": "rough_contact", "spec": rough.clone()});
     let prepared = registry::find("rough_contact").unwrap().prepare(&one["spec"], &Limits::default()).expect("one case is accepted");
     assert!(prepared.cost.cpu_seconds() < 60.0);
+    let seeds: Vec<u64> = (1..=1000).collect();
     let sweep = json!({"kind": "sweep", "spec": {"kind": "rough_contact", "base": rough,
-        "parameters": [{"path": "/surface/seed", "linspace": {"start": 1, "stop": 1000, "num": 1000}}]}});
+        "parameters": [{"path": "/surface/seed", "values": seeds}]}});
     let p = expect_problem(s.post_job(&sweep).await, 422, "limit_exceeded").await;
     assert!(p.to_string().contains("/spec/parameters") && p.to_string().contains("1000 cases"), "{p}");
 
@@ -98,6 +99,7 @@ fn no_accepted_spec_ends_in_internal_error() {
         }
     }
     let (mut refused, mut solved, mut failed) = (0, 0, 0);
+    let mut internal = Vec::new();
     for kind in registry::KINDS.iter().filter(|k| !["sweep", "bearing_optimisation", "test_sleep"].contains(&k.name())) {
         let example = kind.example();
         let mut pointers = Vec::new();
@@ -109,7 +111,9 @@ fn no_accepted_spec_ends_in_internal_error() {
                 let prepared = match kind.prepare(&spec, &Limits::default()) {
                     Ok(p) => p,
                     Err(p) => {
-                        assert_ne!(p.code, "internal_error", "{} {pointer} = {x}: {p:?}", kind.name());
+                        if p.code == "internal_error" {
+                            internal.push(format!("{} {pointer} = {x:e} refused as {p:?}", kind.name()));
+                        }
                         refused += 1;
                         continue;
                     }
@@ -121,7 +125,9 @@ fn no_accepted_spec_ends_in_internal_error() {
                 match tribod::jobs::runner::run(prepared, &tribod::physics::Silent).0 {
                     tribod::jobs::runner::Outcome::Succeeded(_) => solved += 1,
                     tribod::jobs::runner::Outcome::Failed(p) => {
-                        assert_ne!(p.code, "internal_error", "{} {pointer} = {x} was accepted and ended in {p:?}", kind.name());
+                        if p.code == "internal_error" {
+                            internal.push(format!("{} {pointer} = {x:e} was accepted and ended in {}", kind.name(), p.detail));
+                        }
                         failed += 1;
                     }
                     tribod::jobs::runner::Outcome::Interrupted(i) => panic!("{i:?}"),
@@ -130,6 +136,7 @@ fn no_accepted_spec_ends_in_internal_error() {
         }
     }
     eprintln!("hostile magnitudes: {refused} refused, {solved} solved, {failed} failed with a typed problem");
+    assert!(internal.is_empty(), "{} internal errors:\n{}", internal.len(), internal.join("\n"));
     assert!(refused > 100 && solved > 10, "{refused} refused, {solved} solved");
 }
 
@@ -170,26 +177,35 @@ async fn a_running_2d_ehl_point_is_cancelled_within_two_seconds() {
 }
 
 /// The memory model bounds what a job really allocates: a 2-D solve run by `tribod run` with the
-/// memory limit just above its estimate stays under that limit (peak resident memory of the
-/// process above an idle one, from `wait4`).
+/// memory limit just above its estimate stays under that limit (its peak resident memory, VmHWM
+/// read from `/proc/<pid>/status` while it runs, above an idle process's).
 #[test]
 fn an_accepted_job_stays_under_its_memory_limit() {
     fn peak_bytes(request: &Value, limit_mb: u64) -> (bool, f64) {
         let dir = tempfile::tempdir().unwrap();
         let file = dir.path().join("case.json");
         std::fs::write(&file, serde_json::to_vec(request).unwrap()).unwrap();
-        let child = std::process::Command::new(env!("CARGO_BIN_EXE_tribod"))
+        let mut child = std::process::Command::new(env!("CARGO_BIN_EXE_tribod"))
             .args(["run", "--compact", "--max-job-seconds", "0", "--max-job-memory-mb", &limit_mb.to_string()])
             .arg(&file)
             .stdout(std::process::Stdio::null())
             .stderr(std::process::Stdio::null())
             .spawn()
             .unwrap();
-        let mut status = 0;
-        // SAFETY: rusage is plain data the kernel writes; the pid is our own child.
-        let mut usage: libc::rusage = unsafe { std::mem::zeroed() };
-        unsafe { libc::wait4(child.id() as i32, &mut status, 0, &mut usage) };
-        (status == 0, usage.ru_maxrss as f64 * 1024.0)
+        let status_file = format!("/proc/{}/status", child.id());
+        let mut hwm_kb = 0.0_f64;
+        let status = loop {
+            if let Ok(text) = std::fs::read_to_string(&status_file) {
+                if let Some(kb) = text.lines().find_map(|l| l.strip_prefix("VmHWM:")).and_then(|v| v.trim().trim_end_matches("kB").trim().parse::<f64>().ok()) {
+                    hwm_kb = hwm_kb.max(kb);
+                }
+            }
+            if let Some(status) = child.try_wait().unwrap() {
+                break status;
+            }
+            std::thread::sleep(Duration::from_millis(5));
+        };
+        (status.success(), hwm_kb * 1024.0)
     }
     let (_, idle) = peak_bytes(&hertz_job(1000.0), 1 << 20);
     let request = point_contact(129);
@@ -198,10 +214,45 @@ fn an_accepted_job_stays_under_its_memory_limit() {
     let (ok, peak) = peak_bytes(&request, limit_mb);
     assert!(ok, "accepted at {limit_mb} MiB");
     let used = peak - idle;
-    eprintln!("129² point contact: model {:.0} MiB, measured {:.0} MiB above idle", cost.memory_bytes() / 1048576.0, used / 1048576.0);
+    eprintln!("129² point contact: model {:.0} MiB, measured {:.0} MiB above idle ({:.0} MiB)", cost.memory_bytes() / 1048576.0, used / 1048576.0, idle / 1048576.0);
     assert!(used <= limit_mb as f64 * 1048576.0, "peak {used} bytes over the {limit_mb} MiB limit");
     assert!(used >= cost.memory_bytes() / 1.5, "the model is not a loose bound: {used} bytes against {}", cost.memory_bytes());
     // Below the estimate it is refused before anything is allocated.
     let (refused_ok, _) = peak_bytes(&request, limit_mb / 2);
     assert!(!refused_ok);
+}
+
+/// Fair scheduling after a restart: the queued jobs' stored estimates order the queue from the
+/// first claim (it used to start every kind at 1 s, so a tiny job waited behind the backlog).
+#[tokio::test]
+async fn a_tiny_job_does_not_wait_behind_a_backlog_after_a_restart() {
+    let dir = tempfile::tempdir().unwrap();
+    let mut cfg = test_config(&dir).await;
+    // The backlog is queued by an instance that serves the API only; the restarted one solves.
+    cfg.queue.workers = 0;
+    let s = start_in(dir, cfg.clone()).await;
+    let mut heavy = Vec::new();
+    for i in 0..6 {
+        let res: Value = s.post_job(&sleep_job(0.4, 700 + i)).await.json().await.unwrap();
+        heavy.push(res["id"].as_str().unwrap().to_string());
+    }
+    let dir = s.stop().await;
+    // A new process on the same database: nothing measured yet, only the stored estimates. Its
+    // first claim may take a heavy job before the tiny one arrives.
+    cfg.queue.workers = 1;
+    let s = start_in(dir, cfg).await;
+    let tiny: Value = s.post_job(&hertz_job(4321.0)).await.json().await.unwrap();
+    let tiny = s.wait_finished(tiny["id"].as_str().unwrap(), Duration::from_secs(20)).await;
+    assert_eq!(tiny["status"], "succeeded");
+    // Started before the tiny one (RFC 3339 times of one clock compare as text).
+    let tiny_started = tiny["started_at"].as_str().unwrap().to_string();
+    let mut before = 0;
+    for id in &heavy {
+        let (_, job) = s.get_json(&format!("/v1/jobs/{id}")).await;
+        if job["started_at"].as_str().is_some_and(|t| t < tiny_started.as_str()) {
+            before += 1;
+        }
+    }
+    assert!(before <= 1, "the tiny job started after {before} of 6 heavy jobs");
+    s.stop().await;
 }

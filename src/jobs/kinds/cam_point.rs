@@ -257,13 +257,18 @@ impl Kind for CamPoint {
         // evaluates the traction at trial slips (the thermal model's traction table solves the
         // energy equation at a few slips per balance).
         let film = super::film_cost::film_cost(spec.fidelity, &spec.ehl, super::film_cost::ContactKind::Line);
+        // 0.5 ms a balance (the seed 001 points: 30 balances in 15 ms); the numerical mixed
+        // film's Greenwood–Tripp traction over its nodes 7 ms (seed001_mixed_nose).
+        let rough = spec.cam.roughness_rq > 0.0 || spec.follower.roughness_rq > 0.0;
+        let mixed = rough && spec.fidelity != Fidelity::Fast && spec.asperities.pressure_gap_curve.is_none();
         let per_balance = match &spec.ehl.thermal {
             Some(_) if spec.fidelity != Fidelity::Fast => 0.5 * film.cold,
-            _ => 2e-4,
+            _ if mixed => 7e-3,
+            _ => 5e-4,
         };
         let n = spec.pin_friction.len();
         let seconds = cost::JOB_OVERHEAD_S + film.cold + n as f64 * per_balance;
-        Cost::new(seconds, film.bytes)
+        Cost::new(seconds, cost::CAM_BASE_BYTES + film.bytes)
             .work_at(if per_balance > film.cold / n.max(1) as f64 { "/pin_friction" } else { film.path }, format!("{} and {n} torque balances", film.what))
             .memory_at(film.path, film.what)
     }

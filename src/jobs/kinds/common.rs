@@ -126,6 +126,11 @@ impl LubricantSpec {
     pub fn validate(&self, path: &str, v: &mut Validation) {
         v.quantity(&format!("{path}/viscosity"), self.viscosity, Q::VISCOSITY);
         v.in_range(&format!("{path}/pressure_viscosity"), self.pressure_viscosity, 0.0, 1e-7);
+        v.check(
+            self.pressure_viscosity == 0.0 || self.pressure_viscosity >= 1e-12,
+            &format!("{path}/pressure_viscosity"),
+            "must be 0 (isoviscous) or between 1e-12 and 1e-7 1/Pa",
+        );
         v.in_range(&format!("{path}/temperature_viscosity"), self.temperature_viscosity, 0.0, 1.0);
         v.in_range(&format!("{path}/reference_temperature"), self.reference_temperature, 200.0, 700.0);
         if let Some(t) = self.temperature {

@@ -453,11 +453,7 @@ impl Kind for EhlPoint {
                     ),
                     None => (cost::ehl_line_seconds(n, richardson), format!("the dense EHL solver on {n} nodes")),
                 };
-                let bytes = if richardson && spec.thermal.is_none() {
-                    cost::ehl_line_bytes(n)
-                } else {
-                    crate::physics::ehl::dense_memory_bytes(n) * 0.8
-                };
+                let bytes = cost::ehl_line_bytes(n);
                 Cost::new(cost::JOB_OVERHEAD_S + seconds, bytes).work_at("/nodes", what.clone()).memory_at("/nodes", what)
             }
         }

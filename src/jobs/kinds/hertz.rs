@@ -187,6 +187,14 @@ pub struct HertzResult {
     pub convergence: Convergence,
 }
 
+/// A body radius: negative for a concave surface, its magnitude a physical radius
+/// (`jobs::quantity::RADIUS`).
+fn radius_ok(r: f64) -> bool {
+    r.is_finite() && (Q::RADIUS.min..=Q::RADIUS.max).contains(&r.abs())
+}
+
+const RADIUS_RULE: &str = "must be between 1e-5 m and 100 m in magnitude (negative for a concave surface)";
+
 impl Kind for Hertz {
     const NAME: &'static str = "hertz";
     const SOLVER_VERSION: &'static str = "hertz-1";
@@ -223,17 +231,17 @@ impl Kind for Hertz {
             let needs_radius = body.shape != Shape::Flat;
             match body.radius {
                 Some(r) => v.check(
-                    needs_radius && r.is_finite() && r != 0.0,
+                    needs_radius && radius_ok(r),
                     &format!("{name}/radius"),
-                    if needs_radius { "must be a finite non-zero number" } else { "a flat body has no radius" },
+                    if needs_radius { RADIUS_RULE } else { "a flat body has no radius" },
                 ),
                 None => v.check(!needs_radius, &format!("{name}/radius"), "is required for this shape"),
             };
             match body.transverse_radius {
                 Some(r) => v.check(
-                    body.shape == Shape::Ellipsoid && r.is_finite() && r != 0.0,
+                    body.shape == Shape::Ellipsoid && radius_ok(r),
                     &format!("{name}/transverse_radius"),
-                    "only an ellipsoid has a transverse radius, finite and non-zero",
+                    if body.shape == Shape::Ellipsoid { RADIUS_RULE } else { "only an ellipsoid has a transverse radius" },
                 ),
                 None => v.check(
                     body.shape != Shape::Ellipsoid,

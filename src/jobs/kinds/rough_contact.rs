@@ -209,14 +209,14 @@ impl Kind for RoughContact {
     }
 
     fn cost(spec: &RoughContactSpec) -> Cost {
-        // Work and memory: a normal solve is O(n log n) per CG iteration; benches/rough.rs
-        // measured 0.3 s (256², plastic) and 2.5 s (512², plastic) on one core: ≈ 2.5 s·(n/512²)^1.1
-        // per film; memory ≈ 16 arrays of n doubles.
+        // Work and memory: a normal solve is O(n log n) per CG iteration and the iterations grow
+        // with the grid: ≈ 2.5 s·(n/512²)^1.7 per film (the seed 001 surface: 0.19 s at 128² for
+        // 12 films, 0.038 s at 64²; `cargo bench --bench cost`); memory ≈ 16 arrays of n doubles.
         let films = spec.films.as_ref().map_or(12, |f| f.len());
         let (nx, ny) = grid(spec);
         let n = (nx * ny) as f64;
         let per_film = if spec.friction_limit.is_some() { 3.0 } else { 1.0 };
-        let seconds = per_film * films as f64 * 2.5 * (n / (512.0 * 512.0)).powf(1.1);
+        let seconds = per_film * films as f64 * 2.5 * (n / (512.0 * 512.0)).powf(1.7);
         Cost::new(seconds, 16.0 * 8.0 * n)
             .work_at("/films", format!("{films} contact solves on a {nx}×{ny} surface"))
             .memory_at("/surface", format!("the contact solver on a {nx}×{ny} surface"))

@@ -5,36 +5,32 @@ use super::{CamCycleSpec, DynamicLoadSpec, FollowerSpec, LoadSpec, StartupSpec};
 use crate::jobs::cost::{self, Cost};
 use crate::jobs::kinds::film_cost::{film_cost, ContactKind};
 
-/// Passes of the roller march over the cycle until the roller's speed is periodic (typically
-/// 2–3; bounded by `slip.max_cycles`).
-const ROLLER_PASSES: f64 = 2.5;
-
 /// Revolutions the valve-train dynamics typically needs to become periodic (bounded by
 /// `load.max_revolutions`).
 const DYNAMIC_REVOLUTIONS: f64 = 12.0;
 
-/// The cost of the cycle `spec` (paths relative to it).
-pub fn cycle_cost(spec: &CamCycleSpec) -> Cost {
+/// The cost of the cycle `spec` (paths relative to it): the cycle's fixed cost, the closed
+/// forms at every angle, and the film model's cold solve and its cost per angle at the cycle's
+/// step. `per_angle_fast` is the closed forms' cost per angle (a wear run's cycles keep no
+/// series and cost less).
+pub fn cycle_cost_with(spec: &CamCycleSpec, per_angle_fast: f64) -> Cost {
     let angles = spec.angles as f64;
+    let step = 360.0 / angles.max(1.0);
     let needs = spec.needs();
-    let (contact, roller) = match spec.follower {
-        FollowerSpec::Spherical { .. } => (ContactKind::Point, false),
-        FollowerSpec::Roller { .. } => (ContactKind::Line, true),
-        FollowerSpec::FlatFaced { .. } => (ContactKind::Line, false),
+    let contact = match spec.follower {
+        FollowerSpec::Spherical { .. } => ContactKind::Point,
+        FollowerSpec::Roller { .. } | FollowerSpec::FlatFaced { .. } => ContactKind::Line,
     };
-    let mut seconds = cost::JOB_OVERHEAD_S + angles * cost::FAST_ANGLE_S;
-    let mut bytes = angles * 2_000.0;
+    let mut seconds = cost::JOB_OVERHEAD_S + cost::CYCLE_BASE_S + angles * per_angle_fast;
+    let mut bytes = cost::CAM_BASE_BYTES + angles * 2_000.0;
     let (mut work_path, mut what) = ("/angles".to_string(), format!("{} angles by the closed forms", spec.angles));
     let (mut memory_path, mut memory_what) = ("/angles".to_string(), format!("{} angles", spec.angles));
     if needs.film {
         let film = film_cost(spec.fidelity, &spec.ehl, contact);
-        let passes = if roller { ROLLER_PASSES.min(spec.slip.max_cycles as f64) } else { 1.0 };
-        // A startup is one pass from rest (no periodic iteration).
-        let passes = if spec.operation.startup.is_some() { 1.0_f64.max(passes * 0.5) } else { passes };
-        seconds += film.cold + angles * passes * film.numeric_share * film.warm;
-        bytes += film.bytes + angles * film.numeric_share * film.kept_per_angle;
+        let numeric = angles * film.numeric_share;
+        seconds += film.cold + numeric * (film.angle(step) + film.thermal_share * film.thermal_angle);
+        bytes += film.bytes + numeric * film.kept_per_angle;
         if film.numeric_share > 0.0 {
-            work_path = "/angles".into();
             what = format!("{} angles of {}", spec.angles, film.what);
             memory_path = film.path.into();
             memory_what = format!("{} over {} angles", film.what, spec.angles);
@@ -53,12 +49,17 @@ pub fn cycle_cost(spec: &CamCycleSpec) -> Cost {
     Cost::new(seconds, bytes).work_at(work_path, what).memory_at(memory_path, memory_what)
 }
 
+/// The cost of a `cam_cycle` job.
+pub fn cycle_cost(spec: &CamCycleSpec) -> Cost {
+    cycle_cost_with(spec, cost::FAST_ANGLE_S)
+}
+
 /// The valve-train dynamics: about 9 ms per revolution at the default tolerance 1e-8 with 8
 /// spring elements (release, BENCHMARKS.md "Valve-train dynamics"), growing with the elements and
 /// as tolerance^(-1/3) (second-order steps); a run-up's revolutions cost as many periodic ones at
 /// the faster end (step ∝ 1/ω).
 fn dynamics_seconds(speed_rpm: f64, _startup: Option<&StartupSpec>, d: &DynamicLoadSpec) -> f64 {
-    let per_rev = 9e-3 * (d.spring.elements as f64 + 2.0) / 10.0 * (1e-8 / d.tolerance.max(1e-12)).powf(1.0 / 3.0).max(1.0);
+    let per_rev = 1.2e-2 * (d.spring.elements as f64 + 2.0) / 10.0 * (1e-8 / d.tolerance.max(1e-12)).powf(1.0 / 3.0).max(1.0);
     let mut seconds = per_rev * DYNAMIC_REVOLUTIONS.min(d.max_revolutions as f64);
     if let Some(r) = &d.run_up {
         let speed = speed_rpm.max(1.0);

@@ -17,7 +17,7 @@ mod spec;
 pub use result::*;
 pub use spec::*;
 use solve::*;
-pub use cost::cycle_cost;
+pub use cost::{cycle_cost, cycle_cost_with};
 
 use crate::jobs::cost::Cost;
 use crate::jobs::quantity as Q;

@@ -435,7 +435,9 @@ impl Problem {
 
     /// The near-field preconditioner (scaled like the Newton matrix) and the row scales `c`;
     /// `factor` false: the row scales and the active set only (`None`).
-    fn precondition(&self, p: &[f64], v: &Fields, active: &mut [u8], c: &mut [f64], factor: bool) -> Option<Precond> {
+    /// `observer`: a large factorisation runs beside the caller, which polls it
+    /// ([`NearLu::new_watched`]); an interrupt there is `Err`.
+    fn precondition(&self, p: &[f64], v: &Fields, active: &mut [u8], c: &mut [f64], factor: bool, observer: &dyn Observer) -> Result<Option<Precond>, SolveError> {
         let (nx, ny, dx2, dy2) = (self.nx, self.ny, self.dx * self.dx, self.dy * self.dy);
         let m = self.nodes.len();
         let r = self.near as isize;
@@ -467,7 +469,7 @@ impl Problem {
                 c[u] = cu;
                 active[u] = self.row_kind(p, v, cu, k);
             }
-            return None;
+            return Ok(None);
         }
         // Every row's entries (column, value), cavitated rows too: the pattern is then that of the
         // grid alone, its symbolic LU computed once ([`NearPattern`]).
@@ -568,7 +570,8 @@ impl Problem {
                 Some(pat) => pat.clone(),
                 None => {
                     let order = nested_dissection(nx - 2, ny - 2, 2 + 2 * self.near, 2 * self.near.max(1));
-                    let pat = std::sync::Arc::new(NearPattern::new(m, &row_ptr, &ent, order)?);
+                    let Some(pat) = NearPattern::new(m, &row_ptr, &ent, order) else { return Ok(None) };
+                    let pat = std::sync::Arc::new(pat);
                     *cache = Some(pat.clone());
                     pat
                 }
@@ -609,10 +612,10 @@ impl Problem {
                 }
             }
         }
-        let lu = NearLu::new(pattern, &values)?;
+        let Some(lu) = NearLu::new_watched(pattern, values, observer)? else { return Ok(None) };
         lu.solve_in_place(&mut ucol);
         let sum_bu = ucol.iter().sum::<f64>();
-        (sum_bu.is_finite() && ucol.iter().all(|x| x.is_finite())).then_some(Precond { lu, bu: ucol, sum_bu, c: c.to_vec(), active: active.to_vec() })
+        Ok((sum_bu.is_finite() && ucol.iter().all(|x| x.is_finite())).then_some(Precond { lu, bu: ucol, sum_bu, c: c.to_vec(), active: active.to_vec() }))
     }
 
     /// The load row's weight `ΔX ΔY / W` (the `wᵀ` of [`Precond`]).
@@ -791,6 +794,10 @@ impl NearPattern {
     }
 }
 
+/// Unknowns from which the near-field factorisation runs beside its caller ([`NearLu::new_watched`]):
+/// ≈ 0.3 s at 257² (66k unknowns), a thread start is noise beside it.
+const WATCHED_LU_UNKNOWNS: usize = 60_000;
+
 /// The numeric LU (faer's supernodal, partial pivoting) of a near-field matrix on its
 /// [`NearPattern`].
 struct NearLu {
@@ -812,6 +819,31 @@ impl NearLu {
         let mut mem = MemBuffer::new(supernodal::factorize_supernodal_numeric_lu_scratch::<usize, f64>(&pattern.symbolic, Default::default()));
         supernodal::factorize_supernodal_numeric_lu(&mut row_fwd, &mut row_inv, &mut lu, a, at.as_ref(), perm, &pattern.symbolic, faer::get_global_parallelism(), MemStack::new(&mut mem), Default::default()).ok()?;
         Some(NearLu { pattern, lu, row_fwd, row_inv })
+    }
+
+    /// [`NearLu::new`], run beside the caller when the matrix is large ([`WATCHED_LU_UNKNOWNS`]
+    /// or more unknowns: 3–3.5 s at 513², release): the caller polls `observer` every 50 ms and
+    /// returns an interrupt at once, leaving the factorisation to finish (and be dropped) on its
+    /// own thread, so a cancel, time limit or shutdown does not wait for it.
+    fn new_watched(pattern: std::sync::Arc<NearPattern>, values: Vec<f64>, observer: &dyn Observer) -> Result<Option<Self>, SolveError> {
+        if pattern.col_fwd.len() < WATCHED_LU_UNKNOWNS {
+            return Ok(NearLu::new(pattern, &values));
+        }
+        let (tx, rx) = std::sync::mpsc::channel();
+        let spawned = std::thread::Builder::new().name("ehl2d-lu".into()).spawn(move || {
+            let _ = tx.send(NearLu::new(pattern, &values));
+        });
+        if spawned.is_err() {
+            // No thread to be had (a process at its limit): no preconditioner this step.
+            return Ok(None);
+        }
+        loop {
+            match rx.recv_timeout(std::time::Duration::from_millis(50)) {
+                Ok(lu) => return Ok(lu),
+                Err(std::sync::mpsc::RecvTimeoutError::Timeout) => observer.check()?,
+                Err(std::sync::mpsc::RecvTimeoutError::Disconnected) => return Ok(None),
+            }
+        }
     }
 
     /// `x ← B⁻¹ x`.
@@ -1048,7 +1080,7 @@ fn newton(prob: &mut Problem, p: &mut [f64], h0: &mut f64, tol: f64, max_iter: u
         // Row scales and active set first: the residual needs them, the factorisation only an
         // unconverged step (the last, converged evaluation of every solve factorised for nothing:
         // ≈ 1 of 5 factorisations of a warm solve in the cam cycle, `ehl2d-6`).
-        prob.precondition(p, &v, &mut active, &mut c, false);
+        prob.precondition(p, &v, &mut active, &mut c, false, observer)?;
         prob.phi(p, &v, &c, &mut phi);
         let res = residual_norm(p, &phi, v.g);
         history.push(res);
@@ -1095,7 +1127,7 @@ fn newton(prob: &mut Problem, p: &mut [f64], h0: &mut f64, tol: f64, max_iter: u
                 None => {
                     observer.check()?;
                     let t = std::time::Instant::now();
-                    let lu = prob.precondition(p, &v, &mut active, &mut c, true);
+                    let lu = prob.precondition(p, &v, &mut active, &mut c, true, observer)?;
                     t_lu += t.elapsed().as_secs_f64();
                     let Some(lu) = lu else {
                         return Ok(Run { iterations: iter, residual: res, history, converged: false, gmres: gm_total });
@@ -1560,7 +1592,8 @@ fn merit_at(prob: &mut Problem, p: &[f64], h0: f64) -> f64 {
     }
     let m = prob.nodes.len();
     let (mut active, mut c, mut phi) = (vec![FLUID; m], vec![0.0; m], Vec::with_capacity(m));
-    prob.precondition(p, &v, &mut active, &mut c, false);
+    // Without a factorisation nothing can be interrupted.
+    let _ = prob.precondition(p, &v, &mut active, &mut c, false, &crate::physics::Silent);
     prob.phi(p, &v, &c, &mut phi);
     dot(&phi, &phi) * prob.dx * prob.dy + v.g * v.g
 }
