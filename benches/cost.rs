@@ -120,7 +120,9 @@ fn main() {
     let filter = args.iter().find(|a| !a.starts_with("--")).cloned().unwrap_or_default();
     let binary = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("target/release/tribod");
     assert!(binary.exists(), "build the release binary first: cargo build --release");
-    let idle = measure(&binary, &json!({"kind": "hertz", "spec": registry::find("hertz").unwrap().example()}));
+    // The least of five: a loaded machine only adds time.
+    let hertz = json!({"kind": "hertz", "spec": registry::find("hertz").unwrap().example()});
+    let idle = (0..5).map(|_| measure(&binary, &hertz)).min_by(|a, b| a.cpu.total_cmp(&b.cpu)).unwrap();
     println!("idle process (a hertz job): {:.3} s CPU, {:.1} MiB peak resident\n", idle.cpu, idle.max_rss / 1048576.0);
     let mut cases: Vec<(String, Value)> = Vec::new();
     let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("examples");
@@ -143,7 +145,16 @@ fn main() {
                 continue;
             }
         };
-        let m = measure(&binary, &request);
+        // Short cases: the least of three runs (the idle process's time is of their order).
+        let mut m = measure(&binary, &request);
+        if m.cpu < idle.cpu + 1.0 {
+            for _ in 0..2 {
+                let again = measure(&binary, &request);
+                if again.cpu < m.cpu {
+                    m = again;
+                }
+            }
+        }
         let model = cost.estimate;
         let cpu = (m.cpu - idle.cpu).max(1e-4);
         let ratio = cpu / model.cpu_seconds;
@@ -155,7 +166,7 @@ fn main() {
             "| {name}{note} | {:.4} | {:.4} | {:.3} | {ratio:.2} | {:.1} | {:.1} | {mem_ratio:.2} |",
             model.cpu_seconds, cpu, m.wall, mib(model.memory_bytes), mib(used)
         );
-        if cpu > 0.05 {
+        if cpu > 0.2 {
             worst_lo = worst_lo.min(ratio);
             worst_hi = worst_hi.max(ratio);
         }
@@ -163,5 +174,5 @@ fn main() {
             worst_mem = worst_mem.max(mem_ratio);
         }
     }
-    println!("\nmeasured/model CPU over cases above 0.05 s: {worst_lo:.2} … {worst_hi:.2}; measured/model memory above 20 MiB: at most {worst_mem:.2}");
+    println!("\nmeasured/model CPU over cases above 0.2 s: {worst_lo:.2} … {worst_hi:.2}; measured/model memory above 20 MiB: at most {worst_mem:.2}");
 }

@@ -194,11 +194,11 @@ pub fn ehl_2d_step_fraction(step_deg: f64) -> f64 {
 
 /// Peak memory of one 2-D EHL solve on `nx × ny` nodes, bytes: node arrays, the padded FFT
 /// buffers of the elastic kernel, the near-field sparse LU and flexible GMRES' basis (two vectors
-/// per iteration): ≈ 9.2 kB per node (peak resident memory of `tribod run` above idle: 140 MB at
-/// 129², 563 MB at 257², 2.57 GB at 513²).
+/// per iteration): an upper bound of ≈ 10.4 kB per node (peak resident memory of `tribod run`
+/// above idle: 140 MiB at 129², 610 MiB at 257², 2585 MiB at 513²).
 pub fn ehl_2d_bytes(nx: usize, ny: usize) -> f64 {
     let n = (nx * ny) as f64;
-    8.0 * n * 1150.0 + 8.0 * MIB
+    8.0 * n * 1300.0 + 8.0 * MIB
 }
 
 /// Memory a cam cycle keeps per angle of a 2-D film (the converged pressure and mass fields as
