@@ -206,14 +206,14 @@ impl Kind for RoughContact {
         }
         // Work and memory: a normal solve is O(n log n) per CG iteration; benches/rough.rs
         // measured 0.3 s (256², plastic) and 2.5 s (512², plastic) on one core: ≈ 2.5 s·(n/512²)^1.1
-        // per film; memory ≈ 16 arrays of n doubles.
+        // per film; memory ≈ 18 arrays of n doubles (the CG keeps the previous iterate and its K x).
         let (nx, ny) = grid(spec);
         let n = (nx * ny) as f64;
         v.limit("/surface", nx * ny, limits.max_grid_nodes, "the number of surface points");
         let per_film = if spec.friction_limit.is_some() { 3.0 } else { 1.0 };
         let seconds = per_film * films as f64 * 2.5 * (n / (512.0 * 512.0)).powf(1.1);
         v.work("/films", seconds, limits, "the contact solves at these films on this grid");
-        let bytes = 16.0 * 8.0 * n;
+        let bytes = 18.0 * 8.0 * n;
         v.memory("/surface", bytes, limits, "the contact solver on this grid");
     }
 
