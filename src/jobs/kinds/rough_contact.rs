@@ -173,6 +173,16 @@ impl Kind for RoughContact {
         })
     }
 
+    fn bound_examples() -> Vec<Value> {
+        // The optional fields, and a measured surface (the Gaussian one's fields removed).
+        let table = json!({"type": "table", "nx": 16, "ny": 16, "heights": vec![0.0; 256],
+            "rq": null, "correlation_length": null, "points": null, "seed": null});
+        vec![
+            crate::jobs::kind::example_with::<Self>(json!({"films": [1e-7, 2e-7], "tolerance": 1e-7, "friction_limit": 0.12})),
+            crate::jobs::kind::example_with::<Self>(json!({"surface": table})),
+        ]
+    }
+
     fn validate(spec: &RoughContactSpec, limits: &Limits, v: &mut Validation) {
         match &spec.surface {
             SurfaceSpec::Gaussian { rq, correlation_length, points, spacing, .. } => {
@@ -184,6 +194,7 @@ impl Kind for RoughContact {
             SurfaceSpec::Table { nx, ny, spacing, heights } => {
                 v.positive("/surface/spacing", *spacing);
                 v.check((16..=512).contains(nx) && (16..=512).contains(ny), "/surface/nx", "nx and ny must be 16 to 512");
+                v.items("/surface/heights", heights.len(), 16 * 16, Some(512 * 512));
                 v.check(heights.len() == nx * ny, "/surface/heights", "needs nx·ny heights");
                 v.check(heights.iter().all(|h| h.is_finite()), "/surface/heights", "must be finite");
             }
@@ -201,7 +212,7 @@ impl Kind for RoughContact {
         }
         let films = spec.films.as_ref().map_or(12, |f| f.len());
         if let Some(f) = &spec.films {
-            v.check(!f.is_empty() && f.len() <= 64, "/films", "1 to 64 films");
+            v.items("/films", f.len(), 1, Some(64));
             v.check(f.iter().all(|h| h.is_finite() && *h > 0.0) && f.windows(2).all(|w| w[1] > w[0]), "/films", "must be positive and strictly ascending");
         }
         // Work and memory: a normal solve is O(n log n) per CG iteration; benches/rough.rs
