@@ -303,7 +303,7 @@ fn auto_tables() {
                 let input = ContactInput {
                     load: w * len, shape: ContactShape::Line { reduced_radius: r, length: len }, entrainment_velocity: u,
                     sliding_velocity: 0.0, time: 0.0, time_step: 0.0, contact_modulus: es, temperature: lub.reference_temperature,
-                    lubricant: &lub, roughness: &rough, traction_law: &law, asperity_friction: &asp,
+                    lubricant: &lub, roughness: &rough, traction_law: &law, asperity_friction: &asp, interrupts: tribod::physics::Interrupts::NONE,
                 };
                 let (Ok(a), Ok(b)) = (fast.solve(&input, None), num.solve(&input, None)) else {
                     row += " – |";

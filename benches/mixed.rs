@@ -112,6 +112,7 @@ fn point_table() {
         roughness: &r,
         traction_law: &law_t,
         asperity_friction: &asp,
+        interrupts: tribod::physics::Interrupts::NONE,
     };
     let cf = ClosedForm { formula: FilmFormula::PanHamrock, squeeze: false };
     let (t, f) = best_of(2000, || cf.solve(&c, None).unwrap());

@@ -114,13 +114,15 @@ struct ServeArgs {
     /// Longest `Prefer: wait=N` honoured, seconds.
     #[arg(long, env = "TRIBOD_MAX_WAIT", default_value_t = 300.0)]
     max_wait: f64,
-    /// Open connections served at once (more are answered 503); lowered to fit the open-files limit.
+    /// Open connections at once; at the cap a new one takes the place of the connection waiting
+    /// longest on its client (503 only when all are busy); lowered to fit the open-files limit.
     #[arg(long, env = "TRIBOD_MAX_CONNECTIONS", default_value_t = 4096)]
     max_connections: usize,
-    /// Seconds a client has to send a request's headers (also closes idle keep-alive connections).
+    /// Seconds a client has to send a request's headers, in total (also closes idle keep-alive
+    /// connections).
     #[arg(long, env = "TRIBOD_HEADER_TIMEOUT", default_value_t = 10.0)]
     header_timeout: f64,
-    /// Seconds a client has to send a request's body.
+    /// Seconds a client has to send a request's body, in total, counted from its headers (408).
     #[arg(long, env = "TRIBOD_BODY_TIMEOUT", default_value_t = 30.0)]
     body_timeout: f64,
 }
@@ -368,6 +370,7 @@ fn run(args: RunArgs) -> ExitCode {
         Ok(p) => p,
         Err(p) => return fail(&p.under("/spec"), 2),
     };
+    tribod::jobs::warm_up();
     let (outcome, _) = runner::run(prepared, &Silent);
     let value = match outcome {
         runner::Outcome::Succeeded(v) => v,

@@ -6,7 +6,7 @@
 //!   `kind` as the discriminator, each tying its `kind` constant to its spec schema.
 //! * Answers every route can give are added where they apply: `401` under `/v1` (bearer token),
 //!   `405` (other methods), `406` on reads (`Accept`), `503` where the job store is read or
-//!   written, `415` on bodies.
+//!   written, `415` and `408` on bodies.
 //! * Numeric fields carry the bounds the kinds' validation checks (`minimum`, `exclusiveMinimum`,
 //!   `maximum`), taken from the rules `validate` checks on each kind's example spec, so the
 //!   validator is the one source of truth; where one schema serves several fields or kinds the
@@ -255,6 +255,7 @@ fn common_responses(doc: &mut Value) {
             }
             if method == "post" {
                 add("415", "The body is not JSON");
+                add("408", "The body did not arrive within the server's body timeout (counted from the headers); the connection is closed");
             }
             if path.starts_with("/v1/jobs") {
                 add("503", "The job store cannot be reached, or the service is shutting down");

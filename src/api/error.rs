@@ -37,6 +37,10 @@ impl IntoResponse for ApiError {
         if self.problem.code == ErrorCode::Unauthorized.as_str() {
             headers.insert(header::WWW_AUTHENTICATE, HeaderValue::from_static("Bearer"));
         }
+        // A request that timed out is abandoned half-read: the connection cannot carry another.
+        if self.problem.code == ErrorCode::RequestTimeout.as_str() {
+            headers.insert(header::CONNECTION, HeaderValue::from_static("close"));
+        }
         res
     }
 }

@@ -1,5 +1,6 @@
 //! Extractors whose rejections are problems with field paths, not axum's plain-text bodies.
 
+use super::deadline::BodyTimedOut;
 use super::error::ApiError;
 use crate::jobs::kind::parse_value;
 use crate::problem::{ErrorCode, FieldError};
@@ -9,7 +10,8 @@ use axum::http::{header, request::Parts, StatusCode};
 use serde::de::DeserializeOwned;
 
 /// A JSON body: malformed → 400 `malformed_json` (with line and column), wrong shape → 422
-/// `invalid_request` naming the field, too large → 413, a non-JSON content type → 415.
+/// `invalid_request` naming the field, too large → 413, a non-JSON content type → 415, not
+/// arrived by its deadline ([`super::deadline`]) → 408 `request_timeout`.
 /// A missing content type, `text/plain` and curl's default form type are accepted as JSON.
 pub struct ApiJson<T>(pub T);
 
@@ -36,7 +38,9 @@ where
             }
         }
         let bytes = Bytes::from_request(req, state).await.map_err(|rejection| {
-            if rejection.status() == StatusCode::PAYLOAD_TOO_LARGE {
+            if let Some(timed_out) = BodyTimedOut::caused(&rejection) {
+                ApiError::new(ErrorCode::RequestTimeout, timed_out.to_string())
+            } else if rejection.status() == StatusCode::PAYLOAD_TOO_LARGE {
                 ApiError::new(ErrorCode::PayloadTooLarge, "the request body is larger than this server accepts")
             } else {
                 ApiError::new(ErrorCode::MalformedJson, rejection.body_text())

@@ -3,8 +3,9 @@
 use super::error::{ApiError, ApiResult};
 use super::extract::{ApiJson, ApiQuery, JobIdPath};
 use super::AppState;
+use crate::jobs::idempotency::Replay;
 use crate::jobs::queue::{Cancellation, Submitted};
-use crate::jobs::{registry, table};
+use crate::jobs::{registry, table, Estimate};
 use crate::problem::{ErrorCode, Problem};
 use crate::store::{JobRow, JobStatus, ListFilter};
 use axum::extract::State;
@@ -81,6 +82,10 @@ pub struct JobView {
     /// Why the job failed.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub error: Option<Problem>,
+    /// What the job was expected to cost when it was accepted (the work and memory models; a
+    /// dashboard can say "about 40 s"). Absent for jobs stored before the models existed.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub estimate: Option<Estimate>,
     pub links: JobLinks,
 }
 
@@ -110,6 +115,10 @@ impl JobView {
             spec_hash: row.spec_hash,
             spec: row.spec.and_then(|s| serde_json::from_str(&s).ok()),
             error: row.error.and_then(|e| serde_json::from_str(&e).ok()),
+            estimate: match (row.estimate_cpu_seconds, row.estimate_memory_bytes) {
+                (Some(cpu_seconds), Some(memory_bytes)) => Some(Estimate { cpu_seconds, memory_bytes }),
+                _ => None,
+            },
             links: JobLinks { self_: format!("/v1/jobs/{id}"), result: format!("/v1/jobs/{id}/result") },
         }
     }
@@ -133,13 +142,13 @@ fn prefer_wait(headers: &HeaderMap) -> Option<f64> {
     })
 }
 
-fn job_response(status: StatusCode, view: JobView, extra: Option<(&'static str, String)>) -> Response {
+fn job_response(status: StatusCode, view: JobView, extra: Vec<(&'static str, String)>) -> Response {
     let location = view.links.self_.clone();
     let mut res = (status, Json(view)).into_response();
     if let Ok(v) = HeaderValue::from_str(&location) {
         res.headers_mut().insert(header::LOCATION, v);
     }
-    if let Some((name, value)) = extra {
+    for (name, value) in extra {
         if let Ok(v) = HeaderValue::from_str(&value) {
             res.headers_mut().insert(name, v);
         }
@@ -159,9 +168,10 @@ fn job_response(status: StatusCode, view: JobView, extra: Option<(&'static str, 
 /// offending field by JSON pointer; a full queue answers `503` with `Retry-After`.
 ///
 /// A client that may retry (a lost answer, a timeout) sends an `Idempotency-Key`: the same key
-/// with the same kind, spec and label answers the job created by the first request
-/// (`Idempotent-Replayed: true`), never a second job; the same key with another request is
-/// refused (`422 idempotency_key_reused`).
+/// with the same kind, spec and label answers the job that answered the first request — the job
+/// it created, reused or joined — (`Idempotent-Replayed: true`), never a second job; the same key
+/// with another request is refused (`422 idempotency_key_reused`). A key lives as long as its job:
+/// once that (finished) job is deleted, the key is free again.
 #[utoipa::path(post, path = "/v1/jobs", tag = "jobs",
     params(SubmitQuery,
         ("Prefer" = Option<String>, Header, description = "`wait=N`: wait up to N seconds for the job to finish (RFC 7240)"),
@@ -190,30 +200,25 @@ pub async fn submit_job(
     }
     let wait = prefer_wait(&headers);
     let key = idempotency_key(&headers)?;
-    match state.queue.submit(&req.kind, &req.spec, req.label.clone(), query.fresh, key).await? {
-        Submitted::Reused(row) => Ok(job_response(StatusCode::OK, JobView::from_row(row, true), None)),
-        Submitted::Replayed(row) => {
-            let code = if row.status.is_finished() { StatusCode::OK } else { StatusCode::ACCEPTED };
-            Ok(job_response(code, JobView::from_row(row, false), Some(("idempotent-replayed", "true".into()))))
-        }
-        submitted @ (Submitted::Accepted(_) | Submitted::Joined(_)) => {
-            // Joined: an identical job was already queued or running; it serves this request too.
-            let (row, joined) = match submitted {
-                Submitted::Joined(row) => (row, true),
-                Submitted::Accepted(row) | Submitted::Reused(row) | Submitted::Replayed(row) => (row, false),
-            };
-            let id = row.id;
-            if let Some(secs) = wait.filter(|s| *s > 0.0) {
-                let secs = secs.min(state.max_wait.as_secs_f64());
-                let applied = Some(("preference-applied", format!("wait={}", secs.round() as u64)));
-                if let Some(row) = state.queue.wait(id, Duration::from_secs_f64(secs)).await? {
-                    let code = if row.status.is_finished() { StatusCode::OK } else { StatusCode::ACCEPTED };
-                    return Ok(job_response(code, JobView::from_row(row, joined), applied));
-                }
-            }
-            Ok(job_response(StatusCode::ACCEPTED, JobView::from_row(row, joined), None))
+    // `reused`: the job is another request's; `replayed`: the answer this key gave before.
+    let (row, reused, replayed) = match state.queue.submit(&req.kind, &req.spec, req.label.clone(), query.fresh, key).await? {
+        Submitted::Reused(row) => return Ok(job_response(StatusCode::OK, JobView::from_row(row, true), Vec::new())),
+        Submitted::Replayed(Replay { row, reused }) => (row, reused, true),
+        Submitted::Joined(row) => (row, true, false),
+        Submitted::Accepted(row) => (row, false, false),
+    };
+    let mut extra: Vec<_> = replayed.then(|| ("idempotent-replayed", "true".to_string())).into_iter().collect();
+    let mut row = row;
+    if let Some(secs) = wait.filter(|s| *s > 0.0 && !row.status.is_finished()) {
+        let secs = secs.min(state.max_wait.as_secs_f64());
+        let id = row.id;
+        if let Some(waited) = state.queue.wait(id, Duration::from_secs_f64(secs)).await? {
+            row = waited;
+            extra.push(("preference-applied", format!("wait={}", secs.round() as u64)));
         }
     }
+    let code = if row.status.is_finished() { StatusCode::OK } else { StatusCode::ACCEPTED };
+    Ok(job_response(code, JobView::from_row(row, reused), extra))
 }
 
 /// The `Idempotency-Key` header: 1–255 visible ASCII characters.

@@ -1,6 +1,7 @@
 //! The HTTP API: `fn app(state) -> Router`, so tests and the server build the same thing.
 
 pub mod error;
+mod deadline;
 mod document;
 mod events;
 mod plots;
@@ -35,7 +36,8 @@ pub struct ApiConfig {
     pub body_limit: usize,
     /// Cap on `Prefer: wait=N`.
     pub max_wait: Duration,
-    /// Longest time a request body may take to arrive (slow senders are cut off with 400).
+    /// Longest time a request body may take to arrive, counted from its headers (a total
+    /// deadline: slow senders are answered `408 request_timeout` and disconnected).
     pub body_timeout: Duration,
 }
 
@@ -153,6 +155,7 @@ pub fn app(queue: Queue, config: &ApiConfig) -> axum::Router {
         max_wait: config.max_wait,
         openapi: Arc::new(openapi),
     };
+    let body_timeout = config.body_timeout;
     let (v1, open) = routers();
     let (router, _) = OpenApiRouter::new().merge(v1).merge(open).split_for_parts();
     let mut router = router
@@ -162,7 +165,7 @@ pub fn app(queue: Queue, config: &ApiConfig) -> axum::Router {
             ApiError::new(ErrorCode::MethodNotAllowed, "this route does not answer that method; see /openapi.json")
         })
         .layer(DefaultBodyLimit::max(config.body_limit))
-        .layer(tower_http::timeout::RequestBodyTimeoutLayer::new(config.body_timeout))
+        .layer(tower::util::MapRequestLayer::new(move |req| deadline::limit(req, body_timeout)))
         .layer(middleware::from_fn(refuse_unacceptable))
         // Outside the routing: an unknown /v1 route or method is also refused without a token.
         .layer(middleware::from_fn_with_state(state.clone(), require_token))

@@ -5,6 +5,7 @@
 //! function. The queue, the store, the HTTP API, `tribod run` and `sweep` only see kinds through the
 //! object-safe [`DynKind`] that every `Kind` gets for free.
 
+use super::cost::{describe_seconds, Cost, MIB};
 use crate::physics::{Observer, SolveError};
 use crate::problem::{ErrorCode, FieldError, Problem};
 use serde::{de::DeserializeOwned, Serialize};
@@ -147,6 +148,13 @@ impl Validation {
         )
     }
 
+    /// A physical quantity within its bounds (`jobs::quantity`): finite and in `[min, max]`; the
+    /// message names the unit.
+    pub fn quantity(&mut self, path: &str, value: f64, q: super::quantity::Quantity) -> &mut Self {
+        self.bound(path, value, Some(q.min), false, Some(q.max), false);
+        self.check(value.is_finite() && value >= q.min && value <= q.max, path, format!("{}; {} in {} was given {}", q.rule(), q.name, q.unit, super::quantity::format_number(value)))
+    }
+
     /// An integer count in `[lo, hi]`.
     pub fn count_in_range(&mut self, path: &str, value: usize, lo: usize, hi: usize) -> &mut Self {
         self.bound(path, value as f64, Some(lo as f64), false, Some(hi as f64), true);
@@ -182,36 +190,6 @@ impl Validation {
             self.limit_errors.push(FieldError::new(
                 self.at(path),
                 format!("{what} is {value}; this server accepts at most {max} (configurable)"),
-            ));
-        }
-        self
-    }
-
-    /// The memory a spec's solver would need (by its memory model) against the server's budget.
-    pub fn memory(&mut self, path: &str, bytes: f64, limits: &Limits, what: &str) -> &mut Self {
-        if !(bytes <= limits.max_job_memory as f64) {
-            let mib = |b: f64| b / (1u64 << 20) as f64;
-            self.limit_errors.push(FieldError::new(
-                self.at(path),
-                format!(
-                    "{what} would need about {:.0} MiB; this server accepts at most {:.0} MiB per job (configurable)",
-                    mib(bytes),
-                    mib(limits.max_job_memory as f64)
-                ),
-            ));
-        }
-        self
-    }
-
-    /// The solver time a spec would need (by its work model) against the server's budget.
-    pub fn work(&mut self, path: &str, seconds: f64, limits: &Limits, what: &str) -> &mut Self {
-        if !(seconds <= limits.max_job_seconds) {
-            self.limit_errors.push(FieldError::new(
-                self.at(path),
-                format!(
-                    "{what} would take about {seconds:.0} s of solver time; this server accepts at most {:.0} s per job (configurable)",
-                    limits.max_job_seconds
-                ),
             ));
         }
         self
@@ -309,6 +287,10 @@ pub trait Kind: Send + Sync + 'static {
     }
     /// Range and consistency checks the types cannot express.
     fn validate(spec: &Self::Spec, limits: &Limits, v: &mut Validation);
+    /// The work and memory the solve will need, by the solvers' models (`jobs::cost`), from a
+    /// spec that passed `validate`. The server refuses a spec over its limits with the fields
+    /// named here, and stores the estimate with the job.
+    fn cost(spec: &Self::Spec) -> Cost;
     /// The pure solve: no I/O. Poll `observer.check()` once per outer iteration.
     fn solve(spec: &Self::Spec, observer: &dyn Observer) -> Result<Self::Output, SolveError>;
 }
@@ -318,6 +300,8 @@ pub trait Kind: Send + Sync + 'static {
 pub struct Prepared {
     pub kind: &'static dyn DynKind,
     pub canonical: Value,
+    /// The estimated cost (work and memory models), checked against the limits.
+    pub cost: Cost,
     run: Box<dyn FnOnce(&dyn Observer) -> Result<Value, SolveError> + Send>,
 }
 
@@ -428,12 +412,15 @@ impl<K: Kind> DynKind for Registered<K> {
         let mut v = Validation::new();
         K::validate(&typed, limits, &mut v);
         v.finish()?;
+        let cost = K::cost(&typed);
+        check_cost(&cost, limits)?;
         let canonical = canonicalize(serde_json::to_value(&typed).map_err(|e| {
             Problem::new(ErrorCode::InternalError, format!("spec did not serialise: {e}"))
         })?);
         Ok(Prepared {
             kind: self,
             canonical,
+            cost,
             run: Box::new(move |observer| {
                 let out = K::solve(&typed, observer)?;
                 let value = serde_json::to_value(&out)
@@ -443,6 +430,47 @@ impl<K: Kind> DynKind for Registered<K> {
             }),
         })
     }
+}
+
+/// Refuse a cost over the server's limits: `limit_exceeded` naming the fields that drive it,
+/// the estimate and the limit.
+pub fn check_cost(cost: &Cost, limits: &Limits) -> Result<(), Problem> {
+    let mut errors = Vec::new();
+    let seconds = cost.cpu_seconds();
+    if !(seconds <= limits.max_job_seconds) {
+        errors.push(FieldError::new(
+            cost.work_path.clone(),
+            format!(
+                "{} would take about {} of solver time (estimate {seconds:.3e} s of one core); this server accepts at most {} s per job (--max-job-seconds)",
+                cost.work_what,
+                describe_seconds(seconds),
+                limits.max_job_seconds
+            ),
+        ));
+    }
+    let bytes = cost.memory_bytes();
+    if !(bytes <= limits.max_job_memory as f64) {
+        errors.push(FieldError::new(
+            cost.memory_path.clone(),
+            format!(
+                "{} would need about {:.0} MiB of memory; this server accepts at most {:.0} MiB per job (--max-job-memory-mb)",
+                cost.memory_what,
+                bytes / MIB,
+                limits.max_job_memory as f64 / MIB
+            ),
+        ));
+    }
+    if errors.is_empty() {
+        return Ok(());
+    }
+    let detail = format!(
+        "the job is larger than this server accepts: estimated {} of solver time and {:.0} MiB of memory; limits {} s and {:.0} MiB per job",
+        describe_seconds(seconds),
+        bytes / MIB,
+        limits.max_job_seconds,
+        limits.max_job_memory as f64 / MIB
+    );
+    Err(Problem::new(ErrorCode::LimitExceeded, detail).with_errors(errors))
 }
 
 /// Deserialise a spec, turning serde's error into a field error with a JSON pointer.

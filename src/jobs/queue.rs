@@ -10,15 +10,18 @@
 //! [`Observer`] polls.
 //!
 //! **Fair scheduling**: queued jobs are claimed by earliest *virtual deadline*
-//! `due_at = created_at + AGING × estimated solve time` (then by age). The estimate is the moving
-//! mean of the kind's measured solve times in this process (a first job of a kind counts as
-//! [`DEFAULT_ESTIMATE`]). A tiny job submitted behind hours of heavy work is due long before the
+//! `due_at = created_at + AGING × estimated solve time` (then by age). The estimate is the job's
+//! own work model (`jobs::cost`, stored with the job) scaled by the kind's measured-to-modelled
+//! ratio in this process (1 until one of its jobs finished here, so a restart starts from the
+//! model). A tiny job submitted behind hours of heavy work is due long before the
 //! heavy jobs and starts at the next free slot; a heavy job waits at most `AGING ×` its own
 //! estimate beyond its fair turn, so nothing starves.
 //!
 //! **Validation** runs on tokio's blocking threads, at most [`QueueConfig::validators`] at once, so a
 //! large spec never stalls the async threads that answer health checks and other requests.
 
+use super::cost::Estimate;
+use super::idempotency::{self, Keyed, Replay, Verdict};
 use super::kind::Limits;
 use super::registry;
 use super::runner::{self, spec_hash, Outcome};
@@ -80,8 +83,8 @@ pub enum Submitted {
     Accepted(JobRow),
     /// An identical succeeded job, returned instead of recomputing.
     Reused(JobRow),
-    /// The job stored earlier under the same `Idempotency-Key` with the same request.
-    Replayed(JobRow),
+    /// The answer to the same request sent earlier under the same `Idempotency-Key`.
+    Replayed(Replay),
     /// An identical job already queued or running (on any instance): one solve serves both.
     Joined(JobRow),
 }
@@ -99,8 +102,12 @@ pub enum Cancellation {
 
 /// Virtual-deadline weight of the estimated solve time (fair scheduling, see the module docs).
 pub const AGING: f64 = 100.0;
-/// Solve-time estimate of a kind before one of its jobs has been measured.
-pub const DEFAULT_ESTIMATE: Duration = Duration::from_secs(1);
+/// The smallest solve time fair scheduling counts (a closed form's microseconds still cost a
+/// claim and a commit).
+pub const MIN_ESTIMATE: Duration = Duration::from_millis(1);
+/// The furthest a virtual deadline lies ahead (ms; ≈ 30 years): a job's estimate may be
+/// astronomically large only on a server without a work limit.
+const MAX_DUE_MS: f64 = 1e12;
 /// How often a worker renews the leases of its running jobs, and so how soon it sees a cancel
 /// made through another instance.
 pub const RENEW_EVERY: Duration = Duration::from_millis(500);
@@ -133,7 +140,8 @@ const FLAG_CANCEL: u8 = 1;
 const FLAG_SHUTDOWN: u8 = 2;
 
 enum Event {
-    Finished { id: Uuid, kind: String, finish: Finish, status: JobStatus, wall: f64 },
+    /// `modelled`: the work model's CPU seconds of the job (0 when it did not run).
+    Finished { id: Uuid, kind: String, finish: Finish, status: JobStatus, wall: f64, modelled: f64 },
     Progress { id: Uuid, fraction: f64, stage: String },
 }
 
@@ -185,6 +193,9 @@ impl Queue {
     /// Recover interrupted jobs, then start the dispatcher and the writer on the current tokio
     /// runtime.
     pub async fn start(store: Store, config: QueueConfig, metrics: Arc<Metrics>) -> Result<Queue, StoreError> {
+        // The solvers' process-wide tables (Greenwood–Tripp integrals, ≈ 0.12 s), built now so
+        // that the first job does not pay for them (the work models leave them out).
+        tokio::task::spawn_blocking(super::warm_up);
         let interrupted = Problem::new(
             ErrorCode::Interrupted,
             format!("the job was interrupted {} times (service restarts) and was given up", config.max_attempts),
@@ -254,8 +265,9 @@ impl Queue {
     /// Validate, dedup, persist and signal. Problems carry field paths under `/spec`.
     ///
     /// With an `idempotency_key`, a repeated request (same kind, spec and label) answers the job
-    /// stored under that key ([`Submitted::Replayed`]); another request under the same key is
-    /// refused with `idempotency_key_reused`.
+    /// that answered the first one, whether it was created, reused or joined
+    /// ([`Submitted::Replayed`]); another request under the same key is refused with
+    /// `idempotency_key_reused` (see [`super::idempotency`]).
     pub async fn submit(
         &self,
         kind: &str,
@@ -274,21 +286,18 @@ impl Queue {
         if !self.inner.claiming.load(Ordering::Relaxed) {
             return Err(Problem::new(ErrorCode::ShuttingDown, "the service is shutting down"));
         }
-        let prepared = self.validate(k, spec).await?;
+        let (prepared, estimate) = self.validate(k, spec).await?;
         let spec_text = serde_json::to_string(&prepared).unwrap_or_default();
         let hash = spec_hash(k.name(), &spec_text);
-        if let Some(key) = &idempotency_key {
-            if let Some(row) = self.inner.store.find_by_idempotency_key(key).await.map_err(storage_problem)? {
-                return replay(row, &hash, &label);
-            }
+        let keyed = idempotency_key.clone().map(|key| Keyed { key, spec_hash: hash.clone(), label: label.clone() });
+        if let Some(answer) = self.earlier(&keyed).await? {
+            return Ok(answer);
         }
-        match self.inner.store.find_same(&hash, k.solver_version(), !fresh).await.map_err(storage_problem)? {
-            Some(row) if row.status == JobStatus::Succeeded => {
-                self.inner.metrics.reused.get_or_create(&KindLabel { kind: k.name().into() }).inc();
-                return Ok(Submitted::Reused(row));
+        if let Some(row) = self.inner.store.find_same(&hash, k.solver_version(), !fresh).await.map_err(storage_problem)? {
+            // None: deleted meanwhile (before its key could be recorded): a new job after all.
+            if let Some(answer) = self.existing(row, &keyed).await? {
+                return Ok(answer);
             }
-            Some(row) => return Ok(Submitted::Joined(row)),
-            None => {}
         }
         // Reserve a backlog place before the insert, so concurrent submissions cannot overshoot.
         // A shared database counts every instance's queue: re-read at most every
@@ -319,22 +328,24 @@ impl Queue {
             solver_version: k.solver_version().to_string(),
             created_at,
             idempotency_key: idempotency_key.clone(),
-            due_at: created_at + (AGING * self.estimate(k.name()) * 1e3) as i64,
+            due_at: created_at + (AGING * self.estimate(k.name(), estimate.cpu_seconds) * 1e3).min(MAX_DUE_MS) as i64,
+            estimate_cpu_seconds: estimate.cpu_seconds,
+            estimate_memory_bytes: estimate.memory_bytes,
         };
         let row = match self.inner.store.insert(&job).await {
             Ok(row) => row,
             Err(e) => {
                 self.inner.backlog.fetch_sub(1, Ordering::Relaxed);
-                // A concurrent request with the same key won the insert: answer its job.
-                if let (StoreError::DuplicateKey, Some(key)) = (&e, &idempotency_key) {
-                    if let Some(row) = self.inner.store.find_by_idempotency_key(key).await.map_err(storage_problem)? {
-                        return replay(row, &hash, &label);
-                    }
+                // A concurrent request with the same key won the insert: answer as its record says.
+                if let (StoreError::DuplicateKey, Some(answer)) = (&e, self.earlier(&keyed).await?) {
+                    return Ok(answer);
                 }
                 // An identical job was queued meanwhile (here or on another instance): join it.
                 if let StoreError::InFlight = e {
                     if let Some(row) = self.inner.store.find_in_flight(&hash, k.solver_version()).await.map_err(storage_problem)? {
-                        return Ok(Submitted::Joined(row));
+                        if let Some(answer) = self.existing(row, &keyed).await? {
+                            return Ok(answer);
+                        }
                     }
                 }
                 return Err(storage_problem(e));
@@ -346,9 +357,31 @@ impl Queue {
         Ok(Submitted::Accepted(row))
     }
 
+    /// The replay (or refusal) an earlier request under the same `Idempotency-Key` gives, if any.
+    async fn earlier(&self, keyed: &Option<Keyed>) -> Result<Option<Submitted>, Problem> {
+        let Some(request) = keyed else { return Ok(None) };
+        Ok(idempotency::look_up(&self.inner.store, request).await.map_err(storage_problem)?.into_replay()?.map(Submitted::Replayed))
+    }
+
+    /// The answer for an identical existing job (reused if it succeeded, else joined), once the
+    /// request's key is recorded for it; or the key's earlier answer; `None`: the job was deleted.
+    async fn existing(&self, row: JobRow, keyed: &Option<Keyed>) -> Result<Option<Submitted>, Problem> {
+        if let Some(request) = keyed {
+            match idempotency::attach(&self.inner.store, request, &row, now_ms()).await.map_err(storage_problem)? {
+                Verdict::Recorded => {}
+                other => return Ok(other.into_replay()?.map(Submitted::Replayed)),
+            }
+        }
+        if row.status == JobStatus::Succeeded {
+            self.inner.metrics.reused.get_or_create(&KindLabel { kind: row.kind.clone() }).inc();
+            return Ok(Some(Submitted::Reused(row)));
+        }
+        Ok(Some(Submitted::Joined(row)))
+    }
+
     /// Parse and validate a spec on a blocking thread (at most `validators` at once); the
-    /// canonical spec (defaults filled).
-    async fn validate(&self, k: &'static dyn super::kind::DynKind, spec: &Value) -> Result<Value, Problem> {
+    /// canonical spec (defaults filled) and the estimated cost.
+    async fn validate(&self, k: &'static dyn super::kind::DynKind, spec: &Value) -> Result<(Value, Estimate), Problem> {
         let _permit = self
             .inner
             .validating
@@ -357,16 +390,18 @@ impl Queue {
             .map_err(|_| Problem::new(ErrorCode::ShuttingDown, "the service is shutting down"))?;
         let spec = spec.clone();
         let limits = self.inner.config.limits;
-        tokio::task::spawn_blocking(move || k.prepare(&spec, &limits).map(|p| p.canonical))
+        tokio::task::spawn_blocking(move || k.prepare(&spec, &limits).map(|p| (p.canonical, p.cost.estimate)))
             .await
             .map_err(|e| Problem::new(ErrorCode::InternalError, format!("validation task failed: {e}")))?
             .map_err(|p| p.under("/spec"))
     }
 
-    /// Estimated solve time of a kind's job, seconds (fair scheduling).
-    fn estimate(&self, kind: &str) -> f64 {
-        let estimates = self.inner.estimates.lock().unwrap_or_else(|e| e.into_inner());
-        estimates.get(kind).copied().unwrap_or(DEFAULT_ESTIMATE.as_secs_f64())
+    /// Estimated solve time of a job, seconds (fair scheduling): the work model's `modelled`
+    /// CPU seconds, scaled by the kind's measured-to-modelled ratio in this process (1 until a
+    /// job of the kind has finished here, so a restart starts from the model, not from nothing).
+    fn estimate(&self, kind: &str, modelled: f64) -> f64 {
+        let ratios = self.inner.estimates.lock().unwrap_or_else(|e| e.into_inner());
+        modelled.max(MIN_ESTIMATE.as_secs_f64()) * ratios.get(kind).copied().unwrap_or(1.0)
     }
 
     /// Wait until job `id` is finished or `timeout` passes; the job as it then is.
@@ -640,9 +675,13 @@ impl Queue {
                 last: Mutex::new(None),
             };
             // Canceled (or shut down) while it waited in the pool's queue: do not start it.
+            let mut modelled = 0.0;
             let (outcome, wall) = match (observer.check(), prepare(&job.kind, &job.spec, &limits)) {
                 (Err(interrupt), _) => (Outcome::Interrupted(interrupt), 0.0),
-                (Ok(()), Ok(prepared)) => runner::run(prepared, &observer),
+                (Ok(()), Ok(prepared)) => {
+                    modelled = prepared.cost.cpu_seconds();
+                    runner::run(prepared, &observer)
+                }
                 (Ok(()), Err(problem)) => (Outcome::Failed(problem), 0.0),
             };
             let (finish, status) = match outcome {
@@ -662,7 +701,7 @@ impl Queue {
                 Outcome::Interrupted(_) => (Finish::Canceled { id: job.id }, JobStatus::Canceled),
             };
             info!(status = status.as_str(), wall_seconds = wall, "job done");
-            let _ = events.send(Event::Finished { id: job.id, kind: job.kind.clone(), finish, status, wall });
+            let _ = events.send(Event::Finished { id: job.id, kind: job.kind.clone(), finish, status, wall, modelled });
         });
     }
 
@@ -678,10 +717,10 @@ impl Queue {
                     Event::Progress { id, fraction, stage } => {
                         progress.insert(id, (fraction, stage));
                     }
-                    Event::Finished { id, kind, finish, status, wall } => {
+                    Event::Finished { id, kind, finish, status, wall, modelled } => {
                         progress.remove(&id);
                         finishes.push(finish);
-                        done.push((id, kind, status, wall));
+                        done.push((id, kind, status, wall, modelled));
                     }
                 }
             }
@@ -701,7 +740,7 @@ impl Queue {
                 tokio::time::sleep(delay).await;
                 delay = (delay * 2).min(Duration::from_secs(5));
             }
-            for (id, kind, status, wall) in done {
+            for (id, kind, status, wall, modelled) in done {
                 inner.running.lock().unwrap_or_else(|e| e.into_inner()).remove(&id);
                 if status == JobStatus::Queued {
                     let depth = inner.backlog.fetch_add(1, Ordering::Relaxed) + 1;
@@ -709,10 +748,14 @@ impl Queue {
                 } else {
                     inner.metrics.finished.get_or_create(&KindStatusLabel { kind: kind.clone(), status: status.as_str().into() }).inc();
                     if status == JobStatus::Succeeded {
-                        let mut estimates = inner.estimates.lock().unwrap_or_else(|e| e.into_inner());
-                        let mean = estimates.entry(kind.clone()).or_insert(wall);
-                        *mean = 0.8 * *mean + 0.2 * wall;
-                        drop(estimates);
+                        // The kind's measured-to-modelled time ratio (a moving mean of logs, so
+                        // that one outlier does not swing it), within [0.1, 10].
+                        if modelled > 0.0 && wall > 0.0 {
+                            let mut ratios = inner.estimates.lock().unwrap_or_else(|e| e.into_inner());
+                            let r = (wall / modelled.max(MIN_ESTIMATE.as_secs_f64())).clamp(0.1, 10.0);
+                            let mean = ratios.entry(kind.clone()).or_insert(r);
+                            *mean = (0.8 * mean.ln() + 0.2 * r.ln()).exp();
+                        }
                         inner.metrics.solve_seconds.get_or_create(&KindLabel { kind }).observe(wall);
                     }
                 }
@@ -723,19 +766,6 @@ impl Queue {
             inner.wake.notify_one();
             inner.idle.notify_waiters();
         }
-    }
-}
-
-/// The answer to a repeated `Idempotency-Key`: its job when the request is the same.
-fn replay(row: JobRow, spec_hash: &str, label: &Option<String>) -> Result<Submitted, Problem> {
-    if row.spec_hash == spec_hash && &row.label == label {
-        Ok(Submitted::Replayed(row))
-    } else {
-        Err(Problem::new(
-            ErrorCode::IdempotencyKeyReused,
-            format!("this Idempotency-Key was used for job {} with another kind, spec or label", row.id),
-        )
-        .with_errors(vec![crate::problem::FieldError::new("/", "differs from the request first sent with this Idempotency-Key")]))
     }
 }
 

@@ -34,6 +34,7 @@ pub fn spec_hash(kind: &str, canonical_text: &str) -> String {
 /// Run `prepared` under `observer`. `wall_time_seconds` and the solver version go into `meta`.
 pub fn run(prepared: Prepared, observer: &dyn Observer) -> (Outcome, f64) {
     let kind = prepared.kind;
+    let estimate = prepared.cost.estimate;
     let start = Instant::now();
     let result = catch_unwind(AssertUnwindSafe(|| prepared.run(observer)));
     let wall = start.elapsed().as_secs_f64();
@@ -46,6 +47,7 @@ pub fn run(prepared: Prepared, observer: &dyn Observer) -> (Outcome, f64) {
                         "kind": kind.name(),
                         "solver_version": kind.solver_version(),
                         "wall_time_seconds": wall,
+                        "estimate": estimate,
                     }),
                 );
             }

@@ -20,5 +20,5 @@ pub mod valvetrain;
 pub mod wear;
 
 pub use solver::{
-    ensure_finite, Convergence, Interrupt, Observer, PhysicalFailure, Silent, SolveError, Termination,
+    ensure_finite, Convergence, Interrupt, Interrupts, Observer, PhysicalFailure, Silent, SolveError, Stage, Termination,
 };

@@ -69,6 +69,63 @@ pub trait Observer: Sync {
 pub struct Silent;
 impl Observer for Silent {}
 
+/// One stage of a solve whose length is not known in advance (a Newton solve on one grid of a
+/// nested iteration): it forwards `check` to the run's observer and reports a progress fraction
+/// that moves from `lo` towards `hi` with every check (`lo + (hi − lo)(1 − e^(−k/scale))` after `k`
+/// checks), so a long stage still shows progress.
+pub struct Stage<'a> {
+    outer: &'a dyn Observer,
+    lo: f64,
+    hi: f64,
+    scale: f64,
+    name: &'a str,
+    checks: std::sync::atomic::AtomicU32,
+}
+
+impl<'a> Stage<'a> {
+    /// A stage from `lo` to `hi` of the run's progress, named `name`, expected to last about
+    /// `scale` checks.
+    pub fn new(outer: &'a dyn Observer, lo: f64, hi: f64, scale: f64, name: &'a str) -> Self {
+        outer.progress(lo, name);
+        Stage { outer, lo, hi, scale: scale.max(1.0), name, checks: std::sync::atomic::AtomicU32::new(0) }
+    }
+}
+
+impl Observer for Stage<'_> {
+    fn progress(&self, fraction: f64, stage: &str) {
+        self.outer.progress(self.lo + (self.hi - self.lo) * fraction.clamp(0.0, 1.0), stage);
+    }
+    fn check(&self) -> Result<(), Interrupt> {
+        let k = self.checks.fetch_add(1, std::sync::atomic::Ordering::Relaxed) + 1;
+        self.outer.progress(self.lo + (self.hi - self.lo) * (1.0 - (-(k as f64) / self.scale).exp()), self.name);
+        self.outer.check()
+    }
+}
+
+/// A borrowed observer inside a plain (`Copy`, `Debug`) solver input, e.g. the
+/// [`ContactInput`](crate::physics::film::ContactInput) of a film model: the job's cancel, time
+/// limit and shutdown reach a film solve through it. Its progress reports are not forwarded (the
+/// caller reports the progress of the run as a whole).
+#[derive(Clone, Copy)]
+pub struct Interrupts<'a>(pub &'a dyn Observer);
+
+impl Interrupts<'static> {
+    /// Never interrupts (tests, benchmarks, nested solves).
+    pub const NONE: Interrupts<'static> = Interrupts(&Silent);
+}
+
+impl Observer for Interrupts<'_> {
+    fn check(&self) -> Result<(), Interrupt> {
+        self.0.check()
+    }
+}
+
+impl std::fmt::Debug for Interrupts<'_> {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str("Interrupts")
+    }
+}
+
 /// Why the physics has no solution for an input: each a stable snake_case problem code
 /// ([`PhysicalFailure::code`]), mapped to the HTTP problem in one place (`crate::problem`).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]

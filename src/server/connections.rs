@@ -2,29 +2,39 @@
 //!
 //! `axum::serve` has no header or idle timeout and no connection cap: slow or idle clients could
 //! hold every file descriptor, and one half-sent request kept graceful shutdown waiting forever
-//! (issue 10). Here each connection gets hyper's header-read timeout (which also closes a
-//! keep-alive connection idle for that long), the number of open connections is capped (over the
-//! cap a connection is answered `503` with `Retry-After` and closed at once), and shutdown asks
+//! (issue 10). Here each connection gets hyper's header-read timeout — a total deadline for a
+//! request's headers, counted from the connection's start or the end of its previous answer, so
+//! it also closes a keep-alive connection idle for that long — and the number of open connections
+//! is capped by the connection table ([`super::slots`]): when it is full, a new connection takes
+//! the place of the connection that has waited longest on its client (headers or body still
+//! arriving, or idle), which is closed; only when every connection is busy being served is the new
+//! one answered `503` with `Retry-After` and closed at once (issue 40: 4,096 tricklers no longer
+//! lock everyone out). The request body's own deadline is a request layer in `api`. Shutdown asks
 //! every connection to finish its request in flight, then drops whatever is still open when the
 //! drain deadline passes.
 
+use super::slots::{self, Admission, Slots};
+use axum::http::Request;
+use axum::response::Response;
 use axum::Router;
+use hyper::body::Incoming;
 use hyper_util::rt::{TokioIo, TokioTimer};
 use hyper_util::service::TowerToHyperService;
-use std::sync::Arc;
 use std::time::Duration;
 use tokio::net::TcpListener;
-use tokio::sync::{watch, Semaphore};
+use tokio::sync::watch;
 use tokio::task::JoinSet;
 use tracing::{debug, info, warn};
 
 /// Limits of the HTTP layer on connections (the body-read timeout is a request layer in `api`).
 #[derive(Debug, Clone, Copy)]
 pub struct ConnectionLimits {
-    /// Open connections served at once; more are answered 503 and closed.
+    /// Open connections at once; at the cap a new connection takes the place of the one waiting
+    /// longest on its client, or is answered 503 and closed when all are busy.
     pub max_connections: usize,
-    /// Time allowed for a request's headers to arrive, counted from the connection's first byte
-    /// or the end of its previous response (so it also closes idle keep-alive connections).
+    /// Time allowed for a request's headers to arrive (in total, however they trickle), counted
+    /// from the connection's start or the end of its previous response (so it also closes idle
+    /// keep-alive connections).
     pub header_timeout: Duration,
 }
 
@@ -79,7 +89,7 @@ pub async fn serve(
     if cap < limits.max_connections {
         warn!(cap, fd_limit, "connection cap lowered to fit the open-files limit");
     }
-    let permits = Arc::new(Semaphore::new(cap));
+    let slots = Slots::new(cap);
     let mut connections = JoinSet::new();
     let mut http = hyper::server::conn::http1::Builder::new();
     http.timer(TokioTimer::new()).header_read_timeout(limits.header_timeout);
@@ -98,23 +108,32 @@ pub async fn serve(
                 continue;
             }
         };
-        let Ok(permit) = permits.clone().try_acquire_owned() else {
+        let Some((place, admission)) = slots.admit() else {
             let _ = stream.try_write(&busy_response());
-            debug!(%peer, "connection refused: at the connection cap");
+            debug!(%peer, "connection refused: at the connection cap, every connection busy");
             continue;
         };
+        if let Admission::Evicted { waited_ms } = admission {
+            debug!(%peer, waited_ms, "at the connection cap: closed the connection waiting longest on its client");
+        }
         let _ = stream.set_nodelay(true);
-        let service = TowerToHyperService::new(app.clone());
-        let conn = http.serve_connection(TokioIo::new(stream), service).with_upgrades();
+        let (on_request, on_response) = (place.slot.clone(), place.slot.clone());
+        let service = tower::ServiceBuilder::new()
+            .map_request(move |req: Request<Incoming>| slots::track_request(req, &on_request))
+            .map_response(move |res: Response| slots::track_response(res, &on_response))
+            .service(app.clone());
+        let conn = http.serve_connection(TokioIo::new(stream), TowerToHyperService::new(service)).with_upgrades();
         let mut stop = stop.clone();
+        // The task owns the connection's place in the table, freed when the task ends.
         connections.spawn(async move {
-            let _permit = permit;
             let mut conn = std::pin::pin!(conn);
             tokio::select! {
                 r = conn.as_mut() => return log_end(r),
+                // Its place was given to a new connection: close at once.
+                _ = place.slot.evicted() => return,
                 _ = stop.wait_for(|s| *s) => conn.as_mut().graceful_shutdown(),
             }
-            log_end(conn.await)
+            log_end(conn.await);
         });
     }
     drop(listener);

@@ -6,6 +6,7 @@
 //! queued again; connections still open after the grace period are closed.
 
 mod connections;
+mod slots;
 
 pub use connections::{raise_open_files_limit, ConnectionLimits};
 

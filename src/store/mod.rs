@@ -76,6 +76,10 @@ pub struct JobRow {
     pub cancel_requested: bool,
     /// problem+json of a failed job.
     pub error: Option<String>,
+    /// The work model's CPU seconds and the memory model's bytes at submission (absent for jobs
+    /// stored before the models existed).
+    pub estimate_cpu_seconds: Option<f64>,
+    pub estimate_memory_bytes: Option<f64>,
 }
 
 /// What the API writes when it accepts a job.
@@ -88,10 +92,15 @@ pub struct NewJob {
     pub spec_hash: String,
     pub solver_version: String,
     pub created_at: i64,
-    /// The client's `Idempotency-Key` (unique among stored jobs).
+    /// The client's `Idempotency-Key`, recorded (table `idempotency_keys`) in the transaction
+    /// that inserts the job; a key already recorded fails the insert with
+    /// [`StoreError::DuplicateKey`].
     pub idempotency_key: Option<String>,
     /// Virtual deadline for fair scheduling (unix ms); queued jobs are claimed by `due_at`, `seq`.
     pub due_at: i64,
+    /// The work model's CPU seconds and the memory model's bytes.
+    pub estimate_cpu_seconds: f64,
+    pub estimate_memory_bytes: f64,
 }
 
 impl NewJob {
@@ -114,8 +123,26 @@ impl NewJob {
             stage: None,
             cancel_requested: false,
             error: None,
+            estimate_cpu_seconds: Some(self.estimate_cpu_seconds),
+            estimate_memory_bytes: Some(self.estimate_memory_bytes),
         }
     }
+}
+
+/// A client's `Idempotency-Key` of `POST /v1/jobs` and the request first sent with it (table
+/// `idempotency_keys`). It lives as long as its job: deleting the job deletes the key.
+#[derive(Debug, Clone, PartialEq)]
+pub struct IdempotencyKey {
+    pub key: String,
+    /// The job that answered the first request: created by it, or an identical job it reused or
+    /// joined.
+    pub job_id: Uuid,
+    /// Spec hash and label of the first request (a repeat must match both).
+    pub spec_hash: String,
+    pub label: Option<String>,
+    /// The job was another request's (reused or joined), not created by this key's request.
+    pub reused: bool,
+    pub created_at: i64,
 }
 
 /// A job a worker has claimed.
@@ -157,8 +184,8 @@ pub enum StoreError {
     Migrate(#[from] sqlx::migrate::MigrateError),
     #[error("corrupt row: {0}")]
     Corrupt(String),
-    /// An insert collided with a stored job's `Idempotency-Key`.
-    #[error("a job with this idempotency key exists")]
+    /// An insert collided with a recorded `Idempotency-Key`.
+    #[error("this idempotency key is recorded")]
     DuplicateKey,
     /// An insert collided with an identical job (same spec hash and solver version) that is
     /// queued or running: one solve serves both.
@@ -251,8 +278,15 @@ impl Store {
     pub async fn find_same(&self, spec_hash: &str, solver_version: &str, reusable: bool) -> StoreResult<Option<JobRow>> {
         each!(self, s => s.find_same(spec_hash, solver_version, reusable).await)
     }
-    pub async fn find_by_idempotency_key(&self, key: &str) -> StoreResult<Option<JobRow>> {
-        each!(self, s => s.find_by_idempotency_key(key).await)
+    /// The record of a client's `Idempotency-Key`.
+    pub async fn find_idempotency_key(&self, key: &str) -> StoreResult<Option<IdempotencyKey>> {
+        each!(self, s => s.find_idempotency_key(key).await)
+    }
+    /// Record `record` for its (existing) job unless its key is recorded already; the record
+    /// stored under the key afterwards (this one, or the earlier one that kept the key), or `None`
+    /// when the job no longer exists (deleted meanwhile), so nothing was recorded.
+    pub async fn record_idempotency_key(&self, record: &IdempotencyKey) -> StoreResult<Option<IdempotencyKey>> {
+        each!(self, s => s.record_idempotency_key(record).await)
     }
     pub async fn get(&self, id: Uuid) -> StoreResult<Option<JobRow>> {
         each!(self, s => s.get(id).await)
@@ -312,7 +346,11 @@ impl Store {
 
 /// Columns of a [`JobRow`] (both backends).
 pub(crate) const ROW_COLUMNS: &str = "seq, id, kind, label, status, spec_hash, solver_version, created_at, \
-    started_at, finished_at, attempts, progress, stage, cancel_requested, error";
+    started_at, finished_at, attempts, progress, stage, cancel_requested, error, estimate_cpu_seconds, \
+    estimate_memory_bytes";
+
+/// Columns of an [`IdempotencyKey`] (both backends).
+pub(crate) const KEY_COLUMNS: &str = "key, job_id, spec_hash, label, reused, created_at";
 
 pub(crate) fn parse_uuid(s: &str) -> StoreResult<Uuid> {
     Uuid::parse_str(s).map_err(|e| StoreError::Corrupt(format!("job id {s}: {e}")))

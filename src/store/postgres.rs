@@ -44,7 +44,7 @@ const INSERT_BATCH: usize = 256;
 fn unique_violation(e: sqlx::Error) -> StoreError {
     match &e {
         sqlx::Error::Database(d) if d.is_unique_violation() => match d.constraint() {
-            Some("jobs_by_idempotency_key") => StoreError::DuplicateKey,
+            Some("idempotency_keys_pkey") => StoreError::DuplicateKey,
             _ => StoreError::InFlight,
         },
         _ => StoreError::Sqlx(e),
@@ -108,7 +108,11 @@ impl PgStore {
 
     /// Insert a queued job: batched with concurrent submissions into one statement and one commit;
     /// a job the batch could not insert (a unique index said no) is retried alone for its error.
+    /// A job with an `Idempotency-Key` is inserted alone, in one transaction with its key.
     pub async fn insert(&self, job: &NewJob) -> StoreResult<JobRow> {
+        if job.idempotency_key.is_some() {
+            return self.insert_one(job).await;
+        }
         let (reply, answer) = oneshot::channel();
         let closed = || StoreError::Sqlx(sqlx::Error::PoolClosed);
         self.inserts.send((job.clone(), reply)).await.map_err(|_| closed())?;
@@ -119,12 +123,27 @@ impl PgStore {
         }
     }
 
-    /// Insert one job; a unique index violation is named (in flight, or idempotency key reused).
+    /// Insert one job (and its `Idempotency-Key`) in one transaction; a unique index violation is
+    /// named (in flight, or idempotency key recorded).
     async fn insert_one(&self, job: &NewJob) -> StoreResult<JobRow> {
-        let r = sqlx::query(
+        match self.insert_one_tx(job).await {
+            Ok(seq) => Ok(job.queued_row(seq)),
+            Err(e) => {
+                let e = unique_violation(e);
+                if matches!(e, StoreError::Sqlx(_)) {
+                    self.last_write_failure.store(unix_ms(), Ordering::Relaxed);
+                }
+                Err(e)
+            }
+        }
+    }
+
+    async fn insert_one_tx(&self, job: &NewJob) -> Result<i64, sqlx::Error> {
+        let mut tx = self.pool.begin().await?;
+        let row = sqlx::query(
             "WITH ins AS (INSERT INTO jobs (id, kind, label, status, spec, spec_hash, solver_version, created_at, \
-             idempotency_key, due_at) VALUES ($1, $2, $3, 'queued', $4, $5, $6, $7, $8, $9) RETURNING seq) \
-             SELECT seq, pg_notify($10, 'queued')::text FROM ins",
+             due_at, estimate_cpu_seconds, estimate_memory_bytes) VALUES ($1, $2, $3, 'queued', $4, $5, $6, $7, $8, $10, $11) RETURNING seq) \
+             SELECT seq, pg_notify($9, 'queued')::text FROM ins",
         )
         .bind(job.id.to_string())
         .bind(&job.kind)
@@ -133,22 +152,27 @@ impl PgStore {
         .bind(&job.spec_hash)
         .bind(&job.solver_version)
         .bind(job.created_at)
-        .bind(&job.idempotency_key)
         .bind(job.due_at)
         .bind(CHANNEL)
-        .fetch_one(&self.pool)
-        .await;
-        let row = match r {
-            Ok(row) => row,
-            Err(e) => {
-                let e = unique_violation(e);
-                if matches!(e, StoreError::Sqlx(_)) {
-                    self.last_write_failure.store(unix_ms(), Ordering::Relaxed);
-                }
-                return Err(e);
-            }
-        };
-        Ok(job.queued_row(row.try_get(0)?))
+        .bind(job.estimate_cpu_seconds)
+        .bind(job.estimate_memory_bytes)
+        .fetch_one(&mut *tx)
+        .await?;
+        if let Some(key) = &job.idempotency_key {
+            sqlx::query(
+                "INSERT INTO idempotency_keys (key, job_id, spec_hash, label, reused, created_at) \
+                 VALUES ($1, $2, $3, $4, FALSE, $5)",
+            )
+            .bind(key)
+            .bind(job.id.to_string())
+            .bind(&job.spec_hash)
+            .bind(&job.label)
+            .bind(job.created_at)
+            .execute(&mut *tx)
+            .await?;
+        }
+        tx.commit().await?;
+        row.try_get(0)
     }
 
     async fn one(&self, sql: String, binds: &[&str]) -> StoreResult<Option<JobRow>> {
@@ -196,8 +220,37 @@ impl PgStore {
         row.map(|r| job_from_row(&r)).transpose()
     }
 
-    pub async fn find_by_idempotency_key(&self, key: &str) -> StoreResult<Option<JobRow>> {
-        self.one(format!("SELECT {ROW_COLUMNS}, spec FROM jobs WHERE idempotency_key = $1"), &[key]).await
+    pub async fn find_idempotency_key(&self, key: &str) -> StoreResult<Option<IdempotencyKey>> {
+        let sql = format!("SELECT {KEY_COLUMNS} FROM idempotency_keys WHERE key = $1");
+        let row = sqlx::query(AssertSqlSafe(sql)).bind(key).fetch_optional(&self.pool).await?;
+        row.map(|r| key_from_row(&r)).transpose()
+    }
+
+    /// Record a key for an existing job unless the key is taken, then read the record under the
+    /// key in a second statement (its snapshot sees a concurrent request's committed record, which
+    /// the insert's snapshot may not). The job deleted meanwhile: nothing recorded, `None`.
+    pub async fn record_idempotency_key(&self, record: &IdempotencyKey) -> StoreResult<Option<IdempotencyKey>> {
+        let r = sqlx::query(
+            "INSERT INTO idempotency_keys (key, job_id, spec_hash, label, reused, created_at) \
+             SELECT $1, $2, $3, $4, $5, $6 WHERE EXISTS (SELECT 1 FROM jobs WHERE id = $2) \
+             ON CONFLICT (key) DO NOTHING",
+        )
+        .bind(&record.key)
+        .bind(record.job_id.to_string())
+        .bind(&record.spec_hash)
+        .bind(&record.label)
+        .bind(record.reused)
+        .bind(record.created_at)
+        .execute(&self.pool)
+        .await;
+        match r {
+            // Deleted between the check and the commit.
+            Err(sqlx::Error::Database(d)) if d.is_foreign_key_violation() => return Ok(None),
+            r => {
+                self.note(r)?;
+            }
+        }
+        self.find_idempotency_key(&record.key).await
     }
 
     pub async fn get(&self, id: Uuid) -> StoreResult<Option<JobRow>> {
@@ -525,13 +578,13 @@ async fn insert_batches(
     while queue.recv_many(&mut batch, INSERT_BATCH).await > 0 {
         let r = sqlx::query(
             "WITH ins AS (INSERT INTO jobs (id, kind, label, status, spec, spec_hash, solver_version, created_at, \
-             idempotency_key, due_at) \
-             SELECT u.id, u.kind, u.label, 'queued', u.spec, u.spec_hash, u.solver_version, u.created_at, u.key, u.due_at \
+             due_at, estimate_cpu_seconds, estimate_memory_bytes) \
+             SELECT u.id, u.kind, u.label, 'queued', u.spec, u.spec_hash, u.solver_version, u.created_at, u.due_at, u.cpu, u.mem \
              FROM UNNEST($1::text[], $2::text[], $3::text[], $4::text[], $5::text[], $6::text[], $7::bigint[], \
-                         $8::text[], $9::bigint[]) \
-                  AS u(id, kind, label, spec, spec_hash, solver_version, created_at, key, due_at) \
+                         $8::bigint[], $10::float8[], $11::float8[]) \
+                  AS u(id, kind, label, spec, spec_hash, solver_version, created_at, due_at, cpu, mem) \
              ON CONFLICT DO NOTHING RETURNING id, seq) \
-             SELECT id, seq, (SELECT pg_notify($10, 'queued'))::text FROM ins",
+             SELECT id, seq, (SELECT pg_notify($9, 'queued'))::text FROM ins",
         )
         .bind(batch.iter().map(|(j, _)| j.id.to_string()).collect::<Vec<_>>())
         .bind(batch.iter().map(|(j, _)| j.kind.clone()).collect::<Vec<_>>())
@@ -540,9 +593,10 @@ async fn insert_batches(
         .bind(batch.iter().map(|(j, _)| j.spec_hash.clone()).collect::<Vec<_>>())
         .bind(batch.iter().map(|(j, _)| j.solver_version.clone()).collect::<Vec<_>>())
         .bind(batch.iter().map(|(j, _)| j.created_at).collect::<Vec<_>>())
-        .bind(batch.iter().map(|(j, _)| j.idempotency_key.clone()).collect::<Vec<_>>())
         .bind(batch.iter().map(|(j, _)| j.due_at).collect::<Vec<_>>())
         .bind(CHANNEL)
+        .bind(batch.iter().map(|(j, _)| j.estimate_cpu_seconds).collect::<Vec<_>>())
+        .bind(batch.iter().map(|(j, _)| j.estimate_memory_bytes).collect::<Vec<_>>())
         .fetch_all(&pool)
         .await;
         match r {
@@ -594,6 +648,17 @@ async fn listen(mut listener: PgListener, events: broadcast::Sender<StoreEvent>,
     }
 }
 
+fn key_from_row(r: &PgRow) -> StoreResult<IdempotencyKey> {
+    Ok(IdempotencyKey {
+        key: r.try_get("key")?,
+        job_id: parse_uuid(&r.try_get::<String, _>("job_id")?)?,
+        spec_hash: r.try_get("spec_hash")?,
+        label: r.try_get("label")?,
+        reused: r.try_get("reused")?,
+        created_at: r.try_get("created_at")?,
+    })
+}
+
 fn job_from_row(r: &PgRow) -> StoreResult<JobRow> {
     let status: String = r.try_get("status")?;
     Ok(JobRow {
@@ -613,5 +678,7 @@ fn job_from_row(r: &PgRow) -> StoreResult<JobRow> {
         stage: r.try_get("stage")?,
         cancel_requested: r.try_get("cancel_requested")?,
         error: r.try_get("error")?,
+        estimate_cpu_seconds: r.try_get("estimate_cpu_seconds")?,
+        estimate_memory_bytes: r.try_get("estimate_memory_bytes")?,
     })
 }

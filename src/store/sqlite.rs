@@ -102,8 +102,8 @@ async fn insert_on(conn: &mut SqliteConnection, jobs: &[&NewJob]) -> StoreResult
     let mut seqs = Vec::with_capacity(jobs.len());
     for job in jobs {
         let row = sqlx::query(
-            "INSERT INTO jobs (id, kind, label, status, spec, spec_hash, solver_version, created_at, \
-             idempotency_key, due_at) VALUES (?, ?, ?, 'queued', ?, ?, ?, ?, ?, ?) RETURNING seq",
+            "INSERT INTO jobs (id, kind, label, status, spec, spec_hash, solver_version, created_at, due_at, \
+             estimate_cpu_seconds, estimate_memory_bytes) VALUES (?, ?, ?, 'queued', ?, ?, ?, ?, ?, ?, ?) RETURNING seq",
         )
         .bind(job.id.to_string())
         .bind(&job.kind)
@@ -112,12 +112,27 @@ async fn insert_on(conn: &mut SqliteConnection, jobs: &[&NewJob]) -> StoreResult
         .bind(&job.spec_hash)
         .bind(&job.solver_version)
         .bind(job.created_at)
-        .bind(&job.idempotency_key)
         .bind(job.due_at)
+        .bind(job.estimate_cpu_seconds)
+        .bind(job.estimate_memory_bytes)
         .fetch_one(&mut *tx)
         .await
         .map_err(unique_violation)?;
         seqs.push(row.try_get(0)?);
+        if let Some(key) = &job.idempotency_key {
+            sqlx::query(
+                "INSERT INTO idempotency_keys (key, job_id, spec_hash, label, reused, created_at) \
+                 VALUES (?, ?, ?, ?, 0, ?)",
+            )
+            .bind(key)
+            .bind(job.id.to_string())
+            .bind(&job.spec_hash)
+            .bind(&job.label)
+            .bind(job.created_at)
+            .execute(&mut *tx)
+            .await
+            .map_err(unique_violation)?;
+        }
     }
     tx.commit().await?;
     Ok(seqs)
@@ -216,11 +231,20 @@ impl SqliteStore {
         self.find_in_flight(spec_hash, solver_version).await
     }
 
-    /// The job stored under a client's `Idempotency-Key`.
-    pub async fn find_by_idempotency_key(&self, key: &str) -> StoreResult<Option<JobRow>> {
-        let sql = format!("SELECT {ROW_COLUMNS}, spec FROM jobs WHERE idempotency_key = ?");
+    /// The record of a client's `Idempotency-Key`.
+    pub async fn find_idempotency_key(&self, key: &str) -> StoreResult<Option<IdempotencyKey>> {
+        let sql = format!("SELECT {KEY_COLUMNS} FROM idempotency_keys WHERE key = ?");
         let row = sqlx::query(AssertSqlSafe(sql)).bind(key).fetch_optional(&self.reader).await?;
-        row.map(|r| job_from_row(&r, true)).transpose()
+        row.map(|r| key_from_row(&r)).transpose()
+    }
+
+    /// Record a key for an existing job unless the key is taken; the record under the key
+    /// afterwards (`None`: the job is gone, nothing recorded). On the writer connection, so the
+    /// read-back sees the write.
+    pub async fn record_idempotency_key(&self, record: &IdempotencyKey) -> StoreResult<Option<IdempotencyKey>> {
+        let mut conn = self.writer.acquire().await?;
+        let result = record_key_on(&mut conn, record).await;
+        self.settle(conn, result).await
     }
 
     /// One job with its spec.
@@ -565,6 +589,36 @@ async fn recover_on(
 }
 
 
+async fn record_key_on(conn: &mut SqliteConnection, record: &IdempotencyKey) -> StoreResult<Option<IdempotencyKey>> {
+    sqlx::query(
+        "INSERT INTO idempotency_keys (key, job_id, spec_hash, label, reused, created_at) \
+         SELECT ?1, ?2, ?3, ?4, ?5, ?6 WHERE EXISTS (SELECT 1 FROM jobs WHERE id = ?2) \
+         ON CONFLICT (key) DO NOTHING",
+    )
+    .bind(&record.key)
+    .bind(record.job_id.to_string())
+    .bind(&record.spec_hash)
+    .bind(&record.label)
+    .bind(record.reused as i64)
+    .bind(record.created_at)
+    .execute(&mut *conn)
+    .await?;
+    let sql = format!("SELECT {KEY_COLUMNS} FROM idempotency_keys WHERE key = ?");
+    let row = sqlx::query(AssertSqlSafe(sql)).bind(&record.key).fetch_optional(&mut *conn).await?;
+    row.map(|r| key_from_row(&r)).transpose()
+}
+
+fn key_from_row(r: &SqliteRow) -> StoreResult<IdempotencyKey> {
+    Ok(IdempotencyKey {
+        key: r.try_get("key")?,
+        job_id: parse_uuid(&r.try_get::<String, _>("job_id")?)?,
+        spec_hash: r.try_get("spec_hash")?,
+        label: r.try_get("label")?,
+        reused: r.try_get::<i64, _>("reused")? != 0,
+        created_at: r.try_get("created_at")?,
+    })
+}
+
 fn job_from_row(r: &SqliteRow, with_spec: bool) -> StoreResult<JobRow> {
     let status: String = r.try_get("status")?;
     Ok(JobRow {
@@ -584,5 +638,7 @@ fn job_from_row(r: &SqliteRow, with_spec: bool) -> StoreResult<JobRow> {
         stage: r.try_get("stage")?,
         cancel_requested: r.try_get::<i64, _>("cancel_requested")? != 0,
         error: r.try_get("error")?,
+        estimate_cpu_seconds: r.try_get("estimate_cpu_seconds")?,
+        estimate_memory_bytes: r.try_get("estimate_memory_bytes")?,
     })
 }

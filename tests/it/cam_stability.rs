@@ -181,7 +181,7 @@ proptest! {
         let input = ContactInput {
             load: w * 0.01, shape: ContactShape::Line { reduced_radius: r, length: 0.01 }, entrainment_velocity: ue,
             sliding_velocity: us, time: 0.0, time_step: 1e-4, contact_modulus: 1.15e11, temperature: 313.0,
-            lubricant: &lub, roughness: &rough, traction_law: &law, asperity_friction: &asp,
+            lubricant: &lub, roughness: &rough, traction_law: &law, asperity_friction: &asp, interrupts: tribod::physics::Interrupts::NONE,
         };
         let model = ClosedForm { formula, squeeze: formula == FilmFormula::Seed003 };
         match model.solve(&input, None) {
@@ -291,7 +291,7 @@ proptest! {
             let input = ContactInput {
                 load: w * 0.01, shape: ContactShape::Line { reduced_radius: r, length: 0.01 }, entrainment_velocity: u,
                 sliding_velocity: 0.1 * u, time: k as f64 * dt, time_step: if k == 0 { 0.0 } else { dt }, contact_modulus: es,
-                temperature: 313.0, lubricant: &lub, roughness: &rough, traction_law: &law, asperity_friction: &asp,
+                temperature: 313.0, lubricant: &lub, roughness: &rough, traction_law: &law, asperity_friction: &asp, interrupts: tribod::physics::Interrupts::NONE,
             };
             match model.solve(&input, prev.as_ref()) {
                 Ok(f) => {

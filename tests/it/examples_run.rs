@@ -48,9 +48,13 @@ fn check_golden(example: &std::path::Path, result: &Value) {
     let name = example.file_name().unwrap();
     let golden_path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/golden").join(name);
     let mut result = result.clone();
-    // Run time is not a result.
+    // Run time is not a result, nor is the work model's estimate (recalibrated without a
+    // change of results); that every example carries one is checked here.
     if let Some(meta) = result.get_mut("meta").and_then(Value::as_object_mut) {
         meta.remove("wall_time_seconds");
+        let estimate = meta.remove("estimate");
+        let seconds = estimate.as_ref().and_then(|e| e["cpu_seconds"].as_f64());
+        assert!(seconds.is_some_and(|s| s.is_finite() && s > 0.0), "{}: meta.estimate.cpu_seconds {estimate:?}", example.display());
     }
     let got = digest(&result);
     if std::env::var_os("TRIBOD_BLESS").is_some() {

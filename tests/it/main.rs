@@ -21,6 +21,7 @@ mod ehl_2d_transient;
 mod examples_run;
 mod house;
 mod http_api;
+mod job_limits;
 mod journal_dynamics;
 mod journal_examples;
 mod journal_kinds;

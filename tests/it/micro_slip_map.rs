@@ -68,6 +68,7 @@ impl Nose {
             roughness: &self.roughness,
             traction_law: &self.law,
             asperity_friction: asp,
+            interrupts: tribod::physics::Interrupts::NONE,
         }
     }
 

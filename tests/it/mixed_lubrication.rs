@@ -139,6 +139,7 @@ fn contact<'a>(u: f64, lub: &'a Lubricant, rough: &'a Roughness, law: &'a Tracti
         roughness: rough,
         traction_law: law,
         asperity_friction: asp,
+        interrupts: tribod::physics::Interrupts::NONE,
     }
 }
 

@@ -31,6 +31,8 @@
 //!   (`physics::journal::heat`); `checks` (with `limits`) compare the minimum film, the specific
 //!   load and the maximum bulk temperature with configurable limits.
 
+use crate::jobs::cost::Cost;
+use crate::jobs::quantity as Q;
 use crate::jobs::kind::{Kind, Limits, OutputInfo, Validation};
 use crate::physics::journal::{self, Analysis, Bearing, Guess, Misalignment, Operating, Profile, Settings, Supply, Workspace};
 use crate::physics::{Convergence, Observer, SolveError};
@@ -785,10 +787,10 @@ pub fn validate_bearing(spec: &BearingSpec, limits: &Limits, v: &mut Validation,
         v.check(c < r, &px("/geometry/radial_clearance"), "must be smaller than the radius");
     }
     if let Some(o) = &spec.operating {
-        v.positive(&px("/operating/speed_rpm"), o.speed_rpm);
+        v.quantity(&px("/operating/speed_rpm"), o.speed_rpm, Q::SPEED_RPM);
         match (o.viscosity, &spec.thermal) {
             (Some(eta), None) => {
-                v.positive(&px("/operating/viscosity"), eta);
+                v.quantity(&px("/operating/viscosity"), eta, Q::VISCOSITY);
             }
             (None, None) => {
                 v.error(&px("/operating/viscosity"), "is required (or give a thermal block)");
@@ -822,7 +824,7 @@ pub fn validate_bearing(spec: &BearingSpec, limits: &Limits, v: &mut Validation,
         v.in_range(&px("/load/aligned_eccentricity_ratio"), e, 1e-4, 0.999);
     }
     if let Some(f) = l.force {
-        v.positive(&px("/load/force"), f);
+        v.quantity(&px("/load/force"), f, Q::FORCE);
         v.check(spec.has_size_and_speed(), &px("/load/force"), "needs geometry.radius, geometry.length, geometry.radial_clearance and operating");
     }
     if let Some(s) = l.sommerfeld_number {
@@ -1125,6 +1127,10 @@ impl Kind for BearingKind {
         validate_bearing(spec, limits, v, true, "");
     }
 
+    fn cost(spec: &BearingSpec) -> Cost {
+        bearing_cost(spec)
+    }
+
     fn solve(spec: &BearingSpec, observer: &dyn Observer) -> Result<BearingResult, SolveError> {
         let solved = || {
             let bearing = spec.bearing();
@@ -1167,6 +1173,35 @@ impl Kind for BearingKind {
         };
         solved().map_err(|e: SolveError| e.in_spec(bearing_spec_path))
     }
+}
+
+/// Analyses a heat balance typically needs (each a warm-started load-balanced analysis).
+const HEAT_BALANCE_ANALYSES: f64 = 1.5;
+
+/// The work and memory model of one `bearing` job: load-balanced analyses on the grid
+/// (`jobs::cost::bearing_analysis_seconds`), times the heat balance's iterations, plus the
+/// coefficients' adjoint solves (2 for the 2×2 set, 4 for the 4×4 set, each about one analysis).
+pub fn bearing_cost(spec: &BearingSpec) -> Cost {
+    let nodes = spec.grid.circumferential.saturating_mul(spec.grid.axial);
+    let one = crate::jobs::cost::bearing_analysis_seconds(nodes);
+    let mut analyses = if spec.thermal.is_some() { HEAT_BALANCE_ANALYSES } else { 1.0 };
+    // A misaligned journal's film is not symmetric about the mid-plane: the whole grid, twice
+    // the work of the aligned half (seed 002's misaligned case).
+    if spec.misalignment.is_some() {
+        analyses *= 2.0;
+    }
+    if spec.outputs.contains(&BearingOutput::MomentCoefficients) {
+        analyses += 4.0 * 0.5;
+    } else if spec.outputs.contains(&BearingOutput::DynamicCoefficients) {
+        analyses += 2.0 * 0.5;
+    }
+    // The multigrid hierarchy (≈ 4/3 of the fine grid) of about 16 arrays of the grid (peak
+    // resident memory: 43 MB at 721×361).
+    let bytes = 16.0 * 8.0 * 4.0 / 3.0 * nodes as f64 + crate::jobs::cost::MIB;
+    let what = format!("{analyses:.0} bearing analyses on {} × {} nodes", spec.grid.circumferential, spec.grid.axial);
+    Cost::new(crate::jobs::cost::JOB_OVERHEAD_S + analyses * one, bytes)
+        .work_at("/grid", what.clone())
+        .memory_at("/grid", what)
 }
 
 /// The heat balance: bearing analyses at trial viscosities until the effective temperature

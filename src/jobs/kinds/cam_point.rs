@@ -4,6 +4,8 @@
 //! `cam_cycle` option. Physics: `physics::roller::point`.
 
 use super::common::{composite_sigma, AsperitySpec, Material, EhlSpec, FilmSpec, LubricantSpec, TractionSpec};
+use crate::jobs::cost::{self, Cost};
+use crate::jobs::quantity as Q;
 use crate::jobs::kind::{Kind, Limits, Validation};
 use crate::physics::contact::{contact_modulus, hertz_line};
 use crate::physics::film::{model_for, ContactInput, ContactShape, Fidelity, FilmModelId};
@@ -225,13 +227,13 @@ impl Kind for CamPoint {
     }
 
     fn validate(spec: &CamPointSpec, limits: &Limits, v: &mut Validation) {
-        v.positive("/load", spec.load);
-        v.positive("/reduced_radius", spec.reduced_radius);
-        v.in_range("/cam_surface_velocity", spec.cam_surface_velocity, 1e-6, 1e3);
-        v.positive("/contact_length", spec.contact_length);
-        v.positive("/roller/radius", spec.roller.radius);
+        v.quantity("/load", spec.load, Q::FORCE);
+        v.quantity("/reduced_radius", spec.reduced_radius, Q::RADIUS);
+        v.quantity("/cam_surface_velocity", spec.cam_surface_velocity, Q::VELOCITY.from(1e-6));
+        v.quantity("/contact_length", spec.contact_length, Q::LENGTH);
+        v.quantity("/roller/radius", spec.roller.radius, Q::RADIUS);
         v.check(spec.roller.pin_radius > 0.0 && spec.roller.pin_radius < spec.roller.radius, "/roller/pin_radius", "must be > 0 and smaller than the roller radius");
-        v.non_negative("/roller/inertia", spec.roller.inertia);
+        v.quantity("/roller/inertia", spec.roller.inertia, Q::INERTIA);
         v.check(spec.roller.angular_acceleration.is_finite(), "/roller/angular_acceleration", "must be finite");
         v.items("/pin_friction", spec.pin_friction.len(), 1, None);
         v.limit("/pin_friction", spec.pin_friction.len(), limits.max_angles, "the number of pin friction values");
@@ -253,9 +255,30 @@ impl Kind for CamPoint {
         if let Some(c) = spec.roller.crown {
             v.check(c.middle_length > 0.0 && c.middle_length <= spec.contact_length, "/roller/crown/middle_length", "must be in (0, contact_length]");
             v.in_range("/roller/crown/crown_height", c.crown_height, 0.0, 1e-3);
-            v.positive("/roller/crown/end_radius", c.end_radius);
+            v.quantity("/roller/crown/end_radius", c.end_radius, Q::RADIUS);
             v.check(!spec.ehl.geometry.is_line(), "/roller/crown", "the crown is a profile of the 2-D model: set ehl.geometry to finite");
         }
+    }
+
+    fn cost(spec: &CamPointSpec) -> Cost {
+        // One film solve at rolling, then a torque balance per pin friction value: each
+        // evaluates the traction at trial slips (the thermal model's traction table solves the
+        // energy equation at a few slips per balance).
+        let film = super::film_cost::film_cost(spec.fidelity, &spec.ehl, super::film_cost::ContactKind::Line);
+        // 0.5 ms a balance (the seed 001 points: 30 balances in 15 ms); the numerical mixed
+        // film's Greenwood–Tripp traction over its nodes 7 ms (seed001_mixed_nose).
+        let rough = spec.cam.roughness_rq > 0.0 || spec.follower.roughness_rq > 0.0;
+        let mixed = rough && spec.fidelity != Fidelity::Fast && spec.asperities.pressure_gap_curve.is_none();
+        let per_balance = match &spec.ehl.thermal {
+            Some(_) if spec.fidelity != Fidelity::Fast => 0.5 * film.cold,
+            _ if mixed => 7e-3,
+            _ => 5e-4,
+        };
+        let n = spec.pin_friction.len();
+        let seconds = cost::JOB_OVERHEAD_S + film.cold + n as f64 * per_balance;
+        Cost::new(seconds, cost::CAM_BASE_BYTES + film.bytes)
+            .work_at(if per_balance > film.cold / n.max(1) as f64 { "/pin_friction" } else { film.path }, format!("{} and {n} torque balances", film.what))
+            .memory_at(film.path, film.what)
     }
 
     fn solve(spec: &CamPointSpec, observer: &dyn Observer) -> Result<CamPointResult, SolveError> {
@@ -293,6 +316,7 @@ fn solve_point(spec: &CamPointSpec, observer: &dyn Observer) -> Result<CamPointR
         roughness: &rough,
         traction_law: &law,
         asperity_friction: &asp,
+        interrupts: crate::physics::Interrupts(observer),
     };
     let rolling = model.solve(&input, None)?;
     let case = PointCase {

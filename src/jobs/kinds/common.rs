@@ -2,6 +2,7 @@
 //! defaults — and by the cam kinds (`cam_cycle`, `cam_point`, `wear`): surfaces, traction, film
 //! options; and their conversion to `physics` types.
 
+use crate::jobs::quantity as Q;
 use crate::jobs::kind::{Limits, Validation};
 use crate::physics::contact::Elastic;
 use crate::physics::ehl::{EhlOptions, Extrapolation};
@@ -48,7 +49,7 @@ impl Material {
     /// E in (0, 1e13] Pa (far above any solid, low enough that nothing overflows); ν in [-1, 0.5).
     pub fn validate(&self, path: &str, v: &mut Validation) {
         let (e, e_path, nu_path) = (self.youngs_modulus, format!("{path}/youngs_modulus"), format!("{path}/poisson_ratio"));
-        v.positive(&e_path, e).check(e <= 1e13, &e_path, "must be at most 1e13 Pa");
+        v.quantity(&e_path, e, Q::MODULUS);
         v.check(self.poisson_ratio.is_finite() && (-1.0..0.5).contains(&self.poisson_ratio), &nu_path, "must be in [-1, 0.5)");
     }
 }
@@ -123,8 +124,13 @@ impl LubricantSpec {
         self.temperature.unwrap_or(self.reference_temperature)
     }
     pub fn validate(&self, path: &str, v: &mut Validation) {
-        v.in_range(&format!("{path}/viscosity"), self.viscosity, 1e-5, 1e4);
+        v.quantity(&format!("{path}/viscosity"), self.viscosity, Q::VISCOSITY);
         v.in_range(&format!("{path}/pressure_viscosity"), self.pressure_viscosity, 0.0, 1e-7);
+        v.check(
+            self.pressure_viscosity == 0.0 || self.pressure_viscosity >= 1e-12,
+            &format!("{path}/pressure_viscosity"),
+            "must be 0 (isoviscous) or between 1e-12 and 1e-7 1/Pa",
+        );
         v.in_range(&format!("{path}/temperature_viscosity"), self.temperature_viscosity, 0.0, 1.0);
         v.in_range(&format!("{path}/reference_temperature"), self.reference_temperature, 200.0, 700.0);
         if let Some(t) = self.temperature {
@@ -608,8 +614,8 @@ impl EhlThermalSpec {
     }
 
     pub fn validate(&self, path: &str, v: &mut Validation) {
-        v.positive(&format!("{path}/oil_conductivity"), self.oil_conductivity);
-        v.positive(&format!("{path}/oil_specific_heat"), self.oil_specific_heat);
+        v.quantity(&format!("{path}/oil_conductivity"), self.oil_conductivity, Q::CONDUCTIVITY);
+        v.quantity(&format!("{path}/oil_specific_heat"), self.oil_specific_heat, Q::SPECIFIC_HEAT);
         v.count_in_range(&format!("{path}/film_points"), self.film_points, 3, 41);
         v.count_in_range(&format!("{path}/solid_points"), self.solid_points, 4, 81);
         if let Some(t) = self.carry_tolerance {
@@ -681,7 +687,6 @@ impl EhlSpec {
     pub fn validate(&self, path: &str, limits: &Limits, v: &mut Validation) {
         v.count_in_range(&format!("{path}/nodes"), self.nodes, 32, 1 << 16);
         v.limit(&format!("{path}/nodes"), self.nodes, limits.max_grid_nodes, "the number of EHL grid nodes");
-        v.memory(&format!("{path}/nodes"), crate::physics::ehl::dense_memory_bytes(self.nodes), limits, "the dense EHL solver");
         v.in_range(&format!("{path}/tolerance"), self.tolerance, 1e-13, 1e-2);
         v.count_in_range(&format!("{path}/max_iterations"), self.max_iterations as usize, 1, 1000);
         v.in_range(&format!("{path}/auto_tolerance"), self.auto_tolerance, 0.0, 10.0);
@@ -697,7 +702,6 @@ impl EhlSpec {
             v.count_in_range(&format!("{path}/nx"), o.nx, 17, 513);
             v.count_in_range(&format!("{path}/ny"), o.ny, 17, 513);
             v.limit(&format!("{path}/nx"), o.nx * o.ny, limits.max_grid_nodes, "the number of 2-D grid nodes (nx·ny)");
-            v.memory(&format!("{path}/nx"), crate::physics::ehl::twod::memory_bytes(o.nx, o.ny), limits, "the 2-D EHL solver");
         } else {
             v.check(self.nx.is_none() && self.ny.is_none() && self.grid_tolerance.is_none(), &format!("{path}/nx"), "nx, ny and grid_tolerance set the grid of geometry finite");
             v.check(self.squeeze.is_none(), &format!("{path}/squeeze"), "squeeze is an option of geometry finite (the line model always carries the squeeze term along a cycle)");

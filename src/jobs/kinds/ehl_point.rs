@@ -1,6 +1,8 @@
 //! `ehl_point`: one lubricated line contact solved numerically (`physics::ehl`): film, pressure
 //! spike, traction, and on request the pressure and film profiles.
 
+use crate::jobs::cost::{self, Cost};
+use crate::jobs::quantity as Q;
 use crate::jobs::kind::{Kind, Limits, OutputInfo, Validation};
 use crate::physics::contact::effective_modulus;
 use crate::physics::ehl::formulas::{
@@ -375,43 +377,38 @@ impl Kind for EhlPoint {
     }
 
     fn validate(spec: &EhlPointSpec, limits: &Limits, v: &mut Validation) {
-        v.positive("/load", spec.load);
-        v.positive("/length", spec.length);
-        v.positive("/reduced_radius", spec.reduced_radius);
-        v.check(spec.entrainment_velocity.is_finite() && spec.entrainment_velocity != 0.0,
-            "/entrainment_velocity", "must be a finite non-zero number (a steady film needs entrainment)");
-        v.check(spec.sliding_velocity.is_finite(), "/sliding_velocity", "must be finite");
+        v.quantity("/load", spec.load, Q::FORCE);
+        v.quantity("/length", spec.length, Q::LENGTH);
+        v.quantity("/reduced_radius", spec.reduced_radius, Q::RADIUS);
+        v.quantity("/entrainment_velocity", spec.entrainment_velocity, Q::VELOCITY);
+        v.check(spec.entrainment_velocity.is_finite() && spec.entrainment_velocity.abs() >= 1e-6,
+            "/entrainment_velocity", "must be at least 1e-6 m/s in magnitude (a steady film needs entrainment)");
+        v.quantity("/sliding_velocity", spec.sliding_velocity, Q::VELOCITY);
         spec.body_1.validate("/body_1", v);
         spec.body_2.validate("/body_2", v);
         spec.lubricant.validate("/lubricant", v);
         if let Some(t0) = spec.rheology.eyring_stress {
-            v.positive("/rheology/eyring_stress", t0);
+            v.quantity("/rheology/eyring_stress", t0, Q::STRESS);
         }
         if let Some(c) = spec.rheology.limiting_shear_coefficient {
             v.in_range("/rheology/limiting_shear_coefficient", c, 0.0, 1.0);
         }
-        v.non_negative("/rheology/limiting_shear_stress", spec.rheology.limiting_shear_stress);
+        v.quantity("/rheology/limiting_shear_stress", spec.rheology.limiting_shear_stress, Q::STRESS.from(0.0));
         v.count_in_range("/nodes", spec.nodes, 32, 4096);
         v.limit("/nodes", spec.nodes, limits.max_grid_nodes, "the number of grid nodes");
-        let coarse = match spec.extrapolation {
-            ExtrapolationSpec::Richardson if spec.thermal.is_none() => crate::physics::ehl::dense_memory_bytes((spec.nodes - 1) / 2 + 1),
-            _ => 0.0,
-        };
-        v.memory("/nodes", crate::physics::ehl::dense_memory_bytes(spec.nodes) + coarse, limits, "the dense EHL solver");
         v.in_range("/tolerance", spec.tolerance, 1e-14, 1e-2);
         v.count_in_range("/max_iterations", spec.max_iterations as usize, 1, 1000);
         let two_d = |nx: usize, ny: usize, v: &mut Validation| {
             v.count_in_range("/geometry/nx", nx, 17, 1025);
             v.count_in_range("/geometry/ny", ny, 17, 1025);
             v.limit("/geometry/nx", nx * ny, limits.max_grid_nodes, "the number of grid nodes (nx·ny)");
-            v.memory("/geometry/nx", twod::memory_bytes(nx, ny), limits, "the 2-D EHL solver");
             v.check(spec.thermal.is_none(), "/thermal", "the thermal model is available for line contacts only");
         };
         match spec.geometry {
             EhlGeometrySpec::Line => {}
             EhlGeometrySpec::Point { rx, ry, nx, ny } => {
-                v.positive("/geometry/rx", rx);
-                v.positive("/geometry/ry", ry);
+                v.quantity("/geometry/rx", rx, Q::RADIUS);
+                v.quantity("/geometry/ry", ry, Q::RADIUS);
                 if rx > 0.0 && ry > 0.0 {
                     v.in_range("/geometry/ry", rx / ry, 0.02, 50.0);
                 }
@@ -420,20 +417,45 @@ impl Kind for EhlPoint {
             EhlGeometrySpec::Finite { middle_length, crown_height, end_radius, nx, ny, .. } => {
                 v.check(middle_length > 0.0 && middle_length <= spec.length, "/geometry/middle_length", "must be in (0, length]");
                 v.in_range("/geometry/crown_height", crown_height, 0.0, 1e-3);
-                v.positive("/geometry/end_radius", end_radius);
+                v.quantity("/geometry/end_radius", end_radius, Q::RADIUS);
                 two_d(nx, ny, v);
             }
         }
         if let Some(t) = &spec.thermal {
-            v.positive("/thermal/oil_conductivity", t.oil_conductivity);
-            v.positive("/thermal/oil_specific_heat", t.oil_specific_heat);
+            v.quantity("/thermal/oil_conductivity", t.oil_conductivity, Q::CONDUCTIVITY);
+            v.quantity("/thermal/oil_specific_heat", t.oil_specific_heat, Q::SPECIFIC_HEAT);
             for (path, b) in [("/thermal/body_1", &t.body_1), ("/thermal/body_2", &t.body_2)] {
-                v.positive(&format!("{path}/conductivity"), b.conductivity);
-                v.positive(&format!("{path}/density"), b.density);
-                v.positive(&format!("{path}/specific_heat"), b.specific_heat);
+                v.quantity(&format!("{path}/conductivity"), b.conductivity, Q::CONDUCTIVITY);
+                v.quantity(&format!("{path}/density"), b.density, Q::DENSITY);
+                v.quantity(&format!("{path}/specific_heat"), b.specific_heat, Q::SPECIFIC_HEAT);
             }
             v.count_in_range("/thermal/film_points", t.film_points, 3, 41);
             v.count_in_range("/thermal/solid_points", t.solid_points, 4, 81);
+        }
+    }
+
+    fn cost(spec: &EhlPointSpec) -> Cost {
+        match spec.geometry {
+            EhlGeometrySpec::Point { nx, ny, .. } | EhlGeometrySpec::Finite { nx, ny, .. } => {
+                let what = format!("the 2-D EHL solver on {nx}×{ny} nodes");
+                Cost::new(cost::JOB_OVERHEAD_S + cost::ehl_2d_seconds(nx, ny), cost::ehl_2d_bytes(nx, ny))
+                    .work_at("/geometry/nx", what.clone())
+                    .memory_at("/geometry/nx", what)
+            }
+            EhlGeometrySpec::Line => {
+                let n = spec.nodes;
+                let richardson = spec.extrapolation == ExtrapolationSpec::Richardson;
+                let (seconds, what) = match &spec.thermal {
+                    // The thermal solve starts from the isothermal one.
+                    Some(t) => (
+                        cost::ehl_line_seconds(n, false) + cost::ehl_thermal_seconds(n, t.film_points, t.solid_points),
+                        format!("the thermal EHL solver on {n} nodes"),
+                    ),
+                    None => (cost::ehl_line_seconds(n, richardson), format!("the dense EHL solver on {n} nodes")),
+                };
+                let bytes = cost::ehl_line_bytes(n);
+                Cost::new(cost::JOB_OVERHEAD_S + seconds, bytes).work_at("/nodes", what.clone()).memory_at("/nodes", what)
+            }
         }
     }
 

@@ -1,6 +1,8 @@
 //! `hertz`: dry Hertzian contact of two elastic bodies — line or point — with the sub-surface
 //! stress maxima. Closed forms only (`physics::contact`).
 
+use crate::jobs::cost::{Cost, JOB_OVERHEAD_S};
+use crate::jobs::quantity as Q;
 use crate::jobs::kind::{Kind, Limits, OutputInfo, Validation};
 use super::common::Material;
 use crate::physics::contact::{
@@ -185,6 +187,14 @@ pub struct HertzResult {
     pub convergence: Convergence,
 }
 
+/// A body radius: negative for a concave surface, its magnitude a physical radius
+/// (`jobs::quantity::RADIUS`).
+fn radius_ok(r: f64) -> bool {
+    r.is_finite() && (Q::RADIUS.min..=Q::RADIUS.max).contains(&r.abs())
+}
+
+const RADIUS_RULE: &str = "must be between 1e-5 m and 100 m in magnitude (negative for a concave surface)";
+
 impl Kind for Hertz {
     const NAME: &'static str = "hertz";
     const SOLVER_VERSION: &'static str = "hertz-1";
@@ -215,23 +225,23 @@ impl Kind for Hertz {
     fn validate(spec: &HertzSpec, _limits: &Limits, v: &mut Validation) {
         // Upper bounds far above any machine element, low enough that no intermediate overflows
         // (a load of 1e308 N used to end as an internal error instead of a 422).
-        v.positive("/load", spec.load).check(spec.load <= 1e9, "/load", "must be at most 1e9 N");
+        v.quantity("/load", spec.load, Q::FORCE);
         for (name, body) in [("/body_1", &spec.body_1), ("/body_2", &spec.body_2)] {
             body.material.validate(&format!("{name}/material"), v);
             let needs_radius = body.shape != Shape::Flat;
             match body.radius {
                 Some(r) => v.check(
-                    needs_radius && r.is_finite() && r != 0.0,
+                    needs_radius && radius_ok(r),
                     &format!("{name}/radius"),
-                    if needs_radius { "must be a finite non-zero number" } else { "a flat body has no radius" },
+                    if needs_radius { RADIUS_RULE } else { "a flat body has no radius" },
                 ),
                 None => v.check(!needs_radius, &format!("{name}/radius"), "is required for this shape"),
             };
             match body.transverse_radius {
                 Some(r) => v.check(
-                    body.shape == Shape::Ellipsoid && r.is_finite() && r != 0.0,
+                    body.shape == Shape::Ellipsoid && radius_ok(r),
                     &format!("{name}/transverse_radius"),
-                    "only an ellipsoid has a transverse radius, finite and non-zero",
+                    if body.shape == Shape::Ellipsoid { RADIUS_RULE } else { "only an ellipsoid has a transverse radius" },
                 ),
                 None => v.check(
                     body.shape != Shape::Ellipsoid,
@@ -249,7 +259,7 @@ impl Kind for Hertz {
         }
         match (spec.contact, spec.length) {
             (ContactType::Line, Some(l)) => {
-                v.positive("/length", l);
+                v.quantity("/length", l, Q::LENGTH);
             }
             (ContactType::Line, None) => {
                 v.error("/length", "is required for a line contact");
@@ -276,6 +286,11 @@ impl Kind for Hertz {
                 );
             }
         }
+    }
+
+    fn cost(_spec: &HertzSpec) -> Cost {
+        // Closed forms; the sub-surface stress field (output `stress_field`) is a few thousand points.
+        Cost::new(JOB_OVERHEAD_S, 1.0 * crate::jobs::cost::MIB)
     }
 
     fn solve(spec: &HertzSpec, _observer: &dyn Observer) -> Result<HertzResult, SolveError> {

@@ -6,6 +6,7 @@ pub mod common;
 pub mod cam_cycle;
 pub mod cam_point;
 pub mod ehl_point;
+pub mod film_cost;
 pub mod hertz;
 pub mod rough_contact;
 pub mod sweep;

@@ -9,6 +9,7 @@
 //! bodies are one surface of the summed heights against a flat (the composite Rq).
 
 use super::common::Material;
+use crate::jobs::cost::Cost;
 use crate::jobs::kind::{Kind, Limits, Validation};
 use crate::physics::rough::{
     gross_sliding_displacement as gross_sliding_displacement_of, solve_normal, solve_tangential, MapGrids, NormalControl, RoughMaterial, RoughOptions,
@@ -210,22 +211,27 @@ impl Kind for RoughContact {
         if let Some(m) = spec.friction_limit {
             v.in_range("/friction_limit", m, 1e-3, 2.0);
         }
-        let films = spec.films.as_ref().map_or(12, |f| f.len());
         if let Some(f) = &spec.films {
             v.items("/films", f.len(), 1, Some(64));
             v.check(f.iter().all(|h| h.is_finite() && *h > 0.0) && f.windows(2).all(|w| w[1] > w[0]), "/films", "must be positive and strictly ascending");
         }
-        // Work and memory: a normal solve is O(n log n) per CG iteration; benches/rough.rs
-        // measured 0.3 s (256², plastic) and 2.5 s (512², plastic) on one core: ≈ 2.5 s·(n/512²)^1.1
-        // per film; memory ≈ 18 arrays of n doubles (the CG keeps the previous iterate and its K x).
+        let (nx, ny) = grid(spec);
+        v.limit("/surface", nx * ny, limits.max_grid_nodes, "the number of surface points");
+    }
+
+    fn cost(spec: &RoughContactSpec) -> Cost {
+        // Work and memory: a normal solve is O(n log n) per CG iteration and the iterations grow
+        // with the grid: ≈ 2.5 s·(n/512²)^1.7 per film (the seed 001 surface: 0.19 s at 128² for
+        // 12 films, 0.038 s at 64²; `cargo bench --bench cost`); memory ≈ 18 arrays of n doubles (16
+        // measured before the CG kept its previous iterate and that iterate's K x: issue 40).
+        let films = spec.films.as_ref().map_or(12, |f| f.len());
         let (nx, ny) = grid(spec);
         let n = (nx * ny) as f64;
-        v.limit("/surface", nx * ny, limits.max_grid_nodes, "the number of surface points");
         let per_film = if spec.friction_limit.is_some() { 3.0 } else { 1.0 };
-        let seconds = per_film * films as f64 * 2.5 * (n / (512.0 * 512.0)).powf(1.1);
-        v.work("/films", seconds, limits, "the contact solves at these films on this grid");
-        let bytes = 18.0 * 8.0 * n;
-        v.memory("/surface", bytes, limits, "the contact solver on this grid");
+        let seconds = per_film * films as f64 * 2.5 * (n / (512.0 * 512.0)).powf(1.7);
+        Cost::new(seconds, 18.0 * 8.0 * n)
+            .work_at("/films", format!("{films} contact solves on a {nx}×{ny} surface"))
+            .memory_at("/surface", format!("the contact solver on a {nx}×{ny} surface"))
     }
 
     fn solve(spec: &RoughContactSpec, observer: &dyn Observer) -> Result<RoughContactResult, SolveError> {

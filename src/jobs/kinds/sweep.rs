@@ -2,6 +2,7 @@
 //! linspace), every case solved in parallel on the worker pool, and a table of chosen result
 //! quantities per case. A failing case is data (its error code is in its row), not a failed sweep.
 
+use crate::jobs::cost::Cost;
 use crate::jobs::kind::{Kind, Limits, Validation};
 use crate::physics::{Interrupt, Observer, SolveError};
 use crate::problem::Problem;
@@ -305,6 +306,24 @@ impl Kind for Sweep {
                 }
             }
         }
+    }
+
+    fn cost(spec: &SweepSpec) -> Cost {
+        // The sum of the cases' work; memory: the largest case on every worker thread at once.
+        let Some(k) = super::case_kind(&spec.kind) else { return Cost::new(0.0, 0.0) };
+        let (mut seconds, mut largest, mut n) = (crate::jobs::cost::JOB_OVERHEAD_S, 0.0_f64, 0usize);
+        for values in cases(spec) {
+            let Ok(s) = case_spec(spec, &values) else { continue };
+            if let Ok(p) = k.prepare(&s, &Limits::UNLIMITED) {
+                seconds += p.cost.cpu_seconds();
+                largest = largest.max(p.cost.memory_bytes());
+                n += 1;
+            }
+        }
+        let workers = std::thread::available_parallelism().map_or(1, |p| p.get()).min(n.max(1)) as f64;
+        Cost::new(seconds, workers * largest)
+            .work_at("/parameters", format!("{n} cases of {}", spec.kind))
+            .memory_at("/base", format!("{} cases of {} at once", workers, spec.kind))
     }
 
     fn solve(spec: &SweepSpec, observer: &dyn Observer) -> Result<SweepResult, SolveError> {

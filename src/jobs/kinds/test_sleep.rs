@@ -1,6 +1,7 @@
 //! `test_sleep`: a deliberately slow kind, compiled only with the `test-kinds` feature (enabled
 //! by the crate's own dev-dependency), for cancellation, timeout, panic and restart tests.
 
+use crate::jobs::cost::Cost;
 use crate::jobs::kind::{Kind, Limits, Validation};
 use crate::physics::{Observer, SolveError};
 use serde::{Deserialize, Serialize};
@@ -49,6 +50,11 @@ impl Kind for TestSleep {
 
     fn validate(spec: &TestSleepSpec, _limits: &Limits, v: &mut Validation) {
         v.in_range("/seconds", spec.seconds, 0.0, 3600.0);
+    }
+
+    fn cost(spec: &TestSleepSpec) -> Cost {
+        // It holds a worker for its seconds (sleeping, not computing).
+        Cost::new(spec.seconds, 0.0).work_at("/seconds", format!("sleeping {} s", spec.seconds))
     }
 
     fn solve(spec: &TestSleepSpec, observer: &dyn Observer) -> Result<TestSleepResult, SolveError> {

@@ -15,6 +15,7 @@
 
 use super::cam_cycle::{CamCycle, CamCycleSpec, CamOutput, FollowerSpec, LoadSpec, ProfileSpec, ThermalPair};
 use super::common::{cam_spec_path, composite_sigma};
+use crate::jobs::cost::Cost;
 use crate::jobs::kind::{Kind, Limits, Validation};
 use crate::physics::cam::summary::FlatFace;
 use crate::physics::contact::contact_modulus;
@@ -1061,6 +1062,25 @@ impl Kind for Wear {
                 }
             }
         }
+    }
+
+    fn cost(spec: &WearSpec) -> Cost {
+        // The unworn cycle and one cycle per profile update (the stability rule may add updates,
+        // up to `max_updates`: the estimate counts the planned ones); seed 004's method runs
+        // one cycle. Memory: one cycle at a time, plus the wear depth and history per angle.
+        let cycle = super::cam_cycle::cycle_cost_with(&spec.cycle_spec(), crate::jobs::cost::WEAR_ANGLE_S);
+        let cycles = match spec.model {
+            WearModel::Archard => spec.planned_updates().max(1) as f64 + 1.0,
+            // Seed 004's method: closed forms over the profile's angles, no film.
+            WearModel::Irgashev => {
+                let seconds = crate::jobs::cost::JOB_OVERHEAD_S + spec.cycle.angles as f64 * crate::jobs::cost::WEAR_ANGLE_S;
+                return Cost::new(seconds, crate::jobs::cost::CAM_BASE_BYTES).work_at("/cycle/angles", format!("{} angles", spec.cycle.angles));
+            }
+        };
+        let what = format!("{cycles:.0} cam cycles ({})", cycle.work_what);
+        // The cycle's fixed cost is paid once.
+        let once = crate::jobs::cost::CYCLE_BASE_S;
+        cycle.plus_seconds(-once).repeated(cycles).plus_seconds(once).under("/cycle").work_at("/update_interval_hours", what)
     }
 
     fn solve(spec: &WearSpec, observer: &dyn Observer) -> Result<WearResult, SolveError> {

@@ -365,7 +365,7 @@ pub fn run_cycle(spec: &CycleSpec, needs: Needs, model: &dyn FilmModel, observer
 
     // Film, traction, slip.
     observer.progress(0.2, "film");
-    let ctx = Context { spec, kin: &kin, loads: &loads, shapes: &shapes, model };
+    let ctx = Context { spec, kin: &kin, loads: &loads, shapes: &shapes, model, observer };
     let states = match (&spec.follower, spec.slip, needs.slip) {
         (FollowerKind::Roller { roller, .. }, SlipMode::TorqueBalance { tolerance, max_cycles }, true) => {
             let (states, conv) = ctx.march_roller(roller, tolerance, max_cycles, observer)?;
@@ -539,6 +539,8 @@ struct Context<'a> {
     loads: &'a [FollowerLoad],
     shapes: &'a [ContactShape],
     model: &'a dyn FilmModel,
+    /// The run's observer: film solves poll it through their input's `interrupts`.
+    observer: &'a dyn Observer,
 }
 
 impl<'a> Context<'a> {
@@ -557,6 +559,7 @@ impl<'a> Context<'a> {
             roughness: &spec.roughness,
             traction_law: &spec.traction_law,
             asperity_friction: &spec.asperity_friction,
+            interrupts: crate::physics::Interrupts(self.observer),
         }
     }
 

@@ -255,6 +255,7 @@ pub(crate) mod test_inputs {
             roughness: rough,
             traction_law: law,
             asperity_friction: asp,
+            interrupts: crate::physics::Interrupts::NONE,
         }
     }
 

@@ -41,7 +41,7 @@ use super::{ContactInput, ContactShape, FilmModel, FilmModelId, FilmSolution, Re
 use crate::physics::ehl::twod::{self, Ehl2dInput, Ehl2dOptions, Fields2d, Geometry2d, Kept2d, Warm2d};
 use crate::physics::friction::TractionNode;
 use crate::physics::roller::Crown;
-use crate::physics::{ensure_finite, Silent, SolveError};
+use crate::physics::{ensure_finite, SolveError};
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::{Arc, Mutex};
 
@@ -289,9 +289,9 @@ impl FilmModel for Finite {
         let solved = match (f.squeeze_step, f.prior.as_deref()) {
             (Some(time_step), Some(previous)) => {
                 let squeeze = twod::Squeeze2d { previous, time_step };
-                twod::solve_transient(&ehl, &options, squeeze, Some(&*f.warm), None, &mut Kept2d::default(), &Silent)?
+                twod::solve_transient(&ehl, &options, squeeze, Some(&*f.warm), None, &mut Kept2d::default(), &input.interrupts)?
             }
-            _ => twod::solve_from(&ehl, &options, Some(&*f.warm), &Silent)?,
+            _ => twod::solve_from(&ehl, &options, Some(&*f.warm), &input.interrupts)?,
         };
         Ok(solved.0.fields)
     }
@@ -327,8 +327,8 @@ impl FilmModel for Finite {
         // The squeeze step from the previous point's 2-D film (seed 000 eq. 2's ∂(ρh)/∂t).
         let squeeze_step = (self.squeeze && input.time_step > 0.0 && warm.is_some()).then_some(input.time_step);
         let solved = match (squeeze_step, warm) {
-            (Some(time_step), Some(previous)) => twod::solve_transient(&ehl, &options, twod::Squeeze2d { previous, time_step }, warm, prior, &mut kept, &Silent),
-            _ => twod::solve_kept(&ehl, &options, warm, prior, &mut kept, &Silent),
+            (Some(time_step), Some(previous)) => twod::solve_transient(&ehl, &options, twod::Squeeze2d { previous, time_step }, warm, prior, &mut kept, &input.interrupts),
+            _ => twod::solve_kept(&ehl, &options, warm, prior, &mut kept, &input.interrupts),
         };
         if let Ok(mut k) = self.kept.lock() {
             *k = kept;

@@ -95,6 +95,9 @@ pub struct ContactInput<'a> {
     pub roughness: &'a Roughness,
     pub traction_law: &'a TractionLaw,
     pub asperity_friction: &'a AsperityFriction,
+    /// The run's cancel, time limit and shutdown: the numerical models poll it inside their
+    /// iterations (`Interrupts::NONE` outside a job).
+    pub interrupts: crate::physics::Interrupts<'a>,
 }
 
 /// The settings of a smooth contact with seed 000's oil and steels that the film models' tests
@@ -138,6 +141,7 @@ impl SmoothContact {
             roughness: &self.roughness,
             traction_law: &self.traction_law,
             asperity_friction: &self.asperity_friction,
+            interrupts: crate::physics::Interrupts::NONE,
         }
     }
 }

@@ -31,7 +31,7 @@ use crate::physics::ehl::transient::lattice_layout;
 use super::mixed::LoadSharingLaw;
 use crate::physics::ehl::{AsperityPressure, EhlInput, EhlOptions, EhlState, Extrapolation, ReusableSolver, Rheology, Transient};
 use crate::physics::friction::TractionNode;
-use crate::physics::{ensure_finite, Silent, SolveError};
+use crate::physics::{ensure_finite, SolveError};
 use std::sync::Mutex;
 
 /// The numerical (`accurate`) film model. See the module docs.
@@ -130,10 +130,10 @@ impl FilmModel for Numerical {
             Err(_) => &mut fresh,
         };
         let (s, coarse) = match self.extrapolation {
-            Extrapolation::None => (solver.solve(&ehl_input, &options, &Silent)?, None),
+            Extrapolation::None => (solver.solve(&ehl_input, &options, &input.interrupts)?, None),
             Extrapolation::Richardson => {
                 let coarse_previous = previous.and_then(|p| p.profile.as_deref()).and_then(|p| p.coarse.as_ref());
-                let r = solver.solve_richardson(&ehl_input, coarse_previous, &options, &Silent)?;
+                let r = solver.solve_richardson(&ehl_input, coarse_previous, &options, &input.interrupts)?;
                 (r.solution, r.coarse_state)
             }
         };
@@ -282,6 +282,7 @@ mod tests {
             roughness: &rough,
             traction_law: &law,
             asperity_friction: &asp,
+            interrupts: crate::physics::Interrupts::NONE,
         };
         let m = model();
         let f = m.solve(&input, None).unwrap();

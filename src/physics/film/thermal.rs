@@ -64,7 +64,7 @@ use crate::physics::ehl::thermal::{TemperatureField, ThermalBodies, ThermalEngin
 use crate::physics::ehl::{EhlInput, EhlOptions, Extrapolation, Rheology, Transient};
 use crate::physics::friction::Roughness;
 use crate::physics::friction::Rheology as Shear;
-use crate::physics::{ensure_finite, Silent, SolveError};
+use crate::physics::{ensure_finite, SolveError};
 use std::sync::{Arc, Mutex};
 
 /// A key point of the carried mode: its operating conditions, its full thermal solution and the
@@ -426,7 +426,7 @@ impl ThermalNumerical {
             Ok(guard) => &mut **guard,
             Err(_) => &mut fresh,
         };
-        let th = engine.solve(&tin, &options, &thermal_options, prev_thermal.map(|t| &t.field), prev_thermal.map(|t| &t.factors), &Silent)?;
+        let th = engine.solve(&tin, &options, &thermal_options, prev_thermal.map(|t| &t.field), prev_thermal.map(|t| &t.factors), &input.interrupts)?;
         drop(cached);
         let s = &th.ehl;
         let st = &s.state;

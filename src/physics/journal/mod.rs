@@ -32,11 +32,3 @@ pub use analysis::{analyse, analyse_symmetric, symmetric_load, Analysis, Bearing
 pub use dimensions::Dimensions;
 pub use film::{Film, Misalignment, Profile};
 
-/// Work model of one load-balanced bearing analysis on `nodes` grid nodes, seconds of one core:
-/// 1 µs per node. BENCHMARKS.md (journal grid study, one thread) measured 0.55 µs/node at
-/// 65k nodes and 0.75–0.9 µs/node at 1M (the working set leaves the caches), so the model is
-/// conservative by up to 2× on small grids. Validation multiplies it by the planned analyses of
-/// an optimisation and refuses what exceeds the server's time budget (issue 10).
-pub fn analysis_seconds_estimate(nodes: usize) -> f64 {
-    1e-6 * nodes as f64
-}

@@ -9,6 +9,7 @@
 //! Files: `spec.rs` (the request), `result.rs` (the answer), `solve.rs` (spec → physics → result);
 //! this file is the kind: example, validation, solve.
 
+mod cost;
 mod result;
 mod solve;
 mod spec;
@@ -16,7 +17,10 @@ mod spec;
 pub use result::*;
 pub use spec::*;
 use solve::*;
+pub use cost::{cycle_cost, cycle_cost_with};
 
+use crate::jobs::cost::Cost;
+use crate::jobs::quantity as Q;
 use crate::jobs::kind::{Kind, Limits, OutputInfo, Validation};
 use crate::jobs::kinds::common::cam_spec_path;
 use crate::physics::film::Fidelity;
@@ -118,7 +122,7 @@ impl Kind for CamCycle {
         // Cam.
         let base = match &spec.cam.profile {
             ProfileSpec::RiseReturn { base_radius, lift, rise_start_deg, rise_deg, top_dwell_deg, return_deg, .. } => {
-                v.positive("/cam/profile/lift", *lift);
+                v.quantity("/cam/profile/lift", *lift, Q::HEIGHT.from(1e-7));
                 v.in_range("/cam/profile/rise_start_deg", *rise_start_deg, -360.0, 360.0);
                 v.in_range("/cam/profile/rise_deg", *rise_deg, 1e-3, 360.0);
                 v.in_range("/cam/profile/top_dwell_deg", *top_dwell_deg, 0.0, 360.0);
@@ -133,7 +137,7 @@ impl Kind for CamCycle {
             ProfileSpec::MultiArc { arcs } => {
                 v.items("/cam/profile/arcs", arcs.len(), 2, Some(1000));
                 for (i, a) in arcs.iter().enumerate() {
-                    v.positive(&format!("/cam/profile/arcs/{i}/radius"), a.radius);
+                    v.quantity(&format!("/cam/profile/arcs/{i}/radius"), a.radius, Q::RADIUS);
                     v.in_range(&format!("/cam/profile/arcs/{i}/angle_deg"), a.angle_deg, 1e-9, 360.0);
                 }
                 arcs.first().map(|a| a.radius)
@@ -142,7 +146,7 @@ impl Kind for CamCycle {
                 v.in_range("/cam/profile/base_angle_deg", *base_angle_deg, 1e-9, 360.0);
                 v.items("/cam/profile/flanks", flanks.len(), 0, Some(1000));
                 for (i, a) in flanks.iter().enumerate() {
-                    v.positive(&format!("/cam/profile/flanks/{i}/radius"), a.radius);
+                    v.quantity(&format!("/cam/profile/flanks/{i}/radius"), a.radius, Q::RADIUS);
                     v.in_range(&format!("/cam/profile/flanks/{i}/angle_deg"), a.angle_deg, 1e-9, 360.0);
                 }
                 Some(*base_radius)
@@ -164,7 +168,7 @@ impl Kind for CamCycle {
             v.in_range("/cam/profile/base_radius", b, 1e-4, 10.0);
         }
         if let Some(w) = spec.cam.width {
-            v.positive("/cam/width", w);
+            v.quantity("/cam/width", w, Q::LENGTH);
         }
         spec.cam.material.validate("/cam/material", v);
         v.in_range("/cam/roughness_rq", spec.cam.roughness_rq, 0.0, 1e-4);
@@ -173,33 +177,33 @@ impl Kind for CamCycle {
             FollowerSpec::FlatFaced { offset, face_radius, material, roughness_rq } => {
                 v.in_range("/follower/offset", *offset, -1.0, 1.0);
                 if let Some(r) = face_radius {
-                    v.positive("/follower/face_radius", *r);
+                    v.quantity("/follower/face_radius", *r, Q::RADIUS);
                 }
                 v.check(spec.cam.width.is_some(), "/cam/width", "is required with a flat-faced follower (it is the contact length)");
                 (*material, *roughness_rq)
             }
             FollowerSpec::Roller { radius, length, pin_radius, clearance, inertia, density, pin, crown, offset, material, roughness_rq } => {
                 v.in_range("/follower/radius", *radius, 1e-4, 1.0);
-                v.positive("/follower/length", *length);
+                v.quantity("/follower/length", *length, Q::LENGTH);
                 v.check(*pin_radius > 0.0 && pin_radius < radius, "/follower/pin_radius", "must be > 0 and smaller than the roller radius");
                 v.in_range("/follower/clearance", *clearance, 1e-8, 1e-3);
                 if let Some(i) = inertia {
-                    v.non_negative("/follower/inertia", *i);
+                    v.quantity("/follower/inertia", *i, Q::INERTIA);
                 }
-                v.positive("/follower/density", *density);
+                v.quantity("/follower/density", *density, Q::DENSITY);
                 match pin {
                     PinSpec::Coefficient { coefficient } => {
                         v.in_range("/follower/pin/coefficient", *coefficient, 0.0, 1.0);
                     }
                     PinSpec::Hydrodynamic { length: l } => {
                         if let Some(l) = l {
-                            v.positive("/follower/pin/length", *l);
+                            v.quantity("/follower/pin/length", *l, Q::LENGTH);
                         }
                         v.check(spec.lubricant.is_some(), "/lubricant", "is required by a hydrodynamic pin");
                     }
                     PinSpec::Finite { length: l, thermal, oil_specific_heat, convection_coefficient } => {
                         if let Some(l) = l {
-                            v.positive("/follower/pin/length", *l);
+                            v.quantity("/follower/pin/length", *l, Q::LENGTH);
                         }
                         let l = l.unwrap_or(*length);
                         if l.is_finite() && l > 0.0 && *pin_radius > 0.0 {
@@ -220,7 +224,7 @@ impl Kind for CamCycle {
                 if let Some(c) = crown {
                     v.check(c.middle_length > 0.0 && c.middle_length <= *length, "/follower/crown/middle_length", "must be in (0, length]");
                     v.in_range("/follower/crown/crown_height", c.crown_height, 0.0, 1e-3);
-                    v.positive("/follower/crown/end_radius", c.end_radius);
+                    v.quantity("/follower/crown/end_radius", c.end_radius, Q::RADIUS);
                 }
                 v.in_range("/follower/offset", *offset, -1.0, 1.0);
                 if let Some(b) = base {
@@ -277,10 +281,14 @@ impl Kind for CamCycle {
         v.in_range("/slip/tolerance", spec.slip.tolerance, 1e-14, 1e-1);
         v.count_in_range("/slip/max_cycles", spec.slip.max_cycles, 1, 10_000);
         for (name, t) in [("cam", spec.thermal.cam), ("follower", spec.thermal.follower)] {
-            v.positive(&format!("/thermal/{name}/conductivity"), t.conductivity);
-            v.positive(&format!("/thermal/{name}/density"), t.density);
-            v.positive(&format!("/thermal/{name}/specific_heat"), t.specific_heat);
+            v.quantity(&format!("/thermal/{name}/conductivity"), t.conductivity, Q::CONDUCTIVITY);
+            v.quantity(&format!("/thermal/{name}/density"), t.density, Q::DENSITY);
+            v.quantity(&format!("/thermal/{name}/specific_heat"), t.specific_heat, Q::SPECIFIC_HEAT);
         }
+    }
+
+    fn cost(spec: &CamCycleSpec) -> Cost {
+        cycle_cost(spec)
     }
 
     fn solve(spec: &CamCycleSpec, observer: &dyn Observer) -> Result<CamCycleResult, SolveError> {
@@ -349,20 +357,11 @@ fn validate_dynamic(spec: &CamCycleSpec, d: &DynamicLoadSpec, limits: &Limits, v
     v.in_range("/load/tolerance", d.tolerance, 1e-12, 1e-2);
     v.in_range("/load/periodic_tolerance", d.periodic_tolerance, 1e-12, 1e-1);
     v.count_in_range("/load/max_revolutions", d.max_revolutions, 1, 10_000);
-    // Work: about 9 ms per revolution at the default tolerance 1e-8 with 8 spring elements
-    // (release, BENCHMARKS.md), growing with the elements and ~tolerance^(-1/3) (second-order
-    // steps).
-    let per_rev = 9e-3 * (sp.elements as f64 + 2.0) / 10.0 * (1e-8 / d.tolerance.max(1e-12)).powf(1.0 / 3.0).max(1.0);
-    v.work("/load/max_revolutions", per_rev * d.max_revolutions as f64, limits, "the valve-train revolutions");
     if let Some(r) = &d.run_up {
         v.in_range("/load/run_up/from_rpm", r.from_rpm, 1.0, 1e5);
         v.count_in_range("/load/run_up/revolutions", r.revolutions, 1, 10_000);
         v.count_in_range("/load/run_up/samples_per_revolution", r.samples_per_revolution, 1, 7200);
         v.limit("/load/run_up/samples_per_revolution", r.revolutions.saturating_mul(r.samples_per_revolution), limits.max_angles, "the run-up table's rows");
-        // The ramp's revolutions cost as many periodic ones at the faster end (step ∝ 1/ω).
-        let speed = spec.operation.speed_rpm.max(1.0);
-        let slow = (r.from_rpm.max(speed) / speed).max(1.0);
-        v.work("/load/run_up/revolutions", per_rev * slow * r.revolutions as f64, limits, "the run-up revolutions");
     }
 }
 

@@ -435,7 +435,9 @@ impl Problem {
 
     /// The near-field preconditioner (scaled like the Newton matrix) and the row scales `c`;
     /// `factor` false: the row scales and the active set only (`None`).
-    fn precondition(&self, p: &[f64], v: &Fields, active: &mut [u8], c: &mut [f64], factor: bool) -> Option<Precond> {
+    /// `observer`: a large factorisation runs beside the caller, which polls it
+    /// ([`NearLu::new_watched`]); an interrupt there is `Err`.
+    fn precondition(&self, p: &[f64], v: &Fields, active: &mut [u8], c: &mut [f64], factor: bool, observer: &dyn Observer) -> Result<Option<Precond>, SolveError> {
         let (nx, ny, dx2, dy2) = (self.nx, self.ny, self.dx * self.dx, self.dy * self.dy);
         let m = self.nodes.len();
         let r = self.near as isize;
@@ -467,7 +469,7 @@ impl Problem {
                 c[u] = cu;
                 active[u] = self.row_kind(p, v, cu, k);
             }
-            return None;
+            return Ok(None);
         }
         // Every row's entries (column, value), cavitated rows too: the pattern is then that of the
         // grid alone, its symbolic LU computed once ([`NearPattern`]).
@@ -568,7 +570,8 @@ impl Problem {
                 Some(pat) => pat.clone(),
                 None => {
                     let order = nested_dissection(nx - 2, ny - 2, 2 + 2 * self.near, 2 * self.near.max(1));
-                    let pat = std::sync::Arc::new(NearPattern::new(m, &row_ptr, &ent, order)?);
+                    let Some(pat) = NearPattern::new(m, &row_ptr, &ent, order) else { return Ok(None) };
+                    let pat = std::sync::Arc::new(pat);
                     *cache = Some(pat.clone());
                     pat
                 }
@@ -609,10 +612,10 @@ impl Problem {
                 }
             }
         }
-        let lu = NearLu::new(pattern, &values)?;
+        let Some(lu) = NearLu::new_watched(pattern, values, observer)? else { return Ok(None) };
         lu.solve_in_place(&mut ucol);
         let sum_bu = ucol.iter().sum::<f64>();
-        (sum_bu.is_finite() && ucol.iter().all(|x| x.is_finite())).then_some(Precond { lu, bu: ucol, sum_bu, c: c.to_vec(), active: active.to_vec() })
+        Ok((sum_bu.is_finite() && ucol.iter().all(|x| x.is_finite())).then_some(Precond { lu, bu: ucol, sum_bu, c: c.to_vec(), active: active.to_vec() }))
     }
 
     /// The load row's weight `ΔX ΔY / W` (the `wᵀ` of [`Precond`]).
@@ -791,6 +794,10 @@ impl NearPattern {
     }
 }
 
+/// Unknowns from which the near-field factorisation runs beside its caller ([`NearLu::new_watched`]):
+/// ≈ 0.3 s at 257² (66k unknowns), a thread start is noise beside it.
+const WATCHED_LU_UNKNOWNS: usize = 60_000;
+
 /// The numeric LU (faer's supernodal, partial pivoting) of a near-field matrix on its
 /// [`NearPattern`].
 struct NearLu {
@@ -812,6 +819,31 @@ impl NearLu {
         let mut mem = MemBuffer::new(supernodal::factorize_supernodal_numeric_lu_scratch::<usize, f64>(&pattern.symbolic, Default::default()));
         supernodal::factorize_supernodal_numeric_lu(&mut row_fwd, &mut row_inv, &mut lu, a, at.as_ref(), perm, &pattern.symbolic, faer::get_global_parallelism(), MemStack::new(&mut mem), Default::default()).ok()?;
         Some(NearLu { pattern, lu, row_fwd, row_inv })
+    }
+
+    /// [`NearLu::new`], run beside the caller when the matrix is large ([`WATCHED_LU_UNKNOWNS`]
+    /// or more unknowns: 3–3.5 s at 513², release): the caller polls `observer` every 50 ms and
+    /// returns an interrupt at once, leaving the factorisation to finish (and be dropped) on its
+    /// own thread, so a cancel, time limit or shutdown does not wait for it.
+    fn new_watched(pattern: std::sync::Arc<NearPattern>, values: Vec<f64>, observer: &dyn Observer) -> Result<Option<Self>, SolveError> {
+        if pattern.col_fwd.len() < WATCHED_LU_UNKNOWNS {
+            return Ok(NearLu::new(pattern, &values));
+        }
+        let (tx, rx) = std::sync::mpsc::channel();
+        let spawned = std::thread::Builder::new().name("ehl2d-lu".into()).spawn(move || {
+            let _ = tx.send(NearLu::new(pattern, &values));
+        });
+        if spawned.is_err() {
+            // No thread to be had (a process at its limit): no preconditioner this step.
+            return Ok(None);
+        }
+        loop {
+            match rx.recv_timeout(std::time::Duration::from_millis(50)) {
+                Ok(lu) => return Ok(lu),
+                Err(std::sync::mpsc::RecvTimeoutError::Timeout) => observer.check()?,
+                Err(std::sync::mpsc::RecvTimeoutError::Disconnected) => return Ok(None),
+            }
+        }
     }
 
     /// `x ← B⁻¹ x`.
@@ -882,7 +914,8 @@ fn dot(a: &[f64], b: &[f64]) -> f64 {
 /// Restarted GMRES for `A x = b` right-preconditioned by `lu`, at most `max_its` iterations;
 /// `x` starts at 0. Returns the iterations and the final relative residual.
 #[allow(clippy::too_many_arguments)]
-fn gmres(prob: &mut Problem, p: &[f64], v: &Fields, active: &[u8], c: &[f64], lu: &Precond, b: &[f64], x: &mut [f64], buf: &mut Buffers, tol: f64, max_its: usize, from_x: bool) -> (usize, f64) {
+#[allow(clippy::too_many_arguments)]
+fn gmres(prob: &mut Problem, p: &[f64], v: &Fields, active: &[u8], c: &[f64], lu: &Precond, b: &[f64], x: &mut [f64], buf: &mut Buffers, tol: f64, max_its: usize, from_x: bool, observer: &dyn Observer) -> Result<(usize, f64), SolveError> {
     let lw = prob.load_weight();
     // A kept factor carries its own row scales `c_old`: `M⁻¹ = (C_old J_old)⁻¹ C_old C⁻¹` keeps
     // `C J M⁻¹ ≈ I` where the scales moved (rows inactive in both; others unscaled).
@@ -895,7 +928,7 @@ fn gmres(prob: &mut Problem, p: &[f64], v: &Fields, active: &[u8], c: &[f64], lu
     let bnorm = dot(b, b).sqrt();
     if bnorm == 0.0 {
         x.iter_mut().for_each(|v| *v = 0.0);
-        return (0, 0.0);
+        return Ok((0, 0.0));
     }
     let mut w = vec![0.0; n];
     let mut z = vec![0.0; n];
@@ -924,6 +957,9 @@ fn gmres(prob: &mut Problem, p: &[f64], v: &Fields, active: &[u8], c: &[f64], lu
         let mut zs: Vec<Vec<f64>> = Vec::new();
         let mut k = 0;
         while k < RESTART && iters < max_its {
+            // One operator application (FFT of the padded grid) per iteration: a cancel takes
+            // effect within one (≈ 50 ms at 513²).
+            observer.check()?;
             z.copy_from_slice(&basis[k]);
             lu.apply(&mut z, lw, &rescale);
             prob.apply(p, v, active, c, &z, &mut w, buf);
@@ -989,7 +1025,7 @@ fn gmres(prob: &mut Problem, p: &[f64], v: &Fields, active: &[u8], c: &[f64], lu
             r[ii] = b[ii] - w[ii];
         }
     }
-    (iters, rel)
+    Ok((iters, rel))
 }
 
 /// `TRIBOD_EHL2D_TRACE` set: print each Newton step, the line search and (first step) a
@@ -1044,7 +1080,7 @@ fn newton(prob: &mut Problem, p: &mut [f64], h0: &mut f64, tol: f64, max_iter: u
         // Row scales and active set first: the residual needs them, the factorisation only an
         // unconverged step (the last, converged evaluation of every solve factorised for nothing:
         // ≈ 1 of 5 factorisations of a warm solve in the cam cycle, `ehl2d-6`).
-        prob.precondition(p, &v, &mut active, &mut c, false);
+        prob.precondition(p, &v, &mut active, &mut c, false, observer)?;
         prob.phi(p, &v, &c, &mut phi);
         let res = residual_norm(p, &phi, v.g);
         history.push(res);
@@ -1089,8 +1125,9 @@ fn newton(prob: &mut Problem, p: &mut [f64], h0: &mut f64, tol: f64, max_iter: u
             let pc = match kept {
                 Some(pc) => pc,
                 None => {
+                    observer.check()?;
                     let t = std::time::Instant::now();
-                    let lu = prob.precondition(p, &v, &mut active, &mut c, true);
+                    let lu = prob.precondition(p, &v, &mut active, &mut c, true, observer)?;
                     t_lu += t.elapsed().as_secs_f64();
                     let Some(lu) = lu else {
                         return Ok(Run { iterations: iter, residual: res, history, converged: false, gmres: gm_total });
@@ -1105,7 +1142,7 @@ fn newton(prob: &mut Problem, p: &mut [f64], h0: &mut f64, tol: f64, max_iter: u
                 }
             };
             let t = std::time::Instant::now();
-            (its, rel) = gmres(prob, p, &v, &active, &c, &pc, &rhs, &mut sol, &mut buf, gtol, if fresh { GMRES_MAX } else { reuse_max }, from_x);
+            (its, rel) = gmres(prob, p, &v, &active, &c, &pc, &rhs, &mut sol, &mut buf, gtol, if fresh { GMRES_MAX } else { reuse_max }, from_x, observer)?;
             t_gm += t.elapsed().as_secs_f64();
             gm_total += its;
             crate::physics::film::work::add(&crate::physics::film::work::FINITE_GMRES_ITERATIONS, its as u64);
@@ -1173,6 +1210,7 @@ fn newton(prob: &mut Problem, p: &mut [f64], h0: &mut f64, tol: f64, max_iter: u
         let m0 = dot(&phi, &phi) * cell + v.g * v.g;
         let mut accepted = false;
         for _ in 0..MAX_HALVINGS {
+            observer.check()?;
             for k in 0..p.len() {
                 p_trial[k] = p[k] + alpha * dpn[k];
             }
@@ -1554,7 +1592,8 @@ fn merit_at(prob: &mut Problem, p: &[f64], h0: f64) -> f64 {
     }
     let m = prob.nodes.len();
     let (mut active, mut c, mut phi) = (vec![FLUID; m], vec![0.0; m], Vec::with_capacity(m));
-    prob.precondition(p, &v, &mut active, &mut c, false);
+    // Without a factorisation nothing can be interrupted.
+    let _ = prob.precondition(p, &v, &mut active, &mut c, false, &crate::physics::Silent);
     prob.phi(p, &v, &c, &mut phi);
     dot(&phi, &phi) * prob.dx * prob.dy + v.g * v.g
 }
@@ -2003,6 +2042,7 @@ fn solve_levels(input: &Ehl2dInput, options: &Ehl2dOptions, s: &Scales, d: Domai
                     total += r.iterations;
                     levels.insert(0, (cx, cy));
                 }
+                Err(e @ SolveError::Interrupted(_)) => return Err(e),
                 Err(_) => levels.insert(0, (cx, cy)),
             }
         }
@@ -2011,8 +2051,15 @@ fn solve_levels(input: &Ehl2dInput, options: &Ehl2dOptions, s: &Scales, d: Domai
     let mut guess: Option<(Vec<f64>, Vec<f64>, Vec<f64>, f64)> = None;
     let mut coarse = None;
     let nlev = levels.len();
+    // Progress: each level's share of the work (≈ nodes^1.4).
+    let work: Vec<f64> = levels.iter().map(|&(lx, ly)| ((lx * ly) as f64).powf(1.4)).collect();
+    let total_work: f64 = work.iter().sum::<f64>().max(1.0);
     for (li, &(lx, ly)) in levels.iter().enumerate() {
         let finest = li + 1 == nlev;
+        let lo = work[..li].iter().sum::<f64>() / total_work;
+        let name = format!("2-D EHL on {lx}×{ly}");
+        let stage = crate::physics::Stage::new(observer, 0.9 * lo, 0.9 * (lo + work[li] / total_work), 200.0, &name);
+        let observer: &dyn Observer = &stage;
         let level_tol = if finest { tol } else { tol.max(1e-5) };
         let (mut prob, mut p, mut h0) = match trial.take() {
             // The cold start's θ = 0 solution from the trial above (the only level).

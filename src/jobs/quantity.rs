@@ -1,0 +1,86 @@
+//! Physical bounds of spec fields, with their units (issue 40): wide enough for any real machine,
+//! narrow enough that no solver's arithmetic overflows or underflows on an accepted spec. A kind
+//! checks a field with [`super::Validation::quantity`]; the bound becomes the field's `minimum` and
+//! `maximum` in the OpenAPI document and the message names the unit.
+
+/// A physical quantity's accepted range and unit.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Quantity {
+    /// What it is, for messages ("a load").
+    pub name: &'static str,
+    pub unit: &'static str,
+    pub min: f64,
+    pub max: f64,
+}
+
+/// A contact or bearing load, N: a gram-force to a large ship's main bearing.
+pub const FORCE: Quantity = Quantity { name: "a force", unit: "N", min: 1e-3, max: 1e8 };
+/// A length of a contact, a face or a lobe, m: 10 µm to 10 m.
+pub const LENGTH: Quantity = Quantity { name: "a length", unit: "m", min: 1e-5, max: 10.0 };
+/// A radius of curvature or of a body, m: 10 µm to 100 m (nearly flat surfaces).
+pub const RADIUS: Quantity = Quantity { name: "a radius", unit: "m", min: 1e-5, max: 100.0 };
+/// A small geometric height (a lift, a crown drop, a profile height), m.
+pub const HEIGHT: Quantity = Quantity { name: "a height", unit: "m", min: 0.0, max: 1.0 };
+/// A surface velocity, m/s (either sign).
+pub const VELOCITY: Quantity = Quantity { name: "a velocity", unit: "m/s", min: -1e3, max: 1e3 };
+/// A dynamic viscosity, Pa·s: a gas-thin oil to a grease.
+pub const VISCOSITY: Quantity = Quantity { name: "a viscosity", unit: "Pa·s", min: 1e-5, max: 1e4 };
+/// A stress or strength (Eyring stress, limiting shear, yield strength, hardness), Pa.
+pub const STRESS: Quantity = Quantity { name: "a stress", unit: "Pa", min: 1e3, max: 1e11 };
+/// A heat conductivity, W/(m·K).
+pub const CONDUCTIVITY: Quantity = Quantity { name: "a conductivity", unit: "W/(m·K)", min: 1e-3, max: 1e4 };
+/// A specific heat, J/(kg·K).
+pub const SPECIFIC_HEAT: Quantity = Quantity { name: "a specific heat", unit: "J/(kg·K)", min: 10.0, max: 1e5 };
+/// A density of a solid or a liquid, kg/m³.
+pub const DENSITY: Quantity = Quantity { name: "a density", unit: "kg/m³", min: 10.0, max: 3e4 };
+/// A rotational speed, rpm.
+pub const SPEED_RPM: Quantity = Quantity { name: "a speed", unit: "rpm", min: 1e-3, max: 1e5 };
+/// A mass moment of inertia, kg·m².
+pub const INERTIA: Quantity = Quantity { name: "an inertia", unit: "kg·m²", min: 0.0, max: 1e3 };
+/// A Young's modulus, Pa: a soft polymer to above diamond.
+pub const MODULUS: Quantity = Quantity { name: "a modulus", unit: "Pa", min: 1e6, max: 1e13 };
+/// A mass, kg.
+pub const MASS: Quantity = Quantity { name: "a mass", unit: "kg", min: 0.0, max: 1e4 };
+
+/// A bound as an engineer writes it: `0.001`, `25`, `1e8`, `-1000`.
+pub fn format_number(x: f64) -> String {
+    if x == 0.0 {
+        return "0".into();
+    }
+    let a = x.abs();
+    if (1e-3..1e5).contains(&a) {
+        let s = format!("{x}");
+        if s.len() <= 8 {
+            return s;
+        }
+        return format!("{x:.4}").trim_end_matches('0').trim_end_matches('.').to_string();
+    }
+    let s = format!("{x:e}");
+    s
+}
+
+impl Quantity {
+    /// "must be between 0.001 N and 1e8 N".
+    pub fn rule(&self) -> String {
+        format!("must be between {} {} and {} {}", format_number(self.min), self.unit, format_number(self.max), self.unit)
+    }
+
+    /// The same quantity with a positive lower bound replaced (e.g. a velocity that must not be
+    /// negative).
+    pub const fn from(self, min: f64) -> Self {
+        Quantity { min, ..self }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn bounds_read_with_their_units() {
+        assert_eq!(FORCE.rule(), "must be between 0.001 N and 1e8 N");
+        assert_eq!(VISCOSITY.rule(), "must be between 1e-5 Pa·s and 1e4 Pa·s");
+        assert_eq!(format_number(25.5), "25.5");
+        assert_eq!(format_number(-1000.0), "-1000");
+    }
+}
