@@ -48,7 +48,7 @@ pub fn format_number(x: f64) -> String {
         return "0".into();
     }
     let a = x.abs();
-    if (1e-3..1e5).contains(&a) {
+    if (1e-3..1e4).contains(&a) {
         let s = format!("{x}");
         if s.len() <= 8 {
             return s;

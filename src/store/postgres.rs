@@ -51,18 +51,22 @@ fn unique_violation(e: sqlx::Error) -> StoreError {
     }
 }
 
+/// How long a request waits for a database connection before it is answered
+/// `503 storage_unavailable` (the database unreachable: `storage_faults::an_unreachable_database…`).
+const ACQUIRE_TIMEOUT: Duration = Duration::from_secs(5);
+
 impl PgStore {
     /// Connect, apply `migrations/postgres` and start listening for other instances' events.
     pub async fn open(url: &str) -> StoreResult<PgStore> {
         let pool = PgPoolOptions::new()
             .max_connections(16)
-            .acquire_timeout(Duration::from_secs(30))
+            .acquire_timeout(ACQUIRE_TIMEOUT)
             .connect(url)
             .await?;
         sqlx::migrate!("./migrations/postgres").run(&pool).await?;
         let relaxed = PgPoolOptions::new()
             .max_connections(4)
-            .acquire_timeout(Duration::from_secs(30))
+            .acquire_timeout(ACQUIRE_TIMEOUT)
             .after_connect(|conn, _| {
                 Box::pin(async move {
                     sqlx::query("SET synchronous_commit = off").execute(conn).await?;

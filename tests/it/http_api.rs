@@ -282,7 +282,9 @@ async fn bad_inputs_are_4xx_problems_with_paths() {
     let p = expect_problem(s.post_job(&job).await, 422, "invalid_spec").await;
     let paths: Vec<&str> = p["errors"].as_array().unwrap().iter().map(|e| e["path"].as_str().unwrap()).collect();
     assert_eq!(paths, ["/spec/load", "/spec/body_2/material/poisson_ratio"], "{p}");
-    assert!(p["errors"][0]["message"].as_str().unwrap().contains("> 0"));
+    // The rule with its unit, and the value given.
+    let message = p["errors"][0]["message"].as_str().unwrap();
+    assert!(message.contains("between 0.001 N and 1e8 N") && message.contains("was given -5"), "{message}");
 
     let mut job = hertz_job(1.0);
     job["spec"]["load"] = json!("heavy");

@@ -233,3 +233,88 @@ async fn every_acknowledged_job_survives_an_immutable_database() {
     eprintln!("immutable database: {} jobs acknowledged, {refused} refused with 503, 0 lost", acknowledged.len());
     restarted.stop().await;
 }
+
+/// A TCP proxy in front of the test PostgreSQL server that the test can cut (every connection
+/// closed, new ones refused) and restore on the same port: the database becomes unreachable.
+struct CuttableProxy {
+    port: u16,
+    task: Option<tokio::task::JoinHandle<()>>,
+}
+
+impl CuttableProxy {
+    async fn start(port: u16, upstream: String) -> CuttableProxy {
+        let listener = tokio::net::TcpListener::bind(("127.0.0.1", port)).await.expect("bind the proxy");
+        let port = listener.local_addr().unwrap().port();
+        let task = tokio::spawn(async move {
+            let mut links = tokio::task::JoinSet::new();
+            loop {
+                let Ok((mut client, _)) = listener.accept().await else { continue };
+                let upstream = upstream.clone();
+                links.spawn(async move {
+                    if let Ok(mut server) = tokio::net::TcpStream::connect(upstream).await {
+                        let _ = tokio::io::copy_bidirectional(&mut client, &mut server).await;
+                    }
+                });
+            }
+        });
+        CuttableProxy { port, task: Some(task) }
+    }
+
+    /// Close every link and stop listening (the links die with the accept task's `JoinSet`).
+    async fn cut(&mut self) {
+        if let Some(t) = self.task.take() {
+            t.abort();
+            let _ = t.await;
+        }
+    }
+}
+
+/// PostgreSQL unreachable under a running server: submissions answer `503 storage_unavailable`
+/// within seconds and `/readyz` says not ready; once the database is back the server recovers
+/// without a restart and the job accepted before the cut finishes.
+#[tokio::test(flavor = "multi_thread", worker_threads = 4)]
+async fn an_unreachable_database_answers_503_and_the_server_recovers() {
+    if !postgres_available("an_unreachable_database_answers_503_and_the_server_recovers") {
+        return;
+    }
+    let direct = fresh_postgres_database().await;
+    let upstream = {
+        let after = direct.split_once('@').map_or(direct.as_str(), |(_, a)| a);
+        after.split('/').next().unwrap().to_string()
+    };
+    let mut proxy = CuttableProxy::start(0, upstream.clone()).await;
+    let proxied = direct.replacen(&upstream, &format!("127.0.0.1:{}", proxy.port), 1);
+    let dir = tempfile::tempdir().unwrap();
+    let mut cfg = config(&dir);
+    cfg.database_url = proxied;
+    cfg.queue.workers = 1;
+    let s = start_in(dir, cfg).await;
+    let res = s.post_job(&sleep_job(1.0, 4242)).await;
+    assert_eq!(res.status(), 202);
+    let before: Value = res.json().await.unwrap();
+    let id = before["id"].as_str().unwrap().to_string();
+
+    proxy.cut().await;
+    let t = Instant::now();
+    let res = s.post_job(&hertz_job(2468.0)).await;
+    let took = t.elapsed();
+    expect_problem(res, 503, "storage_unavailable").await;
+    assert!(took < Duration::from_secs(10), "the 503 took {took:?}");
+    let (status, _) = s.get_json("/readyz").await;
+    assert_eq!(status, 503, "not ready while the database is unreachable");
+
+    let port = proxy.port;
+    let _proxy = CuttableProxy::start(port, upstream).await;
+    let deadline = Instant::now() + Duration::from_secs(60);
+    loop {
+        let res = s.post_job(&hertz_job(2469.0)).await;
+        if res.status() == 202 {
+            break;
+        }
+        assert!(Instant::now() < deadline, "no recovery: {}", res.status());
+        tokio::time::sleep(Duration::from_millis(250)).await;
+    }
+    let job = s.wait_finished(&id, Duration::from_secs(90)).await;
+    assert_eq!(job["status"], "succeeded", "{job}");
+    s.stop().await;
+}

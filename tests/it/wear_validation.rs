@@ -572,16 +572,21 @@ fn accurate_specs_are_checked_and_bounded() {
     .contains(&"/cycle/fidelity".to_string()));
     assert!(paths(&with(&example("seed004_irgashev"), |s| s["cycle"]["fidelity"] = json!("auto"))).contains(&"/cycle/fidelity".to_string()));
     assert!(paths(&with(&base, |s| s["cycle"]["ehl"]["nodes"] = json!(8))).contains(&"/cycle/ehl/nodes".to_string()));
-    // 720 angles × (2 × 100 + 1) cycles × 192 nodes = 201 standard cycles: accepted by default,
-    // refused by a server allowing 100 evaluations.
+    // 720 angles × (2 × 100 + 1) cycles × 192 nodes = 201 standard cycles: within the default
+    // evaluation budget (the work model, ≈ 95 s for the 101 planned cycles, is a separate limit),
+    // refused by a server allowing 200 evaluations.
     let big = with(&base, |s| {
         s["hours"] = json!(1000.0);
         s["cycle"]["angles"] = json!(720);
         s["cycle"]["ehl"]["nodes"] = json!(192);
     });
     let k = registry::find("wear").unwrap();
-    assert!(k.prepare(&big, &Limits::default()).is_ok());
-    let p = k.prepare(&big, &Limits { max_evaluations: 200, ..Limits::default() }).unwrap_err();
+    let unlimited_time = Limits { max_job_seconds: f64::INFINITY, ..Limits::default() };
+    assert!(k.prepare(&big, &unlimited_time).is_ok());
+    let p = k.prepare(&big, &Limits::default()).unwrap_err();
+    assert_eq!(p.code, "limit_exceeded");
+    assert!(p.errors[0].message.contains("of solver time"), "{p:?}");
+    let p = k.prepare(&big, &Limits { max_evaluations: 200, ..unlimited_time }).unwrap_err();
     assert_eq!(p.code, "limit_exceeded");
     assert_eq!(p.errors[0].path, "/cycle/ehl/nodes", "{p:?}");
     assert!(p.errors[0].message.contains("is 201"), "{}", p.errors[0].message);

@@ -351,15 +351,15 @@ impl Kind for BearingOptimisation {
 
     fn cost(spec: &OptimisationSpec) -> Cost {
         // Every planned analysis is a bearing job's work on the base grid; memory: one workspace
-        // per worker thread of the array, and the reference and baseline kept beside them.
+        // per worker thread of the array, and the reference, baseline and best kept beside them.
         let one = super::bearing::bearing_cost(&spec.base);
         let n = planned_evaluations(spec);
         let workers = std::thread::available_parallelism().map_or(1, |p| p.get()).min(n.max(1)) as f64;
         let what = format!("{n} bearing analyses on {} × {} nodes", spec.base.grid.circumferential, spec.base.grid.axial);
         // The array's analyses start from their neighbours' solutions and share workspaces:
-        // ≈ 0.18 of a bearing job's (the seed 002 misaligned L9 with its continuous search: 177
-        // analyses in 1.65 s at 361×181).
-        Cost::new(crate::jobs::cost::JOB_OVERHEAD_S + 0.18 * n as f64 * one.cpu_seconds(), (workers + 1.5) * one.memory_bytes())
+        // ≈ 0.25 of a bearing job's (the seed 002 misaligned L9 with its continuous search: 177
+        // analyses in 1.65 s at 181×91; 360 at 3001×181 in 27 s, 460 MB).
+        Cost::new(crate::jobs::cost::JOB_OVERHEAD_S + 0.25 * n as f64 * one.cpu_seconds(), (workers + 3.0) * one.memory_bytes())
             .work_at("/base/grid", what.clone())
             .memory_at("/base/grid", what)
     }
