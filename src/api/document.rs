@@ -11,6 +11,11 @@
 //!   `maximum`), taken from the rules `validate` checks on each kind's example spec, so the
 //!   validator is the one source of truth; where one schema serves several fields or kinds the
 //!   loosest bound is kept (the schema is then necessary, the validator decides).
+//! * Arrays carry the item counts the kinds' validation checks (`minItems`, `maxItems`), from
+//!   the same rules (`Validation::items`) on the example and the kinds' bound examples.
+//! * What a schema can say and the types cannot: a sweep's `kind` is one of the case kinds;
+//!   `?table=` of a result is one of the kinds' table names; the events of
+//!   `GET /v1/jobs/{id}/events` are objects whose `data` is the job as JSON (`JobEvent`).
 //! * Object schemas are closed (`additionalProperties: false`), as the specs reject unknown fields.
 //! * A newtype variant of an internally tagged enum (`Dynamic(DynamicLoadSpec)` under
 //!   `#[serde(tag = "type")]`), which utoipa writes as `allOf: [$ref, {type tag}]`, is inlined as
@@ -25,9 +30,79 @@ pub fn finish(mut doc: Value) -> Value {
     numeric_bounds(&mut doc);
     inline_tagged_newtypes(&mut doc);
     closed_objects(&mut doc);
+    sweep_rules(&mut doc);
     kind_tagged_requests(&mut doc);
+    result_tables(&mut doc);
+    job_events(&mut doc);
     common_responses(&mut doc);
     doc
+}
+
+/// A sweep runs one of the case kinds. (A parameter's "exactly one of `values` and `linspace`"
+/// stays in its description: the `oneOf` of two `required` lists that would state it defeats
+/// openapi-python-client, and the validator answers it with 422 naming the parameter.)
+fn sweep_rules(doc: &mut Value) {
+    let kinds: Vec<&str> = crate::jobs::kinds::CASE_KINDS.iter().map(|k| k.name()).collect();
+    if let Some(kind) = doc.pointer_mut("/components/schemas/SweepSpec/properties/kind").and_then(Value::as_object_mut) {
+        kind.insert("enum".into(), json!(kinds));
+    }
+}
+
+/// `?table=` of `GET /v1/jobs/{id}/result`: one of the kinds' table names (which of them a job
+/// has depends on its kind and outputs: a name its result lacks answers 404 `table_not_found`).
+fn result_tables(doc: &mut Value) {
+    let mut names: Vec<&str> = registry::KINDS.iter().flat_map(|k| k.tables().iter().copied()).collect();
+    names.sort_unstable();
+    names.dedup();
+    let Some(params) = doc.pointer_mut("/paths/~1v1~1jobs~1{id}~1result/get/parameters").and_then(Value::as_array_mut) else { return };
+    for p in params.iter_mut().filter(|p| p["name"] == "table") {
+        p["schema"]["enum"] = json!(names);
+    }
+}
+
+/// The events of `GET /v1/jobs/{id}/events`: before Open API 3.2's `itemSchema`, a
+/// `text/event-stream` schema describes one event (its `event` and `data` fields).
+fn job_events(doc: &mut Value) {
+    let Some(schemas) = doc.pointer_mut("/components/schemas").and_then(Value::as_object_mut) else { return };
+    let data = |description: &str| json!({"type": "string", "description": description});
+    schemas.insert(
+        "JobEvent".into(),
+        json!({
+            "description": "One Server-Sent Event of a followed job: its name (`event`) and `data`.",
+            "oneOf": [
+                {
+                    "type": "object",
+                    "required": ["event", "data"],
+                    "properties": {
+                        "event": {"type": "string", "enum": ["status", "progress", "done"],
+                            "description": "`status`: first, and at each status change; `progress`: the fraction or stage changed; `done`: the job finished (last event)."},
+                        "data": {"type": "string", "contentMediaType": "application/json", "contentSchema": schema_ref("JobView"),
+                            "description": "The job as `GET /v1/jobs/{id}` returns it, as JSON."}
+                    }
+                },
+                {
+                    "type": "object",
+                    "required": ["event", "data"],
+                    "properties": {
+                        "event": {"type": "string", "const": "deleted", "description": "The job was deleted meanwhile (last event)."},
+                        "data": {"type": "string", "format": "uuid", "description": "The job's id."}
+                    }
+                },
+                {
+                    "type": "object",
+                    "required": ["event", "data"],
+                    "properties": {
+                        "event": {"type": "string", "const": "shutdown", "description": "The server is shutting down (last event); reconnect later."},
+                        "data": data("Why the stream ends, as text.")
+                    }
+                }
+            ]
+        }),
+    );
+    let at = "/paths/~1v1~1jobs~1{id}~1events/get/responses/200/content/text~1event-stream/schema";
+    if let Some(schema) = doc.pointer_mut(at) {
+        *schema = schema_ref("JobEvent");
+    }
 }
 
 fn schema_ref(name: &str) -> Value {
@@ -225,32 +300,54 @@ impl Range {
 }
 
 fn numeric_bounds(doc: &mut Value) {
-    // Where each bound lands: a JSON pointer into the document.
-    let mut ranges: Vec<(String, Range)> = Vec::new();
+    // Where each bound lands: a JSON pointer into the document, and whether it counts items.
+    let mut ranges: Vec<(String, bool, Range)> = Vec::new();
     for k in registry::KINDS.iter() {
         let (spec, _) = k.schema_names();
         for b in k.bounds() {
-            let Some(target) = schema_pointer(doc, &format!("/components/schemas/{spec}"), &b.path) else { continue };
+            let leaf = if b.items { Leaf::Array } else { Leaf::Number };
+            let Some(target) = schema_pointer(doc, &format!("/components/schemas/{spec}"), &b.path, leaf) else { continue };
             let range = Range { min: b.min, min_exclusive: b.min_exclusive, max: b.max };
-            match ranges.iter_mut().find(|(t, _)| *t == target) {
-                Some((_, r)) => *r = r.loosest(range),
-                None => ranges.push((target, range)),
+            match ranges.iter_mut().find(|(t, items, _)| *t == target && *items == b.items) {
+                Some((_, _, r)) => *r = r.loosest(range),
+                None => ranges.push((target, b.items, range)),
             }
         }
     }
-    for (target, range) in ranges {
+    for (target, items, range) in ranges {
         let Some(schema) = doc.pointer_mut(&target).and_then(Value::as_object_mut) else { continue };
-        if let Some(min) = range.min {
-            if range.min_exclusive {
-                schema.insert("exclusiveMinimum".into(), json!(min));
-            } else {
-                schema.insert("minimum".into(), json!(min));
+        let (lower, upper) = if items { ("minItems", "maxItems") } else { ("minimum", "maximum") };
+        match range.min {
+            // Every array has at least none.
+            Some(min) if items && min > 0.0 => {
+                schema.insert(lower.into(), json!(min as u64));
             }
+            Some(_) if items => {}
+            Some(min) if range.min_exclusive => {
+                schema.insert("exclusiveMinimum".into(), json!(min));
+            }
+            Some(min) => {
+                schema.insert(lower.into(), json!(min));
+            }
+            None => {}
         }
-        if let Some(max) = range.max {
-            schema.insert("maximum".into(), json!(max));
+        match range.max {
+            Some(max) if items => {
+                schema.insert(upper.into(), json!(max as u64));
+            }
+            Some(max) => {
+                schema.insert(upper.into(), json!(max));
+            }
+            None => {}
         }
     }
+}
+
+/// What a spec field's schema describes: a number (bounds) or an array (item counts).
+#[derive(Debug, Clone, Copy, PartialEq)]
+enum Leaf {
+    Number,
+    Array,
 }
 
 /// The schema of a numeric spec field of `kind` (`path` relative to the spec), as the document
@@ -258,14 +355,23 @@ fn numeric_bounds(doc: &mut Value) {
 pub fn spec_field_schema(doc: &Value, kind: &str, path: &str) -> Option<Value> {
     let k = registry::find(kind)?;
     let (spec, _) = k.schema_names();
-    let at = schema_pointer(doc, &format!("/components/schemas/{spec}"), path)?;
+    let at = schema_pointer(doc, &format!("/components/schemas/{spec}"), path, Leaf::Number)?;
     doc.pointer(&at).cloned()
 }
 
-/// The pointer of the numeric schema a spec field (`path`, a JSON pointer into the spec) is
-/// described by, starting at the schema at `at`: through `$ref`s, `properties`, array `items` and
-/// the one non-null member of an optional's `oneOf`.
-fn schema_pointer(doc: &Value, at: &str, path: &str) -> Option<String> {
+/// The schema of an array spec field of `kind` (`path` relative to the spec), as the document
+/// describes it (for tests that the item counts and the validator agree).
+pub fn spec_array_schema(doc: &Value, kind: &str, path: &str) -> Option<Value> {
+    let k = registry::find(kind)?;
+    let (spec, _) = k.schema_names();
+    let at = schema_pointer(doc, &format!("/components/schemas/{spec}"), path, Leaf::Array)?;
+    doc.pointer(&at).cloned()
+}
+
+/// The pointer of the numeric (or array: `leaf`) schema a spec field (`path`, a JSON pointer into
+/// the spec) is described by, starting at the schema at `at`: through `$ref`s, `properties`, array
+/// `items` and the one non-null member of an optional's `oneOf`.
+fn schema_pointer(doc: &Value, at: &str, path: &str, leaf: Leaf) -> Option<String> {
     let mut here = resolve(doc, at.to_string())?;
     for segment in path.split('/').skip(1) {
         let schema = doc.pointer(&here)?;
@@ -288,14 +394,17 @@ fn schema_pointer(doc: &Value, at: &str, path: &str) -> Option<String> {
         };
         here = resolve(doc, next)?;
     }
-    let leaf = doc.pointer(&here)?;
-    let numeric = |t: &Value| t == "number" || t == "integer";
-    let is_numeric = match leaf.get("type") {
-        Some(Value::Array(types)) => types.iter().any(numeric),
-        Some(t) => numeric(t),
+    let found = doc.pointer(&here)?;
+    let fits = |t: &Value| match leaf {
+        Leaf::Number => t == "number" || t == "integer",
+        Leaf::Array => t == "array",
+    };
+    let fitting = match found.get("type") {
+        Some(Value::Array(types)) => types.iter().any(fits),
+        Some(t) => fits(t),
         None => false,
     };
-    is_numeric.then_some(here)
+    fitting.then_some(here)
 }
 
 /// Follow `$ref`s and an optional's `oneOf: [null, X]` to the schema that describes a value.

@@ -175,7 +175,7 @@ fn job_response(status: StatusCode, view: JobView, extra: Vec<(&'static str, Str
 #[utoipa::path(post, path = "/v1/jobs", tag = "jobs",
     params(SubmitQuery,
         ("Prefer" = Option<String>, Header, description = "`wait=N`: wait up to N seconds for the job to finish (RFC 7240)"),
-        ("Idempotency-Key" = Option<String>, Header, description = "Client-chosen key (1–255 visible ASCII characters) making retries of this POST safe")),
+        ("Idempotency-Key" = Option<String>, Header, description = "Client-chosen key (1–255 visible ASCII characters) making retries of this POST safe", pattern = "^[!-~]{1,255}$")),
     request_body(content = JobRequest, description = "The job kind and its spec"),
     responses(
         (status = 202, description = "Accepted and queued", body = JobView, headers(("Location" = String, description = "URL of the job"))),
@@ -240,8 +240,8 @@ fn idempotency_key(headers: &HeaderMap) -> ApiResult<Option<String>> {
 #[into_params(parameter_in = Query)]
 #[serde(deny_unknown_fields)]
 pub struct ListQuery {
-    /// Only jobs in these statuses (comma-separated).
-    #[param(example = "queued,running")]
+    /// Only jobs in these statuses (comma-separated, no spaces).
+    #[param(example = "queued,running", pattern = "^(queued|running|succeeded|failed|canceled)(,(queued|running|succeeded|failed|canceled))*$")]
     pub status: Option<String>,
     /// Only jobs of this kind.
     pub kind: Option<String>,
@@ -254,7 +254,10 @@ pub struct ListQuery {
     /// Page size, 1–500 (default 50).
     #[param(minimum = 1, maximum = 500)]
     pub limit: Option<u32>,
-    /// Cursor: the `next` of the previous page (jobs older than this id).
+    /// Cursor: the `next` of the previous page (jobs older than this id). If that job was deleted
+    /// meanwhile, the page resumes where it stood: at the creation instant its id (a UUIDv7)
+    /// carries, jobs of that millisecond included (a job may appear on two pages, none is
+    /// skipped). An id this server did not issue (not a UUIDv7) names no place: an empty last page.
     pub after: Option<Uuid>,
 }
 
@@ -294,7 +297,8 @@ pub async fn list_jobs(State(state): State<AppState>, ApiQuery(q): ApiQuery<List
         return Err(err);
     }
     if let Some(s) = &q.status {
-        for name in s.split(',').map(str::trim).filter(|n| !n.is_empty()) {
+        // Exactly the document's pattern: names separated by commas, nothing else.
+        for name in s.split(',') {
             let st = JobStatus::parse(name).ok_or_else(|| {
                 let mut err = ApiError::new(ErrorCode::InvalidQuery, format!("unknown status '{name}'"));
                 err.problem.errors = vec![crate::problem::FieldError::new(
@@ -310,12 +314,19 @@ pub async fn list_jobs(State(state): State<AppState>, ApiQuery(q): ApiQuery<List
     filter.created_after = q.created_after.as_deref().map(|s| parse_time("created_after", s)).transpose()?;
     filter.created_before = q.created_before.as_deref().map(|s| parse_time("created_before", s)).transpose()?;
     if let Some(after) = q.after {
-        let seq = state.queue.store().seq_of(after).await.map_err(store_error)?.ok_or_else(|| {
-            let mut err = ApiError::new(ErrorCode::InvalidQuery, "the cursor names no job (deleted?)");
-            err.problem.errors = vec![crate::problem::FieldError::new("?after", "unknown job id")];
-            err
-        })?;
-        filter.before_seq = Some(seq);
+        match state.queue.store().seq_of(after).await.map_err(store_error)? {
+            Some(seq) => filter.before_seq = Some(seq),
+            // Deleted between pages: resume at its creation instant (`created_at` is taken just
+            // before the id, so jobs created up to the id's millisecond are older or the same).
+            None => match after.get_timestamp().filter(|_| after.get_version_num() == 7) {
+                Some(t) => {
+                    let (secs, nanos) = t.to_unix();
+                    let until = (secs as i64).saturating_mul(1000).saturating_add(i64::from(nanos / 1_000_000)).saturating_add(1);
+                    filter.created_before = Some(filter.created_before.map_or(until, |b| b.min(until)));
+                }
+                None => return Ok(Json(JobPage { jobs: Vec::new(), next: None })),
+            },
+        }
     }
     let limit = filter.limit as usize;
     filter.limit += 1;
@@ -370,9 +381,13 @@ pub(super) async fn stored_result(state: &AppState, id: Uuid) -> ApiResult<(JobR
         }
         JobStatus::Succeeded => {}
     }
-    let text = store.result(id).await.map_err(store_error)?.ok_or_else(|| {
-        ApiError::new(ErrorCode::InternalError, "the job succeeded but its result is missing")
-    })?;
+    let Some(text) = store.result(id).await.map_err(store_error)? else {
+        // Deleted between the two reads (a concurrent DELETE): no such job any more.
+        if store.get(id).await.map_err(store_error)?.is_none() {
+            return Err(not_found(id));
+        }
+        return Err(ApiError::new(ErrorCode::InternalError, "the job succeeded but its result is missing"));
+    };
     Ok((row, text))
 }
 
@@ -384,16 +399,19 @@ pub struct ResultQuery {
     /// `json` (default) or `csv`; same as `Accept: text/csv`.
     #[param(pattern = "^(json|csv)$")]
     pub format: Option<String>,
-    /// For CSV: which table of the result (see the kind's `tables` in `/v1/kinds`); default the first.
+    /// For CSV: which table of the result (see the kind's `tables` in `/v1/kinds`); default the
+    /// first. One of the kinds' table names; a name this job's result lacks (another kind's, or
+    /// an output its spec did not request) answers `404 table_not_found`.
     pub table: Option<String>,
 }
 
 /// Get a job's result.
 ///
 /// JSON by default: the kind's result object plus `meta` (kind, solver version, wall time).
-/// With `Accept: text/csv` (or `?format=csv`) a tabular part of the result as CSV, for kinds that
-/// have one (`?table=` picks which). `409 result_not_ready` while the job is queued or running;
-/// `409 result_unavailable` when it failed or was canceled.
+/// With `Accept: text/csv` (or `?format=csv`) a tabular part of the result as CSV (`?table=`
+/// picks which; `404 table_not_found` when this job's result has no such table).
+/// `409 result_not_ready` while the job is queued or running; `409 result_unavailable` when it
+/// failed or was canceled.
 #[utoipa::path(get, path = "/v1/jobs/{id}/result", tag = "jobs",
     params(("id" = Uuid, Path, description = "Job id"), ResultQuery),
     responses(
@@ -401,8 +419,8 @@ pub struct ResultQuery {
             (Object = "application/json"),
             (String = "text/csv"),
         )),
-        (status = 404, description = "No such job", body = Problem, content_type = "application/problem+json"),
-        (status = 406, description = "No CSV for this kind or table", body = Problem, content_type = "application/problem+json"),
+        (status = 404, description = "No such job (`job_not_found`), or its result has no such table (`table_not_found`)", body = Problem, content_type = "application/problem+json"),
+        (status = 406, description = "The Accept header asks for CSV and the result has no table", body = Problem, content_type = "application/problem+json"),
         (status = 409, description = "Not ready, or the job has no result", body = Problem, content_type = "application/problem+json"),
     ))]
 pub async fn get_result(
@@ -412,6 +430,12 @@ pub async fn get_result(
     ApiQuery(q): ApiQuery<ResultQuery>,
 ) -> ApiResult<Response> {
     let (row, text) = stored_result(&state, id).await?;
+    let tables = registry::find(&row.kind).map(|k| k.tables()).unwrap_or(&[]);
+    if let Some(t) = q.table.as_deref().filter(|t| !tables.contains(t) && !registry::KINDS.iter().any(|k| k.tables().contains(t))) {
+        let mut err = ApiError::new(ErrorCode::InvalidQuery, format!("no kind has a table '{t}'; this job's: {}", tables.join(", ")));
+        err.problem.errors = vec![crate::problem::FieldError::new("?table", "must be one of the kinds' table names (GET /v1/kinds)")];
+        return Err(err);
+    }
     let accept = headers.get(header::ACCEPT).and_then(|v| v.to_str().ok()).unwrap_or("");
     let wants_csv = match q.format.as_deref() {
         Some("csv") => true,
@@ -425,25 +449,25 @@ pub async fn get_result(
     if !wants_csv {
         return Ok(([(header::CONTENT_TYPE, "application/json")], text).into_response());
     }
-    let tables = registry::find(&row.kind).map(|k| k.tables()).unwrap_or(&[]);
+    // No table for the CSV asked for: by the query (`format`, `table`: a URL naming no part of
+    // this result), 404; by the Accept header alone (content negotiation), 406.
+    let by_query = q.format.is_some() || q.table.is_some();
+    let missing = |detail: String| ApiError::new(if by_query { ErrorCode::TableNotFound } else { ErrorCode::NotAcceptable }, detail);
     let name = match &q.table {
         Some(t) if tables.contains(&t.as_str()) => t.as_str(),
+        // Another kind's table (names no kind has were refused above): the query is well
+        // formed, this job has none of it.
         Some(t) => {
             return Err(ApiError::new(
-                ErrorCode::NotAcceptable,
-                format!("kind '{}' has no table '{t}'; tables: {}", row.kind, tables.join(", ")),
+                ErrorCode::TableNotFound,
+                format!("kind '{}' has no table '{t}'; its tables: {}", row.kind, tables.join(", ")),
             ))
         }
-        None => *tables.first().ok_or_else(|| {
-            ApiError::new(ErrorCode::NotAcceptable, format!("kind '{}' has no tabular result; ask for JSON", row.kind))
-        })?,
+        None => *tables.first().ok_or_else(|| missing(format!("kind '{}' has no tabular result; ask for JSON", row.kind)))?,
     };
     let value: Value = serde_json::from_str(&text).map_err(|e| ApiError::new(ErrorCode::InternalError, e.to_string()))?;
     let Some(part) = value.get(name) else {
-        return Err(ApiError::new(
-            ErrorCode::NotAcceptable,
-            format!("this result has no '{name}' (not requested in the spec's outputs?)"),
-        ));
+        return Err(missing(format!("this result has no '{name}' (not requested in the spec's outputs?)")));
     };
     let csv = table::to_csv(part).map_err(|e| ApiError::new(ErrorCode::InternalError, e))?;
     Ok(([(header::CONTENT_TYPE, "text/csv; charset=utf-8")], csv).into_response())

@@ -120,7 +120,7 @@ fn routers() -> (OpenApiRouter<AppState>, OpenApiRouter<AppState>) {
     (v1, open)
 }
 
-pub use document::spec_field_schema;
+pub use document::{spec_array_schema, spec_field_schema};
 
 /// The OpenAPI document the server serves (and `tribod openapi` prints).
 pub fn openapi() -> serde_json::Value {

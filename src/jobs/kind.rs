@@ -85,6 +85,9 @@ pub struct Bound {
     pub min_exclusive: bool,
     pub max: Option<f64>,
     pub integer: bool,
+    /// The rule bounds the number of items of an array (`value` is its length): the document's
+    /// `minItems`/`maxItems`.
+    pub items: bool,
 }
 
 impl Validation {
@@ -115,7 +118,7 @@ impl Validation {
     }
 
     fn bound(&mut self, path: &str, value: f64, min: Option<f64>, min_exclusive: bool, max: Option<f64>, integer: bool) {
-        self.bounds.push(Bound { path: self.at(path), value, min, min_exclusive, max, integer });
+        self.bounds.push(Bound { path: self.at(path), value, min, min_exclusive, max, integer, items: false });
     }
 
     /// The numeric rules checked so far.
@@ -156,6 +159,29 @@ impl Validation {
     pub fn count_in_range(&mut self, path: &str, value: usize, lo: usize, hi: usize) -> &mut Self {
         self.bound(path, value as f64, Some(lo as f64), false, Some(hi as f64), true);
         self.check(value >= lo && value <= hi, path, format!("must be an integer in [{lo}, {hi}]"))
+    }
+
+    /// An array of `len` items must have `lo` to `hi` of them (`None`: no upper bound). A fixed
+    /// rule of the spec (it becomes the document's `minItems`/`maxItems`); a server limit that
+    /// is configurable is a [`Validation::limit`] instead.
+    pub fn items(&mut self, path: &str, len: usize, lo: usize, hi: Option<usize>) -> &mut Self {
+        self.bounds.push(Bound {
+            path: self.at(path),
+            value: len as f64,
+            min: Some(lo as f64),
+            min_exclusive: false,
+            max: hi.map(|h| h as f64),
+            integer: true,
+            items: true,
+        });
+        let message = match hi {
+            Some(h) if h == lo => format!("must have exactly {lo} items"),
+            Some(h) if lo == 0 => format!("must have at most {h} items"),
+            Some(h) => format!("must have {lo} to {h} items"),
+            None if lo == 1 => "must have at least 1 item".to_string(),
+            None => format!("must have at least {lo} items"),
+        };
+        self.check(len >= lo && hi.is_none_or(|h| len <= h), path, message)
     }
 
     /// A problem-size limit of the server: reported as `limit_exceeded` rather than `invalid_spec`.
@@ -245,6 +271,11 @@ pub trait Kind: Send + Sync + 'static {
 
     /// An example spec: shown by `GET /v1/kinds`, and must validate.
     fn example() -> Value;
+    /// More valid specs, for the OpenAPI bounds only: the rules `validate` checks on their
+    /// fields become bounds too, for fields (variants, optional lists) the example leaves out.
+    fn bound_examples() -> Vec<Value> {
+        Vec::new()
+    }
     /// Optional outputs selectable in the spec's `outputs` list (empty when the kind has none).
     fn outputs() -> &'static [OutputInfo] {
         &[]
@@ -299,8 +330,10 @@ pub trait DynKind: Send + Sync {
     fn schema_names(&self) -> (String, String);
     /// Push the spec and output schemas and everything they reference.
     fn schemas(&self, out: &mut Vec<(String, RefOr<Schema>)>);
-    /// The numeric rules `validate` checks on the example spec's own fields (a rule on a derived
-    /// quantity is left out: its value differs from the field's). For the OpenAPI bounds.
+    /// The example and the further specs whose validation rules document the spec's fields.
+    fn bound_examples(&self) -> Vec<Value>;
+    /// The numeric and item-count rules `validate` checks on those specs' own fields (a rule on a
+    /// derived quantity is left out: its value differs from the field's). For the OpenAPI bounds.
     fn bounds(&self) -> Vec<Bound>;
     /// Parse (unknown fields rejected, JSON paths in errors) and validate a spec.
     /// Error paths are relative to the spec.
@@ -350,15 +383,29 @@ impl<K: Kind> DynKind for Registered<K> {
         out.push((K::Output::name().into_owned(), <K::Output as utoipa::PartialSchema>::schema()));
         K::Output::schemas(out);
     }
+    fn bound_examples(&self) -> Vec<Value> {
+        std::iter::once(K::example()).chain(K::bound_examples()).collect()
+    }
     fn bounds(&self) -> Vec<Bound> {
-        let Ok(typed) = parse_spec::<K::Spec>(&K::example()) else { return Vec::new() };
-        let Ok(example) = serde_json::to_value(&typed) else { return Vec::new() };
-        let mut v = Validation::new();
-        K::validate(&typed, &Limits::UNLIMITED, &mut v);
-        v.bounds
-            .into_iter()
-            .filter(|b| example.pointer(&b.path).and_then(Value::as_f64) == Some(b.value))
-            .collect()
+        let mut out: Vec<Bound> = Vec::new();
+        for spec in self.bound_examples() {
+            let Ok(typed) = parse_spec::<K::Spec>(&spec) else { continue };
+            let Ok(example) = serde_json::to_value(&typed) else { continue };
+            let mut v = Validation::new();
+            K::validate(&typed, &Limits::UNLIMITED, &mut v);
+            let own = |b: &Bound| match example.pointer(&b.path) {
+                Some(Value::Array(items)) => b.items && items.len() as f64 == b.value,
+                Some(x) => !b.items && x.as_f64() == Some(b.value),
+                None => false,
+            };
+            for b in v.bounds.into_iter().filter(own) {
+                let same = |o: &Bound| o.path == b.path && o.min == b.min && o.min_exclusive == b.min_exclusive && o.max == b.max;
+                if !out.iter().any(same) {
+                    out.push(b);
+                }
+            }
+        }
+        out
     }
     fn prepare(&'static self, spec: &Value, limits: &Limits) -> Result<Prepared, Problem> {
         let typed: K::Spec = parse_spec(spec)?;
@@ -461,6 +508,30 @@ fn path_to_pointer(path: &serde_path_to_error::Path) -> String {
         }
     }
     out
+}
+
+/// `target` with `patch` merged in (RFC 7386 JSON merge patch: objects merge key by key, `null`
+/// removes a key, anything else replaces). Builds a kind's bound examples from its example.
+pub fn merge_patch(target: &mut Value, patch: Value) {
+    match (target, patch) {
+        (Value::Object(t), Value::Object(p)) => {
+            for (k, v) in p {
+                if v.is_null() {
+                    t.remove(&k);
+                } else {
+                    merge_patch(t.entry(k).or_insert(Value::Null), v);
+                }
+            }
+        }
+        (t, p) => *t = p,
+    }
+}
+
+/// The kind's example with `patch` merged in ([`merge_patch`]).
+pub fn example_with<K: Kind>(patch: Value) -> Value {
+    let mut spec = K::example();
+    merge_patch(&mut spec, patch);
+    spec
 }
 
 /// Sort object keys recursively so that equal specs serialise to equal bytes.

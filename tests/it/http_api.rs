@@ -52,10 +52,20 @@ async fn submit_poll_and_fetch_result_json_and_csv() {
     assert_eq!(result["meta"]["job_id"], id.as_str());
     assert!(result["meta"]["wall_time_seconds"].as_f64().unwrap() >= 0.0);
 
-    // CSV of a table that was not requested: 406 problem.
+    // CSV of a table that was not requested: by the Accept header, 406; by the query, 404.
     let res = s.client.get(s.url(&format!("/v1/jobs/{id}/result"))).header("accept", "text/csv").send().await.unwrap();
     let p = expect_problem(res, 406, "not_acceptable").await;
     assert!(p["detail"].as_str().unwrap().contains("stress_profile"));
+    let res = s.client.get(s.url(&format!("/v1/jobs/{id}/result?format=csv"))).send().await.unwrap();
+    expect_problem(res, 404, "table_not_found").await;
+    // Another kind's table (a well-formed query this job cannot answer): 404; a name no kind
+    // has (outside the document's enum): 400 naming the parameter.
+    let res = s.client.get(s.url(&format!("/v1/jobs/{id}/result?format=csv&table=profile"))).send().await.unwrap();
+    let p = expect_problem(res, 404, "table_not_found").await;
+    assert!(p["detail"].as_str().unwrap().contains("stress_profile"), "{p}");
+    let res = s.client.get(s.url(&format!("/v1/jobs/{id}/result?format=csv&table=nonsense"))).send().await.unwrap();
+    let p = expect_problem(res, 400, "invalid_query").await;
+    assert_eq!(p["errors"][0]["path"], "?table", "{p}");
 
     // With the profile requested, CSV works.
     let mut job = hertz_job(1000.0);
@@ -162,6 +172,19 @@ async fn list_filters_and_keyset_pagination() {
     }
     let res = s.client.delete(s.url(&format!("/v1/jobs/{sleeper_id}"))).send().await.unwrap();
     assert_eq!(res.status().as_u16(), 202);
+
+    // A cursor whose job was deleted between pages: the listing resumes where it stood (issue
+    // 40), at the instant its UUIDv7 carries; older jobs all follow, the deleted one is gone.
+    let res = s.client.delete(s.url(&format!("/v1/jobs/{}", ids[2]))).send().await.unwrap();
+    assert_eq!(res.status().as_u16(), 204);
+    let (status, page) = s.get_json(&format!("/v1/jobs?kind=hertz&after={}", ids[2])).await;
+    assert_eq!(status, 200, "{page}");
+    let listed: Vec<&str> = page["jobs"].as_array().unwrap().iter().map(|j| j["id"].as_str().unwrap()).collect();
+    assert!(listed.ends_with(&[ids[1].as_str(), ids[0].as_str()]) && !listed.contains(&ids[2].as_str()), "{listed:?} vs {ids:?}");
+    // An id this server never issues (a UUIDv4) names no place: an empty last page.
+    let (status, page) = s.get_json("/v1/jobs?after=e3e70682-c209-4cac-a29f-6fbed82c07cd").await;
+    assert_eq!((status, page["jobs"].as_array().map(Vec::len)), (200, Some(0)), "{page}");
+    assert!(page.get("next").is_none(), "{page}");
     s.stop().await;
 }
 

@@ -117,12 +117,29 @@ fn every_example_fits_its_kinds_schema() {
 /// The numeric bounds in the document come from the validation rules (issue 10, defect 8): for
 /// every rule a kind checks on its example's fields, the document's schema for that field carries
 /// a bound no stricter than the rule, and the validator refuses a value beyond it, naming the field.
+/// Item counts likewise (issue 40): `minItems`/`maxItems` no stricter than the rule, and an array
+/// one item short or over is refused, naming the array.
 #[test]
 fn numeric_bounds_in_the_document_agree_with_the_validator() {
     let doc = tribod::api::openapi();
-    let mut checked = 0;
+    let (mut checked, mut arrays) = (0, 0);
     for k in tribod::jobs::registry::KINDS.iter() {
         for b in k.bounds() {
+            if b.items {
+                let schema = tribod::api::spec_array_schema(&doc, k.name(), &b.path)
+                    .unwrap_or_else(|| panic!("{} {}: no single array schema in the document", k.name(), b.path));
+                let count = |key: &str| schema.get(key).and_then(serde_json::Value::as_u64);
+                if let Some(min) = b.min.filter(|m| *m > 0.0) {
+                    assert!(count("minItems").is_some_and(|m| m as f64 <= min), "{} {}: {schema} vs {b:?}", k.name(), b.path);
+                    refused_items(*k, &b.path, min as usize - 1);
+                }
+                if let Some(max) = b.max {
+                    assert!(count("maxItems").is_some_and(|m| m as f64 >= max), "{} {}: {schema} vs {b:?}", k.name(), b.path);
+                    refused_items(*k, &b.path, max as usize + 1);
+                }
+                arrays += 1;
+                continue;
+            }
             // A field of a union variant shared by several variants gets no bound (ambiguous).
             let Some(schema) = tribod::api::spec_field_schema(&doc, k.name(), &b.path) else {
                 eprintln!("{} {}: no single numeric schema; no bound in the document", k.name(), b.path);
@@ -148,17 +165,56 @@ fn numeric_bounds_in_the_document_agree_with_the_validator() {
         }
     }
     assert!(checked >= 60, "only {checked} bounds checked");
+    assert!(arrays >= 15, "only {arrays} item counts checked");
+}
+
+/// The first of the kind's bound examples (defaults filled in: the field may be a default) that
+/// has a field at `path`.
+fn example_with_field(k: &'static dyn tribod::jobs::kind::DynKind, path: &str) -> serde_json::Value {
+    let limits = tribod::jobs::kind::Limits::default();
+    k.bound_examples()
+        .iter()
+        .map(|e| k.prepare(e, &limits).expect("the bound examples validate").canonical)
+        .find(|spec| spec.pointer(path).is_some())
+        .unwrap_or_else(|| panic!("{}: no bound example has {path}", k.name()))
 }
 
 /// The kind's example with the field at `path` set to `value` is refused, naming that field.
 fn refused(k: &'static dyn tribod::jobs::kind::DynKind, path: &str, value: f64) {
     let limits = tribod::jobs::kind::Limits::default();
-    // The example with its defaults filled in (the field may be a default).
-    let mut spec = k.prepare(&k.example(), &limits).expect("the example validates").canonical;
+    let mut spec = example_with_field(k, path);
     *spec.pointer_mut(path).unwrap() = serde_json::json!(value);
     match k.prepare(&spec, &limits) {
         Ok(_) => panic!("{} {path} = {value} was accepted", k.name()),
         Err(p) => assert!(p.errors.iter().any(|e| e.path == path), "{} {path} = {value}: {p:?}", k.name()),
+    }
+}
+
+/// The example with the array at `path` made `len` items long (copies of its first item) is
+/// refused by the item-count rule, naming the array.
+fn refused_items(k: &'static dyn tribod::jobs::kind::DynKind, path: &str, len: usize) {
+    let limits = tribod::jobs::kind::Limits::default();
+    let mut spec = example_with_field(k, path);
+    let array = spec.pointer_mut(path).unwrap();
+    let item = array[0].clone();
+    *array = serde_json::Value::Array(vec![item; len]);
+    match k.prepare(&spec, &limits) {
+        Ok(_) => panic!("{} {path} with {len} items was accepted", k.name()),
+        Err(p) => assert!(p.errors.iter().any(|e| e.path == path && e.message.contains("item")), "{} {path} with {len} items: {p:?}", k.name()),
+    }
+}
+
+/// Each kind's bound examples (the example and the specs that document the fields it leaves
+/// out) are valid specs, so the rules read from them are the rules of accepted requests.
+#[test]
+fn every_bound_example_validates() {
+    let limits = tribod::jobs::kind::Limits::default();
+    for k in tribod::jobs::registry::KINDS.iter() {
+        for (i, spec) in k.bound_examples().iter().enumerate() {
+            if let Err(p) = k.prepare(spec, &limits) {
+                panic!("{} bound example {i}: {p:?}", k.name());
+            }
+        }
     }
 }
 

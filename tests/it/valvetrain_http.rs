@@ -66,7 +66,7 @@ async fn run_up_table_is_served_as_csv() {
     assert!(csv.starts_with("angle_deg,"));
     assert_eq!(csv.lines().count(), 1 + 90);
 
-    // A cycle without a run-up has no such table: 406 naming it.
+    // A cycle without a run-up has no such table: 404 naming it.
     job["spec"]["load"].as_object_mut().unwrap().remove("run_up");
     let res = s.client.post(s.url("/v1/jobs")).header("prefer", "wait=60").json(&job).send().await.unwrap();
     let mut done: Value = res.json().await.unwrap();
@@ -76,7 +76,7 @@ async fn run_up_table_is_served_as_csv() {
     }
     assert_eq!(done["status"], "succeeded", "{done}");
     let res = s.client.get(s.url(&format!("/v1/jobs/{id2}/result?format=csv&table=run_up"))).send().await.unwrap();
-    let p = expect_problem(res, 406, "not_acceptable").await;
+    let p = expect_problem(res, 404, "table_not_found").await;
     assert!(p["detail"].as_str().unwrap().contains("run_up"), "{p}");
     s.stop().await;
 }

@@ -899,7 +899,7 @@ pub fn validate_bearing(spec: &BearingSpec, limits: &Limits, v: &mut Validation,
             v.in_range(&px("/thermal/lubricant/viscosity_100c"), n, 0.5, (lu.iso_vg.unwrap_or(1000) as f64) * 0.999);
         }
         if let Some(c) = &lu.viscosity_curve {
-            v.check(c.len() == 2, &px("/thermal/lubricant/viscosity_curve"), "two points");
+            v.items(&px("/thermal/lubricant/viscosity_curve"), c.len(), 2, Some(2));
             for (i, pt) in c.iter().enumerate() {
                 v.in_range(&px(&format!("/thermal/lubricant/viscosity_curve/{i}/temperature")), pt.temperature, 200.0, 600.0);
                 v.in_range(&px(&format!("/thermal/lubricant/viscosity_curve/{i}/viscosity")), pt.viscosity, 1e-5, 100.0);
@@ -1105,6 +1105,13 @@ impl Kind for BearingKind {
             "profile": {"order": 2, "height": 0.4, "length_fraction": 0.2},
             "grid": {"circumferential": 361, "axial": 181}
         })
+    }
+
+    fn bound_examples() -> Vec<Value> {
+        // The heat balance with a two-point viscosity curve (examples/bearing_thermal.json's case).
+        let curve = json!([{"temperature": 313.15, "viscosity": 0.04}, {"temperature": 373.15, "viscosity": 0.007}]);
+        vec![json!({"geometry": {"radius": 0.05, "length": 0.04, "radial_clearance": 6e-5}, "operating": {"speed_rpm": 3000}, "load": {"force": 8000},
+            "thermal": {"supply_temperature": 313.15, "lubricant": {"viscosity_curve": curve}}, "grid": {"circumferential": 121, "axial": 41}})]
     }
 
     fn outputs() -> &'static [OutputInfo] {

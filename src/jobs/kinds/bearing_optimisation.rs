@@ -100,10 +100,10 @@ pub struct ContinuousSpec {
     /// Run it. Default true.
     pub enabled: bool,
     /// Bounds of ξ; default the range of the height levels.
-    #[serde(skip_serializing_if = "Option::is_none")]
+    #[serde(skip_serializing_if = "Option::is_none")] #[schema(min_items = 2, max_items = 2)]
     pub height: Option<[f64; 2]>,
     /// Bounds of ψ; default the range of the length-fraction levels.
-    #[serde(skip_serializing_if = "Option::is_none")]
+    #[serde(skip_serializing_if = "Option::is_none")] #[schema(min_items = 2, max_items = 2)]
     pub length_fraction: Option<[f64; 2]>,
     /// Simplex evaluations per order on the search grid (5 to 500). Default 40.
     pub evaluations_per_order: usize,
@@ -321,11 +321,11 @@ impl Kind for BearingOptimisation {
         v.check(spec.base.outputs.is_empty(), "/base/outputs", "fields are not produced by an optimisation");
         let n = spec.method.array().levels();
         let f = &spec.factors;
-        v.check(f.order.len() == n, "/factors/order", format!("needs {n} levels for this array"));
-        v.check(f.height.len() == n, "/factors/height", format!("needs {n} levels for this array"));
-        v.check(f.length_fraction.len() == n, "/factors/length_fraction", format!("needs {n} levels for this array"));
+        for (path, len) in [("/factors/order", f.order.len()), ("/factors/height", f.height.len()), ("/factors/length_fraction", f.length_fraction.len())] {
+            v.items(path, len, 2, Some(3)).check(len == n, path, format!("needs {n} levels for this array"));
+        }
         for (i, o) in f.order.iter().enumerate() {
-            v.check((1..=3).contains(o), &format!("/factors/order/{i}"), "must be 1, 2 or 3");
+            v.count_in_range(&format!("/factors/order/{i}"), *o as usize, 1, 3);
         }
         for (i, h) in f.height.iter().enumerate() {
             v.in_range(&format!("/factors/height/{i}"), *h, 0.0, 5.0);

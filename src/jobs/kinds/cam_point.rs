@@ -218,6 +218,14 @@ impl Kind for CamPoint {
         })
     }
 
+    fn bound_examples() -> Vec<Value> {
+        // Asperities from a measured surface (`rough_contact`'s curve and micro-slip map).
+        let (film, pressure) = (json!([1e-7, 2e-7]), json!([2e8, 1e8]));
+        vec![crate::jobs::kind::example_with::<Self>(json!({"asperities": {"plastic_limit": 6e9, "model": "micro_slip",
+            "pressure_gap_curve": {"film": film, "pressure": pressure},
+            "micro_slip_map": {"film": film, "gross_sliding_displacement": [1e-7, 2e-7], "exponent": [3.0, 3.0]}}}))]
+    }
+
     fn validate(spec: &CamPointSpec, limits: &Limits, v: &mut Validation) {
         v.quantity("/load", spec.load, Q::FORCE);
         v.quantity("/reduced_radius", spec.reduced_radius, Q::RADIUS);
@@ -227,7 +235,7 @@ impl Kind for CamPoint {
         v.check(spec.roller.pin_radius > 0.0 && spec.roller.pin_radius < spec.roller.radius, "/roller/pin_radius", "must be > 0 and smaller than the roller radius");
         v.quantity("/roller/inertia", spec.roller.inertia, Q::INERTIA);
         v.check(spec.roller.angular_acceleration.is_finite(), "/roller/angular_acceleration", "must be finite");
-        v.check(!spec.pin_friction.is_empty(), "/pin_friction", "needs at least one coefficient");
+        v.items("/pin_friction", spec.pin_friction.len(), 1, None);
         v.limit("/pin_friction", spec.pin_friction.len(), limits.max_angles, "the number of pin friction values");
         for (i, m) in spec.pin_friction.iter().enumerate() {
             v.in_range(&format!("/pin_friction/{i}"), *m, 0.0, 1.0);

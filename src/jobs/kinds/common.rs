@@ -320,6 +320,10 @@ impl AsperitySpec {
                 v.in_range(&format!("{path}/micro_slip_exponent"), self.micro_slip_exponent, 2.0, 8.0);
             }
             (AsperityModelSpec::MicroSlip, None, Some(m)) => {
+                let rows = Some(crate::physics::friction::micro_slip::MAX_MAP_ROWS);
+                v.items(&format!("{path}/micro_slip_map/film"), m.film.len(), 1, rows);
+                v.items(&format!("{path}/micro_slip_map/gross_sliding_displacement"), m.gross_sliding_displacement.len(), 1, rows);
+                v.items(&format!("{path}/micro_slip_map/exponent"), m.exponent.len(), 1, rows);
                 v.check(
                     is_default_micro_slip_exponent(&self.micro_slip_exponent),
                     &format!("{path}/micro_slip_exponent"),
@@ -343,7 +347,8 @@ impl AsperitySpec {
         }
         if let Some(c) = &self.pressure_gap_curve {
             let at = format!("{path}/pressure_gap_curve");
-            v.check(c.film.len() <= 1000, &format!("{at}/film"), "at most 1000 points");
+            v.items(&format!("{at}/film"), c.film.len(), 2, Some(1000));
+            v.items(&format!("{at}/pressure"), c.pressure.len(), 2, Some(1000));
             if c.film.len() <= 1000 {
                 if let Err(e) = crate::physics::friction::PressureGapCurve::new(&c.film, &c.pressure) {
                     v.check(false, &at, e);
@@ -683,7 +688,7 @@ impl EhlSpec {
         v.count_in_range(&format!("{path}/nodes"), self.nodes, 32, 1 << 16);
         v.limit(&format!("{path}/nodes"), self.nodes, limits.max_grid_nodes, "the number of EHL grid nodes");
         v.in_range(&format!("{path}/tolerance"), self.tolerance, 1e-13, 1e-2);
-        v.check(self.max_iterations >= 1 && self.max_iterations <= 1000, &format!("{path}/max_iterations"), "must be in [1, 1000]");
+        v.count_in_range(&format!("{path}/max_iterations"), self.max_iterations as usize, 1, 1000);
         v.in_range(&format!("{path}/auto_tolerance"), self.auto_tolerance, 0.0, 10.0);
         if let Some(t) = &self.thermal {
             t.validate(&format!("{path}/thermal"), v);

@@ -229,6 +229,11 @@ impl Kind for Sweep {
         })
     }
 
+    fn bound_examples() -> Vec<Value> {
+        // Listed values instead of a linspace.
+        vec![crate::jobs::kind::example_with::<Self>(json!({"parameters": [{"path": "/load", "values": [1000.0, 5000.0]}]}))]
+    }
+
     fn validate(spec: &SweepSpec, limits: &Limits, v: &mut Validation) {
         let inner = super::case_kind(&spec.kind);
         match inner {
@@ -243,13 +248,13 @@ impl Kind for Sweep {
             }
             Some(_) => {}
         }
-        v.count_in_range("/parameters", spec.parameters.len(), 1, 8);
+        v.items("/parameters", spec.parameters.len(), 1, Some(8));
         for (i, p) in spec.parameters.iter().enumerate() {
             let at = format!("/parameters/{i}");
             v.check(p.path.starts_with('/'), &format!("{at}/path"), "must be a JSON pointer starting with '/'");
             match (&p.values, &p.linspace) {
                 (Some(vals), None) => {
-                    v.check(!vals.is_empty(), &format!("{at}/values"), "must not be empty");
+                    v.items(&format!("{at}/values"), vals.len(), 1, None);
                 }
                 (None, Some(l)) => {
                     v.check(l.start.is_finite() && l.stop.is_finite(), &format!("{at}/linspace"), "start and stop must be finite");

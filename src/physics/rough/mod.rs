@@ -43,7 +43,7 @@ use super::contact::{contact_modulus, Elastic};
 use super::SolveError;
 
 /// Largest grid side (nodes per direction) the solvers accept: a 1024×1024 grid holds about
-/// 16 arrays of 8 MiB (≈ 130 MiB with the FFT buffers).
+/// 18 arrays of 8 MiB (≈ 150 MiB with the FFT buffers).
 pub const MAX_GRID_SIDE: usize = 1024;
 
 /// The two elastic bodies of the rough contact.

@@ -58,6 +58,30 @@ impl Kind for CamCycle {
         })
     }
 
+    fn bound_examples() -> Vec<Value> {
+        // The profiles output, the other cam profiles (seed 004's arcs, a lift table) and loads.
+        let profile = |p: Value| json!({"cam": {"profile": p}});
+        let rise_return = json!({"base_radius": null, "lift": null, "rise_start_deg": null, "rise_deg": null, "return_deg": null, "law": null});
+        let with = |p: Value| {
+            let mut patch = rise_return.clone();
+            crate::jobs::kind::merge_patch(&mut patch, p);
+            crate::jobs::kind::example_with::<Self>(profile(patch))
+        };
+        vec![
+            crate::jobs::kind::example_with::<Self>(json!({"fidelity": "auto", "outputs": ["kinematics", "loads", "contact", "film", "profiles"], "profile_angles_deg": [0.0, 143.8]})),
+            with(json!({"type": "multi_arc", "arcs": [{"radius": 0.0215, "angle_deg": 116.0}, {"radius": 0.1533, "angle_deg": 62.75}, {"radius": 0.0315, "angle_deg": 1.25},
+                {"radius": 0.0315, "angle_deg": 1.25}, {"radius": 0.1533, "angle_deg": 62.75}, {"radius": 0.0215, "angle_deg": 116.0}]})),
+            with(json!({"type": "symmetric_arcs", "base_radius": 0.0215, "base_angle_deg": 232.0, "flanks": [{"radius": 0.1533, "angle_deg": 7.2}]})),
+            with(json!({"type": "table", "base_radius": 0.018, "angle_deg": [0.0, 90.0, 180.0, 270.0], "lift": [0.0, 0.004, 0.008, 0.004]})),
+            crate::jobs::kind::example_with::<Self>(json!({"load": {"external": {"angle_deg": [0.0, 180.0], "force": [0.0, 100.0]}}})),
+            // The finite-length EHL of a roller (seed 000's finite cycle, coarser).
+            crate::jobs::kind::example_with::<Self>(json!({"follower": {"type": "roller", "radius": 0.0255, "length": 0.012, "pin_radius": 0.016, "pin": {"model": "hydrodynamic"}},
+                "fidelity": "accurate", "angles": 8, "ehl": {"geometry": "finite", "nx": 33, "ny": 65, "grid_tolerance": 0.08, "max_iterations": 60}})),
+            crate::jobs::kind::example_with::<Self>(json!({"load": {"type": "spectrum", "spring_preload": null, "spring_stiffness": null, "moving_mass": null,
+                "angle_deg": [0.0, 90.0, 180.0, 270.0], "load": [500.0, 800.0, 1000.0, 800.0]}})),
+        ]
+    }
+
     fn outputs() -> &'static [OutputInfo] {
         &[
             OutputInfo { name: "kinematics", description: "lift, velocity, acceleration, jerk, pressure angle, curvature, surface velocities (always computed)" },
@@ -92,9 +116,9 @@ impl Kind for CamCycle {
         if spec.outputs.contains(&CamOutput::Profiles) {
             v.check(spec.fidelity != Fidelity::Fast, "/outputs", "profiles need fidelity accurate or auto (the closed forms have none)");
             v.check(!spec.profile_angles_deg.is_empty(), "/profile_angles_deg", "the profiles output needs at least one angle");
-            v.check(spec.profile_angles_deg.len() <= 64, "/profile_angles_deg", "at most 64 profile angles");
             v.check(spec.profile_angles_deg.iter().all(|a| a.is_finite()), "/profile_angles_deg", "angles must be finite");
         }
+        v.items("/profile_angles_deg", spec.profile_angles_deg.len(), 0, Some(64));
         // Cam.
         let base = match &spec.cam.profile {
             ProfileSpec::RiseReturn { base_radius, lift, rise_start_deg, rise_deg, top_dwell_deg, return_deg, .. } => {
@@ -111,7 +135,7 @@ impl Kind for CamCycle {
                 Some(*base_radius)
             }
             ProfileSpec::MultiArc { arcs } => {
-                v.check(arcs.len() >= 2 && arcs.len() <= 1000, "/cam/profile/arcs", "needs 2 to 1000 arcs");
+                v.items("/cam/profile/arcs", arcs.len(), 2, Some(1000));
                 for (i, a) in arcs.iter().enumerate() {
                     v.quantity(&format!("/cam/profile/arcs/{i}/radius"), a.radius, Q::RADIUS);
                     v.in_range(&format!("/cam/profile/arcs/{i}/angle_deg"), a.angle_deg, 1e-9, 360.0);
@@ -120,7 +144,7 @@ impl Kind for CamCycle {
             }
             ProfileSpec::SymmetricArcs { base_radius, base_angle_deg, flanks } => {
                 v.in_range("/cam/profile/base_angle_deg", *base_angle_deg, 1e-9, 360.0);
-                v.check(flanks.len() <= 1000, "/cam/profile/flanks", "at most 1000 flank arcs");
+                v.items("/cam/profile/flanks", flanks.len(), 0, Some(1000));
                 for (i, a) in flanks.iter().enumerate() {
                     v.quantity(&format!("/cam/profile/flanks/{i}/radius"), a.radius, Q::RADIUS);
                     v.in_range(&format!("/cam/profile/flanks/{i}/angle_deg"), a.angle_deg, 1e-9, 360.0);
@@ -129,7 +153,7 @@ impl Kind for CamCycle {
             }
             ProfileSpec::Table { base_radius, angle_deg, lift } => {
                 v.check(angle_deg.len() == lift.len(), "/cam/profile/lift", "must have as many entries as angle_deg");
-                v.check(angle_deg.len() >= 4, "/cam/profile/angle_deg", "needs at least 4 points");
+                v.items("/cam/profile/angle_deg", angle_deg.len(), 4, None);
                 v.limit("/cam/profile/angle_deg", angle_deg.len(), limits.max_angles, "the number of table points");
                 v.check(
                     angle_deg.windows(2).all(|w| w[1] > w[0]) && angle_deg.last().zip(angle_deg.first()).is_none_or(|(l, f)| l - f < 360.0),
@@ -342,7 +366,9 @@ fn validate_dynamic(spec: &CamCycleSpec, d: &DynamicLoadSpec, limits: &Limits, v
 }
 
 fn check_table(v: &mut Validation, path: &str, angles: &[f64], values: &[f64], name: &str, limits: &Limits) {
-    v.check(!angles.is_empty() && angles.len() == values.len(), &format!("{path}/{name}"), "must be non-empty and as long as angle_deg");
+    v.items(&format!("{path}/angle_deg"), angles.len(), 1, None);
+    v.items(&format!("{path}/{name}"), values.len(), 1, None);
+    v.check(angles.len() == values.len(), &format!("{path}/{name}"), "must be as long as angle_deg");
     v.limit(&format!("{path}/angle_deg"), angles.len(), limits.max_angles, "the number of table points");
     v.check(angles.iter().chain(values).all(|x| x.is_finite()), &format!("{path}/angle_deg"), "entries must be finite numbers");
     let mut wrapped: Vec<f64> = angles.iter().map(|a| a.rem_euclid(360.0)).collect();
