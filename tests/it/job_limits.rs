@@ -233,7 +233,7 @@ async fn a_tiny_job_does_not_wait_behind_a_backlog_after_a_restart() {
     let s = start_in(dir, cfg.clone()).await;
     let mut heavy = Vec::new();
     for i in 0..6 {
-        let res: Value = s.post_job(&sleep_job(0.4, 700 + i)).await.json().await.unwrap();
+        let res: Value = s.post_job(&sleep_job(2.0, 700 + i)).await.json().await.unwrap();
         heavy.push(res["id"].as_str().unwrap().to_string());
     }
     let dir = s.stop().await;
