@@ -2,7 +2,6 @@
 //! `tribod run` all report failures as a [`Problem`]; its `code` comes from one table
 //! ([`ErrorCode`]), or from a solver's physical-failure code (see [`Problem::from_solve_error`]).
 
-use crate::physics::{Interrupt, SolveError};
 use serde::{Deserialize, Serialize};
 use utoipa::ToSchema;
 
@@ -153,7 +152,8 @@ impl Problem {
         Self::with_code(code.as_str(), status, title, detail)
     }
 
-    fn with_code(code: &str, status: u16, title: &str, detail: impl Into<String>) -> Self {
+    /// A problem with a code of its own (a solver's physical failure), not one of [`ErrorCode`].
+    pub fn with_code(code: &str, status: u16, title: &str, detail: impl Into<String>) -> Self {
         Problem {
             type_uri: format!("urn:tribod:problem:{code}"),
             title: title.to_string(),
@@ -175,39 +175,6 @@ impl Problem {
             e.path = format!("{prefix}{}", e.path);
         }
         self
-    }
-
-    /// The problem a failed solve stores with its job.
-    pub fn from_solve_error(err: &SolveError) -> Self {
-        match err {
-            // A spec path (the kind mapped the solver's field) becomes the field error's path;
-            // an unmapped solver field is named in the detail.
-            SolveError::InvalidInput { field, message } if field.starts_with('/') => Problem::new(
-                ErrorCode::InvalidSpec,
-                format!("the solver rejected the spec: {message}"),
-            )
-            .with_errors(vec![FieldError::new(field.clone(), message.clone())]),
-            SolveError::InvalidInput { field, message } => Problem::new(
-                ErrorCode::InvalidSpec,
-                if field.is_empty() {
-                    format!("the solver rejected the spec: {message}")
-                } else {
-                    format!("the solver rejected the spec (its input {field}): {message}")
-                },
-            ),
-            SolveError::NotConverged { .. } => Problem::new(ErrorCode::NotConverged, err.to_string()),
-            SolveError::Physical { code, message } => {
-                let (status, title) = ErrorCode::NonPhysical.describe();
-                Problem::with_code(code.code(), status, title, message.clone())
-            }
-            SolveError::NonFinite { .. } => Problem::new(ErrorCode::InternalError, err.to_string()),
-            SolveError::Interrupted(Interrupt::TimedOut) => {
-                Problem::new(ErrorCode::Timeout, "the job ran past its time limit and was stopped")
-            }
-            SolveError::Interrupted(i) => {
-                Problem::new(ErrorCode::Interrupted, format!("the job was interrupted ({i:?})"))
-            }
-        }
     }
 }
 

@@ -185,11 +185,6 @@ pub fn app(queue: Queue, config: &ApiConfig) -> axum::Router {
     router
 }
 
-/// A `404 route_not_found` problem (for routes outside the API, e.g. a missing docs file).
-pub fn not_found_response(detail: &str) -> axum::response::Response {
-    ApiError::new(ErrorCode::RouteNotFound, detail.to_string()).into_response()
-}
-
 /// The operations routes alone (`/healthz`, `/readyz`, `/metrics`), for a `tribod worker`'s
 /// health port: probes and scrapes of a compute node that serves no API.
 pub fn operations_app(queue: Queue) -> axum::Router {

@@ -1,6 +1,7 @@
 //! Job kinds (spec → validated → solved → result) and the machinery that runs them.
 
 pub mod cost;
+mod failure;
 pub mod idempotency;
 pub mod kind;
 pub mod kinds;

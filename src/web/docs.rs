@@ -28,9 +28,17 @@ fn serve(file: &str) -> Response {
             }
             res
         }
-        Ok(None) => crate::api::not_found_response("no such file of the API docs"),
+        Ok(None) => not_found("no such file of the API docs"),
         Err(e) => (StatusCode::INTERNAL_SERVER_ERROR, e.to_string()).into_response(),
     }
+}
+
+/// A `404 route_not_found` problem (as the API answers an unknown route).
+fn not_found(detail: &str) -> Response {
+    let problem = crate::problem::Problem::new(crate::problem::ErrorCode::RouteNotFound, detail);
+    let mut res = (StatusCode::NOT_FOUND, serde_json::to_vec(&problem).unwrap_or_default()).into_response();
+    res.headers_mut().insert(header::CONTENT_TYPE, HeaderValue::from_static("application/problem+json"));
+    res
 }
 
 /// The docs page.

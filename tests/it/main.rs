@@ -20,6 +20,7 @@ mod ehl_2d_fields;
 mod ehl_2d_transient;
 mod examples_run;
 mod house;
+mod house_plan;
 mod http_api;
 mod job_limits;
 mod journal_dynamics;
