@@ -9,6 +9,7 @@ pub mod quantity;
 pub mod queue;
 pub mod registry;
 pub mod runner;
+mod schemas;
 pub mod table;
 
 pub use cost::{Cost, Estimate};

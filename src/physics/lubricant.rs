@@ -2,7 +2,6 @@
 //! density (Dowson–Higginson), all in SI units (Pa·s, Pa, K, kg/m³).
 
 use serde::{Deserialize, Serialize};
-use utoipa::ToSchema;
 
 /// Roelands' pressure constant `p_r = 1/A2 = 1.96e8 Pa` (seed 000 eq. 4: `A2 = 5.1e-9 1/Pa`).
 pub const ROELANDS_PRESSURE: f64 = 1.96e8;
@@ -15,7 +14,7 @@ pub const DH_C2: f64 = 1.7e-9;
 pub const DH_C3: f64 = 6.5e-4;
 
 /// Pressure–viscosity law.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize, ToSchema)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
 #[serde(rename_all = "snake_case")]
 pub enum ViscosityModel {
     /// Barus: `η = η0 exp(α p − β (T − T0))`. Overestimates viscosity above ≈ 0.5 GPa.
@@ -28,7 +27,7 @@ pub enum ViscosityModel {
 }
 
 /// Density law.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize, ToSchema)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
 #[serde(rename_all = "snake_case")]
 pub enum DensityModel {
     /// Constant density.

@@ -3,10 +3,9 @@
 //! (argmin's observer / termination-reason split, without its generics).
 
 use serde::{Deserialize, Serialize};
-use utoipa::ToSchema;
 
 /// Why a solver stopped.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, ToSchema)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "snake_case")]
 pub enum Termination {
     /// A closed-form evaluation: no iteration was needed.
@@ -19,7 +18,7 @@ pub enum Termination {
 }
 
 /// How a solver reached its answer.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, ToSchema)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct Convergence {
     /// Iterations (or sweeps, or Newton steps: the solver's own unit) performed.
     pub iterations: u32,

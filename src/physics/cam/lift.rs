@@ -15,10 +15,9 @@
 use super::jet::Jet;
 use serde::{Deserialize, Serialize};
 use std::f64::consts::{PI, TAU};
-use utoipa::ToSchema;
 
 /// A normalised rise law.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, ToSchema)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "snake_case")]
 pub enum LiftLaw {
     /// Cycloidal: continuous acceleration, zero at both ends (seed 003's cam).

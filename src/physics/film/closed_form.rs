@@ -18,10 +18,9 @@ use crate::physics::contact::{hertz_line, hertz_point};
 use crate::physics::friction::TractionNode;
 use crate::physics::{ensure_finite, SolveError};
 use serde::{Deserialize, Serialize};
-use utoipa::ToSchema;
 
 /// Film formula of a line contact (point contacts always use Hamrock–Dowson).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize, ToSchema)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
 #[serde(rename_all = "snake_case")]
 pub enum FilmFormula {
     /// Pan & Hamrock (1989): central and minimum film.

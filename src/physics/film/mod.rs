@@ -60,7 +60,6 @@ use crate::physics::friction::{
 use crate::physics::lubricant::{Lubricant, ViscosityLaw};
 use crate::physics::SolveError;
 use serde::{Deserialize, Serialize};
-use utoipa::ToSchema;
 
 /// Geometry of the contact at one point.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -149,7 +148,7 @@ impl SmoothContact {
 /// Which model produced a film solution. The `*_mixed` variants are the same models with rough
 /// surfaces sharing the load inside the solution ([`mixed`]): their asperity load is part of the
 /// load balance (numerical: of the elastic deflection too), not evaluated afterwards.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, ToSchema)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "snake_case")]
 pub enum FilmModelId {
     PanHamrock,
@@ -386,7 +385,7 @@ pub fn nodal_traction_local(film: &FilmSolution, input: &ContactInput, sliding: 
 }
 
 /// Model fidelity requested by a spec.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize, ToSchema)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
 #[serde(rename_all = "snake_case")]
 pub enum Fidelity {
     /// Closed forms at every point.

@@ -230,7 +230,7 @@ fn gauss_legendre_32() -> &'static ([f64; 32], [f64; 32]) {
 pub const MICRO_SLIP_GROSS_SHARE: f64 = 0.99;
 
 /// How the roller runs on the cam at one instant (seed 001 §"Tangential contact", eq. 15–23).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize, serde::Deserialize, utoipa::ToSchema)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
 #[serde(rename_all = "snake_case")]
 pub enum SlipRegime {
     /// No sliding: the asperities stick (`u_s = 0`), or in a full film the slide-to-roll ratio

@@ -1,0 +1,155 @@
+//! OpenAPI schemas of the physics types that specs and results carry as they are (a lift law, a
+//! film formula, a convergence report): the transport description lives here, with the spec and
+//! result types, so that `physics` knows nothing of `utoipa`. Each is a documented mirror
+//! deriving `ToSchema` under the physics type's name; an exhaustive match keeps its variants
+//! (fields) those of the physics type, and a test that they serialise alike.
+
+use crate::physics::cam::LiftLaw;
+use crate::physics::film::{Fidelity, FilmFormula, FilmModelId};
+use crate::physics::friction::SlipRegime;
+use crate::physics::lubricant::{DensityModel, ViscosityModel};
+use crate::physics::{Convergence, Termination};
+use std::borrow::Cow;
+use utoipa::openapi::{schema::Schema, RefOr};
+
+/// `ToSchema` for `$phys` by the mirror `$mirror`, named `$name` in the document.
+macro_rules! schema_by {
+    ($phys:ty, $mirror:ty) => {
+        impl utoipa::PartialSchema for $phys {
+            fn schema() -> RefOr<Schema> {
+                <$mirror as utoipa::PartialSchema>::schema()
+            }
+        }
+        impl utoipa::ToSchema for $phys {
+            fn name() -> Cow<'static, str> {
+                <$mirror as utoipa::ToSchema>::name()
+            }
+            fn schemas(schemas: &mut Vec<(String, RefOr<Schema>)>) {
+                <$mirror as utoipa::ToSchema>::schemas(schemas)
+            }
+        }
+    };
+}
+
+/// A unit enum's mirror: the same variants (checked by an exhaustive match) and serde names.
+macro_rules! enum_mirror {
+    ($(#[$doc:meta])* $mirror:ident as $name:ident for $phys:ident { $($(#[$vattr:meta])* $variant:ident),* $(,)? }) => {
+        $(#[$doc])*
+        #[derive(utoipa::ToSchema, serde::Serialize)]
+        #[schema(as = $name)]
+        #[serde(rename_all = "snake_case")]
+        #[allow(dead_code)]
+        enum $mirror {
+            $($(#[$vattr])* $variant),*
+        }
+        impl From<$phys> for $mirror {
+            fn from(x: $phys) -> Self {
+                match x {
+                    $($phys::$variant => $mirror::$variant),*
+                }
+            }
+        }
+        impl $mirror {
+            #[cfg(test)]
+            fn agrees() -> bool {
+                [$($phys::$variant),*].into_iter().all(|x| serde_json::to_value(x).ok() == serde_json::to_value($mirror::from(x)).ok())
+            }
+        }
+        schema_by!($phys, $mirror);
+    };
+}
+
+enum_mirror! {
+    /// Why a solver stopped.
+    TerminationDoc as Termination for Termination { ClosedForm, Converged, Stalled }
+}
+
+enum_mirror! {
+    /// Model fidelity requested by a spec.
+    FidelityDoc as Fidelity for Fidelity { Fast, Accurate, Auto }
+}
+
+enum_mirror! {
+    /// Film formula of a line contact (point contacts always use Hamrock–Dowson).
+    FilmFormulaDoc as FilmFormula for FilmFormula { PanHamrock, DowsonHigginson, Seed003 }
+}
+
+enum_mirror! {
+    /// Which model produced a film solution. The `*_mixed` variants are the same models with rough
+    /// surfaces sharing the load inside the solution ([`mixed`]): their asperity load is part of the
+    /// load balance (numerical: of the elastic deflection too), not evaluated afterwards.
+    FilmModelIdDoc as FilmModelId for FilmModelId {
+        PanHamrock, DowsonHigginson, Seed003, HamrockDowson, Numerical, Thermal, ThermalCarried, PanHamrockMixed,
+        DowsonHigginsonMixed, Seed003Mixed, HamrockDowsonMixed, NumericalMixed, Finite,
+    }
+}
+
+enum_mirror! {
+    /// A normalised rise law.
+    LiftLawDoc as LiftLaw for LiftLaw {
+        Cycloidal,
+        #[serde(rename = "polynomial_345")]
+        Polynomial345,
+        #[serde(rename = "polynomial_4567")]
+        Polynomial4567,
+        SimpleHarmonic,
+    }
+}
+
+enum_mirror! {
+    /// Pressure–viscosity law.
+    ViscosityModelDoc as ViscosityModel for ViscosityModel { Barus, Roelands }
+}
+
+enum_mirror! {
+    /// Density law.
+    DensityModelDoc as DensityModel for DensityModel { Incompressible, DowsonHigginson }
+}
+
+enum_mirror! {
+    /// How the roller runs on the cam at one instant (seed 001 §"Tangential contact", eq. 15–23).
+    SlipRegimeDoc as SlipRegime for SlipRegime { Rolling, MicroSlip, GrossSliding }
+}
+
+/// How a solver reached its answer.
+#[derive(utoipa::ToSchema)]
+#[schema(as = Convergence)]
+#[allow(dead_code)]
+struct ConvergenceDoc {
+    /// Iterations (or sweeps, or Newton steps: the solver's own unit) performed.
+    iterations: u32,
+    /// Final residual, in the solver's own (documented, usually relative) norm.
+    residual: f64,
+    /// Tolerance the residual was compared against.
+    tolerance: f64,
+    /// Why the solver stopped.
+    termination: Termination,
+}
+
+impl From<Convergence> for ConvergenceDoc {
+    fn from(c: Convergence) -> Self {
+        // Exhaustive: a new field of the physics type must be documented here.
+        let Convergence { iterations, residual, tolerance, termination } = c;
+        ConvergenceDoc { iterations, residual, tolerance, termination }
+    }
+}
+
+schema_by!(Convergence, ConvergenceDoc);
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn mirrors_serialise_as_the_physics_types() {
+        assert!(TerminationDoc::agrees());
+        assert!(FidelityDoc::agrees());
+        assert!(FilmFormulaDoc::agrees());
+        assert!(FilmModelIdDoc::agrees());
+        assert!(LiftLawDoc::agrees());
+        assert!(ViscosityModelDoc::agrees());
+        assert!(DensityModelDoc::agrees());
+        assert!(SlipRegimeDoc::agrees());
+        let _ = ConvergenceDoc::from(Convergence::closed_form());
+    }
+}
