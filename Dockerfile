@@ -4,6 +4,7 @@ WORKDIR /src
 COPY Cargo.toml Cargo.lock build.rs ./
 COPY migrations migrations
 COPY src src
+COPY crates crates
 COPY benches benches
 RUN cargo build --release --locked --bin tribod
 

@@ -6,7 +6,7 @@
 pub mod api;
 pub mod jobs;
 pub mod metrics;
-pub mod physics;
+pub use tribod_physics as physics;
 pub mod plots;
 pub mod problem;
 pub mod server;

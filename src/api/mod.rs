@@ -79,7 +79,7 @@ pub struct AppState {
         (name = "kinds", description = "What the service can compute"),
         (name = "operations", description = "Health, readiness, metrics and this document"),
     ),
-    components(schemas(crate::problem::Problem, crate::problem::FieldError, crate::jobs::Convergence, crate::jobs::Termination)),
+    components(schemas(crate::problem::Problem, crate::problem::FieldError, crate::jobs::schemas::ConvergenceDoc, crate::jobs::schemas::TerminationDoc)),
     modifiers(&BearerScheme),
 )]
 struct ApiDoc;

@@ -9,7 +9,7 @@ pub mod quantity;
 pub mod queue;
 pub mod registry;
 pub mod runner;
-mod schemas;
+pub(crate) mod schemas;
 pub mod table;
 
 pub use cost::{Cost, Estimate};

@@ -1,35 +1,15 @@
 //! OpenAPI schemas of the physics types that specs and results carry as they are (a lift law, a
 //! film formula, a convergence report): the transport description lives here, with the spec and
-//! result types, so that `physics` knows nothing of `utoipa`. Each is a documented mirror
-//! deriving `ToSchema` under the physics type's name; an exhaustive match keeps its variants
-//! (fields) those of the physics type, and a test that they serialise alike.
+//! result types, so that the physics crate knows nothing of `utoipa`. Each is a documented mirror
+//! deriving `ToSchema` under the physics type's name, named at each field that carries the physics
+//! type (`#[schema(value_type = FidelityDoc)]`); an exhaustive match keeps its variants (fields)
+//! those of the physics type, and a test that they serialise alike.
 
 use crate::physics::cam::LiftLaw;
 use crate::physics::film::{Fidelity, FilmFormula, FilmModelId};
 use crate::physics::friction::SlipRegime;
 use crate::physics::lubricant::{DensityModel, ViscosityModel};
 use crate::physics::{Convergence, Termination};
-use std::borrow::Cow;
-use utoipa::openapi::{schema::Schema, RefOr};
-
-/// `ToSchema` for `$phys` by the mirror `$mirror`, named `$name` in the document.
-macro_rules! schema_by {
-    ($phys:ty, $mirror:ty) => {
-        impl utoipa::PartialSchema for $phys {
-            fn schema() -> RefOr<Schema> {
-                <$mirror as utoipa::PartialSchema>::schema()
-            }
-        }
-        impl utoipa::ToSchema for $phys {
-            fn name() -> Cow<'static, str> {
-                <$mirror as utoipa::ToSchema>::name()
-            }
-            fn schemas(schemas: &mut Vec<(String, RefOr<Schema>)>) {
-                <$mirror as utoipa::ToSchema>::schemas(schemas)
-            }
-        }
-    };
-}
 
 /// A unit enum's mirror: the same variants (checked by an exhaustive match) and serde names.
 macro_rules! enum_mirror {
@@ -39,7 +19,7 @@ macro_rules! enum_mirror {
         #[schema(as = $name)]
         #[serde(rename_all = "snake_case")]
         #[allow(dead_code)]
-        enum $mirror {
+        pub(crate) enum $mirror {
             $($(#[$vattr])* $variant),*
         }
         impl From<$phys> for $mirror {
@@ -55,7 +35,6 @@ macro_rules! enum_mirror {
                 [$($phys::$variant),*].into_iter().all(|x| serde_json::to_value(x).ok() == serde_json::to_value($mirror::from(x)).ok())
             }
         }
-        schema_by!($phys, $mirror);
     };
 }
 
@@ -115,7 +94,7 @@ enum_mirror! {
 #[derive(utoipa::ToSchema)]
 #[schema(as = Convergence)]
 #[allow(dead_code)]
-struct ConvergenceDoc {
+pub(crate) struct ConvergenceDoc {
     /// Iterations (or sweeps, or Newton steps: the solver's own unit) performed.
     iterations: u32,
     /// Final residual, in the solver's own (documented, usually relative) norm.
@@ -123,18 +102,16 @@ struct ConvergenceDoc {
     /// Tolerance the residual was compared against.
     tolerance: f64,
     /// Why the solver stopped.
-    termination: Termination,
+    termination: TerminationDoc,
 }
 
 impl From<Convergence> for ConvergenceDoc {
     fn from(c: Convergence) -> Self {
         // Exhaustive: a new field of the physics type must be documented here.
         let Convergence { iterations, residual, tolerance, termination } = c;
-        ConvergenceDoc { iterations, residual, tolerance, termination }
+        ConvergenceDoc { iterations, residual, tolerance, termination: termination.into() }
     }
 }
-
-schema_by!(Convergence, ConvergenceDoc);
 
 #[cfg(test)]
 mod tests {

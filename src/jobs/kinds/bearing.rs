@@ -516,6 +516,7 @@ pub struct DynamicCoefficientsResult {
     #[serde(skip_serializing_if = "Option::is_none")]
     pub threshold_speed_rpm: Option<f64>,
     /// The four linear solves: CG iterations, largest relative residual, tolerance.
+    #[schema(value_type = crate::jobs::schemas::ConvergenceDoc)]
     pub convergence: Convergence,
 }
 
@@ -549,6 +550,7 @@ pub struct MomentCoefficientsResult {
     #[serde(skip_serializing_if = "Option::is_none")]
     pub damping_dimensionless: Option<Vec<Vec<f64>>>,
     /// The four adjoint linear solves: CG iterations, largest relative residual, tolerance.
+    #[schema(value_type = crate::jobs::schemas::ConvergenceDoc)]
     pub convergence: Convergence,
 }
 
@@ -579,6 +581,7 @@ pub struct BearingThermalResult {
     /// Supply oil needed: `Q_s + (1 − κ)(Q − Q_s)`, m³/s.
     pub supply_flow: f64,
     /// The balance: bearing analyses, |T_eff − T| in K, tolerance.
+    #[schema(value_type = crate::jobs::schemas::ConvergenceDoc)]
     pub convergence: Convergence,
 }
 
@@ -660,6 +663,7 @@ pub struct BearingResult {
     #[serde(skip_serializing_if = "Option::is_none")]
     pub power_loss: Option<f64>,
     /// Load balance (or attitude search) on the finest grid: iterations, relative load residual.
+    #[schema(value_type = crate::jobs::schemas::ConvergenceDoc)]
     pub convergence: Convergence,
     pub pressure_convergence: PressureConvergence,
     /// The nested grid sequence, coarsest first.

@@ -236,6 +236,7 @@ pub struct OptimisationResult {
     pub continuous: Option<Continuous>,
     /// Bearing analyses in total.
     pub evaluations: usize,
+    #[schema(value_type = crate::jobs::schemas::ConvergenceDoc)]
     pub convergence: Convergence,
 }
 

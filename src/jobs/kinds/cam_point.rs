@@ -88,6 +88,7 @@ pub struct CamPointSpec {
     /// Film model: `fast` (closed form, default), `accurate` (numerical line-contact EHL, steady),
     /// `auto` (the closed form where its estimated error is within `ehl.auto_tolerance`).
     #[serde(default)]
+    #[schema(value_type = crate::jobs::schemas::FidelityDoc)]
     pub fidelity: Fidelity,
     /// Numerical EHL options (`accurate`, `auto`).
     #[serde(default)]
@@ -120,8 +121,10 @@ pub struct PointRow {
     /// `rolling` (the asperities stick, or a full film below 1 % SRR), `micro_slip` (partial
     /// slip of the asperity contact), `gross_sliding` (the asperities slide, or a full film at
     /// ≥ 1 % SRR).
+    #[schema(value_type = crate::jobs::schemas::SlipRegimeDoc)]
     pub slip_regime: SlipRegime,
     /// Film model that ran for this row.
+    #[schema(value_type = crate::jobs::schemas::FilmModelIdDoc)]
     pub model: FilmModelId,
 }
 
@@ -188,12 +191,15 @@ pub struct PointSummary {
 /// Result of a `cam_point` job.
 #[derive(Debug, Clone, PartialEq, Serialize, ToSchema)]
 pub struct CamPointResult {
+    #[schema(value_type = crate::jobs::schemas::FidelityDoc)]
     pub fidelity_used: Fidelity,
+    #[schema(value_type = crate::jobs::schemas::FilmModelIdDoc)]
     pub film_model: FilmModelId,
     /// E*, Pa.
     pub contact_modulus: f64,
     pub rows: Vec<PointRow>,
     pub summary: PointSummary,
+    #[schema(value_type = crate::jobs::schemas::ConvergenceDoc)]
     pub convergence: Convergence,
 }
 

@@ -86,9 +86,11 @@ pub struct LubricantSpec {
     pub density: f64,
     /// `roelands` (default) or `barus`.
     #[serde(default)]
+    #[schema(value_type = crate::jobs::schemas::ViscosityModelDoc)]
     pub viscosity_model: ViscosityModel,
     /// `dowson_higginson` (default) or `incompressible`.
     #[serde(default)]
+    #[schema(value_type = crate::jobs::schemas::DensityModelDoc)]
     pub density_model: DensityModel,
 }
 
@@ -419,6 +421,7 @@ pub struct FilmSpec {
     /// Line-contact formula: `pan_hamrock` (default), `dowson_higginson` or `seed003`
     /// (seed 003 eq. 17–18). Point contacts (spherical tappet) always use Hamrock–Dowson.
     #[serde(default)]
+    #[schema(value_type = crate::jobs::schemas::FilmFormulaDoc)]
     pub formula: FilmFormula,
     /// Seed 003's squeeze term (only with `formula: seed003`). Default false.
     #[serde(default)]

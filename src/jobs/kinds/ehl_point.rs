@@ -217,6 +217,7 @@ pub struct ThermalResult {
     /// reduction `central_film / isothermal_central_film`).
     pub isothermal_central_film: f64,
     /// Coupling iterations (energy ↔ Reynolds) and the last relative change.
+    #[schema(value_type = crate::jobs::schemas::ConvergenceDoc)]
     pub convergence: Convergence,
 }
 
@@ -334,6 +335,7 @@ pub struct EhlPointResult {
     /// `extrapolation: none`, with the thermal model, or when the coarse grid did not converge).
     pub extrapolated: bool,
     /// Newton steps (all grid levels) and the final relative residual.
+    #[schema(value_type = crate::jobs::schemas::ConvergenceDoc)]
     pub convergence: Convergence,
     /// Pressure and film along the rolling direction (2-D: along the centre line `y = 0`).
     #[serde(skip_serializing_if = "Option::is_none")]

@@ -184,6 +184,7 @@ pub struct HertzResult {
     pub poisson_ratio_used: f64,
     #[serde(skip_serializing_if = "Option::is_none")]
     pub stress_profile: Option<StressProfile>,
+    #[schema(value_type = crate::jobs::schemas::ConvergenceDoc)]
     pub convergence: Convergence,
 }
 

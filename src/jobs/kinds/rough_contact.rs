@@ -146,6 +146,7 @@ pub struct RoughContactResult {
     /// Paste into `asperities.micro_slip_map` (with `friction_limit`).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub micro_slip_map: Option<GapMap>,
+    #[schema(value_type = crate::jobs::schemas::ConvergenceDoc)]
     pub convergence: Convergence,
 }
 

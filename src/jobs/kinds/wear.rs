@@ -320,6 +320,7 @@ pub struct WearSeries {
     pub final_film_min: Option<Vec<f64>>,
     /// Film model that ran at each angle on the worn profile (fidelity accurate/auto).
     #[serde(skip_serializing_if = "Option::is_none")]
+    #[schema(value_type = Option<Vec<crate::jobs::schemas::FilmModelIdDoc>>)]
     pub film_model: Option<Vec<FilmModelId>>,
 }
 
@@ -480,10 +481,12 @@ pub struct WearSummary {
 pub struct WearResult {
     pub model: WearModel,
     /// Fidelity requested (per-model counts: `summary.fidelity_used`).
+    #[schema(value_type = crate::jobs::schemas::FidelityDoc)]
     pub fidelity_used: Fidelity,
     /// Film model of the cycles (when a film was computed and one model ran at every angle;
     /// absent when `auto` mixed models or a point contact kept the closed form).
     #[serde(skip_serializing_if = "Option::is_none")]
+    #[schema(value_type = Option<crate::jobs::schemas::FilmModelIdDoc>)]
     pub film_model: Option<FilmModelId>,
     /// Cam wear coefficient used, m³/(N·m).
     #[serde(skip_serializing_if = "Option::is_none")]
@@ -512,6 +515,7 @@ pub struct WearResult {
     pub snapshots: Option<Vec<WearSnapshot>>,
     pub summary: WearSummary,
     /// Archard: the profile updates (a fixed-step march: no tolerance); irgashev: closed form.
+    #[schema(value_type = crate::jobs::schemas::ConvergenceDoc)]
     pub convergence: Convergence,
 }
 

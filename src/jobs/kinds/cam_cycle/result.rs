@@ -77,6 +77,7 @@ pub struct CamSeries {
     pub film_min: Option<Vec<f64>>,
     /// Film model that ran at each angle (`numerical` or the closed form's name).
     #[serde(skip_serializing_if = "Option::is_none")]
+    #[schema(value_type = Option<Vec<crate::jobs::schemas::FilmModelIdDoc>>)]
     pub model: Option<Vec<FilmModelId>>,
     /// Smallest film downstream of the contact centre (exit constriction), m; the closed forms'
     /// minimum film at their angles.
@@ -143,6 +144,7 @@ pub struct CamSeries {
     /// `micro_slip` (partial slip of the asperity contact) or `gross_sliding` (the asperities
     /// slide, or a full film at ≥ 1 % SRR) at each angle.
     #[serde(skip_serializing_if = "Option::is_none")]
+    #[schema(value_type = Option<Vec<crate::jobs::schemas::SlipRegimeDoc>>)]
     pub slip_regime: Option<Vec<SlipRegime>>,
     /// Roller–pin friction torque, N·m.
     #[serde(skip_serializing_if = "Option::is_none")]
@@ -385,10 +387,12 @@ pub struct FieldsTable {
 #[derive(Debug, Clone, PartialEq, Serialize, ToSchema)]
 pub struct CamCycleResult {
     /// Fidelity that ran.
+    #[schema(value_type = crate::jobs::schemas::FidelityDoc)]
     pub fidelity_used: Fidelity,
     /// Film model that ran, when one model ran at every angle (absent when `auto` mixed models:
     /// see the series column `model` and `summary.fidelity_used`).
     #[serde(skip_serializing_if = "Option::is_none")]
+    #[schema(value_type = Option<crate::jobs::schemas::FilmModelIdDoc>)]
     pub film_model: Option<FilmModelId>,
     /// E* = 1/Σ(1−ν²)/E, Pa (Hertz, Greenwood–Tripp).
     pub contact_modulus: f64,
@@ -409,10 +413,12 @@ pub struct CamCycleResult {
     #[serde(skip_serializing_if = "Option::is_none")]
     pub fields: Option<FieldsTable>,
     /// Periodicity of the roller speed (steady torque balance) or closed form.
+    #[schema(value_type = crate::jobs::schemas::ConvergenceDoc)]
     pub convergence: Convergence,
     /// `dynamic` load: revolutions integrated to the periodic steady state and the final change
     /// of the state between revolutions.
     #[serde(skip_serializing_if = "Option::is_none")]
+    #[schema(value_type = Option<crate::jobs::schemas::ConvergenceDoc>)]
     pub dynamics_convergence: Option<Convergence>,
     /// `dynamic` load with `run_up`: the train over the speed ramp (a table: CSV with
     /// `?table=run_up`; its separation intervals are `events.run_up_separation_deg`).

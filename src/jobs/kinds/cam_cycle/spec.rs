@@ -38,8 +38,10 @@ pub enum ProfileSpec {
         /// Return angle, degrees.
         return_deg: f64,
         /// Lift law of the rise (and of the return unless `return_law` is given).
+        #[schema(value_type = crate::jobs::schemas::LiftLawDoc)]
         law: LiftLaw,
         #[serde(default, skip_serializing_if = "Option::is_none")]
+        #[schema(value_type = Option<crate::jobs::schemas::LiftLawDoc>)]
         return_law: Option<LiftLaw>,
     },
     /// Tangent circular arcs `(radius, angle)`; the first is the base circle (centred on the
@@ -667,6 +669,7 @@ pub struct CamCycleSpec {
     /// no lubricated solution and reports the closed form there. Thermal effects are not modelled
     /// by either model.
     #[serde(default)]
+    #[schema(value_type = crate::jobs::schemas::FidelityDoc)]
     pub fidelity: Fidelity,
     /// Numerical EHL options (`accurate`, `auto`).
     #[serde(default)]
