@@ -1,7 +1,7 @@
 # Build: release binary (SQLite is bundled and compiled with gcc; no other system library).
 FROM rust:1.95-slim-bookworm AS build
 WORKDIR /src
-COPY Cargo.toml Cargo.lock build.rs ./
+COPY Cargo.toml Cargo.lock ./
 COPY migrations migrations
 COPY src src
 COPY crates crates

@@ -12,6 +12,7 @@
 //! lease expired and was re-run elsewhere is never finished twice.
 
 mod codec;
+pub mod migrations;
 pub mod postgres;
 pub mod sqlite;
 

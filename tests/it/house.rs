@@ -81,3 +81,22 @@ fn solver_input_errors_name_solver_fields_and_kinds_map_them() {
     let kept = SolveError::invalid("/load", "x").in_spec(|_| Some("/elsewhere".into()));
     assert_eq!(kept, SolveError::invalid("/load", "x"));
 }
+
+/// Every migration file of both backends is embedded in the binary, in version order, and
+/// nothing else is (the lists in `store::migrations` are written by hand).
+#[test]
+fn every_migration_file_is_embedded() {
+    for (folder, list) in [("migrations/sqlite", tribod::store::migrations::SQLITE), ("migrations/postgres", tribod::store::migrations::POSTGRES)] {
+        let mut on_disk: Vec<(String, String)> = std::fs::read_dir(Path::new(env!("CARGO_MANIFEST_DIR")).join(folder))
+            .unwrap()
+            .map(|e| e.unwrap().path())
+            .filter(|p| p.extension().is_some_and(|x| x == "sql"))
+            .map(|p| (p.file_name().unwrap().to_string_lossy().to_string(), std::fs::read_to_string(&p).unwrap()))
+            .collect();
+        on_disk.sort();
+        let embedded: Vec<(String, String)> = list.iter().map(|(n, s)| (n.to_string(), s.to_string())).collect();
+        assert_eq!(embedded, on_disk, "{folder}: store::migrations lists every file, in version order");
+        let versions: Vec<i64> = tribod::store::migrations::migrator(list).iter().map(|m| m.version).collect();
+        assert!(versions.windows(2).all(|w| w[0] < w[1]), "{versions:?}");
+    }
+}
