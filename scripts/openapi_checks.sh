@@ -7,7 +7,11 @@
 #     then report how many schema-valid job specs the server accepted (scripts/fuzz_report.py).
 #     Any failure schemathesis reports fails this script.
 # Needs python3 with venv and access to PyPI; without them it says SKIPPED and exits 0.
-# Usage (from anywhere; builds tribod):
+# The Python tools live in a virtualenv under ~/.cache/tribod (TRIBOD_TOOLS_CACHE), one per set
+# of pinned versions, so a second run on the same machine installs nothing.
+# The server is TRIBOD_BIN when set (.ci/run passes the binary `cargo test` has just built, so
+# this stage compiles nothing), else this builds tribod.
+# Usage (from anywhere):
 #   scripts/openapi_checks.sh [--fuzz] [--max-examples N] [--seed S] [--max-time SECONDS]
 #   --max-examples: cases per operation and phase (default 50); --seed: default 20261122;
 #   --max-time: a time budget instead (fuzzing and stateful repeat until it is spent).
@@ -26,9 +30,10 @@ done
 root="$(cd "$(dirname "$0")/.." && pwd)"
 work="$root/target/openapi-checks"
 mkdir -p "$work"
-venv="$work/venv"
 packages=(openapi-python-client==0.29.1)
 if [[ "$fuzz" != 0 ]]; then packages+=(schemathesis==4.32.5); fi
+venv="${TRIBOD_TOOLS_CACHE:-${XDG_CACHE_HOME:-$HOME/.cache}/tribod}/venv-$(echo "${packages[*]}" | tr ' =' '_-')"
+mkdir -p "$(dirname "$venv")"
 if ! { [[ -x "$venv/bin/python" ]] || python3 -m venv "$venv"; } \
    || ! "$venv/bin/pip" install -q --timeout 20 --retries 1 "${packages[@]}" >"$work/pip.log" 2>&1; then
   echo "SKIPPED openapi checks: cannot install ${packages[*]} from PyPI (see $work/pip.log)"
@@ -38,7 +43,11 @@ rm -rf "$work/client"
 mkdir -p "$work/client"
 (cd "$work/client" && "$venv/bin/openapi-python-client" generate --path "$root/openapi/openapi.json" \
   --meta none --output-path tribod_client >"$work/generate.log" 2>&1) || { cat "$work/generate.log"; exit 1; }
-cargo build --quiet --manifest-path "$root/Cargo.toml"
+bin="${TRIBOD_BIN:-}"
+if [[ -z "$bin" ]]; then
+  cargo build --quiet --manifest-path "$root/Cargo.toml" --bin tribod
+  bin="$root/target/debug/tribod"
+fi
 servers=()
 # At exit: stop the servers and wait for them (a next run reuses the file names).
 trap 'for p in "${servers[@]}"; do kill "$p" 2>/dev/null || true; done; wait' EXIT
@@ -47,7 +56,7 @@ serve() {
   local name="$1"; shift
   local db="$work/$name.db"
   rm -f "$db" "$db-wal" "$db-shm"
-  "$root/target/debug/tribod" serve --addr 127.0.0.1:0 --database-url "$db" --shutdown-grace 1 "$@" \
+  "$bin" serve --addr 127.0.0.1:0 --database-url "$db" --shutdown-grace 1 "$@" \
     >"$work/server-$name.out" 2>"$work/server-$name.log" &
   servers+=($!)
   for _ in $(seq 300); do grep -q "listening on" "$work/server-$name.out" && break; sleep 0.1; done

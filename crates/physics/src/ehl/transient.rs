@@ -121,9 +121,9 @@ impl Track {
 /// steps; see the [module documentation](self).
 ///
 /// ```
-/// use tribod::physics::ehl::{EhlInput, EhlOptions, Extrapolation, Rheology, TransientSolver};
-/// use tribod::physics::lubricant::Lubricant;
-/// use tribod::physics::Silent;
+/// use tribod_physics::ehl::{EhlInput, EhlOptions, Extrapolation, Rheology, TransientSolver};
+/// use tribod_physics::lubricant::Lubricant;
+/// use tribod_physics::Silent;
 /// let lubricant = Lubricant::SEED000;
 /// let mut solver = TransientSolver::new(EhlOptions { nodes: 96, tolerance: 1e-6, ..Default::default() }, Extrapolation::Richardson);
 /// for k in 0..3 {
