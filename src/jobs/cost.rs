@@ -222,24 +222,3 @@ pub const CAM_BASE_BYTES: f64 = 4.0 * MIB;
 pub fn bearing_analysis_seconds(nodes: usize) -> f64 {
     2e-3 + 0.4e-6 * nodes as f64
 }
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn an_overflowing_model_stays_finite_and_above_any_limit() {
-        let c = Cost::new(f64::INFINITY, f64::NAN).repeated(1e300);
-        assert!(c.cpu_seconds().is_finite() && c.cpu_seconds() > 1e300);
-        assert!(c.memory_bytes().is_finite() && c.memory_bytes() > 1e300);
-        assert!(serde_json::to_string(&c.estimate).unwrap().contains("cpu_seconds"));
-    }
-
-    #[test]
-    fn seconds_read_as_an_engineer_says_them() {
-        assert_eq!(describe_seconds(0.25), "0.25 s");
-        assert_eq!(describe_seconds(40.0), "40 s");
-        assert_eq!(describe_seconds(600.0), "10 min");
-        assert_eq!(describe_seconds(3.0 * 86_400.0), "3 days");
-    }
-}

@@ -9,7 +9,7 @@ pub mod quantity;
 pub mod queue;
 pub mod registry;
 pub mod runner;
-pub(crate) mod schemas;
+pub mod schemas;
 pub mod table;
 
 pub use cost::{Cost, Estimate};

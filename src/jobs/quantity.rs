@@ -71,16 +71,3 @@ impl Quantity {
         Quantity { min, ..self }
     }
 }
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn bounds_read_with_their_units() {
-        assert_eq!(FORCE.rule(), "must be between 0.001 N and 1e8 N");
-        assert_eq!(VISCOSITY.rule(), "must be between 1e-5 Pa·s and 1e4 Pa·s");
-        assert_eq!(format_number(25.5), "25.5");
-        assert_eq!(format_number(-1000.0), "-1000");
-    }
-}

@@ -30,7 +30,6 @@ macro_rules! enum_mirror {
             }
         }
         impl $mirror {
-            #[cfg(test)]
             fn agrees() -> bool {
                 [$($phys::$variant),*].into_iter().all(|x| serde_json::to_value(x).ok() == serde_json::to_value($mirror::from(x)).ok())
             }
@@ -113,20 +112,16 @@ impl From<Convergence> for ConvergenceDoc {
     }
 }
 
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn mirrors_serialise_as_the_physics_types() {
-        assert!(TerminationDoc::agrees());
-        assert!(FidelityDoc::agrees());
-        assert!(FilmFormulaDoc::agrees());
-        assert!(FilmModelIdDoc::agrees());
-        assert!(LiftLawDoc::agrees());
-        assert!(ViscosityModelDoc::agrees());
-        assert!(DensityModelDoc::agrees());
-        assert!(SlipRegimeDoc::agrees());
-        let _ = ConvergenceDoc::from(Convergence::closed_form());
-    }
+/// Whether every mirror serialises as its physics type (the test `service_units::schemas`).
+#[doc(hidden)]
+pub fn mirrors_agree() -> bool {
+    let _ = ConvergenceDoc::from(Convergence::closed_form());
+    TerminationDoc::agrees()
+        && FidelityDoc::agrees()
+        && FilmFormulaDoc::agrees()
+        && FilmModelIdDoc::agrees()
+        && LiftLawDoc::agrees()
+        && ViscosityModelDoc::agrees()
+        && DensityModelDoc::agrees()
+        && SlipRegimeDoc::agrees()
 }

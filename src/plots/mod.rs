@@ -6,7 +6,7 @@
 mod bearing;
 mod cam;
 mod contact;
-mod draw;
+pub mod draw;
 mod sweep;
 
 use serde_json::Value;

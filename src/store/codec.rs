@@ -39,22 +39,3 @@ pub fn decode_result(encoding: &str, body: &[u8]) -> Result<String, String> {
         other => Err(format!("unknown result encoding {other}")),
     }
 }
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn round_trip_small_and_large() {
-        for n in [10, 100_000] {
-            let json = format!("{{\"x\":[{}]}}", vec!["1.25"; n].join(","));
-            let e = encode_result(&json);
-            assert_eq!(e.size, json.len());
-            if n > 10 {
-                assert_eq!(e.encoding, "json+deflate");
-                assert!(e.body.len() < json.len() / 10);
-            }
-            assert_eq!(decode_result(e.encoding, &e.body).unwrap(), json);
-        }
-    }
-}

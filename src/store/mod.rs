@@ -11,7 +11,7 @@
 //! through other instances); finishing is conditional on still holding the lease, so a job whose
 //! lease expired and was re-run elsewhere is never finished twice.
 
-mod codec;
+pub mod codec;
 pub mod migrations;
 pub mod postgres;
 pub mod sqlite;

@@ -40,6 +40,7 @@ mod plots;
 mod reliability;
 mod restart_recovery;
 mod storage_faults;
+mod service_units;
 mod sweep_api;
 mod thermal_ehl;
 mod valvetrain_http;

@@ -117,7 +117,7 @@ impl Parameter {
 }
 
 /// Set `value` at JSON pointer `ptr` in `target`, creating missing objects on the way.
-fn set_pointer(target: &mut Value, ptr: &str, value: Value) -> Result<(), String> {
+pub fn set_pointer(target: &mut Value, ptr: &str, value: Value) -> Result<(), String> {
     if ptr.is_empty() || !ptr.starts_with('/') {
         return Err("must be a JSON pointer starting with '/'".into());
     }
@@ -150,7 +150,7 @@ fn set_pointer(target: &mut Value, ptr: &str, value: Value) -> Result<(), String
 }
 
 /// The cases: for each, the (parameter index, value) list.
-fn cases(spec: &SweepSpec) -> Vec<Vec<Value>> {
+pub fn cases(spec: &SweepSpec) -> Vec<Vec<Value>> {
     let lists: Vec<Vec<Value>> = spec.parameters.iter().map(Parameter::values).collect();
     if lists.is_empty() || lists.iter().any(Vec::is_empty) {
         return Vec::new();
@@ -171,7 +171,7 @@ fn cases(spec: &SweepSpec) -> Vec<Vec<Value>> {
     }
 }
 
-fn case_count(spec: &SweepSpec) -> usize {
+pub fn case_count(spec: &SweepSpec) -> usize {
     let lens: Vec<usize> = spec.parameters.iter().map(Parameter::len).collect();
     match spec.combine {
         Combine::Zip => lens.first().copied().unwrap_or(0),
@@ -395,36 +395,5 @@ impl Kind for Sweep {
             columns.push("error".into());
         }
         Ok(SweepResult { kind: spec.kind.clone(), columns, cases: rows, succeeded, failed })
-    }
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-    use crate::jobs::kind::parse_value;
-
-    #[test]
-    fn pointers_create_objects_and_index_arrays() {
-        let mut v = json!({"a": {"b": 1}, "list": [1, 2]});
-        set_pointer(&mut v, "/a/c/d", json!(5)).unwrap();
-        set_pointer(&mut v, "/list/1", json!(9)).unwrap();
-        set_pointer(&mut v, "/we~1ird", json!(true)).unwrap();
-        assert_eq!(v, json!({"a": {"b": 1, "c": {"d": 5}}, "list": [1, 9], "we/ird": true}));
-        assert!(set_pointer(&mut v, "/list/7", json!(0)).is_err());
-        assert!(set_pointer(&mut v, "/a/b/c", json!(0)).is_err());
-    }
-
-    #[test]
-    fn grid_and_zip_cases() {
-        let mut s: SweepSpec = parse_value(&json!({"kind": "hertz", "base": {}, "parameters": [
-            {"path": "/a", "values": [1, 2]}, {"path": "/b", "linspace": {"start": 0.0, "stop": 1.0, "num": 3}}]}))
-        .unwrap();
-        let c = cases(&s);
-        assert_eq!(c.len(), 6);
-        assert_eq!(c[1], vec![json!(1), json!(0.5)]);
-        assert_eq!(case_count(&s), 6);
-        s.combine = Combine::Zip;
-        s.parameters[1].linspace = Some(Linspace { start: 0.0, stop: 1.0, num: 2 });
-        assert_eq!(cases(&s), vec![vec![json!(1), json!(0.0)], vec![json!(2), json!(1.0)]]);
     }
 }
