@@ -302,7 +302,7 @@ fn solve_point(spec: &CamPointSpec, observer: &dyn Observer) -> Result<CamPointR
     let steel = crate::physics::thermal::ThermalSolid::STEEL;
     settings.thermal = spec.ehl.thermal.map(|t| t.settings(steel, steel));
     if let (Some(f), Some(c)) = (settings.finite.as_mut(), spec.roller.crown) {
-        f.crown = Some(crate::physics::roller::Crown { length: spec.contact_length, middle_length: c.middle_length, crown_height: c.crown_height, end_radius: c.end_radius, profile: c.profile.into() });
+        f.crown = Some(crate::physics::geometry::Crown { length: spec.contact_length, middle_length: c.middle_length, crown_height: c.crown_height, end_radius: c.end_radius, profile: c.profile.into() });
     }
     let model = model_for(spec.fidelity, spec.film.to_physics(), settings);
     let lub = spec.lubricant.to_physics();

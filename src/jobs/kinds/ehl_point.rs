@@ -13,7 +13,7 @@ use crate::physics::ehl::{solve, EhlInput, EhlOptions, Rheology, Upwind};
 use super::common::{ExtrapolationSpec, LubricantSpec, Material, ThermalSpec};
 use crate::physics::ehl::twod::{self, Ehl2dInput, Ehl2dOptions, Geometry2d};
 use crate::physics::ehl::ReusableSolver;
-use crate::physics::roller::Crown;
+use crate::physics::geometry::Crown;
 use super::cam_cycle::CrownProfileSpec;
 use crate::physics::{Convergence, Observer, SolveError};
 use serde::{Deserialize, Serialize};

@@ -41,12 +41,14 @@
 pub mod auto;
 pub mod closed_form;
 pub mod finite;
-pub mod formulas;
+/// The closed-form film formulas live with the EHL solvers they are checked against.
+pub use crate::ehl::formulas;
 pub mod mixed;
 pub mod numerical;
 pub mod thermal;
 pub mod traction_table;
-pub mod work;
+/// Work counters (shared with the EHL solvers; `crate::work`).
+pub use crate::work;
 
 pub use auto::{closed_form_error, Auto, ClosedFormError, ErrorRule};
 pub use closed_form::{ClosedForm, FilmFormula};
@@ -421,7 +423,7 @@ pub struct FiniteSettings {
     pub options: crate::ehl::twod::Ehl2dOptions,
     /// The roller's axial profile (`None`: a straight roller of the contact length, or a point
     /// contact).
-    pub crown: Option<crate::roller::Crown>,
+    pub crown: Option<crate::geometry::Crown>,
     /// The squeeze term along a cycle ([`Finite::squeeze`]).
     pub squeeze: bool,
 }

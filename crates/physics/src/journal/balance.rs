@@ -1,7 +1,7 @@
 //! The load balance of one analysis: the journal position (ε, β) whose film force carries the
 //! load — a coarse scan, then Newton on nested grids, or the attitude search at a given ε.
 
-use super::analysis::*;
+use super::problem::*;
 use super::film::wrap_angle;
 use super::multigrid::{Hierarchy, LcpReport};
 use crate::{Convergence, Observer, SolveError, Termination};

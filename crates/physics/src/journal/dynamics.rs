@@ -22,7 +22,7 @@
 //! motion is a first-order effect the frozen set leaves out (still the exact derivative of the
 //! discrete problem, but not grid-convergent to the continuum one there). The validation
 //! (BENCHMARKS.md) uses the max-film groove for the short-bearing limit and two axial grooves
-//! at ±90° from the load ([`super::analysis::Supply::TwoGrooves`]) against Someya's
+//! at ±90° from the load ([`super::problem::Supply::TwoGrooves`]) against Someya's
 //! *Journal-Bearing Databook* (L/D = 0.5: ε within 0.005, K̄ and C̄ within 2–8 % of the largest
 //! coefficient from ε ≈ 0.37 on, 13–20 % at ε ≈ 0.2, where the groove width matters most).
 //!
@@ -31,7 +31,7 @@
 //! `C = damping · 6ηωRL(R/c)²/(cω)`, and the usual dimensionless coefficients
 //! `K̄ = K c/W = stiffness/W̄`, `C̄ = C c ω/W = damping/W̄`.
 
-use super::analysis::{Analysis, Bearing, Settings, Workspace};
+use super::problem::{Analysis, Bearing, Settings, Workspace};
 use crate::{ensure_finite, Convergence, Observer, SolveError, Termination};
 
 /// Stiffness and damping at an equilibrium (see the module docs for frame and scaling).

@@ -2,7 +2,7 @@
 //! and minimum film with their places, friction (with the striated cavitated zone of seed 002
 //! eq. 9), flows and power.
 
-use super::analysis::*;
+use super::problem::*;
 use super::balance::{wrap_pm, Eval};
 use super::film::{wrap_angle, Film};
 use super::multigrid::Level;

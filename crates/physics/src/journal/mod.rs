@@ -22,13 +22,15 @@ pub mod dimensions;
 pub mod film;
 pub mod multigrid;
 pub mod analysis;
+pub mod problem;
 pub mod dynamics;
 pub mod heat;
 mod balance;
 mod figures;
 pub mod taguchi;
 
-pub use analysis::{analyse, analyse_symmetric, symmetric_load, Analysis, Bearing, Fields, Guess, Operating, Settings, Supply, Workspace};
+pub use analysis::{analyse, analyse_symmetric, symmetric_load};
+pub use problem::{Analysis, Bearing, Fields, Guess, Operating, Settings, Supply, Workspace};
 pub use dimensions::Dimensions;
 pub use film::{Film, Misalignment, Profile};
 

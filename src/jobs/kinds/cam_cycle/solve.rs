@@ -11,7 +11,8 @@ use crate::physics::contact::{contact_modulus, Elastic};
 use crate::physics::film::model_for;
 use std::collections::BTreeMap;
 use crate::physics::roller::pin_finite::roller_cooled_area;
-use crate::physics::roller::{Crown, FinitePin, PinFriction, PinTable, PinThermal, RollerParams};
+use crate::physics::geometry::Crown;
+use crate::physics::roller::{FinitePin, PinFriction, PinTable, PinThermal, RollerParams};
 use crate::physics::valvetrain::{
     damping_from_ratio, line_contact_stiffness, periodic_response, run_up, Drive, DynamicsOptions, HelicalSpring, Lever, Link,
     PeriodicResponse, Pushrod, RunUpResponse, Seat, SpringChain, ValveTrain,

@@ -144,7 +144,7 @@ fn default_convection_coefficient() -> f64 {
     80.0
 }
 
-/// Crowned roller profile (seed 000 Table 1). See `physics::roller::crown`.
+/// Crowned roller profile (seed 000 Table 1). See `physics::geometry::crown`.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, ToSchema)]
 #[serde(deny_unknown_fields)]
 pub struct CrownSpec {
@@ -177,7 +177,7 @@ impl CrownProfileSpec {
     }
 }
 
-impl From<CrownProfileSpec> for crate::physics::roller::CrownProfile {
+impl From<CrownProfileSpec> for crate::physics::geometry::CrownProfile {
     fn from(p: CrownProfileSpec) -> Self {
         match p {
             CrownProfileSpec::Convex => Self::Convex,

@@ -19,6 +19,9 @@
 
 use crate::lubricant::Lubricant;
 
+mod regressions;
+pub use regressions::*;
+
 /// Dimensionless groups of a line contact.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Groups {
@@ -71,7 +74,7 @@ pub fn moes_central_film(g: &Groups, radius: f64) -> f64 {
 }
 
 /// Pan–Hamrock central film `h_c/R = 2.922 W^−0.166 U^0.692 G^0.470`, as a film in m (one
-/// implementation: [`crate::film::formulas::pan_hamrock`]).
+/// implementation: [`pan_hamrock`]).
 pub fn pan_hamrock_central_film(g: &Groups, radius: f64) -> f64 {
     pan_hamrock_films(g).0 * radius
 }
@@ -82,8 +85,8 @@ pub fn pan_hamrock_minimum_film(g: &Groups, radius: f64) -> f64 {
 }
 
 fn pan_hamrock_films(g: &Groups) -> (f64, f64) {
-    let lg = crate::film::formulas::LineGroups { load: g.load, speed: g.speed, material: g.material };
-    crate::film::formulas::pan_hamrock(&lg)
+    let lg = LineGroups { load: g.load, speed: g.speed, material: g.material };
+    pan_hamrock(&lg)
 }
 
 /// Martin's rigid-isoviscous minimum film `h_min = 4.9 η0 u_m R / w'`, m.

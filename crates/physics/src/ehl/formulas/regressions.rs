@@ -19,7 +19,7 @@
 //! `E = E'` here. `W_s* = ḣ/u` is the squeeze-to-roll ratio (`ḣ = dh/dt`, negative on approach),
 //! clamped to the fitted range [−0.005, 0].
 //!
-//! Pan–Hamrock is implemented once, here ([`pan_hamrock`]); `physics::ehl::formulas` calls it.
+//! Pan–Hamrock is implemented once, here ([`pan_hamrock`]); [`super`]'s film functions call it.
 //! Check (issue 5): the two copies that existed carried identical coefficients — the form quoted
 //! from Pan & Hamrock (1989) in Hamrock's *Fundamentals of Fluid Film Lubrication* (rectangular
 //! conjunctions, mean velocity in `U`, `E'` in all groups); the paper itself is not in the
@@ -28,7 +28,7 @@
 //! Dowson–Higginson, 384 nodes) the regression is within 5 % only at small `L` (≈ 4–7) and
 //! moderate `M` (2–100); at `L = 10–20` its central film is 4–26 % thinner (growing with `M`) and
 //! its minimum film 2–12 % thinner; at light loads (`M ≤ 1`) its minimum film is 15–38 % thinner
-//! (table in [`super::auto`]). These are deviations of the regression (fitted to coarse 1980s
+//! (table in [`crate::film::auto`]). These are deviations of the regression (fitted to coarse 1980s
 //! solutions with its own Roelands constants), not a coefficient error: the 8–14 % differences
 //! reported in issue 5 phase 1 fall in the `L ≥ 10` band.
 //!

@@ -21,7 +21,7 @@ macro_rules! counters {
 }
 
 counters! {
-    /// 2-D Newton solves ([`super::Finite`]): warm-started or cold.
+    /// 2-D Newton solves ([`crate::film::Finite`]): warm-started or cold.
     FINITE_SOLVES,
     /// Of those, the cold nested iteration (no usable warm start, or the warm start failed).
     FINITE_COLD,

@@ -68,6 +68,11 @@ use crate::{ensure_finite, Convergence, Observer, SolveError, Termination};
 use std::f64::consts::TAU;
 use std::sync::Arc;
 
+mod table;
+mod pin;
+
+pub use pin::*;
+
 /// Eccentricity ratios of the table nodes.
 pub const TABLE_NODES: usize = 48;
 /// Smallest tabulated eccentricity ratio.
@@ -117,185 +122,9 @@ pub struct TablePoint {
     pub attitude: f64,
 }
 
-impl PinTable {
-    /// Grid and tolerances of the table's Reynolds solutions at `length_to_diameter`: 361
-    /// circumferential nodes (seed 002's), axial nodes in proportion to L/D (`90 L/D`, odd,
-    /// 21–121), pressure and load tolerances 1e-8. At L/D = 0.4375 (41 axial nodes) halving the
-    /// circumferential spacing from 181 nodes moved W̄ and F̄ by ≤ 0.13 % up to ε = 0.98 and W̄ by
-    /// 0.3 % at ε = 0.99 (the pressure peak narrows); 2–6 ms per analysis.
-    pub fn settings(length_to_diameter: f64) -> Settings {
-        let axial = ((90.0 * length_to_diameter).ceil() as usize).clamp(21, 121) | 1;
-        Settings { circumferential: 361, axial, pressure_tolerance: 1e-8, load_tolerance: 1e-8, ..Settings::default() }
-    }
-
-    /// The node eccentricities: uniform in `ln(ε/(1 − ε))` over [`TABLE_EPS_MIN`, `TABLE_EPS_MAX`].
-    pub fn node_eccentricities(nodes: usize) -> Vec<f64> {
-        let logit = |e: f64| (e / (1.0 - e)).ln();
-        let (a, b) = (logit(TABLE_EPS_MIN), logit(TABLE_EPS_MAX));
-        (0..nodes)
-            .map(|i| {
-                let v = a + (b - a) * i as f64 / (nodes - 1) as f64;
-                1.0 / (1.0 + (-v).exp())
-            })
-            .collect()
-    }
-
-    /// Build the table of a plain aligned bearing of `length_to_diameter` from [`TABLE_NODES`]
-    /// journal analyses at fixed eccentricity (grid: [`Self::settings`]).
-    pub fn build(length_to_diameter: f64, observer: &dyn Observer) -> Result<PinTable, SolveError> {
-        Self::build_with(length_to_diameter, &Self::node_eccentricities(TABLE_NODES), &Self::settings(length_to_diameter), observer)
-    }
-
-    /// [`Self::build`] at given node eccentricities (increasing, in (0, 1)) and grid.
-    pub fn build_with(length_to_diameter: f64, eccentricities: &[f64], settings: &Settings, observer: &dyn Observer) -> Result<PinTable, SolveError> {
-        if !(length_to_diameter.is_finite() && length_to_diameter > 0.0) {
-            return Err(SolveError::invalid("length_to_diameter", "must be > 0"));
-        }
-        if eccentricities.len() < 4 || !eccentricities.windows(2).all(|w| w[1] > w[0]) || !(eccentricities[0] > 0.0) || !(eccentricities[eccentricities.len() - 1] < 1.0) {
-            return Err(SolveError::invalid("eccentricities", "at least 4, increasing, in (0, 1)"));
-        }
-        let bearing = Bearing::plain(length_to_diameter);
-        let mut ws = Workspace::new(&bearing, settings);
-        let mut guess: Option<Guess> = None;
-        let mut x = Vec::with_capacity(eccentricities.len());
-        let mut values = Vec::with_capacity(eccentricities.len());
-        let mut worst = Convergence { iterations: 0, residual: 0.0, tolerance: settings.load_tolerance, termination: Termination::Converged };
-        let mut worst_ratio = -1.0;
-        let mut steps = 0u32;
-        for &e in eccentricities {
-            observer.check()?;
-            let a = analyse(&bearing, &Operating::Eccentricity(e), settings, Some(&mut ws), guess, false, observer)?;
-            guess = Some(Guess { eccentricity: e, attitude: a.attitude });
-            steps += a.convergence.iterations;
-            let ratio = if a.convergence.tolerance > 0.0 { a.convergence.residual / a.convergence.tolerance } else { 0.0 };
-            if ratio > worst_ratio || a.convergence.termination != Termination::Converged {
-                worst_ratio = ratio;
-                worst = a.convergence.clone();
-            }
-            if !(a.load > 0.0 && a.friction_force > 0.0 && a.side_flow_variable > 0.0) {
-                return Err(SolveError::physical(
-                    crate::PhysicalFailure::FilmClosed,
-                    format!("the pin bearing's Reynolds solution at ε = {e} carries no load or shear (W̄ {}, F̄ {}, Q̄s {})", a.load, a.friction_force, a.side_flow_variable),
-                ));
-            }
-            x.push(a.load.ln());
-            values.push([e, a.friction_force.ln(), a.side_flow_variable.ln(), a.attitude]);
-        }
-        if !x.windows(2).all(|w| w[1] > w[0]) {
-            return Err(SolveError::physical(
-                crate::PhysicalFailure::NoEquilibriumAttitude,
-                "the pin bearing's load does not rise monotonically with eccentricity over the table",
-            ));
-        }
-        worst.iterations = steps;
-        let slopes = steffen_slopes(&x, &values);
-        let table = PinTable { length_to_diameter, x, values, slopes, convergence: worst };
-        ensure_finite("pin bearing table", table.values.iter().flatten().chain(table.slopes.iter().flatten()).chain(table.x.iter()))?;
-        Ok(table)
-    }
-
-    /// Number of nodes.
-    pub fn len(&self) -> usize {
-        self.x.len()
-    }
-    pub fn is_empty(&self) -> bool {
-        self.x.is_empty()
-    }
-    /// `(ε, W̄)` at node `i`.
-    pub fn node(&self, i: usize) -> (f64, f64) {
-        (self.values[i][EPS], self.x[i].exp())
-    }
-
-    /// The interpolated solution at `x = ln W̄` (any value, `−∞` included: the light-load and
-    /// heavy-load continuations of the module docs outside the nodes).
-    pub fn at(&self, x: f64) -> TablePoint {
-        let n = self.x.len();
-        let (x0, xn) = (self.x[0], self.x[n - 1]);
-        if x <= x0 {
-            // light load: ε ∝ W̄, Q̄s ∝ W̄, F̄ − 2π ∝ W̄² (Petroff at ε = 0)
-            let v = &self.values[0];
-            let r = (x - x0).exp();
-            let f0 = v[LN_F].exp();
-            let excess = (f0 - TAU) * r * r;
-            let f = TAU + excess;
-            return TablePoint {
-                eccentricity: v[EPS] * r,
-                d_eccentricity: v[EPS] * r,
-                friction_force: f,
-                d_ln_friction: 2.0 * excess / f,
-                side_flow: v[LN_QS].exp() * r,
-                d_ln_side_flow: 1.0,
-                attitude: v[ATT],
-            };
-        }
-        if x >= xn {
-            // heavy load: power laws with the end slopes
-            let v = &self.values[n - 1];
-            let s = &self.slopes[n - 1];
-            let gap0 = 1.0 - v[EPS];
-            let k = (s[EPS] / gap0).max(0.0);
-            let gap = gap0 * (-k * (x - xn)).exp();
-            let sf = s[LN_F].min(HEAVY_SLOPE_CAP);
-            return TablePoint {
-                eccentricity: 1.0 - gap,
-                d_eccentricity: k * gap,
-                friction_force: (v[LN_F] + sf * (x - xn)).exp(),
-                d_ln_friction: sf,
-                side_flow: (v[LN_QS] + s[LN_QS] * (x - xn)).exp(),
-                d_ln_side_flow: s[LN_QS],
-                attitude: v[ATT] * (gap / gap0).sqrt(),
-            };
-        }
-        let i = self.x.partition_point(|&xi| xi <= x).clamp(1, n - 1) - 1;
-        let h = self.x[i + 1] - self.x[i];
-        let t = (x - self.x[i]) / h;
-        let (v0, v1, d0, d1) = (&self.values[i], &self.values[i + 1], &self.slopes[i], &self.slopes[i + 1]);
-        // cubic Hermite basis and its derivative (d/dt)
-        let t2 = t * t;
-        let t3 = t2 * t;
-        let (h00, h10, h01, h11) = (2.0 * t3 - 3.0 * t2 + 1.0, t3 - 2.0 * t2 + t, -2.0 * t3 + 3.0 * t2, t3 - t2);
-        let (g00, g10, g01, g11) = (6.0 * t2 - 6.0 * t, 3.0 * t2 - 4.0 * t + 1.0, -6.0 * t2 + 6.0 * t, 3.0 * t2 - 2.0 * t);
-        let val = |c: usize| h00 * v0[c] + h10 * h * d0[c] + h01 * v1[c] + h11 * h * d1[c];
-        let der = |c: usize| (g00 * v0[c] + g01 * v1[c]) / h + g10 * d0[c] + g11 * d1[c];
-        TablePoint {
-            eccentricity: val(EPS),
-            d_eccentricity: der(EPS),
-            friction_force: val(LN_F).exp(),
-            d_ln_friction: der(LN_F),
-            side_flow: val(LN_QS).exp(),
-            d_ln_side_flow: der(LN_QS),
-            attitude: val(ATT),
-        }
-    }
-}
-
 /// Cap on `d ln F̄/d ln W̄` beyond the heaviest node: `T ∝ Ω^(1 − slope)` there, so the torque keeps
 /// rising with Ω (the short bearing's asymptote is 3/4).
 const HEAVY_SLOPE_CAP: f64 = 0.95;
-
-/// Steffen's (1990) monotone slopes of each column against `x`: at an interior node the
-/// three-point (parabola) slope, limited to twice the smaller neighbouring secant and zeroed at a
-/// local extremum; at the ends the one-sided parabola slope, limited the same way.
-fn steffen_slopes(x: &[f64], v: &[[f64; COLS]]) -> Vec<[f64; COLS]> {
-    let n = x.len();
-    let mut out = vec![[0.0; COLS]; n];
-    for c in 0..COLS {
-        let sec = |i: usize| (v[i + 1][c] - v[i][c]) / (x[i + 1] - x[i]);
-        let hh = |i: usize| x[i + 1] - x[i];
-        for i in 1..n - 1 {
-            let (s0, s1, h0, h1) = (sec(i - 1), sec(i), hh(i - 1), hh(i));
-            let p = (s0 * h1 + s1 * h0) / (h0 + h1);
-            out[i][c] = if s0 * s1 <= 0.0 { 0.0 } else { s0.signum() * s0.abs().min(s1.abs()).min(0.5 * p.abs()) * 2.0 };
-        }
-        let end = |s0: f64, s1: f64, h0: f64, h1: f64| {
-            let p = s0 * (1.0 + h0 / (h0 + h1)) - s1 * h0 / (h0 + h1);
-            if p * s0 <= 0.0 { 0.0 } else if p.abs() > 2.0 * s0.abs() { 2.0 * s0 } else { p }
-        };
-        out[0][c] = end(sec(0), sec(1), hh(0), hh(1));
-        out[n - 1][c] = end(sec(n - 2), sec(n - 3), hh(n - 2), hh(n - 3));
-    }
-    out
-}
 
 /// Heat paths of the pin bearing's energy balance (seed 000 eq. 12's boundary conditions in
 /// lumped form; defaults of seed 000 Table 1 are the caller's).
@@ -309,12 +138,6 @@ pub struct PinThermal {
     pub convection_coefficient: f64,
     /// Roller surface cooled by convection, m² (outer cylinder and both end faces).
     pub cooled_area: f64,
-}
-
-/// Convectively cooled surface of a roller of outer radius `radius`, bore `bore_radius` and
-/// length `length`: outer cylinder plus both annular end faces, m².
-pub fn roller_cooled_area(radius: f64, bore_radius: f64, length: f64) -> f64 {
-    TAU * radius * length + TAU * (radius * radius - bore_radius * bore_radius)
 }
 
 /// A finite-length hydrodynamic roller–pin bearing (see the module docs).
@@ -362,28 +185,6 @@ pub struct FinitePinState {
     pub iterations: u32,
 }
 
-/// `(η, d ln η/dT)` of `lub` at ambient pressure and temperature `t` (K): Barus `−β`; Roelands
-/// `ln η = ln η0 + A1 (θ(T) − 1)`, `θ = ((T − 138)/(T0 − 138))^(−S0)`, so
-/// `d ln η/dT = −A1 S0 θ/(T − 138)` (0 where the law's floor `T − 138 ≥ 1` is active).
-pub fn viscosity_and_log_slope(lub: &Lubricant, t: f64) -> (f64, f64) {
-    let eta = lub.viscosity_at(0.0, t);
-    let slope = match lub.viscosity_model {
-        ViscosityModel::Barus => -lub.temperature_viscosity,
-        ViscosityModel::Roelands => {
-            let a1 = lub.viscosity.ln() - ROELANDS_LN_ETA_INF;
-            let t0 = lub.reference_temperature;
-            let s0 = lub.temperature_viscosity * (t0 - 138.0) / a1;
-            if t - 138.0 > 1.0 {
-                let theta = ((t - 138.0) / (t0 - 138.0)).powf(-s0);
-                -a1 * s0 * theta / (t - 138.0)
-            } else {
-                0.0
-            }
-        }
-    };
-    (eta, slope)
-}
-
 /// What the energy balance needs at one film temperature.
 struct AtTemperature {
     viscosity: f64,
@@ -396,146 +197,6 @@ struct AtTemperature {
     side_flow: f64,
     side_flow_omega: f64,
     side_flow_temp: f64,
-}
-
-impl FinitePin {
-    /// The dimensionless load `x = ln W̄ = ln(W/(6ηΩRL(R/c)²))` of seed 002's scaling.
-    fn evaluate(&self, omega: f64, load: f64, t: f64) -> AtTemperature {
-        let (r, c, l) = (self.pin_radius, self.clearance, self.length);
-        let (eta, dln_eta) = viscosity_and_log_slope(&self.lubricant, t);
-        let scale = 6.0 * eta * omega * r * l * (r / c) * (r / c);
-        // W = 0 gives x = −∞: the light-load continuation handles it (ε = 0, Petroff).
-        let x = (load / scale).ln().max(-700.0);
-        let p = self.table.at(x);
-        // T = F̄ ηΩR³L/c; x falls with Ω and with η: ∂x/∂Ω = −1/Ω, ∂x/∂T_e = −d ln η/dT.
-        let torque = p.friction_force * eta * omega * r * r * r * l / c;
-        let gain = 1.0 - p.d_ln_friction;
-        // Q_s = Q̄s R c L Ω/(2π)
-        let qs = p.side_flow * r * c * l * omega / TAU;
-        AtTemperature {
-            viscosity: eta,
-            point: p,
-            torque,
-            torque_omega: torque / omega * gain,
-            torque_temp: torque * gain * dln_eta,
-            side_flow: qs,
-            side_flow_omega: qs / omega * (1.0 - p.d_ln_side_flow),
-            side_flow_temp: -qs * p.d_ln_side_flow * dln_eta,
-        }
-    }
-
-    /// State at roller speed `omega` (rad/s, either sign) and pin load `load` (N, its magnitude
-    /// is used). `warm` holds the last film temperature (NaN: none) and is updated.
-    pub fn state(&self, omega: f64, load: f64, warm: &std::cell::Cell<f64>) -> FinitePinState {
-        let t0 = self.ambient_temperature;
-        let w = load.abs();
-        let speed = omega.abs();
-        if speed == 0.0 || !speed.is_finite() {
-            // No speed, no film: the heavy-load continuation's limit (ε → 1) under load.
-            let (eta, _) = viscosity_and_log_slope(&self.lubricant, t0);
-            let p = self.table.at(if w > 0.0 { 700.0 } else { -700.0 });
-            return FinitePinState {
-                torque: 0.0,
-                torque_slope: 0.0,
-                film_temperature: t0,
-                viscosity: eta,
-                eccentricity: p.eccentricity,
-                attitude: p.attitude,
-                side_flow: 0.0,
-                power: 0.0,
-                heat_to_side_flow: 0.0,
-                heat_to_convection: 0.0,
-                iterations: 0,
-            };
-        }
-        let (at, rise, slope, iterations) = match self.thermal {
-            None => {
-                let at = self.evaluate(speed, w, t0);
-                let slope = at.torque_omega;
-                (at, 0.0, slope, 0)
-            }
-            Some(th) => {
-                let rc = th.oil_density * th.oil_specific_heat;
-                let ka = th.convection_coefficient * th.cooled_area;
-                // Unknown: the rise r = T_e − T0 (kept apart from T0 so that tiny rises close the
-                // balance to full relative precision). G(r) = T Ω − (ρ c Q_s + k A) r: decreasing
-                // in r (η falls, so T Ω falls and Q_s rises), G(0) = P(T0) > 0 and
-                // G(P(T0)/K(T0)) ≤ 0.
-                let g = |a: &AtTemperature, r: f64| a.torque * speed - (rc * a.side_flow + ka) * r;
-                let dg = |a: &AtTemperature, r: f64| speed * a.torque_temp - rc * a.side_flow_temp * r - (rc * a.side_flow + ka);
-                // Bracket [0, P(T0)/K(T0)] (from the cold state, computed only when a warm start
-                // is missing or Newton leaves the bracket).
-                let cold_bound = || {
-                    let cold = self.evaluate(speed, w, t0);
-                    let bound = cold.torque * speed / (rc * cold.side_flow + ka);
-                    (cold, bound)
-                };
-                let mut lo = 0.0;
-                let mut hi = f64::INFINITY;
-                let mut iterations = 0;
-                let mut r = warm.get() - t0;
-                if !(r > 0.0 && r.is_finite()) {
-                    let (cold, bound) = cold_bound();
-                    iterations += 1;
-                    hi = bound;
-                    let newton = -g(&cold, 0.0) / dg(&cold, 0.0);
-                    r = if newton > lo && newton < hi { newton } else { 0.5 * (lo + hi) };
-                }
-                let mut at = self.evaluate(speed, w, t0 + r);
-                iterations += 1;
-                // Bracketed Newton: quadratic from a warm start (two or three evaluations); a
-                // step leaving the bracket bisects. Done after a Newton step below 1e-8 of the
-                // rise (taken and evaluated: Newton being quadratic, the error left is ~1e-16 r).
-                for _ in 0..200 {
-                    let gv = g(&at, r);
-                    if gv > 0.0 { lo = r } else { hi = r }
-                    let d = dg(&at, r);
-                    let newton = if d < 0.0 { r - gv / d } else { f64::NAN };
-                    let next = if newton > lo && newton < hi {
-                        newton
-                    } else {
-                        if !hi.is_finite() {
-                            let (_, bound) = cold_bound();
-                            iterations += 1;
-                            hi = bound.max(lo);
-                        }
-                        0.5 * (lo + hi)
-                    };
-                    let step = (next - r).abs();
-                    let done = step <= 1e-8 * r || hi - lo <= 1e-12 * r;
-                    r = next;
-                    at = self.evaluate(speed, w, t0 + r);
-                    iterations += 1;
-                    if done {
-                        break;
-                    }
-                }
-                // dr/dΩ = −G_Ω/G_r (implicit function), G_Ω = T + Ω ∂T/∂Ω − ρc ∂Q_s/∂Ω r
-                let g_omega = at.torque + speed * at.torque_omega - rc * at.side_flow_omega * r;
-                let g_r = dg(&at, r);
-                let dr = if g_r < 0.0 { -g_omega / g_r } else { 0.0 };
-                let slope = at.torque_omega + at.torque_temp * dr;
-                warm.set(t0 + r);
-                (at, r, slope, iterations)
-            }
-        };
-        let (rc, ka) = self.thermal.map_or((0.0, 0.0), |th| (th.oil_density * th.oil_specific_heat, th.convection_coefficient * th.cooled_area));
-        let temp = t0 + rise;
-        FinitePinState {
-            torque: at.torque * omega.signum(),
-            // T is odd in Ω, so dT/dΩ is even
-            torque_slope: slope,
-            film_temperature: temp,
-            viscosity: at.viscosity,
-            eccentricity: at.point.eccentricity,
-            attitude: at.point.attitude,
-            side_flow: at.side_flow,
-            power: at.torque * speed,
-            heat_to_side_flow: rc * at.side_flow * rise,
-            heat_to_convection: ka * rise,
-            iterations,
-        }
-    }
 }
 
 #[cfg(test)]
