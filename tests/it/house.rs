@@ -100,3 +100,14 @@ fn every_migration_file_is_embedded() {
         assert!(versions.windows(2).all(|w| w[0] < w[1]), "{versions:?}");
     }
 }
+
+/// The service crate has no test harness of its own (`[lib] test = false`): a unit test written
+/// in `src/` would never run, so there are none; its tests are modules of this binary
+/// (`service_units` for the parts).
+#[test]
+fn no_unit_tests_hide_in_the_service_crate() {
+    for file in files("src") {
+        let text = std::fs::read_to_string(&file).unwrap();
+        assert!(!text.contains("#[test]") && !text.contains("#[cfg(test)]"), "{} holds a unit test that cargo test would not run; move it to tests/it/", file.display());
+    }
+}

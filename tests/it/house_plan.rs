@@ -492,7 +492,37 @@ fn house_circles(graph: &BTreeMap<PathBuf, BTreeSet<PathBuf>>) -> Vec<Vec<PathBu
     out
 }
 
-/// Prints the measurements; the rules below enforce them.
+/// No file over 800 lines (`cargo test --test it house_plan -- --nocapture` prints the survey).
+#[test]
+fn no_file_is_over_800_lines() {
+    let s = survey();
+    assert!(s.long_files.is_empty(), "files over {MAX_FILE_LINES} lines: {:?}", s.long_files);
+}
+
+/// No function over 150 lines outside test code.
+#[test]
+fn no_function_is_over_150_lines() {
+    let s = survey();
+    let list: Vec<String> = s.long_functions.iter().map(|(f, name, at, len)| format!("{}:{at} {name} ({len} lines)", f.display())).collect();
+    assert!(list.is_empty(), "functions over {MAX_FN_LINES} lines:\n{}", list.join("\n"));
+}
+
+/// No import circle between files (a module file and the files it declares are one unit) nor
+/// between folders (a folder and its own sub-folder are one unit).
+#[test]
+fn no_import_circles() {
+    let s = survey();
+    assert!(s.circles.is_empty(), "import circles: {:?}", s.circles);
+}
+
+/// Physics carries no transport types: `utoipa` appears nowhere in the solvers' crate.
+#[test]
+fn no_utoipa_in_physics() {
+    let s = survey();
+    assert!(s.utoipa_in_physics.is_empty(), "utoipa in physics: {:?}", s.utoipa_in_physics);
+}
+
+/// Prints the measurements (`-- --nocapture`); the rules above enforce them.
 #[test]
 fn the_house_as_measured() {
     let s = survey();

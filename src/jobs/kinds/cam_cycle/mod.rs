@@ -375,32 +375,3 @@ fn check_table(v: &mut Validation, path: &str, angles: &[f64], values: &[f64], n
     wrapped.sort_by(|a, b| a.total_cmp(b));
     v.check(wrapped.windows(2).all(|w| w[1] > w[0]), &format!("{path}/angle_deg"), "angles must be distinct within one revolution");
 }
-
-
-#[cfg(test)]
-mod tests {
-    use crate::jobs::kind::Limits;
-    use crate::jobs::registry;
-    use serde_json::json;
-
-    #[test]
-    fn thermal_ehl_needs_the_accurate_fidelity_and_valid_settings() {
-        let kind = registry::find("cam_cycle").unwrap();
-        let mut spec = kind.example();
-        spec["fidelity"] = json!("fast");
-        spec["ehl"] = json!({"thermal": {"film_points": 2, "oil_conductivity": 0.0}});
-        let text = format!("{:?}", kind.prepare(&spec, &Limits::default()).unwrap_err());
-        for path in ["/ehl/thermal", "/ehl/thermal/film_points", "/ehl/thermal/oil_conductivity"] {
-            assert!(text.contains(path), "{path}: {text}");
-        }
-        spec["fidelity"] = json!("accurate");
-        spec["ehl"] = json!({"thermal": {}});
-        assert!(kind.prepare(&spec, &Limits::default()).is_ok());
-        let wear = registry::find("wear").unwrap();
-        let mut w = wear.example();
-        w["cycle"]["fidelity"] = json!("accurate");
-        w["cycle"]["ehl"] = json!({"thermal": {}});
-        let text = format!("{:?}", wear.prepare(&w, &Limits::default()).unwrap_err());
-        assert!(text.contains("/cycle/ehl/thermal"), "{text}");
-    }
-}

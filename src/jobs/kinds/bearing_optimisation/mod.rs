@@ -1,0 +1,358 @@
+//! `bearing_optimisation`: axial edge profile design by Taguchi orthogonal arrays (seed 002 §3–4,
+//! eq. 19, Tables 3–4), then a continuous Nelder–Mead search over the profile height ξ and length
+//! fraction ψ for each profile order, on the same score and load.
+//!
+//! Score (seed 002 eq. 19 with the normalisation of Table 3): every criterion is divided by the
+//! best value among the array's runs and oriented so that 1 is best — `H0/H0_best`,
+//! `P0_best/P0`, `f_best/f` — and weighted (default 0.5 film, 0.25 pressure, 0.25 friction).
+//! The continuous search keeps the array's normalisation, so its scores compare directly (a score
+//! above 1 beats the best run in every weighted criterion). Friction is seed 002's eq. (9) as
+//! read by the `bearing` kind (`friction: seed002`, default) or Raimondi & Boyd's journal friction. S/N ratios are larger-the-better, `20 log10(score)`, dB; the best
+//! level of each factor is the one with the largest mean S/N.
+
+use super::bearing::{resolve_load_in, solve_spec, validate_bearing, BearingSpec, BearingProfileSpec};
+use crate::jobs::cost::Cost;
+use crate::jobs::kind::{Kind, Limits, Validation};
+use crate::physics::journal::taguchi::{level_means, nelder_mead, sn_larger_better, Array, Criteria, Reference, Weights};
+use crate::physics::journal::{Guess, Operating, Workspace};
+use crate::physics::{Convergence, Observer, SolveError, Termination};
+use rayon::prelude::*;
+use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
+use std::sync::Mutex;
+use serde::{Deserialize, Serialize};
+use serde_json::{json, Value};
+use utoipa::ToSchema;
+
+mod run;
+pub use run::*;
+
+pub struct BearingOptimisation;
+
+/// Orthogonal array.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize, ToSchema)]
+#[serde(rename_all = "snake_case")]
+pub enum Method {
+    /// L4(2³): two levels per factor.
+    TaguchiL4,
+    /// L9(3⁴), seed 002 Table 4 order: three levels per factor.
+    #[default]
+    TaguchiL9,
+    /// L27(3¹³) columns 1, 2, 5: three levels per factor (all 27 combinations).
+    TaguchiL27,
+}
+
+impl Method {
+    fn array(self) -> Array {
+        match self {
+            Method::TaguchiL4 => Array::L4,
+            Method::TaguchiL9 => Array::L9,
+            Method::TaguchiL27 => Array::L27,
+        }
+    }
+}
+
+/// Factor levels (two for L4, three for L9 and L27).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, ToSchema)]
+#[serde(deny_unknown_fields)]
+pub struct Factors {
+    /// Profile orders n (1, 2 or 3).
+    #[schema(example = json!([1, 2, 3]))]
+    pub order: Vec<u32>,
+    /// Heights ξ = m_r/c (0 to 5).
+    #[schema(example = json!([0.1, 0.4, 1.0]))]
+    pub height: Vec<f64>,
+    /// Length fractions ψ = m_l/L, (0, 0.5].
+    #[schema(example = json!([0.01, 0.2, 0.4]))]
+    pub length_fraction: Vec<f64>,
+}
+
+/// Weights of seed 002 eq. (19).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, ToSchema)]
+#[serde(deny_unknown_fields)]
+pub struct WeightsSpec {
+    /// Default 0.5.
+    pub film: f64,
+    /// Default 0.25.
+    pub pressure: f64,
+    /// Default 0.25.
+    pub friction: f64,
+}
+
+impl Default for WeightsSpec {
+    fn default() -> Self {
+        WeightsSpec { film: 0.5, pressure: 0.25, friction: 0.25 }
+    }
+}
+
+/// Which friction figure the score uses.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize, ToSchema)]
+#[serde(rename_all = "snake_case")]
+pub enum FrictionDefinition {
+    /// Seed 002 eq. (9) as read by the `bearing` kind (`friction_variable_seed002`: streamers in
+    /// the cavitated zone). Default, as in the paper's Table 3.
+    #[default]
+    Seed002,
+    /// Raimondi & Boyd's journal friction (`friction_variable`).
+    RaimondiBoyd,
+}
+
+/// The continuous search after the array.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, ToSchema)]
+#[serde(deny_unknown_fields, default)]
+pub struct ContinuousSpec {
+    /// Run it. Default true.
+    pub enabled: bool,
+    /// Bounds of ξ; default the range of the height levels.
+    #[serde(skip_serializing_if = "Option::is_none")] #[schema(min_items = 2, max_items = 2)]
+    pub height: Option<[f64; 2]>,
+    /// Bounds of ψ; default the range of the length-fraction levels.
+    #[serde(skip_serializing_if = "Option::is_none")] #[schema(min_items = 2, max_items = 2)]
+    pub length_fraction: Option<[f64; 2]>,
+    /// Simplex evaluations per order on the search grid (5 to 500). Default 40.
+    pub evaluations_per_order: usize,
+    /// Search on a grid with about half the nodes in each direction, then polish on the job's
+    /// grid (default true); false searches on the job's grid directly.
+    pub coarse_search: bool,
+}
+
+impl Default for ContinuousSpec {
+    fn default() -> Self {
+        ContinuousSpec { enabled: true, height: None, length_fraction: None, evaluations_per_order: 40, coarse_search: true }
+    }
+}
+
+/// Spec of a `bearing_optimisation` job.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, ToSchema)]
+#[serde(deny_unknown_fields)]
+pub struct OptimisationSpec {
+    /// The bearing and operating point every design is analysed at (no `profile`, no `outputs`).
+    pub base: BearingSpec,
+    #[serde(default)]
+    pub method: Method,
+    pub factors: Factors,
+    #[serde(default)]
+    pub weights: WeightsSpec,
+    /// Friction figure of the score. Default `seed002`.
+    #[serde(default)]
+    pub friction: FrictionDefinition,
+    #[serde(default)]
+    pub continuous: ContinuousSpec,
+}
+
+/// One analysed design.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, ToSchema)]
+pub struct Design {
+    pub order: u32,
+    /// ξ
+    pub height: f64,
+    /// ψ
+    pub length_fraction: f64,
+    /// P0
+    pub max_pressure_dimensionless: f64,
+    /// H0
+    pub min_film_dimensionless: f64,
+    /// (R/c) f of the spec's `friction` definition.
+    pub friction_variable: f64,
+    /// Weighted score, eq. (19), on the array's normalisation.
+    pub score: f64,
+    /// Mid-plane eccentricity ratio at the balanced position.
+    pub eccentricity_ratio: f64,
+    /// p_max, Pa (with dimensions).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub max_pressure: Option<f64>,
+    /// h_min, m (with dimensions).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub min_film: Option<f64>,
+}
+
+/// One run of the array (flat: the `runs` CSV table).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, ToSchema)]
+pub struct Run {
+    /// 1-based run number in the array's standard order.
+    pub run: usize,
+    pub order: u32,
+    pub height: f64,
+    pub length_fraction: f64,
+    pub max_pressure_dimensionless: f64,
+    pub min_film_dimensionless: f64,
+    pub friction_variable: f64,
+    /// Normalised criteria of Table 3: P0_best/P0, H0/H0_best, f_best/f.
+    pub pressure_normalised: f64,
+    pub film_normalised: f64,
+    pub friction_normalised: f64,
+    /// Eq. (19).
+    pub score: f64,
+    /// 20 log10(score), dB.
+    pub sn_ratio_db: f64,
+    pub eccentricity_ratio: f64,
+}
+
+/// Main effect of one level of one factor.
+#[derive(Debug, Clone, PartialEq, Serialize, ToSchema)]
+pub struct Effect {
+    /// `order`, `height` or `length_fraction`.
+    pub factor: String,
+    /// 1-based level.
+    pub level: usize,
+    pub value: f64,
+    pub mean_score: f64,
+    pub mean_sn_ratio_db: f64,
+}
+
+/// The best level of each factor (largest mean S/N).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, ToSchema)]
+pub struct BestLevels {
+    /// 1-based levels.
+    pub order_level: usize,
+    pub height_level: usize,
+    pub length_fraction_level: usize,
+    /// The combination, analysed (a confirmation run when it is not one of the runs).
+    pub design: Design,
+}
+
+/// Result of the continuous search.
+#[derive(Debug, Clone, PartialEq, Serialize, ToSchema)]
+pub struct Continuous {
+    /// The best design over all orders, analysed on the job's grid.
+    pub design: Design,
+    /// Best design per order.
+    pub per_order: Vec<Design>,
+    /// Whether `design` scores above the best of the runs and the best-level combination.
+    pub improves_on_taguchi: bool,
+    /// Bearing analyses spent by the search.
+    pub evaluations: usize,
+}
+
+/// Result of a `bearing_optimisation` job.
+#[derive(Debug, Clone, PartialEq, Serialize, ToSchema)]
+pub struct OptimisationResult {
+    pub runs: Vec<Run>,
+    /// 1-based number of the best run.
+    pub best_run: usize,
+    pub best_levels: BestLevels,
+    pub main_effects: Vec<Effect>,
+    /// The base bearing without a profile (e.g. misaligned), on the same load.
+    pub baseline: Design,
+    /// Dimensionless load W̄ every design carries.
+    pub load_dimensionless: f64,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub continuous: Option<Continuous>,
+    /// Bearing analyses in total.
+    pub evaluations: usize,
+    #[schema(value_type = crate::jobs::schemas::ConvergenceDoc)]
+    pub convergence: Convergence,
+}
+
+fn planned_evaluations(spec: &OptimisationSpec) -> usize {
+    let runs = spec.method.array().rows().len();
+    // reference + baseline + runs + confirmation
+    let mut n = 3usize.saturating_add(runs);
+    if spec.continuous.enabled {
+        let orders = spec.factors.order.len();
+        let per_order = spec.continuous.evaluations_per_order.saturating_add(if spec.continuous.coarse_search { 15 } else { 0 });
+        n = n.saturating_add(orders.saturating_mul(per_order));
+    }
+    n
+}
+
+/// Analyse one profile on the base (the load is already resolved).
+struct Evaluator {
+    friction: FrictionDefinition,
+    op: Operating,
+    guess: Option<Guess>,
+}
+
+impl Kind for BearingOptimisation {
+    const NAME: &'static str = "bearing_optimisation";
+    const SOLVER_VERSION: &'static str = "bearing_optimisation-11";
+    const DESCRIPTION: &'static str = "Axial edge profile design of a journal bearing (seed 002): Taguchi \
+        L4/L9/L27 array with the weighted-sum score of eq. (19), main effects and S/N ratios, then a \
+        continuous Nelder–Mead search over height and length fraction for each profile order.";
+    const TABLES: &'static [&'static str] = &["runs", "main_effects"];
+    type Spec = OptimisationSpec;
+    type Output = OptimisationResult;
+
+    fn example() -> Value {
+        json!({
+            "base": {
+                "geometry": {"length_to_diameter": 1.25},
+                "operating": {"speed_rpm": 3000, "viscosity": 0.0293},
+                "load": {"aligned_eccentricity_ratio": 0.6},
+                "misalignment": {"vertical": 0.56, "horizontal": 0.56},
+                "grid": {"circumferential": 181, "axial": 91}
+            },
+            "method": "taguchi_l9",
+            "factors": {"order": [1, 2, 3], "height": [0.1, 0.4, 1.0], "length_fraction": [0.01, 0.2, 0.4]},
+            "weights": {"film": 0.5, "pressure": 0.25, "friction": 0.25}
+        })
+    }
+
+    fn validate(spec: &OptimisationSpec, limits: &Limits, v: &mut Validation) {
+        validate_bearing(&spec.base, limits, v, true, "/base");
+        v.check(spec.base.profile.is_none(), "/base/profile", "the profile is what is optimised: leave it out of the base");
+        v.check(spec.base.outputs.is_empty(), "/base/outputs", "fields are not produced by an optimisation");
+        let n = spec.method.array().levels();
+        let f = &spec.factors;
+        for (path, len) in [("/factors/order", f.order.len()), ("/factors/height", f.height.len()), ("/factors/length_fraction", f.length_fraction.len())] {
+            v.items(path, len, 2, Some(3)).check(len == n, path, format!("needs {n} levels for this array"));
+        }
+        for (i, o) in f.order.iter().enumerate() {
+            v.count_in_range(&format!("/factors/order/{i}"), *o as usize, 1, 3);
+        }
+        for (i, h) in f.height.iter().enumerate() {
+            v.in_range(&format!("/factors/height/{i}"), *h, 0.0, 5.0);
+        }
+        for (i, p) in f.length_fraction.iter().enumerate() {
+            v.check(p.is_finite() && *p > 0.0 && *p <= 0.5, &format!("/factors/length_fraction/{i}"), "must be in (0, 0.5]");
+        }
+        let w = &spec.weights;
+        for (path, x) in [("/weights/film", w.film), ("/weights/pressure", w.pressure), ("/weights/friction", w.friction)] {
+            v.non_negative(path, x);
+        }
+        v.check(w.film + w.pressure + w.friction > 0.0, "/weights", "at least one weight must be > 0");
+        let c = &spec.continuous;
+        v.count_in_range("/continuous/evaluations_per_order", c.evaluations_per_order, 5, 500);
+        if let Some([lo, hi]) = c.height {
+            v.check(lo.is_finite() && hi.is_finite() && 0.0 <= lo && lo < hi && hi <= 5.0, "/continuous/height", "needs 0 <= lo < hi <= 5");
+        }
+        if let Some([lo, hi]) = c.length_fraction {
+            v.check(lo.is_finite() && hi.is_finite() && 0.0 < lo && lo < hi && hi <= 0.5, "/continuous/length_fraction", "needs 0 < lo < hi <= 0.5");
+        }
+        v.limit("/continuous/evaluations_per_order", planned_evaluations(spec), limits.max_evaluations, "planned bearing analyses");
+    }
+
+    fn cost(spec: &OptimisationSpec) -> Cost {
+        // Every planned analysis is a bearing job's work on the base grid; memory: one workspace
+        // per worker thread of the array, and the reference, baseline and best kept beside them.
+        let one = super::bearing::bearing_cost(&spec.base);
+        let n = planned_evaluations(spec);
+        let workers = std::thread::available_parallelism().map_or(1, |p| p.get()).min(n.max(1)) as f64;
+        let what = format!("{n} bearing analyses on {} × {} nodes", spec.base.grid.circumferential, spec.base.grid.axial);
+        // The array's analyses start from their neighbours' solutions and share workspaces:
+        // ≈ 0.25 of a bearing job's (the seed 002 misaligned L9 with its continuous search: 177
+        // analyses in 1.65 s at 181×91; 360 at 3001×181 in 27 s, 460 MB).
+        Cost::new(crate::jobs::cost::JOB_OVERHEAD_S + 0.25 * n as f64 * one.cpu_seconds(), (workers + 3.0) * one.memory_bytes())
+            .work_at("/base/grid", what.clone())
+            .memory_at("/base/grid", what)
+    }
+
+    fn solve(spec: &OptimisationSpec, observer: &dyn Observer) -> Result<OptimisationResult, SolveError> {
+        // The base bearing's fields sit under /base; a candidate's profile comes from /factors.
+        optimise(spec, observer).map_err(|e| {
+            e.in_spec(|field| match field {
+                "Bearing.profile" => Some("/factors".into()),
+                _ => super::bearing::bearing_spec_path(field).map(|p| format!("/base{p}")),
+            })
+        })
+    }
+}
+
+/// The observer of a speculative confirmation run: stops it once the array is complete and its
+/// best-level combination is another one (`known_best`: 0 while unknown, else 1 + its index),
+/// or a case of the array failed.
+struct Abandon<'a> {
+    inner: &'a dyn Observer,
+    known_best: &'a AtomicUsize,
+    failed: &'a AtomicBool,
+    mine: usize,
+}
