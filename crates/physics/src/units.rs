@@ -8,6 +8,11 @@ pub fn rpm_to_rad_per_s(rpm: f64) -> f64 {
     rpm * (2.0 * PI / 60.0)
 }
 
+/// Shaft speed: angular velocity, rad/s → revolutions per minute (n = 60·ω/2π).
+pub fn rad_per_s_to_rpm(omega: f64) -> f64 {
+    omega * 60.0 / (2.0 * PI)
+}
+
 /// Shaft speed: revolutions per minute → revolutions per second, 1/s.
 pub fn rpm_to_rev_per_s(rpm: f64) -> f64 {
     rpm / 60.0

@@ -258,7 +258,7 @@ pub(super) fn dynamic_result(spec: &BearingSpec, a: &Analysis, c: &journal::dyna
         _ => None,
     };
     let threshold_speed_rpm = match (d, stab.and_then(|s| s.critical_mass)) {
-        (Some(d), Some(m)) => Some((m * 9.80665 / d.clearance).sqrt() * 60.0 / (2.0 * PI)),
+        (Some(d), Some(m)) => Some(crate::physics::units::rad_per_s_to_rpm((m * 9.80665 / d.clearance).sqrt())),
         _ => None,
     };
     DynamicCoefficientsResult {

@@ -340,7 +340,7 @@ fn dynamic_response(
     let response = periodic_response(&train, drive, cycle.angles, &options, observer)?;
     let ramp = match &d.run_up {
         Some(r) => {
-            let from = Drive { omega: r.from_rpm * PI / 30.0, ..drive };
+            let from = Drive { omega: crate::physics::units::rpm_to_rad_per_s(r.from_rpm), ..drive };
             Some(run_up(&train, from, omega, r.revolutions, r.samples_per_revolution, &options, observer).map_err(|e| match e {
                 SolveError::InvalidInput { message, .. } => SolveError::invalid("/load/run_up", message),
                 other => other,
@@ -546,7 +546,7 @@ fn add_dynamics(result: &mut CamCycleResult, train: &ValveTrain, r: PeriodicResp
 
 /// The run-up table and its summary figure.
 fn add_run_up(result: &mut CamCycleResult, u: RunUpResponse) {
-    let rpm = |w: f64| w * 30.0 / PI;
+    let rpm = crate::physics::units::rad_per_s_to_rpm;
     let first = u.first_separation_speed.map(rpm);
     result.summary.run_up_first_separation_rpm = first;
     result.summary.run_up_steps = Some(u.stats.accepted);
