@@ -510,8 +510,6 @@ const LONG_FUNCTIONS_LEFT: &[(&str, &str, usize)] = &[
     ("crates/physics/src/journal/analysis.rs", "position", 194),
     ("crates/physics/src/journal/figures.rs", "figures", 167),
     ("crates/physics/src/valvetrain/integrator.rs", "integrate", 257),
-    ("src/jobs/kinds/bearing/validate.rs", "validate_bearing", 177),
-    ("src/jobs/kinds/bearing_optimisation/run.rs", "optimise", 284),
     ("src/jobs/kinds/cam_cycle/mod.rs", "validate", 191),
     ("src/jobs/kinds/cam_cycle/solve.rs", "solve_spec", 162),
     ("src/jobs/kinds/wear/solve.rs", "solve_archard", 166),

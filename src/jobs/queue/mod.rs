@@ -19,6 +19,17 @@
 //!
 //! **Validation** runs on tokio's blocking threads, at most [`QueueConfig::validators`] at once, so a
 //! large spec never stalls the async threads that answer health checks and other requests.
+//!
+//! Files: `submit.rs` (admission and the fair-scheduling estimate), `dispatch.rs` (claim and run
+//! on the pool; the worker's observer), `writer.rs` (batched commits of progress and outcomes),
+//! `leases.rs` (lease renewal and other instances' events), `control.rs` (wait, cancel,
+//! shutdown); this file holds the shared state and the start.
+
+mod control;
+mod dispatch;
+mod leases;
+mod submit;
+mod writer;
 
 use super::cost::Estimate;
 use super::idempotency::{self, Keyed, Replay, Verdict};
@@ -37,10 +48,6 @@ use std::time::{Duration, Instant};
 use tokio::sync::{mpsc, oneshot, Notify};
 use tracing::{info, info_span, warn};
 use uuid::Uuid;
-
-mod submit;
-mod run;
-
 
 /// Tuning of the queue.
 #[derive(Debug, Clone)]
@@ -193,13 +200,86 @@ fn storage_problem(e: StoreError) -> Problem {
     Problem::new(ErrorCode::StorageUnavailable, "the job store could not be reached; try again")
 }
 
-/// The observer a worker hands to its solver: throttled progress into the writer's channel,
-/// and the cancel / shutdown flag and the deadline behind `check`.
-struct JobObserver {
-    id: Uuid,
-    flag: Arc<AtomicU8>,
-    deadline: Option<Instant>,
-    events: mpsc::UnboundedSender<Event>,
-    interval: Duration,
-    last: Mutex<Option<Instant>>,
+impl Queue {
+    /// Recover interrupted jobs, then start the dispatcher and the writer on the current tokio
+    /// runtime.
+    pub async fn start(store: Store, config: QueueConfig, metrics: Arc<Metrics>) -> Result<Queue, StoreError> {
+        // The solvers' process-wide tables (Greenwood–Tripp integrals, ≈ 0.12 s), built now so
+        // that the first job does not pay for them (the work models leave them out).
+        tokio::task::spawn_blocking(super::warm_up);
+        let interrupted = Problem::new(
+            ErrorCode::Interrupted,
+            format!("the job was interrupted {} times (service restarts) and was given up", config.max_attempts),
+        );
+        let error_json = serde_json::to_string(&interrupted).unwrap_or_default();
+        let (requeued, failed) = store.recover_interrupted(config.max_attempts, &error_json, now_ms()).await?;
+        if requeued + failed > 0 {
+            info!(requeued, failed, "recovered jobs interrupted by a previous process");
+        }
+        let backlog = store.queued_count().await?;
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(config.workers.max(1))
+            .thread_name(|i| format!("tribod-worker-{i}"))
+            .build()
+            .map_err(|e| StoreError::Corrupt(format!("worker pool: {e}")))?;
+        let (tx, rx) = mpsc::unbounded_channel();
+        let validators = config.validators.max(1);
+        let inner = Arc::new(Inner {
+            instance: instance_name(),
+            claim_loop_at: AtomicI64::new(now_ms()),
+            store,
+            config,
+            metrics,
+            pool,
+            wake: Notify::new(),
+            idle: Notify::new(),
+            claiming: AtomicBool::new(true),
+            active: AtomicUsize::new(0),
+            estimates: Mutex::new(HashMap::new()),
+            validating: tokio::sync::Semaphore::new(validators),
+            backlog: AtomicI64::new(backlog),
+            backlog_counted_at: AtomicI64::new(now_ms()),
+            running: Mutex::new(HashMap::new()),
+            waiters: Mutex::new(HashMap::new()),
+            events: tx,
+        });
+        inner.metrics.queue_depth.set(backlog);
+        let queue = Queue { inner };
+        tokio::spawn(queue.clone().writer(rx));
+        if queue.inner.config.workers > 0 {
+            tokio::spawn(queue.clone().dispatcher());
+            tokio::spawn(queue.clone().leases(error_json));
+        }
+        if let Some(events) = queue.inner.store.events() {
+            tokio::spawn(queue.clone().forward(events));
+        }
+        Ok(queue)
+    }
+
+    pub fn store(&self) -> &Store {
+        &self.inner.store
+    }
+
+    pub fn limits(&self) -> &Limits {
+        &self.inner.config.limits
+    }
+
+    pub fn metrics(&self) -> &Arc<Metrics> {
+        &self.inner.metrics
+    }
+
+    /// Queued jobs (this process's count, initialised from the database).
+    pub fn backlog(&self) -> i64 {
+        self.inner.backlog.load(Ordering::Relaxed)
+    }
+
+    /// Whether the queue still claims and accepts jobs.
+    pub fn is_accepting(&self) -> bool {
+        self.inner.claiming.load(Ordering::Relaxed)
+    }
+
+    /// Whether this instance's claim loop ran recently (always true without workers).
+    pub fn claim_loop_alive(&self) -> bool {
+        self.inner.config.workers == 0 || now_ms() - self.inner.claim_loop_at.load(Ordering::Relaxed) < 10_000
+    }
 }

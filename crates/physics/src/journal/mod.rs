@@ -28,6 +28,12 @@ pub mod heat;
 mod balance;
 mod figures;
 pub mod taguchi;
+pub mod operating;
+pub mod heat_balance;
+pub mod threshold;
+pub mod limits;
+pub mod case;
+pub mod optimisation;
 
 pub use analysis::{analyse, analyse_symmetric, symmetric_load};
 pub use problem::{Analysis, Bearing, Fields, Guess, Operating, Settings, Supply, Workspace};

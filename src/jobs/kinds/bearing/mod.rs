@@ -31,28 +31,32 @@
 //!   (`physics::journal::heat`); `checks` (with `limits`) compare the minimum film, the specific
 //!   load and the maximum bulk temperature with configurable limits.
 
-use crate::jobs::cost::Cost;
-use crate::jobs::quantity as Q;
-use crate::jobs::kind::{Kind, Limits, OutputInfo, Validation};
-use crate::physics::journal::{self, Analysis, Bearing, Guess, Misalignment, Operating, Profile, Settings, Supply, Workspace};
-use crate::physics::{Convergence, Observer, SolveError};
-use serde::{Deserialize, Serialize};
-use serde_json::{json, Value};
-use std::f64::consts::PI;
-use utoipa::ToSchema;
+//!
+//! Files: `spec.rs` (the request), `result.rs` (the answer), `validate.rs` (the spec's checks),
+//! `solve.rs` (spec → `physics::journal::case` → result), `cost.rs` (the work model); this
+//! file is the kind.
 
-pub struct BearingKind;
+mod cost;
+mod result;
+mod solve;
+mod spec;
+mod validate;
+
+pub use cost::bearing_cost;
+pub use result::*;
+pub use solve::{aligned_reference, bearing_spec_path, resolve_load, resolve_load_in, solve_spec, to_result};
+use solve::solve_bearing;
+pub use spec::*;
+pub use validate::validate_bearing;
+
+use crate::jobs::cost::Cost;
+use crate::jobs::kind::{Kind, Limits, OutputInfo, Validation};
+use crate::physics::{Observer, SolveError};
+use serde_json::{json, Value};
 
 pub use crate::physics::journal::Dimensions;
 
-mod spec;
-mod result;
-mod validate;
-mod solve;
-pub use spec::*;
-pub use result::*;
-pub use validate::*;
-pub use solve::*;
+pub struct BearingKind;
 
 impl Kind for BearingKind {
     const NAME: &'static str = "bearing";
@@ -102,45 +106,6 @@ impl Kind for BearingKind {
     }
 
     fn solve(spec: &BearingSpec, observer: &dyn Observer) -> Result<BearingResult, SolveError> {
-        let solved = || {
-            let bearing = spec.bearing();
-            let settings = spec.settings();
-            let mut ws = Workspace::new(&bearing, &settings);
-            let (spec_eff, a, mut r) = match &spec.thermal {
-                Some(t) => {
-                    observer.progress(0.0, "heat balance");
-                    let (spec_eff, a, target, th) = thermal_balance(spec, t, &mut ws, observer)?;
-                    let mut r = to_result(&spec_eff, &a, target);
-                    r.thermal = Some(th);
-                    (spec_eff, a, r)
-                }
-                None => {
-                    observer.progress(0.0, "load");
-                    let load = resolve_load(spec, observer)?;
-                    observer.progress(0.3, "analysis");
-                    let (a, r) = solve_spec(spec, load, Some(&mut ws), observer)?;
-                    (spec.clone(), a, r)
-                }
-            };
-            if spec.outputs.contains(&BearingOutput::MomentCoefficients) {
-                // the 4×4 set; its translations block is `coefficients`' computation from the same state
-                observer.progress(0.8, "moment coefficients");
-                let c = journal::dynamics::tilt_coefficients(&bearing, &a, &settings, &mut ws, observer)?;
-                if spec.outputs.contains(&BearingOutput::DynamicCoefficients) {
-                    r.dynamic_coefficients = Some(dynamic_result(&spec_eff, &a, &c.translation()));
-                }
-                r.moment_coefficients = Some(moment_result(&spec_eff, &a, &c));
-            } else if spec.outputs.contains(&BearingOutput::DynamicCoefficients) {
-                observer.progress(0.8, "dynamic coefficients");
-                let c = journal::dynamics::coefficients(&bearing, &a, &settings, &mut ws, observer)?;
-                r.dynamic_coefficients = Some(dynamic_result(&spec_eff, &a, &c));
-            }
-            if let Some(lim) = &spec.limits {
-                r.checks = checks(&spec_eff, &r, lim);
-            }
-            observer.progress(1.0, "done");
-            Ok(r)
-        };
-        solved().map_err(|e: SolveError| e.in_spec(bearing_spec_path))
+        solve_bearing(spec, observer).map_err(|e: SolveError| e.in_spec(bearing_spec_path))
     }
 }

@@ -1,4 +1,8 @@
-use super::*;
+//! The `bearing` answer (the types of the OpenAPI document).
+
+use crate::physics::Convergence;
+use serde::Serialize;
+use utoipa::ToSchema;
 
 /// A location on the bearing surface.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, ToSchema)]

@@ -1,11 +1,109 @@
+//! The adapter between the spec and `physics::journal`: spec → [`Case`] (plain SI structs),
+//! [`Solution`] → [`BearingResult`]. No physics here: the operating point, the heat balance, the
+//! coefficients' figures and the limit checks are `journal::operating`, `journal::heat_balance`,
+//! `journal::threshold` and `journal::limits`.
+
 use super::*;
+use crate::physics::journal::case::{Case, Solution};
+use crate::physics::journal::heat_balance::{HeatBalance, Lubricant, ThermalBalance, ViscosityData};
+use crate::physics::journal::limits::{check_limits, LimitCheck, OperatingLimits};
+use crate::physics::journal::operating::{self, LoadDemand, Size};
+use crate::physics::journal::threshold::{DynamicFigures, MomentFigures};
+use crate::physics::journal::{self, Analysis, Guess, Operating, Workspace};
+use crate::physics::units::{rad_per_s_to_rpm, rpm_to_rad_per_s};
+use crate::physics::{Observer, SolveError};
+
+impl BearingSpec {
+    /// Radius, length, clearance and speed (SI), when all are given.
+    pub fn size(&self) -> Option<Size> {
+        let g = &self.geometry;
+        let o = self.operating?;
+        Some(Size { radius: g.radius?, length: g.length?, clearance: g.radial_clearance?, omega: rpm_to_rad_per_s(o.speed_rpm) })
+    }
+
+    /// What the spec's `load` asks for.
+    pub fn load_demand(&self) -> Result<LoadDemand, SolveError> {
+        let l = &self.load;
+        if let Some(e) = l.eccentricity_ratio {
+            return Ok(match l.attitude_angle_deg {
+                Some(a) => LoadDemand::Position { eccentricity: e, attitude: a.to_radians() },
+                None => LoadDemand::Eccentricity(e),
+            });
+        }
+        if let Some(e) = l.aligned_eccentricity_ratio {
+            return Ok(LoadDemand::AlignedEccentricity(e));
+        }
+        if let Some(f) = l.force {
+            return Ok(LoadDemand::Force(f));
+        }
+        if let Some(s) = l.sommerfeld_number {
+            return Ok(LoadDemand::Sommerfeld(s));
+        }
+        Err(SolveError::invalid("/load", "no operating point given"))
+    }
+
+    /// The heat balance of `thermal`, if any.
+    pub fn heat_balance(&self) -> Result<Option<HeatBalance>, SolveError> {
+        let Some(t) = &self.thermal else { return Ok(None) };
+        let lu = &t.lubricant;
+        let viscosity = match (&lu.iso_vg, &lu.viscosity_curve) {
+            (Some(g), _) => ViscosityData::IsoVg { grade: *g, viscosity_100c: lu.viscosity_100c },
+            (None, Some(c)) if c.len() == 2 => ViscosityData::Curve([(c[0].temperature, c[0].viscosity), (c[1].temperature, c[1].viscosity)]),
+            _ => return Err(SolveError::invalid("Lubricant", "an ISO VG grade or a two-point viscosity curve")),
+        };
+        Ok(Some(HeatBalance {
+            lubricant: Lubricant { viscosity, density: lu.density, specific_heat: lu.specific_heat },
+            supply_temperature: t.supply_temperature,
+            carry_over: t.carry_over,
+            housing: t.housing.map(|h| (h.heat_transfer, h.ambient_temperature)),
+            tolerance: t.tolerance,
+            max_iterations: t.max_iterations,
+        }))
+    }
+
+    /// Whether the fields are asked for.
+    pub fn wants_fields(&self) -> bool {
+        self.outputs.iter().any(|o| matches!(o, BearingOutput::PressureField | BearingOutput::FilmField))
+    }
+
+    /// The physics case of the spec.
+    pub fn case(&self) -> Result<Case, SolveError> {
+        Ok(Case {
+            bearing: self.bearing(),
+            settings: self.settings(),
+            heat: self.heat_balance()?,
+            load: self.load_demand()?,
+            size: self.size(),
+            viscosity: self.operating.and_then(|o| o.viscosity),
+            want_fields: self.wants_fields(),
+            dynamic_coefficients: self.outputs.contains(&BearingOutput::DynamicCoefficients),
+            moment_coefficients: self.outputs.contains(&BearingOutput::MomentCoefficients),
+        })
+    }
+}
+
+/// Solve a spec: its case in `physics::journal::case`, the solution as the result document.
+pub(super) fn solve_bearing(spec: &BearingSpec, observer: &dyn Observer) -> Result<BearingResult, SolveError> {
+    let case = spec.case()?;
+    let s = journal::case::solve(&case, observer)?;
+    Ok(result_of(spec, &s))
+}
+
+/// The result document of a solution.
+fn result_of(spec: &BearingSpec, s: &Solution) -> BearingResult {
+    let mut r = result_at(spec, s.dimensions, &s.analysis, s.target);
+    r.thermal = s.thermal.as_ref().map(thermal_result);
+    r.dynamic_coefficients = s.dynamic.as_ref().map(dynamic_result);
+    r.moment_coefficients = s.moment.as_ref().map(moment_result);
+    if let Some(lim) = &spec.limits {
+        r.checks = checks(spec, &r, lim);
+    }
+    r
+}
 
 /// What the spec's `load` asks for, resolved to the solver's operating point (the aligned
 /// reference is solved here when needed). Returns the operating point and a starting guess.
-pub fn resolve_load(
-    spec: &BearingSpec,
-    observer: &dyn Observer,
-) -> Result<(Operating, Option<Guess>, Option<f64>), SolveError> {
+pub fn resolve_load(spec: &BearingSpec, observer: &dyn Observer) -> Result<(Operating, Option<Guess>, Option<f64>), SolveError> {
     resolve_load_in(spec, None, observer)
 }
 
@@ -16,51 +114,40 @@ pub fn resolve_load_in(
     workspace: Option<&mut Workspace>,
     observer: &dyn Observer,
 ) -> Result<(Operating, Option<Guess>, Option<f64>), SolveError> {
-    let l = &spec.load;
-    if let Some(e) = l.eccentricity_ratio {
-        return Ok(match l.attitude_angle_deg {
-            Some(a) => (Operating::Position { eccentricity: e, attitude: a.to_radians() }, None, None),
-            None => (Operating::Eccentricity(e), None, None),
-        });
-    }
-    if let Some(e) = l.aligned_eccentricity_ratio {
-        let (w, guess) = aligned_reference_in(spec, e, workspace, observer)?;
-        return Ok((Operating::Load(w), Some(guess), Some(w)));
-    }
-    if let Some(f) = l.force {
-        let d = spec.dimensions().ok_or_else(|| SolveError::invalid("/load/force", "needs dimensions"))?;
-        let w = f / d.load_scale();
-        return Ok((Operating::Load(w), None, Some(w)));
-    }
-    if let Some(s) = l.sommerfeld_number {
-        let w = 1.0 / (6.0 * PI * s);
-        return Ok((Operating::Load(w), None, Some(w)));
-    }
-    Err(SolveError::invalid("/load", "no operating point given"))
+    let p = operating::resolve_load(&spec.bearing(), &spec.settings(), &spec.load_demand()?, spec.dimensions().as_ref(), workspace, observer)?;
+    Ok((p.operating, p.guess, p.target))
 }
 
 /// The load (W̄) an aligned, unprofiled bearing with the spec's L/D, supply and grid carries at
 /// eccentricity ratio `e`, and its position.
 pub fn aligned_reference(spec: &BearingSpec, e: f64, observer: &dyn Observer) -> Result<(f64, Guess), SolveError> {
-    aligned_reference_in(spec, e, None, observer)
+    operating::aligned_reference(&spec.bearing(), &spec.settings(), e, None, observer)
 }
 
-pub(super) fn aligned_reference_in(spec: &BearingSpec, e: f64, workspace: Option<&mut Workspace>, observer: &dyn Observer) -> Result<(f64, Guess), SolveError> {
-    let mut b = spec.bearing();
-    b.misalignment = Misalignment::default();
-    b.profile = None;
-    // aligned and unprofiled: symmetric about the mid-plane, solved on half the axial grid
-    // (the same discrete equations; an even axial node count takes the full grid)
-    journal::symmetric_load(&b, &Operating::Eccentricity(e), &spec.settings(), workspace, None, observer)
+/// Analyse one bearing spec at a resolved operating point `(operating, guess, target)`.
+pub fn solve_spec(
+    spec: &BearingSpec,
+    load: (Operating, Option<Guess>, Option<f64>),
+    workspace: Option<&mut Workspace>,
+    observer: &dyn Observer,
+) -> Result<(Analysis, BearingResult), SolveError> {
+    let a = journal::analyse(&spec.bearing(), &load.0, &spec.settings(), workspace, load.1, spec.wants_fields(), observer)?;
+    let r = to_result(spec, &a, load.2);
+    Ok((a, r))
 }
 
 /// Turn an analysis into the result document.
 pub fn to_result(spec: &BearingSpec, a: &Analysis, target: Option<f64>) -> BearingResult {
-    let d = spec.dimensions();
+    result_at(spec, spec.dimensions(), a, target)
+}
+
+/// The fields asked for, downsampled by the spec's stride (every stride-th node plus the last
+/// of each direction; the 360° column repeats 0°).
+fn field_table(spec: &BearingSpec, a: &Analysis) -> Option<FieldTable> {
     let stride = spec.field_stride;
     let want_p = spec.outputs.contains(&BearingOutput::PressureField);
     let want_h = spec.outputs.contains(&BearingOutput::FilmField);
-    let field = a.fields.as_ref().filter(|_| want_p || want_h).map(|f| {
+    a.fields.as_ref().filter(|_| want_p || want_h).map(|f| {
         let nt = f.theta.len();
         let nz = f.z.len();
         // columns 0..nt (the 360° column repeats 0°), rows 0..nz, every stride-th plus the last
@@ -94,7 +181,11 @@ pub fn to_result(spec: &BearingSpec, a: &Analysis, target: Option<f64>) -> Beari
             }
         }
         t
-    });
+    })
+}
+
+/// The result document of an analysis with the SI scales `d`.
+fn result_at(spec: &BearingSpec, d: Option<Dimensions>, a: &Analysis, target: Option<f64>) -> BearingResult {
     BearingResult {
         eccentricity_ratio: a.eccentricity,
         attitude_angle_deg: a.attitude.to_degrees(),
@@ -133,7 +224,7 @@ pub fn to_result(spec: &BearingSpec, a: &Analysis, target: Option<f64>) -> Beari
             .iter()
             .map(|&(c, z, s)| GridSteps { circumferential: c, axial: z, steps: s })
             .collect(),
-        field,
+        field: field_table(spec, a),
         dynamic_coefficients: None,
         moment_coefficients: None,
         thermal: None,
@@ -141,169 +232,86 @@ pub fn to_result(spec: &BearingSpec, a: &Analysis, target: Option<f64>) -> Beari
     }
 }
 
-/// Solve one bearing spec (shared with the optimisation, which passes a workspace and a guess).
-pub fn solve_spec(
-    spec: &BearingSpec,
-    load: (Operating, Option<Guess>, Option<f64>),
-    workspace: Option<&mut Workspace>,
-    observer: &dyn Observer,
-) -> Result<(Analysis, BearingResult), SolveError> {
-    let want_fields = spec.outputs.iter().any(|o| matches!(o, BearingOutput::PressureField | BearingOutput::FilmField));
-    let a = journal::analyse(&spec.bearing(), &load.0, &spec.settings(), workspace, load.1, want_fields, observer)?;
-    let r = to_result(spec, &a, load.2);
-    Ok((a, r))
-}
-
-/// Analyses a heat balance typically needs (each a warm-started load-balanced analysis).
-pub(super) const HEAT_BALANCE_ANALYSES: f64 = 1.5;
-
-/// The work and memory model of one `bearing` job: load-balanced analyses on the grid
-/// (`jobs::cost::bearing_analysis_seconds`), times the heat balance's iterations, plus the
-/// coefficients' adjoint solves (2 for the 2×2 set, 4 for the 4×4 set, each about one analysis).
-pub fn bearing_cost(spec: &BearingSpec) -> Cost {
-    let nodes = spec.grid.circumferential.saturating_mul(spec.grid.axial);
-    let one = crate::jobs::cost::bearing_analysis_seconds(nodes);
-    let mut analyses = if spec.thermal.is_some() { HEAT_BALANCE_ANALYSES } else { 1.0 };
-    // A misaligned journal's film is not symmetric about the mid-plane: the whole grid, twice
-    // the work of the aligned half (seed 002's misaligned case).
-    if spec.misalignment.is_some() {
-        analyses *= 2.0;
-    }
-    if spec.outputs.contains(&BearingOutput::MomentCoefficients) {
-        analyses += 4.0 * 0.5;
-    } else if spec.outputs.contains(&BearingOutput::DynamicCoefficients) {
-        analyses += 2.0 * 0.5;
-    }
-    // The multigrid hierarchy (≈ 4/3 of the fine grid) of about 16 arrays of the grid (peak
-    // resident memory: 43 MB at 721×361).
-    let bytes = 16.0 * 8.0 * 4.0 / 3.0 * nodes as f64 + crate::jobs::cost::MIB;
-    let what = format!("{analyses:.0} bearing analyses on {} × {} nodes", spec.grid.circumferential, spec.grid.axial);
-    Cost::new(crate::jobs::cost::JOB_OVERHEAD_S + analyses * one, bytes)
-        .work_at("/grid", what.clone())
-        .memory_at("/grid", what)
-}
-
-/// The heat balance: bearing analyses at trial viscosities until the effective temperature
-/// reproduces itself. Returns the spec at the final viscosity, its analysis, the load target and
-/// the thermal block.
-pub(super) fn thermal_balance(
-    spec: &BearingSpec,
-    t: &BearingThermalSpec,
-    ws: &mut Workspace,
-    observer: &dyn Observer,
-) -> Result<(BearingSpec, Analysis, Option<f64>, BearingThermalResult), SolveError> {
-    use journal::heat::{balance, Cooling, Flows, Oil, Walther};
-    let lu = &t.lubricant;
-    let law = match (&lu.iso_vg, &lu.viscosity_curve) {
-        (Some(g), _) => Walther::iso_vg(*g, lu.viscosity_100c)?,
-        (None, Some(c)) if c.len() == 2 => {
-            let nu = |p: &BearingViscosityPoint| p.viscosity / lu.density * 1e6;
-            Walther::through(c[0].temperature, nu(&c[0]), c[1].temperature, nu(&c[1]))?
-        }
-        _ => return Err(SolveError::invalid("Lubricant", "an ISO VG grade or a two-point viscosity curve")),
-    };
-    let oil = Oil { law, density: lu.density, specific_heat: lu.specific_heat };
-    let cool = Cooling {
+/// The heat balance block (field for field `journal::heat_balance::ThermalBalance`).
+fn thermal_result(t: &ThermalBalance) -> BearingThermalResult {
+    BearingThermalResult {
+        effective_temperature: t.effective_temperature,
+        viscosity: t.viscosity,
+        kinematic_viscosity: t.kinematic_viscosity,
+        inlet_temperature: t.inlet_temperature,
+        outlet_temperature: t.outlet_temperature,
+        max_temperature: t.max_temperature,
         supply_temperature: t.supply_temperature,
-        carry_over: t.carry_over,
-        housing: t.housing.map(|h| (h.heat_transfer, h.ambient_temperature)),
-        tolerance: t.tolerance,
-        max_iterations: t.max_iterations,
-    };
-    let mut guess: Option<Guess> = None;
-    let mut last: Option<(BearingSpec, Analysis, Option<f64>)> = None;
-    let b = balance(&oil, &cool, observer, |eta| {
-        let s = spec.with_viscosity(eta);
-        let d = s.dimensions().ok_or_else(|| SolveError::invalid("/thermal", "needs dimensions"))?;
-        let (op, g0, target) = resolve_load(&s, observer)?;
-        let (a, _) = solve_spec(&s, (op, guess.or(g0), target), Some(&mut *ws), observer)?;
-        guess = Some(Guess { eccentricity: a.eccentricity, attitude: a.attitude });
-        let f = Flows { power: d.power(a.friction_force), inflow: d.flow(a.flow_variable), side_flow: d.flow(a.side_flow_variable) };
-        last = Some((s, a, target));
-        Ok(f)
-    })?;
-    let (s, a, target) = last.expect("the balance ran at least one analysis");
-    let tt = b.temperatures;
-    let th = BearingThermalResult {
-        effective_temperature: b.temperature,
-        viscosity: b.viscosity,
-        kinematic_viscosity: b.viscosity / oil.density * 1e6,
-        inlet_temperature: tt.inlet,
-        outlet_temperature: tt.outlet,
-        max_temperature: tt.outlet,
-        supply_temperature: t.supply_temperature,
-        power_loss: b.flows.power,
-        film_inflow: b.flows.inflow,
-        side_flow: b.flows.side_flow,
-        supply_flow: tt.supply_flow,
-        convergence: b.convergence,
-    };
-    crate::physics::ensure_finite(
-        "heat balance",
-        [th.effective_temperature, th.viscosity, th.inlet_temperature, th.outlet_temperature, th.power_loss, th.film_inflow, th.side_flow, th.supply_flow].iter(),
-    )?;
-    Ok((s, a, target, th))
+        power_loss: t.power_loss,
+        film_inflow: t.film_inflow,
+        side_flow: t.side_flow,
+        supply_flow: t.supply_flow,
+        convergence: t.convergence.clone(),
+    }
 }
 
-/// The coefficients block: dimensionless always (at a positive load), SI with dimensions.
-pub(super) fn dynamic_result(spec: &BearingSpec, a: &Analysis, c: &journal::dynamics::Coefficients) -> DynamicCoefficientsResult {
-    let d = spec.dimensions();
-    let kmat = |m: [[f64; 2]; 2], s: f64| StiffnessResult { kxx: m[0][0] * s, kxy: m[0][1] * s, kyx: m[1][0] * s, kyy: m[1][1] * s };
-    let cmat = |m: [[f64; 2]; 2], s: f64| DampingResult { cxx: m[0][0] * s, cxy: m[0][1] * s, cyx: m[1][0] * s, cyy: m[1][1] * s };
-    let nondim = c.dimensionless(a.load);
-    let stab = nondim.map(|(k, cc)| journal::dynamics::stability(k, cc));
-    // K = (−∂F̄/∂X) · 6ηωRL(R/c)²/c, C = (−∂F̄/∂X') · 6ηωRL(R/c)²/(cω)
-    let critical_mass = match (d, stab.and_then(|s| s.critical_mass)) {
-        (Some(d), Some(m)) => Some(m * a.load * d.load_scale() / (d.clearance * d.omega * d.omega)),
-        _ => None,
-    };
-    let threshold_speed_rpm = match (d, stab.and_then(|s| s.critical_mass)) {
-        (Some(d), Some(m)) => Some(crate::physics::units::rad_per_s_to_rpm((m * 9.80665 / d.clearance).sqrt())),
-        _ => None,
-    };
+/// The coefficients block: dimensionless always (at a positive load), SI with dimensions; the
+/// threshold speed in rev/min.
+fn dynamic_result(f: &DynamicFigures) -> DynamicCoefficientsResult {
+    let k = |m: [[f64; 2]; 2]| StiffnessResult { kxx: m[0][0], kxy: m[0][1], kyx: m[1][0], kyy: m[1][1] };
+    let c = |m: [[f64; 2]; 2]| DampingResult { cxx: m[0][0], cxy: m[0][1], cyx: m[1][0], cyy: m[1][1] };
     DynamicCoefficientsResult {
-        stiffness: d.map(|d| kmat(c.stiffness, d.load_scale() / d.clearance)),
-        damping: d.map(|d| cmat(c.damping, d.load_scale() / (d.clearance * d.omega))),
-        stiffness_dimensionless: nondim.map(|(k, _)| kmat(k, 1.0)),
-        damping_dimensionless: nondim.map(|(_, cc)| cmat(cc, 1.0)),
-        whirl_ratio: stab.map(|s| s.whirl_ratio),
-        critical_mass_dimensionless: stab.and_then(|s| s.critical_mass),
-        critical_mass,
-        threshold_speed_rpm,
-        convergence: c.convergence.clone(),
+        stiffness: f.stiffness.map(k),
+        damping: f.damping.map(c),
+        stiffness_dimensionless: f.stiffness_dimensionless.map(k),
+        damping_dimensionless: f.damping_dimensionless.map(c),
+        whirl_ratio: f.whirl_ratio,
+        critical_mass_dimensionless: f.critical_mass_dimensionless,
+        critical_mass: f.critical_mass,
+        threshold_speed_rpm: f.threshold_speed.map(rad_per_s_to_rpm),
+        convergence: f.convergence.clone(),
     }
 }
 
 /// The force and moment coefficients block: dimensionless always (at a positive load), SI with
-/// dimensions. Generalised coordinates `(X, Y, Γx, Γy)` with `Γ = ψ L/c` and forces
-/// `(F̄, M̄/L)` in the solver (`journal::dynamics::TiltCoefficients`), so
-/// `K_ij = stiffness_ij · (W_scale/c) · l_i l_j` with `l = (1, 1, L, L)`, `C_ij` the same over ω.
-pub(super) fn moment_result(spec: &BearingSpec, a: &Analysis, c: &journal::dynamics::TiltCoefficients) -> MomentCoefficientsResult {
-    let d = spec.dimensions();
-    let scaled = |m: &[[f64; 4]; 4], s: f64, length: f64| -> Vec<Vec<f64>> {
-        let l = [1.0, 1.0, length, length];
-        (0..4).map(|i| (0..4).map(|j| m[i][j] * s * l[i] * l[j]).collect()).collect()
-    };
-    let nondim = c.dimensionless(a.load);
+/// dimensions; rows and columns `(x, y, tilt_x, tilt_y)`.
+fn moment_result(f: &MomentFigures) -> MomentCoefficientsResult {
+    let rows = |m: [[f64; 4]; 4]| -> Vec<Vec<f64>> { m.iter().map(|r| r.to_vec()).collect() };
     MomentCoefficientsResult {
         coordinates: ["x", "y", "tilt_x", "tilt_y"].iter().map(|s| s.to_string()).collect(),
-        stiffness: d.map(|d| scaled(&c.stiffness, d.load_scale() / d.clearance, d.length)),
-        damping: d.map(|d| scaled(&c.damping, d.load_scale() / (d.clearance * d.omega), d.length)),
-        stiffness_dimensionless: nondim.map(|(k, _)| scaled(&k, 1.0, 1.0)),
-        damping_dimensionless: nondim.map(|(_, cc)| scaled(&cc, 1.0, 1.0)),
-        convergence: c.convergence.clone(),
+        stiffness: f.stiffness.map(rows),
+        damping: f.damping.map(rows),
+        stiffness_dimensionless: f.stiffness_dimensionless.map(rows),
+        damping_dimensionless: f.damping_dimensionless.map(rows),
+        convergence: f.convergence.clone(),
     }
 }
 
 /// The operating-limit checks of a result (needs its SI values).
-pub(super) fn checks(spec: &BearingSpec, r: &BearingResult, lim: &BearingLimitsSpec) -> Option<BearingChecks> {
+fn checks(spec: &BearingSpec, r: &BearingResult, lim: &BearingLimitsSpec) -> Option<BearingChecks> {
     let g = &spec.geometry;
     let (radius, length) = (g.radius?, g.length?);
-    let lower = |value: f64, limit: f64| BearingCheck { value, limit, pass: value >= limit, margin: if limit > 0.0 { (value - limit) / limit } else { 0.0 } };
-    let upper = |value: f64, limit: f64| BearingCheck { value, limit, pass: value <= limit, margin: (limit - value) / limit };
-    let min_film = lower(r.min_film?, lim.journal_roughness + lim.bearing_roughness + lim.film_allowance);
-    let specific_load = upper(r.load.force? / (2.0 * radius * length), lim.max_specific_load);
-    let max_temperature = r.thermal.as_ref().map(|t| upper(t.max_temperature, lim.max_temperature));
-    let pass = min_film.pass && specific_load.pass && max_temperature.is_none_or(|c| c.pass);
-    Some(BearingChecks { min_film, specific_load, max_temperature, pass })
+    let limits = OperatingLimits {
+        journal_roughness: lim.journal_roughness,
+        bearing_roughness: lim.bearing_roughness,
+        film_allowance: lim.film_allowance,
+        max_temperature: lim.max_temperature,
+        max_specific_load: lim.max_specific_load,
+    };
+    let c = check_limits(r.min_film?, r.load.force?, radius, length, r.thermal.as_ref().map(|t| t.max_temperature), &limits);
+    let check = |c: LimitCheck| BearingCheck { value: c.value, limit: c.limit, pass: c.pass, margin: c.margin };
+    Some(BearingChecks { min_film: check(c.min_film), specific_load: check(c.specific_load), max_temperature: c.max_temperature.map(check), pass: c.pass })
+}
+
+/// The spec path of a journal-bearing solver input field (`physics::journal`).
+pub fn bearing_spec_path(field: &str) -> Option<String> {
+    let path = match field {
+        "Bearing.length_to_diameter" => "/geometry/length_to_diameter",
+        "Bearing.profile" => "/profile",
+        "Settings.grid" => "/grid",
+        "Settings.tolerances" => "/solver",
+        "Operating.eccentricity" => "/load/eccentricity_ratio",
+        "Operating.load" => "/load",
+        "Operating.force" => "/load/force",
+        "HeatBalance.size" => "/thermal",
+        "Lubricant" | "Lubricant.viscosity_curve" => "/thermal/lubricant",
+        "Lubricant.iso_vg" => "/thermal/lubricant/iso_vg",
+        _ => return None,
+    };
+    Some(path.to_string())
 }

@@ -1,4 +1,10 @@
-use super::*;
+//! The `bearing` request: geometry, operating point, lubricant and heat balance, limits, grid,
+//! solver settings and outputs (the types of the OpenAPI document), and the spec's own
+//! figures (L/D, the solver's bearing and settings, SI dimensions).
+
+use crate::physics::journal::{Bearing, Dimensions, Misalignment, Profile, Settings, Supply};
+use serde::{Deserialize, Serialize};
+use utoipa::ToSchema;
 
 /// Bearing geometry. Give `length_to_diameter`, or `radius` and `length` (then L/D follows);
 /// `radius`, `length` and `radial_clearance` together (with `operating`) switch on SI outputs.
@@ -44,11 +50,10 @@ pub struct BearingViscosityPoint {
     pub viscosity: f64,
 }
 
-pub(super) fn default_density() -> f64 {
+fn default_density() -> f64 {
     870.0
 }
-
-pub(super) fn default_specific_heat() -> f64 {
+fn default_specific_heat() -> f64 {
     2000.0
 }
 
@@ -87,11 +92,10 @@ pub struct BearingHousingSpec {
     pub ambient_temperature: f64,
 }
 
-pub(super) fn default_thermal_tolerance() -> f64 {
+fn default_thermal_tolerance() -> f64 {
     0.01
 }
-
-pub(super) fn default_thermal_iterations() -> u32 {
+fn default_thermal_iterations() -> u32 {
     30
 }
 
@@ -126,19 +130,16 @@ pub struct BearingThermalSpec {
     pub max_iterations: u32,
 }
 
-pub(super) fn default_journal_roughness() -> f64 {
+fn default_journal_roughness() -> f64 {
     2e-6
 }
-
-pub(super) fn default_bearing_roughness() -> f64 {
+fn default_bearing_roughness() -> f64 {
     3e-6
 }
-
-pub(super) fn default_max_temperature() -> f64 {
+fn default_max_temperature() -> f64 {
     383.15
 }
-
-pub(super) fn default_max_specific_load() -> f64 {
+fn default_max_specific_load() -> f64 {
     5e6
 }
 

@@ -10,21 +10,15 @@
 //! read by the `bearing` kind (`friction: seed002`, default) or Raimondi & Boyd's journal friction. S/N ratios are larger-the-better, `20 log10(score)`, dB; the best
 //! level of each factor is the one with the largest mean S/N.
 
-use super::bearing::{resolve_load_in, solve_spec, validate_bearing, BearingSpec, BearingProfileSpec};
+use super::bearing::{validate_bearing, BearingSpec};
 use crate::jobs::cost::Cost;
 use crate::jobs::kind::{Kind, Limits, Validation};
-use crate::physics::journal::taguchi::{level_means, nelder_mead, sn_larger_better, Array, Criteria, Reference, Weights};
-use crate::physics::journal::{Guess, Operating, Workspace};
-use crate::physics::{Convergence, Observer, SolveError, Termination};
-use rayon::prelude::*;
-use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
-use std::sync::Mutex;
+use crate::physics::journal::optimisation::{self as opt, ContinuousSearch, FrictionFigure, Problem, ProfileDesign};
+use crate::physics::journal::taguchi::{Array, Weights};
+use crate::physics::{Convergence, Observer, SolveError};
 use serde::{Deserialize, Serialize};
 use serde_json::{json, Value};
 use utoipa::ToSchema;
-
-mod run;
-pub use run::*;
 
 pub struct BearingOptimisation;
 
@@ -255,13 +249,6 @@ fn planned_evaluations(spec: &OptimisationSpec) -> usize {
     n
 }
 
-/// Analyse one profile on the base (the load is already resolved).
-struct Evaluator {
-    friction: FrictionDefinition,
-    op: Operating,
-    guess: Option<Guess>,
-}
-
 impl Kind for BearingOptimisation {
     const NAME: &'static str = "bearing_optimisation";
     const SOLVER_VERSION: &'static str = "bearing_optimisation-11";
@@ -347,12 +334,104 @@ impl Kind for BearingOptimisation {
     }
 }
 
-/// The observer of a speculative confirmation run: stops it once the array is complete and its
-/// best-level combination is another one (`known_best`: 0 while unknown, else 1 + its index),
-/// or a case of the array failed.
-struct Abandon<'a> {
-    inner: &'a dyn Observer,
-    known_best: &'a AtomicUsize,
-    failed: &'a AtomicBool,
-    mine: usize,
+/// The physics problem of a spec: the base bearing and its load, the array's factor levels, the
+/// score's weights and friction figure, and the continuous search.
+fn problem(spec: &OptimisationSpec) -> Result<Problem, SolveError> {
+    let base = &spec.base;
+    let f = &spec.factors;
+    let c = &spec.continuous;
+    Ok(Problem {
+        bearing: base.bearing(),
+        settings: base.settings(),
+        load: base.load_demand()?,
+        dimensions: base.dimensions(),
+        want_fields: base.wants_fields(),
+        array: spec.method.array(),
+        orders: f.order.clone(),
+        heights: f.height.clone(),
+        length_fractions: f.length_fraction.clone(),
+        weights: Weights { film: spec.weights.film, pressure: spec.weights.pressure, friction: spec.weights.friction },
+        friction: match spec.friction {
+            FrictionDefinition::Seed002 => FrictionFigure::Seed002,
+            FrictionDefinition::RaimondiBoyd => FrictionFigure::RaimondiBoyd,
+        },
+        continuous: c.enabled.then_some(ContinuousSearch {
+            height: c.height,
+            length_fraction: c.length_fraction,
+            evaluations_per_order: c.evaluations_per_order,
+            coarse_search: c.coarse_search,
+        }),
+    })
+}
+
+/// The optimisation of a spec: its problem in `physics::journal::optimisation`, the outcome as
+/// the result document (public for the tests of its scheduling, `tests/it/service_units.rs`).
+pub fn optimise(spec: &OptimisationSpec, observer: &dyn Observer) -> Result<OptimisationResult, SolveError> {
+    let d = opt::optimise(&problem(spec)?, observer)?;
+    Ok(result(&d))
+}
+
+/// A design (field for field `journal::optimisation::Design`).
+fn design(d: &opt::Design) -> Design {
+    Design {
+        order: d.order,
+        height: d.height,
+        length_fraction: d.length_fraction,
+        max_pressure_dimensionless: d.max_pressure_dimensionless,
+        min_film_dimensionless: d.min_film_dimensionless,
+        friction_variable: d.friction_variable,
+        score: d.score,
+        eccentricity_ratio: d.eccentricity_ratio,
+        max_pressure: d.max_pressure,
+        min_film: d.min_film,
+    }
+}
+
+/// A run of the array (field for field `journal::optimisation::Run`).
+fn run(r: &opt::Run) -> Run {
+    Run {
+        run: r.run,
+        order: r.order,
+        height: r.height,
+        length_fraction: r.length_fraction,
+        max_pressure_dimensionless: r.max_pressure_dimensionless,
+        min_film_dimensionless: r.min_film_dimensionless,
+        friction_variable: r.friction_variable,
+        pressure_normalised: r.pressure_normalised,
+        film_normalised: r.film_normalised,
+        friction_normalised: r.friction_normalised,
+        score: r.score,
+        sn_ratio_db: r.sn_ratio_db,
+        eccentricity_ratio: r.eccentricity_ratio,
+    }
+}
+
+/// The result document of an outcome (field for field `journal::optimisation::ProfileDesign`).
+fn result(d: &ProfileDesign) -> OptimisationResult {
+    let b = &d.best_levels;
+    OptimisationResult {
+        runs: d.runs.iter().map(run).collect(),
+        best_run: d.best_run,
+        best_levels: BestLevels {
+            order_level: b.order_level,
+            height_level: b.height_level,
+            length_fraction_level: b.length_fraction_level,
+            design: design(&b.design),
+        },
+        main_effects: d
+            .main_effects
+            .iter()
+            .map(|e| Effect { factor: e.factor.clone(), level: e.level, value: e.value, mean_score: e.mean_score, mean_sn_ratio_db: e.mean_sn_ratio_db })
+            .collect(),
+        baseline: design(&d.baseline),
+        load_dimensionless: d.load_dimensionless,
+        continuous: d.continuous.as_ref().map(|c| Continuous {
+            design: design(&c.design),
+            per_order: c.per_order.iter().map(design).collect(),
+            improves_on_taguchi: c.improves_on_taguchi,
+            evaluations: c.evaluations,
+        }),
+        evaluations: d.evaluations,
+        convergence: d.convergence.clone(),
+    }
 }

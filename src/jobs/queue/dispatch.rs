@@ -1,0 +1,146 @@
+//! The dispatcher: claim queued jobs for free worker slots and run each on the rayon pool with
+//! an observer that carries progress, cancel, shutdown and the deadline.
+
+use super::*;
+
+impl Queue {
+    pub(super) async fn dispatcher(self) {
+        let inner = &self.inner;
+        loop {
+            let notified = inner.wake.notified();
+            inner.claim_loop_at.store(now_ms(), Ordering::Relaxed);
+            if !inner.claiming.load(Ordering::Relaxed) {
+                return;
+            }
+            let target = inner.config.workers.max(1);
+            let free = target.saturating_sub(inner.active.load(Ordering::Relaxed));
+            let mut claimed_all = false;
+            if free > 0 {
+                let now = now_ms();
+                let lease_until = now + inner.config.lease.as_millis() as i64;
+                match inner.store.claim(free, now, &inner.instance, lease_until).await {
+                    Ok(jobs) => {
+                        claimed_all = jobs.len() == free;
+                        let n = jobs.len() as i64;
+                        if n > 0 {
+                            let depth = inner.backlog.fetch_sub(n, Ordering::Relaxed) - n;
+                            inner.metrics.queue_depth.set(depth.max(0));
+                        }
+                        for job in jobs {
+                            self.spawn(job);
+                        }
+                    }
+                    Err(e) => warn!(error = %e, "claiming jobs failed; retrying"),
+                }
+            }
+            if claimed_all && inner.active.load(Ordering::Relaxed) < target {
+                continue;
+            }
+            // Woken by a submission or a finished job; the timeout is a safety net only.
+            let _ = tokio::time::timeout(Duration::from_secs(2), notified).await;
+        }
+    }
+
+    fn spawn(&self, job: crate::store::ClaimedJob) {
+        let inner = &self.inner;
+        inner.active.fetch_add(1, Ordering::Relaxed);
+        inner.metrics.running.set(inner.active.load(Ordering::Relaxed) as i64);
+        let flag = inner
+            .running
+            .lock()
+            .unwrap_or_else(|e| e.into_inner())
+            .entry(job.id)
+            .or_insert_with(|| Arc::new(AtomicU8::new(FLAG_NONE)))
+            .clone();
+        let events = inner.events.clone();
+        let limits = inner.config.limits;
+        let timeout = inner.config.job_timeout;
+        let interval = inner.config.progress_interval;
+        inner.pool.spawn(move || {
+            let deadline = timeout.map(|t| Instant::now() + t);
+            let span = info_span!("job", id = %job.id, kind = %job.kind, attempt = job.attempts);
+            let _entered = span.enter();
+            let observer = JobObserver {
+                id: job.id,
+                flag,
+                deadline,
+                events: events.clone(),
+                interval,
+                last: Mutex::new(None),
+            };
+            // Canceled (or shut down) while it waited in the pool's queue: do not start it.
+            let mut modelled = 0.0;
+            let (outcome, wall) = match (observer.check(), prepare(&job.kind, &job.spec, &limits)) {
+                (Err(interrupt), _) => (Outcome::Interrupted(interrupt), 0.0),
+                (Ok(()), Ok(prepared)) => {
+                    modelled = prepared.cost.cpu_seconds();
+                    runner::run(prepared, &observer)
+                }
+                (Ok(()), Err(problem)) => (Outcome::Failed(problem), 0.0),
+            };
+            let (finish, status) = match outcome {
+                Outcome::Succeeded(mut value) => {
+                    if let Some(meta) = value.get_mut("meta").and_then(Value::as_object_mut) {
+                        meta.insert("job_id".into(), Value::String(job.id.to_string()));
+                    }
+                    let text = serde_json::to_string(&value).unwrap_or_default();
+                    (Finish::Succeeded { id: job.id, result: encode_result(&text) }, JobStatus::Succeeded)
+                }
+                Outcome::Failed(problem) => {
+                    info!(code = %problem.code, detail = %problem.detail, "job failed");
+                    let error = serde_json::to_string(&problem).unwrap_or_default();
+                    (Finish::Failed { id: job.id, error }, JobStatus::Failed)
+                }
+                Outcome::Interrupted(Interrupt::Shutdown) => (Finish::Requeue { id: job.id }, JobStatus::Queued),
+                Outcome::Interrupted(_) => (Finish::Canceled { id: job.id }, JobStatus::Canceled),
+            };
+            info!(status = status.as_str(), wall_seconds = wall, "job done");
+            let _ = events.send(Event::Finished { id: job.id, kind: job.kind.clone(), finish, status, wall, modelled });
+        });
+    }
+}
+
+fn prepare(kind: &str, spec: &str, limits: &Limits) -> Result<crate::jobs::kind::Prepared, Problem> {
+    let k = registry::find(kind).ok_or_else(|| {
+        Problem::new(ErrorCode::UnknownKind, format!("this server no longer knows the kind '{kind}'"))
+    })?;
+    let value: Value = serde_json::from_str(spec)
+        .map_err(|e| Problem::new(ErrorCode::InternalError, format!("stored spec is not JSON: {e}")))?;
+    k.prepare(&value, limits).map_err(|p| p.under("/spec"))
+}
+
+/// The observer a worker hands to its solver: throttled progress into the writer's channel,
+/// and the cancel / shutdown flag and the deadline behind `check`.
+struct JobObserver {
+    id: Uuid,
+    flag: Arc<AtomicU8>,
+    deadline: Option<Instant>,
+    events: mpsc::UnboundedSender<Event>,
+    interval: Duration,
+    last: Mutex<Option<Instant>>,
+}
+
+impl Observer for JobObserver {
+    fn progress(&self, fraction: f64, stage: &str) {
+        let now = Instant::now();
+        let mut last = self.last.lock().unwrap_or_else(|e| e.into_inner());
+        if last.is_some_and(|t| now.duration_since(t) < self.interval) {
+            return;
+        }
+        *last = Some(now);
+        let fraction = if fraction.is_finite() { fraction.clamp(0.0, 1.0) } else { 0.0 };
+        let _ = self.events.send(Event::Progress { id: self.id, fraction, stage: stage.to_string() });
+    }
+
+    fn check(&self) -> Result<(), Interrupt> {
+        match self.flag.load(Ordering::Relaxed) {
+            FLAG_CANCEL => return Err(Interrupt::Canceled),
+            FLAG_SHUTDOWN => return Err(Interrupt::Shutdown),
+            _ => {}
+        }
+        if self.deadline.is_some_and(|d| Instant::now() > d) {
+            return Err(Interrupt::TimedOut);
+        }
+        Ok(())
+    }
+}

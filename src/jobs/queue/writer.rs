@@ -1,0 +1,69 @@
+//! The writer: commit workers' progress and outcomes in batches, keep the counters and the
+//! fair-scheduling ratios, then wake waiters and the dispatcher.
+
+use super::*;
+
+impl Queue {
+    pub(super) async fn writer(self, mut rx: mpsc::UnboundedReceiver<Event>) {
+        let inner = &self.inner;
+        let mut batch = Vec::new();
+        while rx.recv_many(&mut batch, 512).await > 0 {
+            let mut progress: HashMap<Uuid, (f64, String)> = HashMap::new();
+            let mut finishes = Vec::new();
+            let mut done = Vec::new();
+            for event in batch.drain(..) {
+                match event {
+                    Event::Progress { id, fraction, stage } => {
+                        progress.insert(id, (fraction, stage));
+                    }
+                    Event::Finished { id, kind, finish, status, wall, modelled } => {
+                        progress.remove(&id);
+                        finishes.push(finish);
+                        done.push((id, kind, status, wall, modelled));
+                    }
+                }
+            }
+            if !progress.is_empty() {
+                let items: Vec<_> = progress.into_iter().map(|(id, (f, s))| (id, f, s)).collect();
+                if let Err(e) = inner.store.progress_batch(&items).await {
+                    warn!(error = %e, "writing progress failed");
+                }
+            }
+            if finishes.is_empty() {
+                continue;
+            }
+            // A finished job must not be lost: retry until the database takes it.
+            let mut delay = Duration::from_millis(50);
+            while let Err(e) = inner.store.finish_batch(&finishes, now_ms(), &inner.instance).await {
+                warn!(error = %e, "writing finished jobs failed; retrying");
+                tokio::time::sleep(delay).await;
+                delay = (delay * 2).min(Duration::from_secs(5));
+            }
+            for (id, kind, status, wall, modelled) in done {
+                inner.running.lock().unwrap_or_else(|e| e.into_inner()).remove(&id);
+                if status == JobStatus::Queued {
+                    let depth = inner.backlog.fetch_add(1, Ordering::Relaxed) + 1;
+                    inner.metrics.queue_depth.set(depth);
+                } else {
+                    inner.metrics.finished.get_or_create(&KindStatusLabel { kind: kind.clone(), status: status.as_str().into() }).inc();
+                    if status == JobStatus::Succeeded {
+                        // The kind's measured-to-modelled time ratio (a moving mean of logs, so
+                        // that one outlier does not swing it), within [0.1, 10].
+                        if modelled > 0.0 && wall > 0.0 {
+                            let mut ratios = inner.estimates.lock().unwrap_or_else(|e| e.into_inner());
+                            let r = (wall / modelled.max(MIN_ESTIMATE.as_secs_f64())).clamp(0.1, 10.0);
+                            let mean = ratios.entry(kind.clone()).or_insert(r);
+                            *mean = (0.8 * mean.ln() + 0.2 * r.ln()).exp();
+                        }
+                        inner.metrics.solve_seconds.get_or_create(&KindLabel { kind }).observe(wall);
+                    }
+                }
+                let active = inner.active.fetch_sub(1, Ordering::Relaxed) - 1;
+                inner.metrics.running.set(active as i64);
+                self.notify_waiters(id);
+            }
+            inner.wake.notify_one();
+            inner.idle.notify_waiters();
+        }
+    }
+}
