@@ -11,6 +11,7 @@ pub mod film;
 pub mod friction;
 pub mod journal;
 pub mod lubricant;
+pub mod numerics;
 pub mod rough;
 pub mod roller;
 pub mod solver;

@@ -22,6 +22,7 @@ use super::elastic::Deflection;
 use super::geometry::{domain, node_grid, scales, side_gap, Domain, NodeGrid, Scales};
 use super::{Ehl2dInput, Ehl2dOptions, Ehl2dSolution, Fields2d, Geometry2d, Located, Squeeze2d, Warm2d};
 use crate::ehl::rheology::PressureRheology;
+use crate::numerics::krylov::{self, dot};
 use crate::{Convergence, Observer, SolveError, Termination};
 use faer::sparse::linalg::lu::supernodal::{self, SupernodalLu, SymbolicSupernodalLu};
 use faer::dyn_stack::{MemBuffer, MemStack, StackReq};
@@ -905,15 +906,15 @@ struct Buffers {
     dw: Vec<f64>,
     dq: Vec<f64>,
     de: Vec<f64>,
-}
-
-fn dot(a: &[f64], b: &[f64]) -> f64 {
-    a.iter().zip(b).map(|(x, y)| x * y).sum()
+    /// GMRES' work arrays.
+    krylov: krylov::Workspace,
 }
 
 /// Restarted GMRES for `A x = b` right-preconditioned by `lu`, at most `max_its` iterations;
-/// `x` starts at 0. Returns the iterations and the final relative residual.
-#[allow(clippy::too_many_arguments)]
+/// `x` starts at 0 (`from_x`: at its own value, when finite). Returns the iterations and the final
+/// relative residual. The shared GMRES ([`krylov::gmres`]) in this solver's arithmetic: restarts
+/// every [`RESTART`] iterations, zero rotations the identity, `|g|/‖b‖ ≤ tol` (also at a cycle's
+/// start), the preconditioned directions kept (`x += Σ y_i M⁻¹v_i`).
 #[allow(clippy::too_many_arguments)]
 fn gmres(prob: &mut Problem, p: &[f64], v: &Fields, active: &[u8], c: &[f64], lu: &Precond, b: &[f64], x: &mut [f64], buf: &mut Buffers, tol: f64, max_its: usize, from_x: bool, observer: &dyn Observer) -> Result<(usize, f64), SolveError> {
     let lw = prob.load_weight();
@@ -924,108 +925,20 @@ fn gmres(prob: &mut Problem, p: &[f64], v: &Fields, active: &[u8], c: &[f64], lu
     } else {
         (0..c.len()).map(|u| if active[u] == FLUID && lu.active[u] == FLUID { lu.c[u] / c[u] } else { 1.0 }).collect()
     };
-    let n = b.len();
-    let bnorm = dot(b, b).sqrt();
-    if bnorm == 0.0 {
-        x.iter_mut().for_each(|v| *v = 0.0);
-        return Ok((0, 0.0));
-    }
-    let mut w = vec![0.0; n];
-    let mut z = vec![0.0; n];
-    let mut r = b.to_vec();
-    if from_x && x.iter().all(|v| v.is_finite()) {
-        prob.apply(p, v, active, c, x, &mut w, buf);
-        for ii in 0..n {
-            r[ii] = b[ii] - w[ii];
-        }
-    } else {
-        x.iter_mut().for_each(|v| *v = 0.0);
-    }
-    let mut iters = 0;
-    let mut rel = 1.0;
-    let mut gave_up = false;
-    while iters < max_its {
-        let beta = dot(&r, &r).sqrt();
-        rel = beta / bnorm;
-        if rel <= tol {
-            break;
-        }
-        let mut basis: Vec<Vec<f64>> = vec![r.iter().map(|v| v / beta).collect()];
-        let mut hess: Vec<Vec<f64>> = Vec::new();
-        let (mut cs, mut sn): (Vec<f64>, Vec<f64>) = (Vec::new(), Vec::new());
-        let mut g = vec![beta];
-        let mut zs: Vec<Vec<f64>> = Vec::new();
-        let mut k = 0;
-        while k < RESTART && iters < max_its {
-            // One operator application (FFT of the padded grid) per iteration: a cancel takes
-            // effect within one (≈ 50 ms at 513²).
-            observer.check()?;
-            z.copy_from_slice(&basis[k]);
-            lu.apply(&mut z, lw, &rescale);
-            prob.apply(p, v, active, c, &z, &mut w, buf);
-            zs.push(z.clone());
-            let mut h = vec![0.0; k + 2];
-            for (jj, bj) in basis.iter().enumerate() {
-                let d = dot(&w, bj);
-                h[jj] = d;
-                for (wv, bv) in w.iter_mut().zip(bj) {
-                    *wv -= d * bv;
-                }
-            }
-            let wn = dot(&w, &w).sqrt();
-            h[k + 1] = wn;
-            for jj in 0..k {
-                let t = cs[jj] * h[jj] + sn[jj] * h[jj + 1];
-                h[jj + 1] = -sn[jj] * h[jj] + cs[jj] * h[jj + 1];
-                h[jj] = t;
-            }
-            let den = (h[k] * h[k] + h[k + 1] * h[k + 1]).sqrt();
-            let (cc, ss) = if den > 0.0 { (h[k] / den, h[k + 1] / den) } else { (1.0, 0.0) };
-            cs.push(cc);
-            sn.push(ss);
-            h[k] = den;
-            h[k + 1] = 0.0;
-            g.push(-ss * g[k]);
-            g[k] *= cc;
-            hess.push(h);
-            iters += 1;
-            k += 1;
-            rel = g[k].abs() / bnorm;
-            if rel <= tol || wn == 0.0 || !rel.is_finite() {
-                break;
-            }
-            // With a kept factor (a cap below a restart): give up early when the mean reduction
-            // per iteration so far would not reach the tolerance within the cap.
-            if max_its < RESTART && iters >= 4 && iters < max_its && rel.ln() * max_its as f64 > tol.ln() * iters as f64 {
-                gave_up = true;
-                break;
-            }
-            basis.push(w.iter().map(|v| v / wn).collect());
-        }
-        // Back substitution for the combination of the preconditioned directions.
-        let mut yk = vec![0.0; k];
-        for ii in (0..k).rev() {
-            let mut s = g[ii];
-            for jj in ii + 1..k {
-                s -= hess[jj][ii] * yk[jj];
-            }
-            yk[ii] = if hess[ii][ii] != 0.0 { s / hess[ii][ii] } else { 0.0 };
-        }
-        for (ii, zi) in zs.iter().enumerate() {
-            for (xv, zv) in x.iter_mut().zip(zi) {
-                *xv += yk[ii] * zv;
-            }
-        }
-        if rel <= tol || !rel.is_finite() || gave_up {
-            break;
-        }
-        // True residual for the restart.
-        prob.apply(p, v, active, c, x, &mut w, buf);
-        for ii in 0..n {
-            r[ii] = b[ii] - w[ii];
-        }
-    }
-    Ok((iters, rel))
+    let settings = krylov::Settings {
+        restart: RESTART,
+        max_iterations: max_its,
+        tolerance: tol,
+        from_x,
+        rotation: krylov::Rotation::Sqrt,
+        test: krylov::Test::Ratio,
+        update: krylov::Update::Flexible,
+    };
+    let mut ws = std::mem::take(&mut buf.krylov);
+    let out = krylov::gmres(&mut |z, y| prob.apply(p, v, active, c, z, y, buf), &mut |z| lu.apply(z, lw, &rescale), b, x, &settings, &mut ws, observer);
+    buf.krylov = ws;
+    let out = out?;
+    Ok((out.iterations, out.residual))
 }
 
 /// `TRIBOD_EHL2D_TRACE` set: print each Newton step, the line search and (first step) a
