@@ -40,175 +40,228 @@ pub(super) fn gmres(prob: &mut Problem, p: &[f64], v: &Fields, active: &[u8], c:
 pub(super) fn newton(prob: &mut Problem, p: &mut [f64], h0: &mut f64, tol: f64, max_iter: u32, observer: &dyn Observer) -> Result<Run, SolveError> {
     let m = prob.nodes.len();
     let mut v = Fields::default();
-    let mut trial = Fields::default();
-    let mut history = Vec::new();
-    let mut gm_total = 0;
     if !prob.evaluate(p, *h0, &mut v) {
-        return Ok(Run { iterations: 0, residual: f64::INFINITY, history, converged: false, gmres: 0 });
+        return Ok(Run { iterations: 0, residual: f64::INFINITY, history: Vec::new(), converged: false, gmres: 0 });
     }
-    let mut active = vec![FLUID; m];
-    let mut c = vec![0.0; m];
-    let mut phi = Vec::with_capacity(m);
-    let mut phi_t = Vec::with_capacity(m);
-    let mut buf = Buffers::default();
+    let mut st = Newton::new(v, m, p);
     let cell = prob.dx * prob.dy;
-    let mut rhs = vec![0.0; m + 1];
-    let mut sol = vec![0.0; m + 1];
-    let mut p_trial = p.to_vec();
-    let mut dw = vec![0.0; p.len()];
-    let mut dpn = vec![0.0; p.len()];
-    // Factorise afresh at the next step (the kept factor needed too many GMRES iterations or its
-    // step failed the line search).
-    let mut refresh = false;
-    // The last step's right-hand side norm and forcing term ([`Forcing`]).
-    let mut last_forcing: Option<(f64, f64)> = None;
     for iter in 0..=max_iter {
         observer.check()?;
         // Row scales and active set first: the residual needs them, the factorisation only an
         // unconverged step (the last, converged evaluation of every solve factorised for nothing:
         // ≈ 1 of 5 factorisations of a warm solve in the cam cycle, `ehl2d-6`).
-        prob.precondition(p, &v, &mut active, &mut c, false, observer)?;
-        prob.phi(p, &v, &c, &mut phi);
-        let res = residual_norm(p, &phi, v.g);
-        history.push(res);
+        prob.precondition(p, &st.v, &mut st.active, &mut st.c, false, observer)?;
+        prob.phi(p, &st.v, &st.c, &mut st.phi);
+        let res = residual_norm(p, &st.phi, st.v.g);
+        st.history.push(res);
         if res <= tol {
-            return Ok(Run { iterations: iter, residual: res, history, converged: true, gmres: gm_total });
+            return Ok(st.run(iter, res, true));
         }
         if iter == max_iter {
-            return Ok(Run { iterations: iter, residual: res, history, converged: false, gmres: gm_total });
+            return Ok(st.run(iter, res, false));
         }
+        let gtol = st.right_hand_side(prob, p, res, tol);
+        let Some(lin) = st.linear_solve(prob, p, gtol, observer)? else {
+            return Ok(st.run(iter, res, false));
+        };
+        // Active (cavitated) rows are the identity: their exact step is `δP = −P`. GMRES meets it
+        // only to its tolerance — closely with a fresh factor (its own identity rows), loosely
+        // with a kept one factorised at another active set — and a cavitated node left at
+        // `P ≈ ±1e-12` instead of 0 would count as a loaded traction node. So set it exactly.
         for (u, &k) in prob.nodes.iter().enumerate() {
-            rhs[u] = match active[u] {
+            if st.active[u] == CAVITATED {
+                st.sol[u] = -p[k];
+            }
+        }
+        // A kept factor that needed many iterations is replaced at the next step.
+        if !lin.fresh && lin.its > reuse_policy().1 {
+            st.refresh = true;
+        }
+        if trace() {
+            st.trace(prob, p, *h0, iter, res, gtol, &lin);
+        }
+        if !st.sol.iter().all(|s| s.is_finite()) {
+            return Ok(st.run(iter + 1, res, false));
+        }
+        if !st.line_search(prob, p, h0, cell, observer)? {
+            // A step solved with a kept factor: once more with a fresh one (the next iteration
+            // starts from the same iterate).
+            if !lin.fresh {
+                st.refresh = true;
+                continue;
+            }
+            return Ok(st.run(iter + 1, res, false));
+        }
+    }
+    unreachable!("the loop returns at iter == max_iter")
+}
+
+/// The state of one [`newton`] run: the fields at the iterate and at a trial point, the row scales
+/// and active set, the residuals, the Newton system and its solution, the line search's arrays,
+/// and what carries from one step to the next.
+struct Newton {
+    v: Fields,
+    trial: Fields,
+    active: Vec<u8>,
+    c: Vec<f64>,
+    phi: Vec<f64>,
+    phi_t: Vec<f64>,
+    buf: Buffers,
+    rhs: Vec<f64>,
+    sol: Vec<f64>,
+    p_trial: Vec<f64>,
+    dw: Vec<f64>,
+    dpn: Vec<f64>,
+    /// Factorise afresh at the next step (the kept factor needed too many GMRES iterations or its
+    /// step failed the line search).
+    refresh: bool,
+    /// The last step's right-hand side norm and forcing term ([`Forcing`]).
+    last_forcing: Option<(f64, f64)>,
+    history: Vec<f64>,
+    gm_total: usize,
+}
+
+/// What the linear solve of a Newton step did: GMRES iterations and relative residual of its
+/// last run, whether a fresh factor was used, and the seconds spent factorising and in GMRES.
+struct Linear {
+    its: usize,
+    rel: f64,
+    fresh: bool,
+    t_lu: f64,
+    t_gm: f64,
+}
+
+impl Newton {
+    /// The state at an iterate with fields `v` (`m` unknown pressures, node pressures `p`).
+    fn new(v: Fields, m: usize, p: &[f64]) -> Self {
+        Newton {
+            v,
+            trial: Fields::default(),
+            active: vec![FLUID; m],
+            c: vec![0.0; m],
+            phi: Vec::with_capacity(m),
+            phi_t: Vec::with_capacity(m),
+            buf: Buffers::default(),
+            rhs: vec![0.0; m + 1],
+            sol: vec![0.0; m + 1],
+            p_trial: p.to_vec(),
+            dw: vec![0.0; p.len()],
+            dpn: vec![0.0; p.len()],
+            refresh: false,
+            last_forcing: None,
+            history: Vec::new(),
+            gm_total: 0,
+        }
+    }
+
+    /// The outcome after `iterations` steps at the residual `residual`.
+    fn run(&mut self, iterations: u32, residual: f64, converged: bool) -> Run {
+        Run { iterations, residual, history: std::mem::take(&mut self.history), converged, gmres: self.gm_total }
+    }
+
+    /// The right-hand side `−φ` (per row kind) and `−G` of the Newton system, and the step's
+    /// GMRES tolerance: 1e-3, tighter near the solution (the inexact step stalled the line
+    /// search at residuals ≈ 6e-7, measured on the circular Barus case at 97²); a warm-started
+    /// solve's: `Problem::forcing` ([`WARM_FORCING`]).
+    fn right_hand_side(&mut self, prob: &Problem, p: &[f64], res: f64, tol: f64) -> f64 {
+        let m = prob.nodes.len();
+        let v = &self.v;
+        for (u, &k) in prob.nodes.iter().enumerate() {
+            self.rhs[u] = match self.active[u] {
                 CAVITATED => -p[k],
                 CONTACT => -prob.contact_scale() * (v.hraw[k] - prob.floor),
-                _ => -c[u] * v.f[k],
+                _ => -self.c[u] * v.f[k],
             };
         }
-        rhs[m] = -v.g;
-        // Forcing term: 1e-3, tighter near the solution (the inexact step stalled the line
-        // search at residuals ≈ 6e-7, measured on the circular Barus case at 97²); a warm-started
-        // solve's: `Problem::forcing` ([`WARM_FORCING`]).
-        let bn = dot(&rhs, &rhs).sqrt();
-        let gtol = match prob.forcing {
+        self.rhs[m] = -v.g;
+        let bn = dot(&self.rhs, &self.rhs).sqrt();
+        match prob.forcing {
             None => GMRES_TOL.min(0.1 * res.sqrt()).max(1e-10),
             Some(fp) => {
-                let eta = fp.eta(last_forcing, bn, res, tol);
-                last_forcing = Some((bn, eta));
+                let eta = fp.eta(self.last_forcing, bn, res, tol);
+                self.last_forcing = Some((bn, eta));
                 eta
             }
-        };
-        // The linear solve: GMRES with the kept preconditioner (an older Jacobian's near field on
-        // this grid, scaled and with the active set of its own step; the operator applied is
-        // always the current one, so only the iteration count depends on it) for at most
-        // `REUSE_MAX` iterations; else, or when there is none, the current near field factorised
-        // afresh (chord-preconditioned Newton–Krylov, as the 1-D solver, `super::super::newton`).
+        }
+    }
+
+    /// The linear solve of a step into `sol`: GMRES with the kept preconditioner (an older
+    /// Jacobian's near field on this grid, scaled and with the active set of its own step; the
+    /// operator applied is always the current one, so only the iteration count depends on it) for
+    /// at most `REUSE_MAX` iterations; else, or when there is none, the current near field
+    /// factorised afresh (chord-preconditioned Newton–Krylov, as the 1-D solver,
+    /// `super::super::newton`). `None` when the factorisation fails.
+    fn linear_solve(&mut self, prob: &mut Problem, p: &[f64], gtol: f64, observer: &dyn Observer) -> Result<Option<Linear>, SolveError> {
+        let m = prob.nodes.len();
         let (mut t_lu, mut t_gm) = (0.0, 0.0);
         let (mut its, mut rel);
         let mut fresh = false;
-        let (reuse_max, reuse_refresh, _) = reuse_policy();
+        let (reuse_max, _, _) = reuse_policy();
         let mut from_x = false;
         loop {
-            let kept = prob.kept.clone().filter(|k| !refresh && k.bu.len() == m);
+            let kept = prob.kept.clone().filter(|k| !self.refresh && k.bu.len() == m);
             let pc = match kept {
                 Some(pc) => pc,
                 None => {
                     observer.check()?;
                     let t = std::time::Instant::now();
-                    let lu = prob.precondition(p, &v, &mut active, &mut c, true, observer)?;
+                    let lu = prob.precondition(p, &self.v, &mut self.active, &mut self.c, true, observer)?;
                     t_lu += t.elapsed().as_secs_f64();
-                    let Some(lu) = lu else {
-                        return Ok(Run { iterations: iter, residual: res, history, converged: false, gmres: gm_total });
-                    };
+                    let Some(lu) = lu else { return Ok(None) };
                     prob.factorisations += 1;
                     crate::film::work::add(&crate::film::work::FINITE_FACTORISATIONS, 1);
                     fresh = true;
-                    refresh = false;
+                    self.refresh = false;
                     let pc = std::sync::Arc::new(lu);
                     prob.kept = Some(pc.clone());
                     pc
                 }
             };
             let t = std::time::Instant::now();
-            (its, rel) = gmres(prob, p, &v, &active, &c, &pc, &rhs, &mut sol, &mut buf, gtol, if fresh { GMRES_MAX } else { reuse_max }, from_x, observer)?;
+            let max_its = if fresh { GMRES_MAX } else { reuse_max };
+            (its, rel) = gmres(prob, p, &self.v, &self.active, &self.c, &pc, &self.rhs, &mut self.sol, &mut self.buf, gtol, max_its, from_x, observer)?;
             t_gm += t.elapsed().as_secs_f64();
-            gm_total += its;
+            self.gm_total += its;
             crate::film::work::add(&crate::film::work::FINITE_GMRES_ITERATIONS, its as u64);
             if fresh || rel <= gtol {
                 break;
             }
             // The fresh factor's GMRES goes on from the kept one's iterate.
-            refresh = true;
+            self.refresh = true;
             from_x = true;
         }
-        // Active (cavitated) rows are the identity: their exact step is `δP = −P`. GMRES meets it
-        // only to its tolerance — closely with a fresh factor (its own identity rows), loosely
-        // with a kept one factorised at another active set — and a cavitated node left at
-        // `P ≈ ±1e-12` instead of 0 would count as a loaded traction node. So set it exactly.
+        Ok(Some(Linear { its, rel, fresh, t_lu, t_gm }))
+    }
+
+    /// The damped step from `(p, h0)` along `sol`: the first trial length from [`film_damping`],
+    /// halved until the merit `Σ φ² ΔXΔY + G²` falls by the Armijo fraction (at most
+    /// [`MAX_HALVINGS`]); the accepted point replaces `(p, h0)` and `v`. Whether one was accepted.
+    fn line_search(&mut self, prob: &mut Problem, p: &mut [f64], h0: &mut f64, cell: f64, observer: &dyn Observer) -> Result<bool, SolveError> {
+        let m = prob.nodes.len();
+        self.dpn.iter_mut().for_each(|d| *d = 0.0);
         for (u, &k) in prob.nodes.iter().enumerate() {
-            if active[u] == CAVITATED {
-                sol[u] = -p[k];
-            }
+            self.dpn[k] = self.sol[u];
         }
-        // A kept factor that needed many iterations is replaced at the next step.
-        if !fresh && its > reuse_refresh {
-            refresh = true;
-        }
-        if trace() {
-            eprintln!("ehl2d {}x{} κ {:.3e} iter {iter} res {res:.3e} g {:.2e} gtol {gtol:.1e} gmres {its} rel {rel:.2e} fresh {fresh} active {} contact {} lu {t_lu:.3} s gmres {t_gm:.3} s", prob.nx, prob.ny, prob.kappa, v.g, active.iter().filter(|a| **a == CAVITATED).count(), active.iter().filter(|a| **a == CONTACT).count());
-            if iter == 0 {
-                let (u, _) = phi.iter().enumerate().fold((0, 0.0f64), |b, (u, v)| if v.abs() > b.1 { (u, v.abs()) } else { b });
-                let k = prob.nodes[u];
-                eprintln!("ehl2d worst node i {} j {} X {:.3} Y {:.3} P {:.3e} phi {:.3e} active {}", k % prob.nx, k / prob.nx, prob.x[k % prob.nx], prob.y[k / prob.nx], p[k], phi[u], active[u]);
-                // Directional-derivative check of the Jacobian product.
-                let mut x: Vec<f64> = (0..m + 1).map(|u| (((u * 7919) % 13) as f64 - 6.0) * 1e-3).collect();
-                for (u, &k) in prob.nodes.iter().enumerate() {
-                    if p[k] <= 0.0 { x[u] = 0.0; }
-                }
-                let mut jx = vec![0.0; m + 1];
-                let mut inactive = active.clone();
-                inactive.iter_mut().for_each(|a| *a = FLUID);
-                prob.apply(p, &v, &inactive, &c, &x, &mut jx, &mut buf);
-                let t = 1e-4;
-                let mut pt = p.to_vec();
-                for (u, &k) in prob.nodes.iter().enumerate() { pt[k] += t * x[u]; }
-                let mut vt = Fields::default();
-                if prob.evaluate(&pt, *h0 + t * x[m], &mut vt) {
-                    let mut num = 0.0; let mut den = 0.0;
-                    for (u, &k) in prob.nodes.iter().enumerate() {
-                        let fd = c[u] * (vt.f[k] - v.f[k]) / t;
-                        num += (fd - jx[u]).powi(2); den += fd * fd;
-                    }
-                    eprintln!("ehl2d jacobian check: rel diff {:.3e}", (num / den.max(1e-300)).sqrt());
-                }
-            }
-        }
-        if !sol.iter().all(|s| s.is_finite()) {
-            return Ok(Run { iterations: iter + 1, residual: res, history, converged: false, gmres: gm_total });
-        }
-        dpn.iter_mut().for_each(|d| *d = 0.0);
-        for (u, &k) in prob.nodes.iter().enumerate() {
-            dpn[k] = sol[u];
-        }
-        let dh0 = sol[m];
-        let mut alpha = film_damping(prob, &v, &dpn, dh0, &mut dw);
+        let dh0 = self.sol[m];
+        let mut alpha = film_damping(prob, &self.v, &self.dpn, dh0, &mut self.dw);
         if trace() {
             eprintln!("   film damping alpha {alpha:.3e}");
         }
-        let m0 = dot(&phi, &phi) * cell + v.g * v.g;
+        let m0 = dot(&self.phi, &self.phi) * cell + self.v.g * self.v.g;
         let mut accepted = false;
         for _ in 0..MAX_HALVINGS {
             observer.check()?;
             for k in 0..p.len() {
-                p_trial[k] = p[k] + alpha * dpn[k];
+                self.p_trial[k] = p[k] + alpha * self.dpn[k];
             }
             let h0_trial = *h0 + alpha * dh0;
-            if prob.evaluate(&p_trial, h0_trial, &mut trial) {
-                prob.phi(&p_trial, &trial, &c, &mut phi_t);
-                let mt = dot(&phi_t, &phi_t) * cell + trial.g * trial.g;
+            if prob.evaluate(&self.p_trial, h0_trial, &mut self.trial) {
+                prob.phi(&self.p_trial, &self.trial, &self.c, &mut self.phi_t);
+                let mt = dot(&self.phi_t, &self.phi_t) * cell + self.trial.g * self.trial.g;
                 if mt <= (1.0 - 1e-4 * alpha) * m0 {
-                    p.copy_from_slice(&p_trial);
+                    p.copy_from_slice(&self.p_trial);
                     *h0 = h0_trial;
-                    std::mem::swap(&mut v, &mut trial);
+                    std::mem::swap(&mut self.v, &mut self.trial);
                     accepted = true;
                     break;
                 }
@@ -218,17 +271,44 @@ pub(super) fn newton(prob: &mut Problem, p: &mut [f64], h0: &mut f64, tol: f64, 
         if trace() {
             eprintln!("   accepted {accepted} alpha {alpha:.3e}");
         }
-        if !accepted {
-            // A step solved with a kept factor: once more with a fresh one (the next iteration
-            // starts from the same iterate).
-            if !fresh {
-                refresh = true;
-                continue;
+        Ok(accepted)
+    }
+
+    /// Development aid ([`trace`]): the step's numbers and, at the first step, the worst node and
+    /// a finite-difference check of the Jacobian product.
+    #[allow(clippy::too_many_arguments)]
+    fn trace(&mut self, prob: &mut Problem, p: &[f64], h0: f64, iter: u32, res: f64, gtol: f64, lin: &Linear) {
+        let Linear { its, rel, fresh, t_lu, t_gm } = *lin;
+        let (v, active, phi, c) = (&self.v, &self.active, &self.phi, &self.c);
+        let m = prob.nodes.len();
+        eprintln!("ehl2d {}x{} κ {:.3e} iter {iter} res {res:.3e} g {:.2e} gtol {gtol:.1e} gmres {its} rel {rel:.2e} fresh {fresh} active {} contact {} lu {t_lu:.3} s gmres {t_gm:.3} s", prob.nx, prob.ny, prob.kappa, v.g, active.iter().filter(|a| **a == CAVITATED).count(), active.iter().filter(|a| **a == CONTACT).count());
+        if iter == 0 {
+            let (u, _) = phi.iter().enumerate().fold((0, 0.0f64), |b, (u, v)| if v.abs() > b.1 { (u, v.abs()) } else { b });
+            let k = prob.nodes[u];
+            eprintln!("ehl2d worst node i {} j {} X {:.3} Y {:.3} P {:.3e} phi {:.3e} active {}", k % prob.nx, k / prob.nx, prob.x[k % prob.nx], prob.y[k / prob.nx], p[k], phi[u], active[u]);
+            // Directional-derivative check of the Jacobian product.
+            let mut x: Vec<f64> = (0..m + 1).map(|u| (((u * 7919) % 13) as f64 - 6.0) * 1e-3).collect();
+            for (u, &k) in prob.nodes.iter().enumerate() {
+                if p[k] <= 0.0 { x[u] = 0.0; }
             }
-            return Ok(Run { iterations: iter + 1, residual: res, history, converged: false, gmres: gm_total });
+            let mut jx = vec![0.0; m + 1];
+            let mut inactive = active.clone();
+            inactive.iter_mut().for_each(|a| *a = FLUID);
+            prob.apply(p, &v, &inactive, &c, &x, &mut jx, &mut self.buf);
+            let t = 1e-4;
+            let mut pt = p.to_vec();
+            for (u, &k) in prob.nodes.iter().enumerate() { pt[k] += t * x[u]; }
+            let mut vt = Fields::default();
+            if prob.evaluate(&pt, h0 + t * x[m], &mut vt) {
+                let mut num = 0.0; let mut den = 0.0;
+                for (u, &k) in prob.nodes.iter().enumerate() {
+                    let fd = c[u] * (vt.f[k] - v.f[k]) / t;
+                    num += (fd - jx[u]).powi(2); den += fd * fd;
+                }
+                eprintln!("ehl2d jacobian check: rel diff {:.3e}", (num / den.max(1e-300)).sqrt());
+            }
         }
     }
-    unreachable!("the loop returns at iter == max_iter")
 }
 
 /// First trial length of a Newton step: the fraction-to-boundary rule on the film (no node's film

@@ -10,41 +10,62 @@ impl Problem {
     /// `observer`: a large factorisation runs beside the caller, which polls it
     /// ([`NearLu::new_watched`]); an interrupt there is `Err`.
     pub(super) fn precondition(&self, p: &[f64], v: &Fields, active: &mut [u8], c: &mut [f64], factor: bool, observer: &dyn Observer) -> Result<Option<Precond>, SolveError> {
+        if !factor {
+            self.row_scales(p, v, active, c);
+            return Ok(None);
+        }
+        let (ent, row_ptr) = self.near_rows(p, v, active, c);
+        // The bordered system `[B u; wᵀ 0]` (the `H0` column `u`, the load row `w`) by its Schur
+        // complement: factorising it with the dense border made the sparse LU fill in (35 s at
+        // 97², measured), the block `B` alone factorises in a fraction of a second.
+        let Some(pattern) = self.near_pattern(&row_ptr, &ent) else { return Ok(None) };
+        let (values, mut ucol) = self.near_values(&pattern, active, &row_ptr, &ent);
+        let Some(lu) = NearLu::new_watched(pattern, values, observer)? else { return Ok(None) };
+        lu.solve_in_place(&mut ucol);
+        let sum_bu = ucol.iter().sum::<f64>();
+        Ok((sum_bu.is_finite() && ucol.iter().all(|x| x.is_finite())).then_some(Precond { lu, bu: ucol, sum_bu, c: c.to_vec(), active: active.to_vec() }))
+    }
+
+    /// The row scales `c` and the active set without the near-field rows: the diagonal alone,
+    /// summed in the order [`Problem::near_rows`] pushes its entries (the same row scales to the
+    /// last bit): the Poiseuille terms, then per wedge point its own `ρ̄'H` term and the
+    /// deflection self-coefficient reaching this node.
+    fn row_scales(&self, p: &[f64], v: &Fields, active: &mut [u8], c: &mut [f64]) {
+        let (nx, dx2, dy2) = (self.nx, self.dx * self.dx, self.dy * self.dy);
+        for (u, &k) in self.nodes.iter().enumerate() {
+            let i = k % nx;
+            let e = &v.eps;
+            let mut diag = 0.0;
+            for (nb, d2) in [(k + 1, dx2), (k - 1, dx2), (k + nx, dy2), (k - nx, dy2)] {
+                let (ef, w1, _) = face_of(self.theta, e[k], e[nb]);
+                diag += -ef / d2 + w1 * v.deps[k] * (p[nb] - p[k]) / d2;
+            }
+            for (s, wt) in self.stencil(i) {
+                if wt == 0.0 {
+                    continue;
+                }
+                let kk = k - s;
+                if s == 0 {
+                    diag += -wt * v.drho[kk] * v.h[kk];
+                }
+                if s <= self.near {
+                    diag += -wt * v.on[kk] * v.rho[kk] * self.defl.coefficient(s, 0);
+                }
+            }
+            let cu = 1.0 / diag.abs().max(1e-300);
+            c[u] = cu;
+            active[u] = self.row_kind(p, v, cu, k);
+        }
+    }
+
+    /// Every row's entries (column, value; column `m` the `H0` border), scaled by the row scale,
+    /// cavitated rows too: the pattern is then that of the grid alone, its symbolic LU computed
+    /// once ([`NearPattern`]). Row `u`'s entries are `ent[row_ptr[u]..row_ptr[u + 1]]`; `c` and
+    /// `active` are set on the way.
+    fn near_rows(&self, p: &[f64], v: &Fields, active: &mut [u8], c: &mut [f64]) -> (Vec<(usize, f64)>, Vec<usize>) {
         let (nx, ny, dx2, dy2) = (self.nx, self.ny, self.dx * self.dx, self.dy * self.dy);
         let m = self.nodes.len();
         let r = self.near as isize;
-        if !factor {
-            // The diagonal alone, summed in the order the rows below push its entries (the same
-            // row scales to the last bit): the Poiseuille terms, then per wedge point its own
-            // `ρ̄'H` term and the deflection self-coefficient reaching this node.
-            for (u, &k) in self.nodes.iter().enumerate() {
-                let i = k % nx;
-                let e = &v.eps;
-                let mut diag = 0.0;
-                for (nb, d2) in [(k + 1, dx2), (k - 1, dx2), (k + nx, dy2), (k - nx, dy2)] {
-                    let (ef, w1, _) = face_of(self.theta, e[k], e[nb]);
-                    diag += -ef / d2 + w1 * v.deps[k] * (p[nb] - p[k]) / d2;
-                }
-                for (s, wt) in self.stencil(i) {
-                    if wt == 0.0 {
-                        continue;
-                    }
-                    let kk = k - s;
-                    if s == 0 {
-                        diag += -wt * v.drho[kk] * v.h[kk];
-                    }
-                    if s <= self.near {
-                        diag += -wt * v.on[kk] * v.rho[kk] * self.defl.coefficient(s, 0);
-                    }
-                }
-                let cu = 1.0 / diag.abs().max(1e-300);
-                c[u] = cu;
-                active[u] = self.row_kind(p, v, cu, k);
-            }
-            return Ok(None);
-        }
-        // Every row's entries (column, value), cavitated rows too: the pattern is then that of the
-        // grid alone, its symbolic LU computed once ([`NearPattern`]).
         let mut ent: Vec<(usize, f64)> = Vec::with_capacity(m * (10 + (2 * self.near + 3) * (2 * self.near + 1)));
         let mut row_ptr: Vec<usize> = Vec::with_capacity(m + 1);
         row_ptr.push(0);
@@ -90,42 +111,7 @@ impl Problem {
             }
             let diag: f64 = row.iter().filter(|(col, _)| *col == u).map(|(_, val)| val).sum();
             if poiseuille_film() {
-                // The Poiseuille terms' film dependence `∂ε_f/∂H = w·3ε/H` at the row's node and
-                // its four neighbours, through the near-field deflection, within the columns the
-                // wedge terms already occupy (the pattern's box `i − 2 − r … i + r`,
-                // `j − r … j + r`): with the geometric face mean (`θ → 1`) a face between an
-                // inlet node (large ε) and a contact node (small ε) weighs the contact node's film
-                // by `1.5 sqrt(ε_b/ε_a)`, which the wedge-only near field left out. The row scale
-                // `c` (above) is unchanged, so is the residual.
-                let lo = (if i >= 2 && self.second { 2 } else { 1 }) + r;
-                let mut pts = [(k, 0.0); 5];
-                for (q, (nb, d2)) in [(k + 1, dx2), (k - 1, dx2), (k + nx, dy2), (k - nx, dy2)].into_iter().enumerate() {
-                    let (_, w1, w2) = face_of(self.theta, e[k], e[nb]);
-                    let dpf = (p[nb] - p[k]) / d2;
-                    pts[0].1 += w1 * 3.0 * e[k] / v.h[k] * v.on[k] * dpf;
-                    pts[q + 1] = (nb, w2 * 3.0 * e[nb] / v.h[nb] * v.on[nb] * dpf);
-                }
-                for &(q, a) in &pts {
-                    if a == 0.0 || !a.is_finite() {
-                        continue;
-                    }
-                    let (qi, qj) = ((q % nx) as isize, (q / nx) as isize);
-                    row.push((m, a));
-                    for dj in -r..=r {
-                        let lj = j as isize + dj;
-                        if lj < 1 || lj >= ny as isize - 1 || (lj - qj).abs() > r {
-                            continue;
-                        }
-                        for di in -lo..=r {
-                            let li = i as isize + di;
-                            if li < 1 || li >= nx as isize - 1 || (li - qi).abs() > r {
-                                continue;
-                            }
-                            let l = lj as usize * nx + li as usize;
-                            row.push((self.unk[l], a * self.defl.coefficient((li - qi).unsigned_abs(), (lj - qj).unsigned_abs())));
-                        }
-                    }
-                }
+                self.poiseuille_film_entries(p, v, k, &mut row);
             }
             let cu = 1.0 / diag.abs().max(1e-300);
             c[u] = cu;
@@ -133,22 +119,77 @@ impl Problem {
             ent.extend(row.iter().map(|&(col, val)| (col, cu * val)));
             row_ptr.push(ent.len());
         }
-        // The bordered system `[B u; wᵀ 0]` (the `H0` column `u`, the load row `w`) by its Schur
-        // complement: factorising it with the dense border made the sparse LU fill in (35 s at
-        // 97², measured), the block `B` alone factorises in a fraction of a second.
-        let pattern = {
-            let mut cache = self.pattern.borrow_mut();
-            match cache.as_ref().filter(|pat| pat.covers(m, &row_ptr, &ent)) {
-                Some(pat) => pat.clone(),
-                None => {
-                    let order = nested_dissection(nx - 2, ny - 2, 2 + 2 * self.near, 2 * self.near.max(1));
-                    let Some(pat) = NearPattern::new(m, &row_ptr, &ent, order) else { return Ok(None) };
-                    let pat = std::sync::Arc::new(pat);
-                    *cache = Some(pat.clone());
-                    pat
+        (ent, row_ptr)
+    }
+
+    /// The Poiseuille terms' film dependence `∂ε_f/∂H = w·3ε/H` at node `k` and its four
+    /// neighbours, through the near-field deflection, within the columns the wedge terms already
+    /// occupy (the pattern's box `i − 2 − r … i + r`, `j − r … j + r`), pushed onto `row`: with
+    /// the geometric face mean (`θ → 1`) a face between an inlet node (large ε) and a contact
+    /// node (small ε) weighs the contact node's film by `1.5 sqrt(ε_b/ε_a)`, which the wedge-only
+    /// near field left out. The row scale `c` ([`Problem::near_rows`]) is unchanged, so is the
+    /// residual.
+    fn poiseuille_film_entries(&self, p: &[f64], v: &Fields, k: usize, row: &mut Vec<(usize, f64)>) {
+        let (nx, ny, dx2, dy2) = (self.nx, self.ny, self.dx * self.dx, self.dy * self.dy);
+        let m = self.nodes.len();
+        let r = self.near as isize;
+        let (i, j) = (k % nx, k / nx);
+        let e = &v.eps;
+        let lo = (if i >= 2 && self.second { 2 } else { 1 }) + r;
+        let mut pts = [(k, 0.0); 5];
+        for (q, (nb, d2)) in [(k + 1, dx2), (k - 1, dx2), (k + nx, dy2), (k - nx, dy2)].into_iter().enumerate() {
+            let (_, w1, w2) = face_of(self.theta, e[k], e[nb]);
+            let dpf = (p[nb] - p[k]) / d2;
+            pts[0].1 += w1 * 3.0 * e[k] / v.h[k] * v.on[k] * dpf;
+            pts[q + 1] = (nb, w2 * 3.0 * e[nb] / v.h[nb] * v.on[nb] * dpf);
+        }
+        for &(q, a) in &pts {
+            if a == 0.0 || !a.is_finite() {
+                continue;
+            }
+            let (qi, qj) = ((q % nx) as isize, (q / nx) as isize);
+            row.push((m, a));
+            for dj in -r..=r {
+                let lj = j as isize + dj;
+                if lj < 1 || lj >= ny as isize - 1 || (lj - qj).abs() > r {
+                    continue;
+                }
+                for di in -lo..=r {
+                    let li = i as isize + di;
+                    if li < 1 || li >= nx as isize - 1 || (li - qi).abs() > r {
+                        continue;
+                    }
+                    let l = lj as usize * nx + li as usize;
+                    row.push((self.unk[l], a * self.defl.coefficient((li - qi).unsigned_abs(), (lj - qj).unsigned_abs())));
                 }
             }
-        };
+        }
+    }
+
+    /// The grid's [`NearPattern`] (kept in `self.pattern` while it covers the rows' entries, else
+    /// computed afresh with a nested-dissection ordering); `None` when its symbolic
+    /// factorisation fails.
+    fn near_pattern(&self, row_ptr: &[usize], ent: &[(usize, f64)]) -> Option<std::sync::Arc<NearPattern>> {
+        let m = self.nodes.len();
+        let mut cache = self.pattern.borrow_mut();
+        match cache.as_ref().filter(|pat| pat.covers(m, row_ptr, ent)) {
+            Some(pat) => Some(pat.clone()),
+            None => {
+                let order = nested_dissection(self.nx - 2, self.ny - 2, 2 + 2 * self.near, 2 * self.near.max(1));
+                let pat = std::sync::Arc::new(NearPattern::new(m, row_ptr, ent, order)?);
+                *cache = Some(pat.clone());
+                Some(pat)
+            }
+        }
+    }
+
+    /// The values of `B` on `pattern`'s CSC and the `H0` column `u` from the rows' entries: a
+    /// cavitated row the identity, a contact row `s (H0 + W_k)` (the deflection's near field about
+    /// the node, inside the box the row's wedge terms occupy, and the `H0` border).
+    fn near_values(&self, pattern: &NearPattern, active: &[u8], row_ptr: &[usize], ent: &[(usize, f64)]) -> (Vec<f64>, Vec<f64>) {
+        let (nx, ny) = (self.nx, self.ny);
+        let m = self.nodes.len();
+        let r = self.near as isize;
         let mut ucol = vec![0.0; m];
         let mut values = vec![0.0; pattern.row_idx.len()];
         let mut slot = vec![usize::MAX; m];
@@ -162,8 +203,6 @@ impl Problem {
                 continue;
             }
             if active[u] == CONTACT {
-                // `s (H0 + W_k)`: the deflection's near field about the node (inside the box the
-                // row's wedge terms occupy) and the `H0` border.
                 let sc = self.contact_scale();
                 let k = self.nodes[u];
                 let (i, j) = ((k % nx) as isize, (k / nx) as isize);
@@ -184,10 +223,7 @@ impl Problem {
                 }
             }
         }
-        let Some(lu) = NearLu::new_watched(pattern, values, observer)? else { return Ok(None) };
-        lu.solve_in_place(&mut ucol);
-        let sum_bu = ucol.iter().sum::<f64>();
-        Ok((sum_bu.is_finite() && ucol.iter().all(|x| x.is_finite())).then_some(Precond { lu, bu: ucol, sum_bu, c: c.to_vec(), active: active.to_vec() }))
+        (values, ucol)
     }
 }
 
