@@ -505,8 +505,6 @@ const LONG_FUNCTIONS_LEFT: &[(&str, &str, usize)] = &[
     ("crates/physics/src/cam/cycle/context.rs", "march_roller", 265),
     ("crates/physics/src/cam/cycle/run.rs", "run_cycle", 289),
     ("crates/physics/src/ehl/thermal/energy.rs", "energy_iterated", 561),
-    ("crates/physics/src/ehl/twod/solver/newton.rs", "newton", 193),
-    ("crates/physics/src/ehl/twod/solver/problem.rs", "precondition", 180),
     ("crates/physics/src/journal/analysis.rs", "position", 194),
     ("crates/physics/src/journal/figures.rs", "figures", 167),
     ("crates/physics/src/valvetrain/integrator.rs", "integrate", 257),

@@ -12,6 +12,7 @@ pub mod friction;
 pub mod geometry;
 pub mod journal;
 pub mod lubricant;
+pub mod numerics;
 pub mod rough;
 pub mod roller;
 pub mod solver;

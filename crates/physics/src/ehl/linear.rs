@@ -3,6 +3,7 @@
 //! a matrix-free product (see `newton` for how they are used).
 
 use super::grid::Grid;
+use crate::numerics::krylov;
 use faer::dyn_stack::{MemBuffer, MemStack};
 use faer::{MatMut, MatRef, Par};
 
@@ -89,7 +90,8 @@ impl Factor {
     }
 }
 
-/// Scratch of the GMRES solver and the matrix-free product.
+/// Scratch of the GMRES solver (lent to [`krylov::gmres`] for each solve) and the matrix-free
+/// product.
 #[derive(Default)]
 pub(super) struct Krylov {
     /// Orthonormal basis, `(GMRES_MAX + 1)` vectors of the system dimension.
@@ -165,86 +167,32 @@ pub(super) fn assemble(sys: &System, grid: &Grid, kr: &mut Krylov, out: &mut [f6
 }
 
 /// Right-preconditioned GMRES for `A x = b` (`A` from `sys`), preconditioned by `factor`, from
-/// `x = 0`. Returns the iterations when the relative residual reached `tol` within `GMRES_MAX`.
+/// `x = 0`: one cycle of the shared GMRES ([`krylov::gmres`]) in this solver's arithmetic
+/// (`hypot` rotations, a breakdown ends it unconverged; `|g| ≤ tol‖b‖`; `x = M⁻¹ V y`). Returns
+/// the iterations when the relative residual reached `tol` within `GMRES_MAX`.
 pub(super) fn gmres(sys: &System, grid: &Grid, factor: &mut Factor, kr: &mut Krylov, x: &mut [f64], tol: f64) -> Option<usize> {
-    let dim = grid.n - 1;
-    let k1 = GMRES_MAX + 1;
-    let b = &sys.rhs;
-    let beta = b.iter().map(|v| v * v).sum::<f64>().sqrt();
-    x.iter_mut().for_each(|v| *v = 0.0);
-    if beta == 0.0 {
-        return Some(0);
-    }
-    for (v, bv) in kr.basis[..dim].iter_mut().zip(b) {
-        *v = bv / beta;
-    }
-    kr.g.iter_mut().for_each(|v| *v = 0.0);
-    kr.g[0] = beta;
-    let mut done = None;
-    for k in 0..GMRES_MAX {
-        // w = A M⁻¹ v_k.
-        kr.z.copy_from_slice(&kr.basis[k * dim..(k + 1) * dim]);
-        factor.solve(&mut kr.z);
-        let z = std::mem::take(&mut kr.z);
-        let mut w = std::mem::take(&mut kr.w);
-        apply(sys, grid, kr, &z, &mut w);
-        kr.z = z;
-        // Modified Gram–Schmidt.
-        let h = &mut kr.hess[k * k1..(k + 1) * k1];
-        for j in 0..=k {
-            let vj = &kr.basis[j * dim..(j + 1) * dim];
-            let d: f64 = w.iter().zip(vj).map(|(a, b)| a * b).sum();
-            h[j] = d;
-            for (wv, vv) in w.iter_mut().zip(vj) {
-                *wv -= d * vv;
-            }
-        }
-        let norm = w.iter().map(|v| v * v).sum::<f64>().sqrt();
-        h[k + 1] = norm;
-        if norm > 0.0 {
-            for (v, wv) in kr.basis[(k + 1) * dim..(k + 2) * dim].iter_mut().zip(&w) {
-                *v = wv / norm;
-            }
-        }
-        kr.w = w;
-        // Apply the previous rotations, then a new one to zero h[k+1].
-        for j in 0..k {
-            let (c, s) = (kr.cs[j], kr.sn[j]);
-            let (a, bb) = (h[j], h[j + 1]);
-            h[j] = c * a + s * bb;
-            h[j + 1] = -s * a + c * bb;
-        }
-        let r = h[k].hypot(h[k + 1]);
-        if r == 0.0 || !r.is_finite() {
-            return None;
-        }
-        let (c, s) = (h[k] / r, h[k + 1] / r);
-        kr.cs[k] = c;
-        kr.sn[k] = s;
-        h[k] = r;
-        h[k + 1] = 0.0;
-        kr.g[k + 1] = -s * kr.g[k];
-        kr.g[k] *= c;
-        if kr.g[k + 1].abs() <= tol * beta || norm == 0.0 {
-            done = Some(k + 1);
-            break;
-        }
-    }
-    let iters = done?;
-    // Back substitution H y = g (y stored in g), then x = M⁻¹ V y.
-    for i in (0..iters).rev() {
-        let mut s = kr.g[i];
-        for j in i + 1..iters {
-            s -= kr.hess[j * k1 + i] * kr.g[j];
-        }
-        kr.g[i] = s / kr.hess[i * k1 + i];
-    }
-    for j in 0..iters {
-        let y = kr.g[j];
-        for (xv, vv) in x.iter_mut().zip(&kr.basis[j * dim..(j + 1) * dim]) {
-            *xv += y * vv;
-        }
-    }
-    factor.solve(x);
-    Some(iters)
+    let take = std::mem::take::<Vec<f64>>;
+    let mut ws = krylov::Workspace {
+        basis: take(&mut kr.basis),
+        hess: take(&mut kr.hess),
+        cs: take(&mut kr.cs),
+        sn: take(&mut kr.sn),
+        g: take(&mut kr.g),
+        w: take(&mut kr.w),
+        z: take(&mut kr.z),
+        ..Default::default()
+    };
+    let settings = krylov::Settings {
+        restart: GMRES_MAX,
+        max_iterations: GMRES_MAX,
+        tolerance: tol,
+        from_x: false,
+        rotation: krylov::Rotation::Hypot,
+        test: krylov::Test::Product,
+        update: krylov::Update::Right,
+    };
+    // The silent observer never interrupts.
+    let out = krylov::gmres(&mut |z, y| apply(sys, grid, kr, z, y), &mut |z| factor.solve(z), &sys.rhs, x, &settings, &mut ws, &crate::Silent);
+    (kr.basis, kr.hess, kr.cs, kr.sn, kr.g, kr.w, kr.z) = (ws.basis, ws.hess, ws.cs, ws.sn, ws.g, ws.w, ws.z);
+    out.ok().filter(|o| o.converged).map(|o| o.iterations)
 }

@@ -1,61 +1,9 @@
-use super::*;
+//! Where a solve starts: the cold start, the nested iteration from coarse grids
+//! ([`solve_levels`]) and the warm start from a neighbouring problem ([`warm_start`]).
 
-pub(crate) fn validate(input: &Ehl2dInput, options: &Ehl2dOptions) -> Result<(), SolveError> {
-    let pos = |v: f64, path: &str| if v.is_finite() && v > 0.0 { Ok(()) } else { Err(SolveError::invalid(path, "must be a finite number > 0")) };
-    pos(input.load, "Ehl2dInput.load")?;
-    pos(input.effective_modulus, "Ehl2dInput.effective_modulus")?;
-    pos(input.temperature, "Ehl2dInput.temperature")?;
-    pos(input.entrainment_velocity.abs(), "Ehl2dInput.entrainment_velocity")?;
-    pos(input.lubricant.viscosity, "Ehl2dInput.lubricant.viscosity")?;
-    if !(input.lubricant.pressure_viscosity.is_finite() && input.lubricant.pressure_viscosity >= 0.0) {
-        return Err(SolveError::invalid("Ehl2dInput.lubricant.pressure_viscosity", "must be finite and ≥ 0"));
-    }
-    match input.geometry {
-        Geometry2d::Point { rx, ry } => {
-            pos(rx, "Ehl2dInput.geometry.rx")?;
-            pos(ry, "Ehl2dInput.geometry.ry")?;
-            if !(0.02..=50.0).contains(&(rx / ry)) {
-                return Err(SolveError::invalid("Ehl2dInput.geometry", "R_x/R_y must be within 0.02–50"));
-            }
-        }
-        Geometry2d::Finite { rx, crown } => {
-            pos(rx, "Ehl2dInput.geometry.rx")?;
-            pos(crown.length, "Ehl2dInput.geometry.crown.length")?;
-            pos(crown.end_radius, "Ehl2dInput.geometry.crown.end_radius")?;
-            if !(crown.middle_length > 0.0 && crown.middle_length <= crown.length) {
-                return Err(SolveError::invalid("Ehl2dInput.geometry.crown.middle_length", "must be in (0, length]"));
-            }
-            if !(crown.crown_height.is_finite() && crown.crown_height >= 0.0) {
-                return Err(SolveError::invalid("Ehl2dInput.geometry.crown.crown_height", "must be finite and ≥ 0"));
-            }
-        }
-    }
-    for (n, path) in [(options.nx, "Ehl2dOptions.nx"), (options.ny, "Ehl2dOptions.ny")] {
-        if !(9..=1025).contains(&n) {
-            return Err(SolveError::invalid(path, "must be within 9–1025"));
-        }
-    }
-    if !(options.tolerance.is_finite() && options.tolerance > 0.0) {
-        return Err(SolveError::invalid("Ehl2dOptions.tolerance", "must be finite and > 0"));
-    }
-    if options.max_iterations == 0 {
-        return Err(SolveError::invalid("Ehl2dOptions.max_iterations", "must be ≥ 1"));
-    }
-    if !(options.grid_tolerance.is_finite() && options.grid_tolerance > 0.0) {
-        return Err(SolveError::invalid("Ehl2dOptions.grid_tolerance", "must be finite and > 0"));
-    }
-    if !(1..=3).contains(&options.near_field) {
-        return Err(SolveError::invalid("Ehl2dOptions.near_field", "must be within 1–3"));
-    }
-    for (v, path) in [(options.inlet, "Ehl2dOptions.inlet"), (options.outlet, "Ehl2dOptions.outlet"), (options.side, "Ehl2dOptions.side")] {
-        if let Some(v) = v {
-            if !(v.is_finite() && v >= 0.5 && v <= 100.0) {
-                return Err(SolveError::invalid(path, "must be within 0.5–100 (units of the Hertzian semi-axis)"));
-            }
-        }
-    }
-    Ok(())
-}
+use super::march::solve_level;
+use super::newton::newton;
+use super::*;
 
 /// `H0` that puts the centre film at `target` and keeps the film positive.
 pub(super) fn h0_for(prob: &mut Problem, p: &[f64], target: f64) -> f64 {
@@ -65,23 +13,6 @@ pub(super) fn h0_for(prob: &mut Problem, p: &[f64], target: f64) -> f64 {
     let min_rigid = rigid.iter().cloned().fold(f64::INFINITY, f64::min);
     let at_centre = bilinear(&prob.x, &prob.y, &rigid, 0.0, 0.0);
     (target - at_centre).max(0.05 * target - min_rigid)
-}
-
-/// Bilinear interpolation of a node field at `(x, y)` (clamped to the grid).
-pub(crate) fn bilinear(xs: &[f64], ys: &[f64], f: &[f64], x: f64, y: f64) -> f64 {
-    let (nx, ny) = (xs.len(), ys.len());
-    let loc = |v: &[f64], at: f64| {
-        let n = v.len();
-        let d = v[1] - v[0];
-        let t = ((at - v[0]) / d).clamp(0.0, (n - 1) as f64);
-        let i = (t.floor() as usize).min(n - 2);
-        (i, t - i as f64)
-    };
-    let (i, tx) = loc(xs, x);
-    let (j, ty) = loc(ys, y);
-    let _ = ny;
-    let g = |ii: usize, jj: usize| f[jj * nx + ii];
-    (1.0 - ty) * ((1.0 - tx) * g(i, j) + tx * g(i + 1, j)) + ty * ((1.0 - tx) * g(i, j + 1) + tx * g(i + 1, j + 1))
 }
 
 /// Cold start: the Hertzian (point) or slice-shaped (roller) pressure scaled to the load.
@@ -105,7 +36,7 @@ pub(super) fn cold(prob: &mut Problem, input: &Ehl2dInput, s: &Scales) -> (Vec<f
     (p, h0)
 }
 
-/// The slice model's load per length at `Y` relative to the centre's (`physics::roller::Crown::
+/// The slice model's load per length at `Y` relative to the centre's (`physics::geometry::Crown::
 /// distribute`: each slice carries `∝ (δ − g(y))₊`, the approach `δ` being the gap at the loaded
 /// zone's edge): `1 − S(Y)/S(Y_loaded)`, uniform along a straight roller (the parabola
 /// `1 − (Y/Y_loaded)²` of the crowned middle before, which loaded a straight roller's centre 1.5×
@@ -171,12 +102,15 @@ pub(super) fn merit_at(prob: &mut Problem, p: &[f64], h0: f64) -> f64 {
 /// Extrapolation ratios tried by [`warm_start`] besides 0 (the warm start alone); development
 /// aid: `TRIBOD_EHL2D_EXTRAP=r1,r2,…` overrides them (empty: none).
 pub(super) fn extrapolation_ratios() -> &'static [f64] {
-    pub(super) static R: std::sync::OnceLock<Vec<f64>> = std::sync::OnceLock::new();
+    static R: std::sync::OnceLock<Vec<f64>> = std::sync::OnceLock::new();
     R.get_or_init(|| match std::env::var("TRIBOD_EHL2D_EXTRAP") {
         Ok(v) => v.split(',').filter_map(|x| x.trim().parse().ok()).collect(),
         Err(_) => EXTRAPOLATION.to_vec(),
     })
 }
+
+/// Ratios of the secant extrapolation along a chain of neighbouring problems ([`warm_start`]).
+pub(super) const EXTRAPOLATION: [f64; 1] = [1.0];
 
 /// The start of a warm solve: the warm start's pressure ([`carried`]) with `H0` putting the
 /// central film at the warm start's central film times the change of the closed-form estimate;
@@ -214,34 +148,6 @@ pub(super) fn warm_start(prob: &mut Problem, s: &Scales, w: &Warm2d, prior: Opti
         eprintln!("ehl2d warm start: merit {m1:.3e} carried, {:.3e} extrapolated r {}", best.0, best.3);
     }
     Some((best.1, best.2))
-}
-
-/// Central and minimum film (units of `a²/R_x`) and grid of a check solve on the grid with half
-/// the intervals, started from the injected solution; `None` when that grid has fewer than 9
-/// nodes per side, the node counts are even, or Newton does not converge there.
-#[allow(clippy::too_many_arguments)]
-pub(super) fn check_half(s: &Scales, d: Domain, input: &Ehl2dInput, options: &Ehl2dOptions, p: &[f64], h0: f64, target: Option<&(f64, Vec<f64>)>, observer: &dyn Observer) -> Result<Option<(f64, f64, usize, usize)>, SolveError> {
-    let (nx, ny) = (options.nx, options.ny);
-    if (nx - 1) % 2 != 0 || (ny - 1) % 2 != 0 || (nx - 1) / 2 + 1 < 9 || (ny - 1) / 2 + 1 < 9 {
-        return Ok(None);
-    }
-    let (cx, cy) = ((nx - 1) / 2 + 1, (ny - 1) / 2 + 1);
-    let mut prob = Problem::new(input, s, d, cx, cy, options.near_field);
-    let inject = |f: &[f64]| -> Vec<f64> { (0..cx * cy).map(|k| f[(k / cx) * 2 * nx + (k % cx) * 2]).collect() };
-    let mut pc = inject(p);
-    // A transient step's squeeze term, at the coinciding nodes.
-    if let Some((kappa, q)) = target {
-        prob.target = Some((*kappa, inject(q)));
-        prob.restore_target();
-    }
-    let mut h0c = h0;
-    let run = solve_level(&mut prob, &mut pc, &mut h0c, options.tolerance.max(1e-6), options.max_iterations.min(NESTED_ITER), options.max_iterations, DT_NESTED, true, observer)?;
-    let mut v = Fields::default();
-    if !run.converged || !prob.evaluate(&pc, h0c, &mut v) {
-        return Ok(None);
-    }
-    let hmin = v.h.iter().cloned().fold(f64::INFINITY, f64::min);
-    Ok(Some((bilinear(&prob.x, &prob.y, &v.h, 0.0, 0.0), hmin, cx, cy)))
 }
 
 /// The nested iteration up to `options`' grid: the finest problem, its pressure, `H0`, the Newton

@@ -5,8 +5,9 @@
 //! included) — the complementarity reformulation of the 1-D solver (`super::super::newton`) —
 //! and the load balance. A Newton step solves `J δ = −φ` by restarted GMRES, right-preconditioned
 //! by the sparse LU of the near-field Jacobian; a backtracking line search on `Σ φ² ΔXΔY + G²`
-//! from a fraction-to-boundary step on the film ([`film_damping`]) damps it (the Reynolds terms
-//! see the film above a small floor, [`FILM_FLOOR`], so every trial point is evaluable).
+//! from a fraction-to-boundary step on the film ([`film_damping`](newton::film_damping)) damps
+//! it (the Reynolds terms see the film above a small floor, [`FILM_FLOOR`], so every trial point
+//! is evaluable).
 //!
 //! The LU is kept (chord-preconditioned Newton–Krylov, as the 1-D solver): a step first runs
 //! GMRES with the last factor of this grid — an earlier Newton step's, continuation step's or,
@@ -17,34 +18,41 @@
 //! iterations, or whose step failed the line search, is replaced at the next step. The operator
 //! is always the current Jacobian, so the converged solution is the same to the Newton tolerance
 //! (measured: ≤ 7e-8 on the seed 000 finite cycle, `BENCHMARKS.md` issue 16, `ehl2d-7`).
+//!
+//! The files, one operation each: `problem` (the discretisation on one grid: fields, residual,
+//! the matrix-free Newton matrix), `precond` and `near` (the near-field preconditioner and its
+//! sparse LU), `newton` (the Newton iteration on one grid), `march` (the continuation of the
+//! face means and pseudo-time marching), `levels` (cold, nested and warm starts), `solve` (the
+//! steady entry points and the resolution checks), `transient` (a backward-Euler step), `finish`
+//! (the solution's quantities), `validate`, `probe` (a development aid).
 
 use super::elastic::Deflection;
 use super::geometry::{domain, node_grid, scales, side_gap, Domain, NodeGrid, Scales};
 use super::{Ehl2dInput, Ehl2dOptions, Ehl2dSolution, Fields2d, Geometry2d, Located, Squeeze2d, Warm2d};
 use crate::ehl::rheology::PressureRheology;
+use crate::numerics::krylov::{self, dot};
 use crate::{Convergence, Observer, SolveError, Termination};
-use faer::sparse::linalg::lu::supernodal::{self, SupernodalLu, SymbolicSupernodalLu};
-use faer::dyn_stack::{MemBuffer, MemStack, StackReq};
-use faer::perm::PermRef;
-use faer::sparse::linalg::{qr, SymbolicSupernodalParams};
-use faer::sparse::{SparseColMatRef, SymbolicSparseColMatRef};
+use near::NearPattern;
+use precond::Precond;
 
-mod problem;
-mod near_lu;
-mod krylov;
-mod newton;
-mod levels;
-mod steady;
-mod transient;
 mod finish;
+mod levels;
+mod march;
+mod near;
+mod newton;
+mod precond;
+mod probe;
+mod problem;
+mod solve;
+mod transient;
+mod validate;
 
-use near_lu::*;
-use krylov::*;
-use newton::*;
-pub(crate) use levels::*;
-pub use steady::*;
-pub use transient::*;
-pub use finish::*;
+pub(super) use finish::{edge_peak_node, mirror_tie};
+pub use probe::truncation_probe;
+pub use solve::{solve, solve_from, solve_kept, Kept2d};
+pub(super) use solve::frame_sign;
+pub use transient::solve_transient;
+pub(super) use validate::validate;
 
 /// Largest `ln(η/η0)` used (keeps `ε` finite at absurd trial pressures), as in the 1-D solver.
 const LN_ETA_CAP: f64 = 600.0;
@@ -158,8 +166,8 @@ const MAX_HALVINGS: u32 = 25;
 /// the discrete problem of the current stage wants a non-positive film at one node (issue 16,
 /// measured: 1.7 GPa on 65², the arithmetic-mean stage of the continuation pinches in a side
 /// lobe; each step then shrank that film 5× and the step with it, 190 steps to a residual of
-/// 2.4e-5); the rule now only damps ([`film_damping`]). A converged film at the floor is refused
-/// by the pinch check ([`PINCH`] ≫ 1e-3).
+/// 2.4e-5); the rule now only damps ([`film_damping`](newton::film_damping)). A converged film at
+/// the floor is refused by the pinch check ([`PINCH`] ≫ 1e-3).
 pub const FILM_FLOOR: f64 = 1e-3;
 /// Fraction-to-boundary rule of [`film_damping`]: largest fraction of a node's film one step may
 /// remove, and the smallest step it may impose.
@@ -217,6 +225,23 @@ struct Problem {
     forcing: Option<Forcing>,
 }
 
+/// The Poiseuille coefficient at a cell face from its two nodes' `ε = ρ̄H³/η̄`, with its
+/// derivatives: the geometric mean `sqrt(ε_a ε_b)`, i.e. `ln ε` interpolated linearly to the face
+/// (for Barus viscosity and an incompressible film of equal thickness, `ε` at the face's mean
+/// pressure). Second order like the arithmetic mean for smooth `ε`, but `ε` falls by orders of
+/// magnitude within a cell where the pressure rises into the contact, and there the arithmetic
+/// mean (dominated by the upstream node) overstates the back-flow and thins the film: measured on
+/// the circular M ≈ 300, L ≈ 11 contact (`BENCHMARKS.md`, issue 16) the central film's error on
+/// 65² is −28 % with the arithmetic mean and −5 % with the geometric one (harmonic +16 %,
+/// logarithmic −14 %), all converging to the same fine-grid limit.
+/// `theta < 1`: the blend `(1 − θ)·arithmetic + θ·geometric` of the continuation ([`solve_level`]).
+#[inline]
+fn face_of(theta: f64, a: f64, b: f64) -> (f64, f64, f64) {
+    let g = (a * b).sqrt();
+    let t = 1.0 - theta;
+    (t * 0.5 * (a + b) + theta * g, 0.5 * t + theta * 0.5 * g / a, 0.5 * t + theta * 0.5 * g / b)
+}
+
 /// Fields at one iterate.
 #[derive(Clone, Default)]
 struct Fields {
@@ -238,61 +263,27 @@ struct Fields {
     g: f64,
 }
 
-/// The preconditioner: the near-field Newton matrix `[B u; wᵀ 0]` (unknowns `P`, then `H0`),
-/// solved by the sparse LU of `B` and the Schur complement `s = wᵀB⁻¹u` (`w` the constant
-/// load-row weight, taken from the problem at each use: a kept factor may come from another load).
-struct Precond {
-    lu: NearLu,
-    /// `B⁻¹u`.
-    bu: Vec<f64>,
-    /// `Σ B⁻¹u` (the Schur complement is `w` times it).
-    sum_bu: f64,
-    /// The row scales and the active set it was factorised with.
-    c: Vec<f64>,
-    active: Vec<u8>,
-}
-
-/// The sparsity pattern of the near-field matrix `B` of a grid and its symbolic LU (a
-/// nested-dissection column ordering of the grid, [`nested_dissection`], and the supernodal
-/// elimination structure). Every row carries its full stencil, cavitated rows too (their values
-/// are the identity and structural zeros), so the pattern depends on the grid only and its
-/// symbolic LU is computed once per grid, not at every change of the active set and every new
-/// solve: faer's default ordering (colamd) of each pattern cost 1.4× a numeric factorisation on
-/// 65×129 (`BENCHMARKS.md` issue 16, `ehl2d-10`).
-struct NearPattern {
-    /// CSC of `B` (row indices sorted in each column).
-    col_ptr: Vec<usize>,
-    row_idx: Vec<usize>,
-    /// Per row `u`, `row_ptr[u]..row_ptr[u + 1]`: its columns (sorted) and their positions in
-    /// the CSC arrays.
-    row_ptr: Vec<usize>,
-    row_col: Vec<usize>,
-    row_pos: Vec<usize>,
-    /// Column ordering (position → column) and its inverse.
-    col_fwd: Vec<usize>,
-    col_inv: Vec<usize>,
-    symbolic: SymbolicSupernodalLu<usize>,
-}
-
-/// Unknowns from which the near-field factorisation runs beside its caller ([`NearLu::new_watched`]):
-/// ≈ 0.3 s at 257² (66k unknowns), a thread start is noise beside it.
-const WATCHED_LU_UNKNOWNS: usize = 60_000;
-
-/// The numeric LU (faer's supernodal, partial pivoting) of a near-field matrix on its
-/// [`NearPattern`].
-struct NearLu {
-    pattern: std::sync::Arc<NearPattern>,
-    lu: SupernodalLu<usize, f64>,
-    row_fwd: Vec<usize>,
-    row_inv: Vec<usize>,
-}
-
 #[derive(Default)]
 struct Buffers {
     dp: Vec<f64>,
     dw: Vec<f64>,
     dq: Vec<f64>,
     de: Vec<f64>,
+    /// GMRES' work arrays.
+    krylov: krylov::Workspace,
+}
+
+/// `TRIBOD_EHL2D_TRACE` set: print each Newton step, the line search and (first step) a
+/// finite-difference check of the Jacobian product to stderr (development aid).
+fn trace() -> bool {
+    std::env::var_os("TRIBOD_EHL2D_TRACE").is_some()
+}
+
+/// Report norm: the larger of `max|φ|/max P` and `|G|`.
+fn residual_norm(p: &[f64], phi: &[f64], g: f64) -> f64 {
+    let pmax = p.iter().cloned().fold(0.0_f64, f64::max).max(1e-12);
+    let pr = phi.iter().fold(0.0_f64, |a, v| a.max(v.abs())) / pmax;
+    pr.max(g.abs())
 }
 
 struct Run {
@@ -324,78 +315,24 @@ const COLD_TRIAL: u32 = 15;
 const MIN_LEVEL: usize = 17;
 const RESOLVED: f64 = 0.3;
 
-/// Ratios of the secant extrapolation along a chain of neighbouring problems ([`warm_start`]).
-const EXTRAPOLATION: [f64; 1] = [1.0];
-
-/// The Newton preconditioner (near-field LU) of the last solve on a grid, kept for the next
-/// solve on the same grid (a cam cycle's next angle, [`solve_kept`]): an older Jacobian's factor
-/// only changes how many GMRES iterations a Newton step takes, not what it converges to (the
-/// operator applied is always the current one), so the solution moves only within the Newton
-/// tolerance. Opaque; empty by default.
-#[derive(Clone, Default)]
-pub struct Kept2d {
-    pc: Option<std::sync::Arc<Precond>>,
-    /// The grid's sparsity pattern and symbolic LU (the same for every solve on the grid).
-    pattern: Option<std::sync::Arc<NearPattern>>,
-    nx: usize,
-    ny: usize,
+/// Bilinear interpolation of a node field at `(x, y)` (clamped to the grid).
+pub(super) fn bilinear(xs: &[f64], ys: &[f64], f: &[f64], x: f64, y: f64) -> f64 {
+    let (nx, ny) = (xs.len(), ys.len());
+    let loc = |v: &[f64], at: f64| {
+        let n = v.len();
+        let d = v[1] - v[0];
+        let t = ((at - v[0]) / d).clamp(0.0, (n - 1) as f64);
+        let i = (t.floor() as usize).min(n - 2);
+        (i, t - i as f64)
+    };
+    let (i, tx) = loc(xs, x);
+    let (j, ty) = loc(ys, y);
+    let _ = ny;
+    let g = |ii: usize, jj: usize| f[jj * nx + ii];
+    (1.0 - ty) * ((1.0 - tx) * g(i, j) + tx * g(i + 1, j)) + ty * ((1.0 - tx) * g(i, j + 1) + tx * g(i + 1, j + 1))
 }
-
-/// A converged problem on the finest grid: its pressure, `H0`, the Newton steps and the final
-/// residual, the previous level's films ([`solve_levels`]) and whether a warm start was used.
-struct Solved {
-    prob: Problem,
-    p: Vec<f64>,
-    h0: f64,
-    iterations: u32,
-    residual: f64,
-    coarse: Option<(f64, f64, usize, usize)>,
-    warm_used: bool,
-}
-
-/// Most halvings of a transient step that does not converge whole ([`solve_transient`]):
-/// 1, 2, 4 or 8 backward-Euler sub-steps.
-const MAX_SUBSTEP_HALVINGS: u32 = 3;
 
 /// Smallest accepted ratio of the minimum to the central film: below it the film is pinched at a
 /// node by the discretisation (measured: the arithmetic-mean scheme's 33² solution of the
 /// circular M ≈ 300 contact had h_min/h_c ≈ 0.9 at 4.9 nm against 220 nm converged).
 pub const PINCH: f64 = 0.1;
-
-#[cfg(test)]
-mod probe {
-    use super::*;
-    use crate::lubricant::Lubricant;
-
-    /// The truncation probe on the bench's circular contact (`TRIBOD_EHL2D_PROBE_FINE`, default 129).
-    #[test]
-    #[ignore = "development aid: prints the truncation errors of coarser grids (issue 16)"]
-    fn truncation_probe_circular() {
-        let fine: usize = std::env::var("TRIBOD_EHL2D_PROBE_FINE").ok().and_then(|v| v.parse().ok()).unwrap_or(129);
-        let lub = Lubricant { viscosity: 0.04, pressure_viscosity: 2e-8, ..Lubricant::SEED000 };
-        let input = Ehl2dInput { load: 100.0, geometry: Geometry2d::Point { rx: 0.01, ry: 0.01 }, effective_modulus: 210e9 / 0.91, entrainment_velocity: 1.0, lubricant: lub, temperature: 313.0 };
-        let o = Ehl2dOptions { nx: fine, ny: fine, inlet: Some(3.5), outlet: Some(1.5), side: Some(2.0), ..Default::default() };
-        let strides: Vec<usize> = [2, 4, 8].into_iter().filter(|s| (fine - 1) / s >= 16).collect();
-        truncation_probe(&input, &o, &strides).unwrap();
-    }
-}
-
-#[cfg(test)]
-mod tests {
-    use super::mirror_tie;
-
-    /// A tie between mirrored nodes is reported at y ≥ 0 whichever of the two the scan found; a
-    /// real difference keeps the extremum where it is.
-    #[test]
-    fn mirrored_extrema_are_reported_at_positive_y() {
-        let (nx, ny) = (3, 5);
-        let mut f = vec![1.0; nx * ny];
-        f[nx + 1] = 0.5; // (1, 1), y < 0
-        f[3 * nx + 1] = 0.5 * (1.0 + 1e-9); // its mirror (1, 3)
-        assert_eq!(mirror_tie(nx, ny, nx + 1, &f), 3 * nx + 1);
-        assert_eq!(mirror_tie(nx, ny, 3 * nx + 1, &f), 3 * nx + 1);
-        f[3 * nx + 1] = 0.5 * (1.0 + 1e-3);
-        assert_eq!(mirror_tie(nx, ny, nx + 1, &f), nx + 1);
-        assert_eq!(mirror_tie(nx, ny, 2 * nx, &f), 2 * nx); // the centre line is its own mirror
-    }
-}

@@ -1,14 +1,14 @@
+//! One backward-Euler step of the transient problem ([`solve_transient`]).
+
+use super::levels::warm_start;
+use super::march::solve_level;
+use super::solve::{conclude, frame_sign, Kept2d, Solved};
+use super::validate::{validate, validate_squeeze};
 use super::*;
 
-/// The solver frame's orientation: `+1` when `u_m ≥ 0`, else `−1` (the inlet is always at
-/// negative `X`; physical `x = sign·X·a`).
-pub(crate) fn frame_sign(input: &Ehl2dInput) -> f64 {
-    if input.entrainment_velocity >= 0.0 {
-        1.0
-    } else {
-        -1.0
-    }
-}
+/// Most halvings of a transient step that does not converge whole ([`solve_transient`]):
+/// 1, 2, 4 or 8 backward-Euler sub-steps.
+pub(super) const MAX_SUBSTEP_HALVINGS: u32 = 3;
 
 /// One backward-Euler step of the transient problem (seed 000 eq. 2 with `∂(ρh)/∂t`): from the
 /// previous time level `squeeze.previous` over `squeeze.time_step`, at this input's load, speed
@@ -88,24 +88,6 @@ pub fn solve_transient(input: &Ehl2dInput, options: &Ehl2dOptions, squeeze: Sque
         history.drain(..history.len() - 20);
     }
     Err(SolveError::NotConverged { solver: "ehl 2-D transient step (Newton–Krylov, 1–8 sub-steps)", iterations, residual, tolerance: options.tolerance, history })
-}
-
-/// A transient step's time step and previous level: `time_step` finite and > 0, the previous
-/// level a converged solution of the same contact kind with its pressure and mass per area.
-pub(super) fn validate_squeeze(squeeze: &Squeeze2d, finite: bool) -> Result<(), SolveError> {
-    if !(squeeze.time_step.is_finite() && squeeze.time_step > 0.0) {
-        return Err(SolveError::invalid("Squeeze2d.time_step", "must be a finite number > 0 (s)"));
-    }
-    let w = squeeze.previous;
-    let sized = w.x.len() >= 2 && w.y.len() >= 2 && w.mass.len() == w.x.len() * w.y.len() && w.pressure.len() == w.mass.len();
-    let finite_values = w.a.is_finite() && w.a > 0.0 && w.mass.iter().all(|m| m.is_finite() && *m >= 0.0) && (w.sign == 1.0 || w.sign == -1.0);
-    if !(sized && finite_values) {
-        return Err(SolveError::invalid("Squeeze2d.previous", "must be a converged 2-D solution with its mass per area at every node"));
-    }
-    if w.finite != finite {
-        return Err(SolveError::invalid("Squeeze2d.previous", "must be of the same contact kind (point or finite line) as the input"));
-    }
-    Ok(())
 }
 
 /// The dimensionless squeeze coefficient `κ = 12 η0 R_x²/(a² p_ref Δt)` of the backward-Euler

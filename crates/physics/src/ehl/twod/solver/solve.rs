@@ -1,8 +1,32 @@
+//! The entry points of a steady solve ([`solve`], [`solve_from`], [`solve_kept`]), the kept
+//! preconditioner between solves ([`Kept2d`]) and the resolution checks of a converged problem
+//! ([`conclude`]).
+
+use super::finish::finish;
+use super::levels::{solve_levels, warm_start};
+use super::march::solve_level;
+use super::near::NearPattern;
+use super::precond::Precond;
+use super::validate::validate;
 use super::*;
 
 /// Solve one 2-D EHL problem. Polls `observer` once per Newton step.
 pub fn solve(input: &Ehl2dInput, options: &Ehl2dOptions, observer: &dyn Observer) -> Result<Ehl2dSolution, SolveError> {
     solve_from(input, options, None, observer).map(|(s, _)| s)
+}
+
+/// The Newton preconditioner (near-field LU) of the last solve on a grid, kept for the next
+/// solve on the same grid (a cam cycle's next angle, [`solve_kept`]): an older Jacobian's factor
+/// only changes how many GMRES iterations a Newton step takes, not what it converges to (the
+/// operator applied is always the current one), so the solution moves only within the Newton
+/// tolerance. Opaque; empty by default.
+#[derive(Clone, Default)]
+pub struct Kept2d {
+    pc: Option<std::sync::Arc<Precond>>,
+    /// The grid's sparsity pattern and symbolic LU (the same for every solve on the grid).
+    pattern: Option<std::sync::Arc<NearPattern>>,
+    nx: usize,
+    ny: usize,
 }
 
 impl Kept2d {
@@ -47,7 +71,7 @@ pub fn solve_from(input: &Ehl2dInput, options: &Ehl2dOptions, warm: Option<&Warm
     solve_inner(input, options, warm, None, &mut Kept2d::default(), observer)
 }
 
-pub(super) fn solve_inner(input: &Ehl2dInput, options: &Ehl2dOptions, warm: Option<&Warm2d>, prior: Option<&Warm2d>, kept: &mut Kept2d, observer: &dyn Observer) -> Result<(Ehl2dSolution, Warm2d), SolveError> {
+fn solve_inner(input: &Ehl2dInput, options: &Ehl2dOptions, warm: Option<&Warm2d>, prior: Option<&Warm2d>, kept: &mut Kept2d, observer: &dyn Observer) -> Result<(Ehl2dSolution, Warm2d), SolveError> {
     validate(input, options)?;
     let mut kept_pc = kept.take_for(options.nx, options.ny);
     let kept_pattern = kept.pattern_for(options.nx, options.ny);
@@ -78,6 +102,18 @@ pub(super) fn solve_inner(input: &Ehl2dInput, options: &Ehl2dOptions, warm: Opti
         }
     };
     conclude(input, options, &s, d, solved, kept, kept_pattern, observer)
+}
+
+/// A converged problem on the finest grid: its pressure, `H0`, the Newton steps and the final
+/// residual, the previous level's films ([`solve_levels`]) and whether a warm start was used.
+pub(super) struct Solved {
+    pub(super) prob: Problem,
+    pub(super) p: Vec<f64>,
+    pub(super) h0: f64,
+    pub(super) iterations: u32,
+    pub(super) residual: f64,
+    pub(super) coarse: Option<(f64, f64, usize, usize)>,
+    pub(super) warm_used: bool,
 }
 
 /// The solution and warm start of a converged problem, after the resolution check (the pinch
@@ -130,4 +166,42 @@ pub(super) fn conclude(input: &Ehl2dInput, options: &Ehl2dOptions, s: &Scales, d
         }
     }
     Ok((sol, next))
+}
+
+/// The solver frame's orientation: `+1` when `u_m ≥ 0`, else `−1` (the inlet is always at
+/// negative `X`; physical `x = sign·X·a`).
+pub(in crate::ehl::twod) fn frame_sign(input: &Ehl2dInput) -> f64 {
+    if input.entrainment_velocity >= 0.0 {
+        1.0
+    } else {
+        -1.0
+    }
+}
+
+/// Central and minimum film (units of `a²/R_x`) and grid of a check solve on the grid with half
+/// the intervals, started from the injected solution; `None` when that grid has fewer than 9
+/// nodes per side, the node counts are even, or Newton does not converge there.
+#[allow(clippy::too_many_arguments)]
+pub(super) fn check_half(s: &Scales, d: Domain, input: &Ehl2dInput, options: &Ehl2dOptions, p: &[f64], h0: f64, target: Option<&(f64, Vec<f64>)>, observer: &dyn Observer) -> Result<Option<(f64, f64, usize, usize)>, SolveError> {
+    let (nx, ny) = (options.nx, options.ny);
+    if (nx - 1) % 2 != 0 || (ny - 1) % 2 != 0 || (nx - 1) / 2 + 1 < 9 || (ny - 1) / 2 + 1 < 9 {
+        return Ok(None);
+    }
+    let (cx, cy) = ((nx - 1) / 2 + 1, (ny - 1) / 2 + 1);
+    let mut prob = Problem::new(input, s, d, cx, cy, options.near_field);
+    let inject = |f: &[f64]| -> Vec<f64> { (0..cx * cy).map(|k| f[(k / cx) * 2 * nx + (k % cx) * 2]).collect() };
+    let mut pc = inject(p);
+    // A transient step's squeeze term, at the coinciding nodes.
+    if let Some((kappa, q)) = target {
+        prob.target = Some((*kappa, inject(q)));
+        prob.restore_target();
+    }
+    let mut h0c = h0;
+    let run = solve_level(&mut prob, &mut pc, &mut h0c, options.tolerance.max(1e-6), options.max_iterations.min(NESTED_ITER), options.max_iterations, DT_NESTED, true, observer)?;
+    let mut v = Fields::default();
+    if !run.converged || !prob.evaluate(&pc, h0c, &mut v) {
+        return Ok(None);
+    }
+    let hmin = v.h.iter().cloned().fold(f64::INFINITY, f64::min);
+    Ok(Some((bilinear(&prob.x, &prob.y, &v.h, 0.0, 0.0), hmin, cx, cy)))
 }

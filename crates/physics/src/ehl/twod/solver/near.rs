@@ -1,23 +1,33 @@
-use super::*;
+//! The near-field matrix's sparse LU: its pattern and symbolic factorisation per grid
+//! ([`NearPattern`], nested-dissection ordering), and the numeric factorisation ([`NearLu`]).
 
-impl Precond {
-    /// `z ← M⁻¹ z`: `x1 = B⁻¹f`, `y = (wᵀx1 − g)/s`, `x = x1 − y B⁻¹u`.
-    pub(super) fn apply(&self, z: &mut [f64], w: f64, rescale: &[f64]) {
-        let m = self.bu.len();
-        let g = z[m];
-        if !rescale.is_empty() {
-            for (zi, s) in z[..m].iter_mut().zip(rescale) {
-                *zi *= s;
-            }
-        }
-        self.lu.solve_in_place(&mut z[..m]);
-        let schur = w * self.sum_bu;
-        let y = if schur != 0.0 { (w * z[..m].iter().sum::<f64>() - g) / schur } else { 0.0 };
-        for (zi, bi) in z[..m].iter_mut().zip(&self.bu) {
-            *zi -= y * bi;
-        }
-        z[m] = y;
-    }
+use crate::{Observer, SolveError};
+use faer::dyn_stack::{MemBuffer, MemStack, StackReq};
+use faer::perm::PermRef;
+use faer::sparse::linalg::lu::supernodal::{self, SupernodalLu, SymbolicSupernodalLu};
+use faer::sparse::linalg::{qr, SymbolicSupernodalParams};
+use faer::sparse::{SparseColMatRef, SymbolicSparseColMatRef};
+
+/// The sparsity pattern of the near-field matrix `B` of a grid and its symbolic LU (a
+/// nested-dissection column ordering of the grid, [`nested_dissection`], and the supernodal
+/// elimination structure). Every row carries its full stencil, cavitated rows too (their values
+/// are the identity and structural zeros), so the pattern depends on the grid only and its
+/// symbolic LU is computed once per grid, not at every change of the active set and every new
+/// solve: faer's default ordering (colamd) of each pattern cost 1.4× a numeric factorisation on
+/// 65×129 (`BENCHMARKS.md` issue 16, `ehl2d-10`).
+pub(super) struct NearPattern {
+    /// CSC of `B` (row indices sorted in each column).
+    pub(super) col_ptr: Vec<usize>,
+    pub(super) row_idx: Vec<usize>,
+    /// Per row `u`, `row_ptr[u]..row_ptr[u + 1]`: its columns (sorted) and their positions in
+    /// the CSC arrays.
+    pub(super) row_ptr: Vec<usize>,
+    pub(super) row_col: Vec<usize>,
+    pub(super) row_pos: Vec<usize>,
+    /// Column ordering (position → column) and its inverse.
+    pub(super) col_fwd: Vec<usize>,
+    pub(super) col_inv: Vec<usize>,
+    pub(super) symbolic: SymbolicSupernodalLu<usize>,
 }
 
 impl NearPattern {
@@ -94,6 +104,19 @@ impl NearPattern {
     }
 }
 
+/// Unknowns from which the near-field factorisation runs beside its caller ([`NearLu::new_watched`]):
+/// ≈ 0.3 s at 257² (66k unknowns), a thread start is noise beside it.
+pub(super) const WATCHED_LU_UNKNOWNS: usize = 60_000;
+
+/// The numeric LU (faer's supernodal, partial pivoting) of a near-field matrix on its
+/// [`NearPattern`].
+pub(super) struct NearLu {
+    pattern: std::sync::Arc<NearPattern>,
+    lu: SupernodalLu<usize, f64>,
+    row_fwd: Vec<usize>,
+    row_inv: Vec<usize>,
+}
+
 impl NearLu {
     /// Factorise the matrix with `values` on `pattern`'s CSC; `None` when it is singular.
     pub(super) fn new(pattern: std::sync::Arc<NearPattern>, values: &[f64]) -> Option<Self> {
@@ -154,9 +177,9 @@ impl NearLu {
 /// colamd on the seed 000 roller's 63×127 unknowns (full pattern): numeric factorisation
 /// 139 against 157 M instructions, triangular solve 6.25 against 6.5 M (`ehl2d-10`).
 pub(super) fn nested_dissection(mx: usize, my: usize, wx: usize, wy: usize) -> Vec<usize> {
-    pub(super) const LEAF: usize = 32;
+    const LEAF: usize = 32;
     #[allow(clippy::too_many_arguments)]
-    pub(super) fn part(x0: usize, x1: usize, y0: usize, y1: usize, mx: usize, wx: usize, wy: usize, out: &mut Vec<usize>) {
+    fn part(x0: usize, x1: usize, y0: usize, y1: usize, mx: usize, wx: usize, wy: usize, out: &mut Vec<usize>) {
         let (lx, ly) = (x1 - x0, y1 - y0);
         let (cut_x, cut_y) = (lx > 2 * wx + 2, ly > 2 * wy + 2);
         if lx * ly <= LEAF || !(cut_x || cut_y) {
