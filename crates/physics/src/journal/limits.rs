@@ -51,3 +51,21 @@ pub fn check_limits(min_film: f64, force: f64, radius: f64, length: f64, max_tem
     let pass = min_film.pass && specific_load.pass && max_temperature.is_none_or(|c| c.pass);
     LimitChecks { min_film, specific_load, max_temperature, pass }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn checks_pass_and_fail_with_their_margins() {
+        let lim = OperatingLimits { journal_roughness: 2e-6, bearing_roughness: 3e-6, film_allowance: 1e-6, max_temperature: 383.15, max_specific_load: 5e6 };
+        // 8 kN on R = 50 mm, L = 40 mm: 2 MPa
+        let c = check_limits(12e-6, 8000.0, 0.05, 0.04, Some(390.0), &lim);
+        assert!(c.min_film.pass && (c.min_film.margin - 1.0).abs() < 1e-12);
+        assert!(c.specific_load.pass && (c.specific_load.value - 2e6).abs() < 1e-6);
+        let t = c.max_temperature.unwrap();
+        assert!(!t.pass && t.margin < 0.0);
+        assert!(!c.pass);
+        assert!(check_limits(12e-6, 8000.0, 0.05, 0.04, None, &lim).pass);
+    }
+}

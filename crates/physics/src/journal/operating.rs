@@ -104,3 +104,43 @@ pub fn aligned_reference(
     // (the same discrete equations; an even axial node count takes the full grid)
     symmetric_load(&b, &Operating::Eccentricity(e), settings, workspace, None, observer)
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::Silent;
+
+    fn dims() -> Dimensions {
+        Size { radius: 0.05, length: 0.04, clearance: 6e-5, omega: 100.0 * PI }.with_viscosity(0.02)
+    }
+
+    /// A force is `W̄ = w / load_scale`, a Sommerfeld number `W̄ = 1/(6πS)`; a force without
+    /// dimensions is refused; fixed positions resolve without a target.
+    #[test]
+    fn demands_resolve_to_operating_points() {
+        let (b, s) = (Bearing::plain(1.0), Settings::default());
+        let r = |demand: LoadDemand, d: Option<&Dimensions>| resolve_load(&b, &s, &demand, d, None, &Silent);
+        let d = dims();
+        let p = r(LoadDemand::Force(8000.0), Some(&d)).unwrap();
+        assert_eq!(p.operating, Operating::Load(8000.0 / d.load_scale()));
+        assert_eq!(p.target, Some(8000.0 / d.load_scale()));
+        let p = r(LoadDemand::Sommerfeld(0.1), None).unwrap();
+        assert_eq!(p.target, Some(1.0 / (6.0 * PI * 0.1)));
+        assert!(matches!(r(LoadDemand::Force(1.0), None), Err(SolveError::InvalidInput { .. })));
+        let p = r(LoadDemand::Position { eccentricity: 0.5, attitude: 0.7 }, None).unwrap();
+        assert_eq!((p.operating, p.guess, p.target), (Operating::Position { eccentricity: 0.5, attitude: 0.7 }, None, None));
+    }
+
+    /// The aligned reference drops misalignment and profile: a misaligned, profiled bearing has
+    /// its plain twin's reference.
+    #[test]
+    fn the_aligned_reference_is_the_plain_bearings() {
+        let s = Settings { circumferential: 37, axial: 11, ..Settings::default() };
+        let plain = Bearing::plain(1.0);
+        let tilted = Bearing { misalignment: Misalignment { vertical: 0.3, horizontal: 0.2 }, profile: Some(super::super::Profile { order: 2, height: 0.4, length_fraction: 0.2 }), ..plain };
+        let a = aligned_reference(&plain, &s, 0.6, None, &Silent).unwrap();
+        let b = aligned_reference(&tilted, &s, 0.6, None, &Silent).unwrap();
+        assert_eq!(a, b);
+        assert!(a.0 > 0.0);
+    }
+}

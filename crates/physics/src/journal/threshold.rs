@@ -97,3 +97,38 @@ pub fn moment_figures(c: &TiltCoefficients, load: f64, dimensions: Option<&Dimen
         convergence: c.convergence.clone(),
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::Termination;
+
+    fn coefficients() -> Coefficients {
+        // a typical film (short-bearing-like numbers, W̄ units): cross-coupled, unstable for a heavy rotor
+        Coefficients {
+            stiffness: [[1.5, 1.2], [-2.0, 0.9]],
+            damping: [[3.0, 0.4], [0.4, 2.5]],
+            convergence: Convergence { iterations: 1, residual: 0.0, tolerance: 0.0, termination: Termination::Converged },
+        }
+    }
+
+    /// The threshold speed is `√(M̄ g/c)` of the dimensionless threshold mass, the SI threshold
+    /// mass `M̄ W/(c ω²)`; without dimensions only the dimensionless figures; at zero load none.
+    #[test]
+    fn the_threshold_follows_the_dimensionless_mass() {
+        let c = coefficients();
+        let d = Dimensions { radius: 0.05, length: 0.04, clearance: 6e-5, omega: 300.0, viscosity: 0.02 };
+        let load = 0.3;
+        let f = dynamic_figures(&c, load, Some(&d));
+        let m = f.critical_mass_dimensionless.expect("unstable for some mass");
+        assert_eq!(f.threshold_speed, Some((m * GRAVITY / d.clearance).sqrt()));
+        let w = load * d.load_scale();
+        assert!((f.critical_mass.unwrap() - m * w / (d.clearance * d.omega * d.omega)).abs() <= 1e-12 * f.critical_mass.unwrap());
+        assert_eq!(f.stiffness_dimensionless.unwrap()[0][1], 1.2 / load);
+        let none = dynamic_figures(&c, load, None);
+        assert!(none.stiffness.is_none() && none.critical_mass.is_none() && none.threshold_speed.is_none());
+        assert_eq!(none.critical_mass_dimensionless, f.critical_mass_dimensionless);
+        let unloaded = dynamic_figures(&c, 0.0, Some(&d));
+        assert!(unloaded.stiffness_dimensionless.is_none() && unloaded.whirl_ratio.is_none() && unloaded.stiffness.is_some());
+    }
+}

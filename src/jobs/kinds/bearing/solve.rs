@@ -9,11 +9,47 @@ use crate::physics::journal::heat_balance::{HeatBalance, Lubricant, ThermalBalan
 use crate::physics::journal::limits::{check_limits, LimitCheck, OperatingLimits};
 use crate::physics::journal::operating::{self, LoadDemand, Size};
 use crate::physics::journal::threshold::{DynamicFigures, MomentFigures};
-use crate::physics::journal::{self, Analysis, Guess, Operating, Workspace};
+use crate::physics::journal::{self, Analysis, Bearing, Guess, Misalignment, Operating, Profile, Settings, Supply, Workspace};
 use crate::physics::units::{rad_per_s_to_rpm, rpm_to_rad_per_s};
 use crate::physics::{Observer, SolveError};
 
 impl BearingSpec {
+    /// The SI scales, when size, speed and viscosity are given.
+    pub fn dimensions(&self) -> Option<Dimensions> {
+        let viscosity = self.operating?.viscosity?;
+        Some(self.size()?.with_viscosity(viscosity))
+    }
+
+    /// The solver's bearing: L/D, misalignment, profile, supply (angles in rad).
+    pub fn bearing(&self) -> Bearing {
+        Bearing {
+            length_to_diameter: self.length_to_diameter(),
+            misalignment: self
+                .misalignment
+                .map_or(Misalignment::default(), |m| Misalignment { vertical: m.vertical, horizontal: m.horizontal }),
+            profile: self.profile.map(|p| Profile { order: p.order, height: p.height, length_fraction: p.length_fraction }),
+            supply: match self.supply {
+                SupplySpec::MaxFilm => Supply::MaxFilm,
+                SupplySpec::Angle { angle_deg } => Supply::Angle(angle_deg.to_radians()),
+                SupplySpec::Periodic => Supply::Periodic,
+                SupplySpec::TwoGrooves { angle_deg } => Supply::TwoGrooves(angle_deg.to_radians()),
+            },
+        }
+    }
+
+    /// The solver's grid, tolerances and caps.
+    pub fn settings(&self) -> Settings {
+        Settings {
+            circumferential: self.grid.circumferential,
+            axial: self.grid.axial,
+            pressure_tolerance: self.solver.pressure_tolerance,
+            load_tolerance: self.solver.load_tolerance,
+            max_load_iterations: self.solver.max_load_iterations,
+            max_cycles: self.solver.max_cycles,
+            min_film: self.solver.min_film,
+        }
+    }
+
     /// Radius, length, clearance and speed (SI), when all are given.
     pub fn size(&self) -> Option<Size> {
         let g = &self.geometry;

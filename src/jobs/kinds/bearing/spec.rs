@@ -1,8 +1,8 @@
 //! The `bearing` request: geometry, operating point, lubricant and heat balance, limits, grid,
 //! solver settings and outputs (the types of the OpenAPI document), and the spec's own
-//! figures (L/D, the solver's bearing and settings, SI dimensions).
+//! figures (L/D, whether it has a size and speed).
 
-use crate::physics::journal::{Bearing, Dimensions, Misalignment, Profile, Settings, Supply};
+use crate::physics::journal::Settings;
 use serde::{Deserialize, Serialize};
 use utoipa::ToSchema;
 
@@ -388,45 +388,5 @@ impl BearingSpec {
         }
         s.thermal = None;
         s
-    }
-
-    pub fn dimensions(&self) -> Option<Dimensions> {
-        let g = &self.geometry;
-        let o = self.operating?;
-        Some(Dimensions {
-            radius: g.radius?,
-            length: g.length?,
-            clearance: g.radial_clearance?,
-            omega: crate::physics::units::rpm_to_rad_per_s(o.speed_rpm),
-            viscosity: o.viscosity?,
-        })
-    }
-
-    pub fn bearing(&self) -> Bearing {
-        Bearing {
-            length_to_diameter: self.length_to_diameter(),
-            misalignment: self
-                .misalignment
-                .map_or(Misalignment::default(), |m| Misalignment { vertical: m.vertical, horizontal: m.horizontal }),
-            profile: self.profile.map(|p| Profile { order: p.order, height: p.height, length_fraction: p.length_fraction }),
-            supply: match self.supply {
-                SupplySpec::MaxFilm => Supply::MaxFilm,
-                SupplySpec::Angle { angle_deg } => Supply::Angle(angle_deg.to_radians()),
-                SupplySpec::Periodic => Supply::Periodic,
-                SupplySpec::TwoGrooves { angle_deg } => Supply::TwoGrooves(angle_deg.to_radians()),
-            },
-        }
-    }
-
-    pub fn settings(&self) -> Settings {
-        Settings {
-            circumferential: self.grid.circumferential,
-            axial: self.grid.axial,
-            pressure_tolerance: self.solver.pressure_tolerance,
-            load_tolerance: self.solver.load_tolerance,
-            max_load_iterations: self.solver.max_load_iterations,
-            max_cycles: self.solver.max_cycles,
-            min_film: self.solver.min_film,
-        }
     }
 }
