@@ -9,6 +9,7 @@ pub mod contact;
 pub mod ehl;
 pub mod film;
 pub mod friction;
+pub mod geometry;
 pub mod journal;
 pub mod lubricant;
 pub mod numerics;
@@ -19,6 +20,7 @@ pub mod thermal;
 pub mod units;
 pub mod valvetrain;
 pub mod wear;
+pub mod work;
 
 pub use solver::{
     ensure_finite, Convergence, Interrupt, Interrupts, Observer, PhysicalFailure, Silent, SolveError, Stage, Termination,

@@ -18,7 +18,8 @@ use crate::ehl::twod::Fields2d;
 use crate::friction::{AsperityFriction, Roughness, TractionLaw};
 use crate::lubricant::Lubricant;
 use crate::film::work;
-use crate::roller::{pin_torque, Crown, RollerParams, SlipStep};
+use crate::geometry::Crown;
+use crate::roller::{pin_torque, RollerParams, SlipStep};
 use crate::thermal::{flash_temperature, ThermalSolid};
 use crate::{ensure_finite, Convergence, Observer, SolveError, Termination};
 use std::f64::consts::TAU;
@@ -318,7 +319,7 @@ pub fn run_cycle(spec: &CycleSpec, needs: Needs, model: &dyn FilmModel, observer
             let (mut w_v, mut e_v, mut t_v, mut d_v) = (Vec::new(), Vec::new(), Vec::new(), Vec::new());
             // Consecutive angles with the same load and radius (the base circle) reuse the
             // distribution: the same inputs give the same result.
-            let mut last: Option<((f64, f64), (crate::roller::CrownedContact, crate::contact::LineContact))> = None;
+            let mut last: Option<((f64, f64), (crate::geometry::CrownedContact, crate::contact::LineContact))> = None;
             let mut hint = [f64::NAN; 3];
             for (k, l) in kin.iter().zip(&loads) {
                 let key = (l.contact, k.reduced_radius);

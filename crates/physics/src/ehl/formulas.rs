@@ -71,7 +71,7 @@ pub fn moes_central_film(g: &Groups, radius: f64) -> f64 {
 }
 
 /// Pan–Hamrock central film `h_c/R = 2.922 W^−0.166 U^0.692 G^0.470`, as a film in m (one
-/// implementation: [`crate::film::formulas::pan_hamrock`]).
+/// implementation: [`pan_hamrock_groups`]).
 pub fn pan_hamrock_central_film(g: &Groups, radius: f64) -> f64 {
     pan_hamrock_films(g).0 * radius
 }
@@ -82,8 +82,21 @@ pub fn pan_hamrock_minimum_film(g: &Groups, radius: f64) -> f64 {
 }
 
 fn pan_hamrock_films(g: &Groups) -> (f64, f64) {
-    let lg = crate::film::formulas::LineGroups { load: g.load, speed: g.speed, material: g.material };
-    crate::film::formulas::pan_hamrock(&lg)
+    pan_hamrock_groups(g.load, g.speed, g.material)
+}
+
+/// Pan–Hamrock line contact `(h_c/R, h_min/R)` for `W = load`, `U = speed`, `G = material`: the
+/// one implementation (the films above and [`crate::film::formulas::pan_hamrock`] call it; the
+/// form and its check in `crate::film::formulas`).
+pub fn pan_hamrock_groups(load: f64, speed: f64, material: f64) -> (f64, f64) {
+    if speed == 0.0 {
+        return (0.0, 0.0);
+    }
+    // The six powers through three shared logarithms.
+    let (lw, lu, lg) = (load.ln(), speed.ln(), material.ln());
+    let hc = 2.922 * (-0.166 * lw + 0.692 * lu + 0.470 * lg).exp();
+    let hm = 1.714 * (-0.128 * lw + 0.694 * lu + 0.568 * lg).exp();
+    (hc, hm)
 }
 
 /// Martin's rigid-isoviscous minimum film `h_min = 4.9 η0 u_m R / w'`, m.

@@ -40,7 +40,7 @@ use super::formulas::LineGroups;
 use super::{ContactInput, ContactShape, FilmModel, FilmModelId, FilmSolution, Regime};
 use crate::ehl::twod::{self, Ehl2dInput, Ehl2dOptions, Fields2d, Geometry2d, Kept2d, Warm2d};
 use crate::friction::TractionNode;
-use crate::roller::Crown;
+use crate::geometry::Crown;
 use crate::{ensure_finite, SolveError};
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::{Arc, Mutex};

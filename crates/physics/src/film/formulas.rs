@@ -19,7 +19,8 @@
 //! `E = E'` here. `W_s* = ḣ/u` is the squeeze-to-roll ratio (`ḣ = dh/dt`, negative on approach),
 //! clamped to the fitted range [−0.005, 0].
 //!
-//! Pan–Hamrock is implemented once, here ([`pan_hamrock`]); `physics::ehl::formulas` calls it.
+//! Pan–Hamrock is implemented once, in `physics::ehl::formulas::pan_hamrock_groups` (below the
+//! film models; [`pan_hamrock`] here and the films of `physics::ehl::formulas` call it).
 //! Check (issue 5): the two copies that existed carried identical coefficients — the form quoted
 //! from Pan & Hamrock (1989) in Hamrock's *Fundamentals of Fluid Film Lubrication* (rectangular
 //! conjunctions, mean velocity in `U`, `E'` in all groups); the paper itself is not in the
@@ -78,16 +79,10 @@ pub fn goksem_hargreaves_rolling(g: &LineGroups) -> f64 {
     4.318 * (g.material * g.speed).powf(0.658) * g.load.powf(0.0126)
 }
 
-/// Pan–Hamrock line contact `(h_c/R, h_min/R)`.
+/// Pan–Hamrock line contact `(h_c/R, h_min/R)` (computed by
+/// [`crate::ehl::formulas::pan_hamrock_groups`]).
 pub fn pan_hamrock(g: &LineGroups) -> (f64, f64) {
-    if g.speed == 0.0 {
-        return (0.0, 0.0);
-    }
-    // The six powers through three shared logarithms.
-    let (lw, lu, lg) = (g.load.ln(), g.speed.ln(), g.material.ln());
-    let hc = 2.922 * (-0.166 * lw + 0.692 * lu + 0.470 * lg).exp();
-    let hm = 1.714 * (-0.128 * lw + 0.694 * lu + 0.568 * lg).exp();
-    (hc, hm)
+    crate::ehl::formulas::pan_hamrock_groups(g.load, g.speed, g.material)
 }
 
 /// Dowson–Higginson line contact `(h_c/R, h_min/R)` with `h_c = 4/3 h_min`.

@@ -46,7 +46,8 @@ pub mod mixed;
 pub mod numerical;
 pub mod thermal;
 pub mod traction_table;
-pub mod work;
+// The work counters live below the films and the solvers that count them (`crate::work`).
+pub use crate::work;
 
 pub use auto::{closed_form_error, Auto, ClosedFormError, ErrorRule};
 pub use closed_form::{ClosedForm, FilmFormula};
@@ -421,7 +422,7 @@ pub struct FiniteSettings {
     pub options: crate::ehl::twod::Ehl2dOptions,
     /// The roller's axial profile (`None`: a straight roller of the contact length, or a point
     /// contact).
-    pub crown: Option<crate::roller::Crown>,
+    pub crown: Option<crate::geometry::Crown>,
     /// The squeeze term along a cycle ([`Finite::squeeze`]).
     pub squeeze: bool,
 }

@@ -15,12 +15,12 @@
 //!
 //! Slide-to-roll ratio (seed 000): `SRR = 2(u_c − u_r)/(u_c + u_r) = u_s/u_e`.
 
-pub mod crown;
 pub mod pin;
 pub mod pin_finite;
 pub mod point;
 
-pub use crown::{Crown, CrownProfile, CrownedContact};
+// The crown lives in the geometry room (`crate::geometry`); its paths here stay.
+pub use crate::geometry::crown::{self, Crown, CrownProfile, CrownedContact};
 pub use pin::{pin_film_temperature, pin_film_temperature_warm, pin_torque, pin_torque_warm, PinFriction};
 pub use pin_finite::{FinitePin, FinitePinState, PinTable, PinThermal};
 pub use point::{PointBalance, PointCase};

@@ -11,7 +11,7 @@
 //!   level's `ρ̄h` at the same physical position (`solver::previous_mass`) over `a²/R_x`;
 //! * film (seed 000 eq. 3): `H = H0 + X²/2 + S(Y) + c ∫∫ P(X', Y')/sqrt((X−X')² + (Y−Y')²)`,
 //!   `c = 2 p_ref R_x/(π E' a)` with `E' = 2/Σ(1−ν²)/E` (Hamrock–Dowson); `S = (R_x/R_y) Y²/2`
-//!   for a point contact, `S = g(aY) R_x/a²` for the crowned roller (`physics::roller::Crown::gap`,
+//!   for a point contact, `S = g(aY) R_x/a²` for the crowned roller (`physics::geometry::Crown::gap`,
 //!   seed 000 eq. 3 read as a convex crown, or as printed: `CrownProfile`);
 //! * load balance (seed 000 eq. 6): `∫∫ P dX dY = F/(p_ref a²)`;
 //! * cavitation as complementarity: `P ≥ 0`, Reynolds residual `≤ 0`, product zero; `P = 0` on
@@ -21,7 +21,7 @@
 //!
 //! Scales: point contact — `a` the Hertzian semi-axis along `x`, `p_ref` the Hertzian peak
 //! (Johnson eq. 4.39–4.41); roller — `a`, `p_ref` the line-contact Hertz values at the peak load
-//! per length of the slice model (`physics::roller::Crown::distribute`).
+//! per length of the slice model (`physics::geometry::Crown::distribute`).
 //!
 //! # Method
 //! A uniform `nx × ny` grid; second-order upwind wedge term (first order next to the inlet
@@ -91,7 +91,7 @@ pub use dry::{solve_dry, DryOptions, DrySolution};
 pub use solver::{solve, solve_from, solve_kept, solve_transient, Kept2d};
 
 use crate::lubricant::Lubricant;
-use crate::roller::Crown;
+use crate::geometry::Crown;
 use crate::Convergence;
 use serde::{Deserialize, Serialize};
 

@@ -36,7 +36,7 @@ pub(super) fn cold(prob: &mut Problem, input: &Ehl2dInput, s: &Scales) -> (Vec<f
     (p, h0)
 }
 
-/// The slice model's load per length at `Y` relative to the centre's (`physics::roller::Crown::
+/// The slice model's load per length at `Y` relative to the centre's (`physics::geometry::Crown::
 /// distribute`: each slice carries `∝ (δ − g(y))₊`, the approach `δ` being the gap at the loaded
 /// zone's edge): `1 − S(Y)/S(Y_loaded)`, uniform along a straight roller (the parabola
 /// `1 − (Y/Y_loaded)²` of the crowned middle before, which loaded a straight roller's centre 1.5×

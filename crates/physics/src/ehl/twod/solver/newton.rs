@@ -209,7 +209,7 @@ impl Newton {
                     t_lu += t.elapsed().as_secs_f64();
                     let Some(lu) = lu else { return Ok(None) };
                     prob.factorisations += 1;
-                    crate::film::work::add(&crate::film::work::FINITE_FACTORISATIONS, 1);
+                    crate::work::add(&crate::work::FINITE_FACTORISATIONS, 1);
                     fresh = true;
                     self.refresh = false;
                     let pc = std::sync::Arc::new(lu);
@@ -222,7 +222,7 @@ impl Newton {
             (its, rel) = gmres(prob, p, &self.v, &self.active, &self.c, &pc, &self.rhs, &mut self.sol, &mut self.buf, gtol, max_its, from_x, observer)?;
             t_gm += t.elapsed().as_secs_f64();
             self.gm_total += its;
-            crate::film::work::add(&crate::film::work::FINITE_GMRES_ITERATIONS, its as u64);
+            crate::work::add(&crate::work::FINITE_GMRES_ITERATIONS, its as u64);
             if fresh || rel <= gtol {
                 break;
             }
