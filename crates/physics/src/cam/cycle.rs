@@ -319,7 +319,7 @@ pub fn run_cycle(spec: &CycleSpec, needs: Needs, model: &dyn FilmModel, observer
             let (mut w_v, mut e_v, mut t_v, mut d_v) = (Vec::new(), Vec::new(), Vec::new(), Vec::new());
             // Consecutive angles with the same load and radius (the base circle) reuse the
             // distribution: the same inputs give the same result.
-            let mut last: Option<((f64, f64), (crate::geometry::CrownedContact, crate::contact::LineContact))> = None;
+            let mut last: Option<((f64, f64), (crate::roller::CrownedContact, crate::contact::LineContact))> = None;
             let mut hint = [f64::NAN; 3];
             for (k, l) in kin.iter().zip(&loads) {
                 let key = (l.contact, k.reduced_radius);
