@@ -2,7 +2,8 @@
 //! finite-length cycle's time goes). Process-wide relaxed atomics, incremented a few times per
 //! film solve or per roller step and once per 2-D traction evaluation; they never change a
 //! result. `benches/ehl2d.rs -- cycle` resets and prints them around one run (a concurrent run in
-//! the same process would add to them).
+//! the same process would add to them). Counted by the film models, the 2-D solver's Newton
+//! steps and the roller march, so they live below all three (also reachable as `film::work`).
 
 use std::sync::atomic::{AtomicU64, Ordering::Relaxed};
 

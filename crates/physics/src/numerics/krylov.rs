@@ -206,8 +206,8 @@ fn met(test: Test, g: f64, bnorm: f64, tol: f64) -> bool {
     }
 }
 
-/// One Arnoldi cycle from the residual `start` (`None`: `ws.r`) of norm `beta`, `n` unknowns: the basis, the
-/// rotated Hessenberg matrix and the residual estimates, iteration by iteration.
+/// One Arnoldi cycle from the residual `start` (`None`: `ws.r`) of norm `beta`, `n` unknowns:
+/// the basis, the rotated Hessenberg matrix and the residual estimates, iteration by iteration.
 #[allow(clippy::too_many_arguments)]
 fn cycle(
     a: &mut dyn FnMut(&[f64], &mut [f64]),
@@ -342,5 +342,86 @@ fn update(m: &mut dyn FnMut(&mut [f64]), x: &mut [f64], x_zero: bool, k: usize, 
                 }
             }
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A nonsymmetric convection–diffusion matrix (`n × n`, row-major), not diagonally dominant
+    /// enough for Jacobi alone to be a good preconditioner.
+    fn matrix(n: usize) -> Vec<f64> {
+        let mut a = vec![0.0; n * n];
+        for i in 0..n {
+            a[i * n + i] = 2.0 + 0.01 * i as f64;
+            if i > 0 {
+                a[i * n + i - 1] = -1.6;
+            }
+            if i + 1 < n {
+                a[i * n + i + 1] = -0.4;
+            }
+        }
+        a
+    }
+
+    fn residual_of(a: &[f64], b: &[f64], x: &[f64]) -> f64 {
+        let n = b.len();
+        let r: f64 = (0..n).map(|i| (b[i] - (0..n).map(|j| a[i * n + j] * x[j]).sum::<f64>()).powi(2)).sum();
+        r.sqrt() / dot(b, b).sqrt()
+    }
+
+    fn solve(settings: &Settings, observer: &dyn Observer) -> (Result<Outcome, Interrupt>, f64) {
+        let n = 60;
+        let a = matrix(n);
+        let b: Vec<f64> = (0..n).map(|i| 1.0 + (i % 7) as f64).collect();
+        let mut x = vec![0.0; n];
+        let mut op = |z: &[f64], y: &mut [f64]| {
+            for i in 0..n {
+                y[i] = (0..n).map(|j| a[i * n + j] * z[j]).sum();
+            }
+        };
+        let mut jacobi = |z: &mut [f64]| {
+            for (i, zi) in z.iter_mut().enumerate() {
+                *zi /= a[i * n + i];
+            }
+        };
+        let out = gmres(&mut op, &mut jacobi, &b, &mut x, settings, &mut Workspace::default(), observer);
+        (out, residual_of(&a, &b, &x))
+    }
+
+    /// Both arithmetics reach the tolerance, in one cycle and through restarts; the estimate is
+    /// the true residual to rounding.
+    #[test]
+    fn both_arithmetics_solve_a_nonsymmetric_system() {
+        let one_d = Settings { restart: 60, max_iterations: 60, tolerance: 1e-10, from_x: false, rotation: Rotation::Hypot, test: Test::Product, update: Update::Right };
+        let two_d = Settings { rotation: Rotation::Sqrt, test: Test::Ratio, update: Update::Flexible, ..one_d };
+        for s in [one_d, two_d, Settings { restart: 8, max_iterations: 400, ..one_d }, Settings { restart: 8, max_iterations: 400, ..two_d }] {
+            let (out, res) = solve(&s, &crate::Silent);
+            let out = out.unwrap();
+            assert!(out.converged && out.residual <= 1e-10, "{s:?}: {out:?}");
+            assert!(res <= 1e-9, "{s:?}: true residual {res:e}");
+            if s.restart == 8 {
+                assert!(out.iterations > 8, "{s:?}: {out:?} (no restart)");
+            }
+        }
+        // A cap below a cycle gives up when the reduction rate cannot reach the tolerance.
+        let capped = Settings { restart: 40, max_iterations: 25, tolerance: 1e-14, ..two_d };
+        let (out, _) = solve(&capped, &crate::Silent);
+        let out = out.unwrap();
+        assert!(!out.converged && out.iterations < 25, "{out:?}");
+    }
+
+    /// An interrupting observer ends the solve at once.
+    #[test]
+    fn an_interrupt_ends_the_solve() {
+        struct Stop;
+        impl Observer for Stop {
+            fn check(&self) -> Result<(), Interrupt> {
+                Err(Interrupt::Canceled)
+            }
+        }
+        let s = Settings { restart: 10, max_iterations: 10, tolerance: 1e-8, from_x: false, rotation: Rotation::Sqrt, test: Test::Ratio, update: Update::Flexible };
+        assert!(matches!(solve(&s, &Stop).0, Err(Interrupt::Canceled)));
     }
 }

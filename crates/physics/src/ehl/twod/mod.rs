@@ -8,7 +8,8 @@
 //!   `∂/∂X(ε ∂P/∂X) + ∂/∂Y(ε ∂P/∂Y) − λ ∂(ρ̄H)/∂X − κ (ρ̄H − (ρ̄H)_old) = 0`, `ε = ρ̄H³/η̄`,
 //!   `λ = 12 η0 u_m R_x²/(a³ p_ref)`; steady: `κ = 0`; a transient step ([`solve_transient`]):
 //!   backward Euler in `t` with `κ = 12 η0 R_x²/(a² p_ref Δt)` and `(ρ̄H)_old` the previous time
-//!   level's `ρ̄h` at the same physical position (`solver::previous_mass`) over `a²/R_x`;
+//!   level's `ρ̄h` at the same physical position (`solver::transient::previous_mass`) over
+//!   `a²/R_x`;
 //! * film (seed 000 eq. 3): `H = H0 + X²/2 + S(Y) + c ∫∫ P(X', Y')/sqrt((X−X')² + (Y−Y')²)`,
 //!   `c = 2 p_ref R_x/(π E' a)` with `E' = 2/Σ(1−ν²)/E` (Hamrock–Dowson); `S = (R_x/R_y) Y²/2`
 //!   for a point contact, `S = g(aY) R_x/a²` for the crowned roller (`physics::geometry::Crown::gap`,
@@ -36,8 +37,8 @@
 //! product (two FFTs) and a sparse preconditioner: the Jacobian with the elastic kernel truncated
 //! to a `(2r+1)²` near field, factorised by faer's supernodal sparse LU (the `H0` border by its Schur
 //! complement) with a nested-dissection column ordering and a symbolic factorisation computed once
-//! per grid (`solver::NearPattern`). Nested iteration from the coarsest grid that resolves the film
-//! (when none does but the half grid resolves it along `x`, a 15-step cold trial on the finest
+//! per grid (`solver::near::NearPattern`). Nested iteration from the coarsest grid that resolves
+//! the film (when none does but the half grid resolves it along `x`, a 15-step cold trial on the finest
 //! grid first, then that half grid); on each grid the
 //! arithmetic-mean problem first, then continuation in the weight of the geometric mean; when
 //! Newton fails, pseudo-time continuation: backward-Euler steps of the transient problem (squeeze
