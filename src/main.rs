@@ -342,7 +342,8 @@ fn run(args: RunArgs) -> ExitCode {
         match std::fs::read_to_string(&args.spec) {
             Ok(s) => s,
             Err(e) => {
-                return fail(&Problem::new(ErrorCode::MalformedJson, format!("reading {}: {e}", args.spec)), 2);
+                // Not the JSON's fault: the file could not be read (missing, a directory, no access).
+                return fail(&Problem::new(ErrorCode::InvalidRequest, format!("cannot read the spec file {}: {e}", args.spec)), 2);
             }
         }
     };
@@ -370,6 +371,9 @@ fn run(args: RunArgs) -> ExitCode {
         Ok(p) => p,
         Err(p) => return fail(&p.under("/spec"), 2),
     };
+    for w in &prepared.warnings {
+        eprintln!("warning: /spec{}: {}", w.path, w.message);
+    }
     tribod::jobs::warm_up();
     let (outcome, _) = runner::run(prepared, &Silent);
     let value = match outcome {
@@ -395,7 +399,7 @@ fn run(args: RunArgs) -> ExitCode {
             );
             return fail(&p, 2);
         };
-        return match table::to_csv(part) {
+        return match table::to_csv(part, &*table::units_of(Some(kind), &value, name.unwrap_or_default())) {
             Ok(csv) => {
                 print!("{csv}");
                 ExitCode::SUCCESS

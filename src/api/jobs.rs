@@ -82,11 +82,22 @@ pub struct JobView {
     /// Why the job failed.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub error: Option<Problem>,
+    /// Legal but implausible values of the spec (most often a unit slip: a radius of 25.5 m
+    /// meant as mm), each at its JSON pointer. Shown with the spec (on `POST /v1/jobs` and
+    /// `GET /v1/jobs/{id}`); `POST /v1/jobs?strict=true` refuses them instead.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub warnings: Vec<crate::problem::FieldError>,
     /// What the job was expected to cost when it was accepted (the work and memory models; a
     /// dashboard can say "about 40 s"). Absent for jobs stored before the models existed.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub estimate: Option<Estimate>,
     pub links: JobLinks,
+}
+
+/// The warnings of a stored spec, at pointers into the request body (`/spec/...`).
+fn spec_warnings(kind: &str, spec: &Value) -> Vec<crate::problem::FieldError> {
+    let Some(k) = registry::find(kind) else { return Vec::new() };
+    k.warnings(spec).into_iter().map(|w| crate::problem::FieldError::new(format!("/spec{}", w.path), w.message)).collect()
 }
 
 pub fn rfc3339(ms: i64) -> String {
@@ -99,8 +110,10 @@ pub fn rfc3339(ms: i64) -> String {
 impl JobView {
     pub fn from_row(row: JobRow, reused: bool) -> Self {
         let id = row.id;
+        let spec: Option<Value> = row.spec.as_deref().and_then(|s| serde_json::from_str(s).ok());
         JobView {
             id,
+            warnings: spec.as_ref().map(|s| spec_warnings(&row.kind, s)).unwrap_or_default(),
             kind: row.kind,
             label: row.label,
             status: row.status,
@@ -113,7 +126,7 @@ impl JobView {
             reused,
             solver_version: row.solver_version,
             spec_hash: row.spec_hash,
-            spec: row.spec.and_then(|s| serde_json::from_str(&s).ok()),
+            spec,
             error: row.error.and_then(|e| serde_json::from_str(&e).ok()),
             estimate: match (row.estimate_cpu_seconds, row.estimate_memory_bytes) {
                 (Some(cpu_seconds), Some(memory_bytes)) => Some(Estimate { cpu_seconds, memory_bytes }),
@@ -132,6 +145,10 @@ pub struct SubmitQuery {
     /// Solve again even when an identical succeeded job exists.
     #[serde(default)]
     pub fresh: bool,
+    /// Refuse a spec with warnings (legal but implausible values, see `JobView.warnings`) with
+    /// `422 invalid_spec` instead of accepting it.
+    #[serde(default)]
+    pub strict: bool,
 }
 
 /// Seconds of `Prefer: wait=N` (RFC 7240), if present.
@@ -201,7 +218,7 @@ pub async fn submit_job(
     let wait = prefer_wait(&headers);
     let key = idempotency_key(&headers)?;
     // `reused`: the job is another request's; `replayed`: the answer this key gave before.
-    let (row, reused, replayed) = match state.queue.submit(&req.kind, &req.spec, req.label.clone(), query.fresh, key).await? {
+    let (row, reused, replayed) = match state.queue.submit(&req.kind, &req.spec, req.label.clone(), query.fresh, query.strict, key).await? {
         Submitted::Reused(row) => return Ok(job_response(StatusCode::OK, JobView::from_row(row, true), Vec::new())),
         Submitted::Replayed(Replay { row, reused }) => (row, reused, true),
         Submitted::Joined(row) => (row, true, false),
@@ -469,7 +486,8 @@ pub async fn get_result(
     let Some(part) = value.get(name) else {
         return Err(missing(format!("this result has no '{name}' (not requested in the spec's outputs?)")));
     };
-    let csv = table::to_csv(part).map_err(|e| ApiError::new(ErrorCode::InternalError, e))?;
+    let unit = table::units_of(registry::find(&row.kind), &value, name);
+    let csv = table::to_csv(part, &*unit).map_err(|e| ApiError::new(ErrorCode::InternalError, e))?;
     Ok(([(header::CONTENT_TYPE, "text/csv; charset=utf-8")], csv).into_response())
 }
 

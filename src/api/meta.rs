@@ -39,6 +39,11 @@ pub struct KindView {
     pub spec_schema: String,
     /// OpenAPI schema of the result.
     pub result_schema: String,
+    /// The unit of every numeric result field: JSON pointer → unit (`1`: a pure number; `*`
+    /// stands for any index of a row table; a column's unit is its values' unit). SI throughout,
+    /// but angles in degrees (`°`), speeds in `rpm` and running times in hours (`h`) where the
+    /// field name says so.
+    pub result_units: std::collections::BTreeMap<String, String>,
 }
 
 /// The kinds this server runs.
@@ -67,6 +72,7 @@ pub async fn list_kinds() -> Json<KindList> {
                 tables: k.tables().iter().map(|t| t.to_string()).collect(),
                 spec_schema: format!("#/components/schemas/{spec}"),
                 result_schema: format!("#/components/schemas/{result}"),
+                result_units: crate::jobs::units::result_units(*k).clone(),
             }
         })
         .collect();

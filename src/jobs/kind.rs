@@ -66,6 +66,8 @@ impl Default for Limits {
 #[derive(Debug, Default)]
 pub struct Validation {
     errors: Vec<FieldError>,
+    /// Legal but implausible values (a unit slip, most often): reported, not refused.
+    warnings: Vec<FieldError>,
     limit_errors: Vec<FieldError>,
     bounds: Vec<Bound>,
     /// Prepended to every path (see `under`).
@@ -117,6 +119,19 @@ impl Validation {
         self
     }
 
+    /// Record a warning at `path` when `implausible` says so (the value stays accepted).
+    pub fn warn(&mut self, path: &str, implausible: Option<String>) -> &mut Self {
+        if let Some(message) = implausible {
+            self.warnings.push(FieldError::new(self.at(path), message));
+        }
+        self
+    }
+
+    /// A legal value of quantity `q` far above what a valve train or bearing has: a warning.
+    pub fn plausible(&mut self, path: &str, value: f64, q: super::quantity::Quantity) -> &mut Self {
+        self.warn(path, q.implausible(value))
+    }
+
     fn bound(&mut self, path: &str, value: f64, min: Option<f64>, min_exclusive: bool, max: Option<f64>, integer: bool) {
         self.bounds.push(Bound { path: self.at(path), value, min, min_exclusive, max, integer, items: false });
     }
@@ -152,7 +167,11 @@ impl Validation {
     /// message names the unit.
     pub fn quantity(&mut self, path: &str, value: f64, q: super::quantity::Quantity) -> &mut Self {
         self.bound(path, value, Some(q.min), false, Some(q.max), false);
-        self.check(value.is_finite() && value >= q.min && value <= q.max, path, format!("{}; {} in {} was given {}", q.rule(), q.name, q.unit, super::quantity::format_number(value)))
+        let ok = value.is_finite() && value >= q.min && value <= q.max;
+        if ok {
+            self.plausible(path, value, q);
+        }
+        self.check(ok, path, format!("{}; {} in {} was given {}", q.rule(), q.name, q.unit, super::quantity::format_number(value)))
     }
 
     /// An integer count in `[lo, hi]`.
@@ -225,7 +244,14 @@ impl Validation {
     }
 
     /// `Ok` or the problem naming every offending field (paths relative to the spec).
-    pub fn finish(self) -> Result<(), Problem> {
+    /// The warnings (legal but implausible values) recorded so far.
+    pub fn warnings(&self) -> &[FieldError] {
+        &self.warnings
+    }
+
+    /// The spec's verdict: a problem (`invalid_spec`, or `limit_exceeded` when only server
+    /// limits were broken), or the warnings of an accepted spec.
+    pub fn finish(self) -> Result<Vec<FieldError>, Problem> {
         if !self.errors.is_empty() {
             let n = self.errors.len() + self.limit_errors.len();
             let mut errors = self.errors;
@@ -240,7 +266,7 @@ impl Validation {
             )
             .with_errors(self.limit_errors));
         }
-        Ok(())
+        Ok(self.warnings)
     }
 }
 
@@ -300,6 +326,8 @@ pub trait Kind: Send + Sync + 'static {
 pub struct Prepared {
     pub kind: &'static dyn DynKind,
     pub canonical: Value,
+    /// Legal but implausible values of the spec (paths relative to the spec).
+    pub warnings: Vec<FieldError>,
     /// The estimated cost (work and memory models), checked against the limits.
     pub cost: Cost,
     run: Box<dyn FnOnce(&dyn Observer) -> Result<Value, SolveError> + Send>,
@@ -338,6 +366,12 @@ pub trait DynKind: Send + Sync {
     /// Parse (unknown fields rejected, JSON paths in errors) and validate a spec.
     /// Error paths are relative to the spec.
     fn prepare(&'static self, spec: &Value, limits: &Limits) -> Result<Prepared, Problem>;
+    /// The warnings of a stored (valid) spec: legal but implausible values, paths relative to
+    /// the spec. Validation is pure, so a job's warnings are recomputed when it is read.
+    fn warnings(&self, spec: &Value) -> Vec<FieldError> {
+        let _ = spec;
+        Vec::new()
+    }
 }
 
 /// The `DynKind` of a `Kind` type.
@@ -407,11 +441,17 @@ impl<K: Kind> DynKind for Registered<K> {
         }
         out
     }
+    fn warnings(&self, spec: &Value) -> Vec<FieldError> {
+        let Ok(typed) = parse_spec::<K::Spec>(spec) else { return Vec::new() };
+        let mut v = Validation::new();
+        K::validate(&typed, &Limits::UNLIMITED, &mut v);
+        v.warnings
+    }
     fn prepare(&'static self, spec: &Value, limits: &Limits) -> Result<Prepared, Problem> {
         let typed: K::Spec = parse_spec(spec)?;
         let mut v = Validation::new();
         K::validate(&typed, limits, &mut v);
-        v.finish()?;
+        let warnings = v.finish()?;
         let cost = K::cost(&typed);
         check_cost(&cost, limits)?;
         let canonical = canonicalize(serde_json::to_value(&typed).map_err(|e| {
@@ -420,6 +460,7 @@ impl<K: Kind> DynKind for Registered<K> {
         Ok(Prepared {
             kind: self,
             canonical,
+            warnings,
             cost,
             run: Box::new(move |observer| {
                 let out = K::solve(&typed, observer)?;

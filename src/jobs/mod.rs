@@ -5,12 +5,14 @@ mod failure;
 pub mod idempotency;
 pub mod kind;
 pub mod kinds;
+pub mod label;
 pub mod quantity;
 pub mod queue;
 pub mod registry;
 pub mod runner;
 pub mod schemas;
 pub mod table;
+pub mod units;
 
 pub use cost::{Cost, Estimate};
 

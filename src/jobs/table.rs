@@ -3,8 +3,13 @@
 
 use serde_json::Value;
 
-/// Render the table `value` as CSV (header line first). `Err` names what is not tabular.
-pub fn to_csv(value: &Value) -> Result<String, String> {
+/// Render the table `value` as CSV (header line first), each dimensional column's header with
+/// its unit (`film_min [m]`, from `unit(column)`). `Err` names what is not tabular.
+pub fn to_csv(value: &Value, unit: &dyn Fn(&str) -> Option<String>) -> Result<String, String> {
+    let head = |k: &str| match unit(k) {
+        Some(u) => format!("{k} [{u}]"),
+        None => k.to_string(),
+    };
     let mut w = csv::WriterBuilder::new().from_writer(Vec::new());
     match value {
         Value::Object(columns) => {
@@ -19,7 +24,7 @@ pub fn to_csv(value: &Value) -> Result<String, String> {
             if cols.iter().any(|(_, a)| a.len() != rows) {
                 return Err("the columns have different lengths".into());
             }
-            w.write_record(cols.iter().map(|(k, _)| k.as_str())).map_err(|e| e.to_string())?;
+            w.write_record(cols.iter().map(|(k, _)| head(k))).map_err(|e| e.to_string())?;
             for i in 0..rows {
                 w.write_record(cols.iter().map(|(_, a)| cell(&a[i]))).map_err(|e| e.to_string())?;
             }
@@ -34,7 +39,7 @@ pub fn to_csv(value: &Value) -> Result<String, String> {
                     }
                 }
             }
-            w.write_record(header.iter().map(|k| k.as_str())).map_err(|e| e.to_string())?;
+            w.write_record(header.iter().map(|k| head(k))).map_err(|e| e.to_string())?;
             for row in rows {
                 let obj = row.as_object().ok_or("the rows are not objects")?;
                 w.write_record(header.iter().map(|k| obj.get(*k).map(cell).unwrap_or_default()))
@@ -55,4 +60,18 @@ fn cell(v: &Value) -> String {
         Value::Bool(b) => b.to_string(),
         other => other.to_string(),
     }
+}
+
+/// The unit lookup of table `table` of a `result` of kind `k` (for [`to_csv`]): the result's
+/// own `units` by column name where it has them (a sweep's columns), else the kind's
+/// `result_units`. Pure numbers (`1`) get no unit in the header.
+pub fn units_of(k: Option<&dyn crate::jobs::kind::DynKind>, result: &Value, table: &str) -> Box<dyn Fn(&str) -> Option<String>> {
+    if let Some(own) = result.get("units").and_then(Value::as_object) {
+        let own = own.clone();
+        return Box::new(move |column: &str| own.get(column).and_then(Value::as_str).filter(|u| *u != "1").map(str::to_string));
+    }
+    let Some(k) = k else { return Box::new(|_: &str| None) };
+    let units = crate::jobs::units::result_units(k);
+    let table = table.to_string();
+    Box::new(move |column: &str| crate::jobs::units::column_unit(units, &table, column).map(str::to_string))
 }

@@ -57,6 +57,28 @@ pub fn tick(v: &f64) -> String {
     }
 }
 
+/// Tick labels for an axis from `lo` to `hi`: as many decimals as the tick spacing needs (about a
+/// tenth of the span), trailing zeros dropped, scientific where the values are tiny or huge — so
+/// no two ticks print alike (a film of 1e-7 m used to print every tick as "0.0").
+pub fn ticker(lo: f64, hi: f64) -> impl Fn(&f64) -> String {
+    let big = lo.abs().max(hi.abs());
+    let step = ((hi - lo).abs() / 10.0).max(big * 1e-12).max(f64::MIN_POSITIVE);
+    move |v: &f64| {
+        let v = if v.abs() < step * 1e-6 { 0.0 } else { *v };
+        if v != 0.0 && (big >= 1e6 || big < 1e-3) {
+            let digits = ((big / step).log10().ceil().max(0.0) as usize).min(12);
+            let s = format!("{v:.digits$e}");
+            let (m, e) = s.split_once('e').unwrap_or((&s, "0"));
+            let m = if m.contains('.') { m.trim_end_matches('0').trim_end_matches('.') } else { m };
+            return format!("{m}e{e}");
+        }
+        let decimals = ((-step.log10()).ceil().max(0.0) as usize + 1).min(15);
+        let s = format!("{v:.decimals$}");
+        let s = if s.contains('.') { s.trim_end_matches('0').trim_end_matches('.').to_string() } else { s };
+        if s == "-0" { "0".into() } else { s }
+    }
+}
+
 fn finite(points: &[(f64, f64)]) -> Vec<(f64, f64)> {
     points.iter().copied().filter(|(a, b)| a.is_finite() && b.is_finite()).collect()
 }
@@ -71,7 +93,8 @@ fn lines(area: &Area, plot: &Plot, series: &[Series], marks: &[Mark], markers: b
         .y_label_area_size(70)
         .build_cartesian_2d(x0..x1, y0..y1)
         .map_err(fail)?;
-    chart.configure_mesh().x_desc(&plot.x_label).y_desc(&plot.y_label).x_label_formatter(&tick).y_label_formatter(&tick).label_style(("sans-serif", 14)).draw().map_err(fail)?;
+    let (xt, yt) = (ticker(x0, x1), ticker(y0, y1));
+    chart.configure_mesh().x_desc(&plot.x_label).y_desc(&plot.y_label).x_label_formatter(&xt).y_label_formatter(&yt).label_style(("sans-serif", 14)).draw().map_err(fail)?;
     for (i, s) in series.iter().enumerate() {
         let color = Palette99::pick(i).to_rgba();
         let points = finite(&s.points);
@@ -125,7 +148,8 @@ fn heat_map(area: &Area, plot: &Plot, x: &[f64], y: &[f64], z: &[Vec<f64>], z_la
         .y_label_area_size(70)
         .build_cartesian_2d(xe[0]..xe[xe.len() - 1], ye[0]..ye[ye.len() - 1])
         .map_err(fail)?;
-    chart.configure_mesh().disable_mesh().x_desc(&plot.x_label).y_desc(&plot.y_label).x_label_formatter(&tick).y_label_formatter(&tick).label_style(("sans-serif", 14)).draw().map_err(fail)?;
+    let (xt, yt) = (ticker(xe[0], xe[xe.len() - 1]), ticker(ye[0], ye[ye.len() - 1]));
+    chart.configure_mesh().disable_mesh().x_desc(&plot.x_label).y_desc(&plot.y_label).x_label_formatter(&xt).y_label_formatter(&yt).label_style(("sans-serif", 14)).draw().map_err(fail)?;
     let cells = z.iter().enumerate().flat_map(|(j, row)| {
         let (xe, ye) = (&xe, &ye);
         row.iter().enumerate().filter(|(_, v)| v.is_finite()).map(move |(i, v)| {
@@ -147,7 +171,7 @@ fn heat_map(area: &Area, plot: &Plot, x: &[f64], y: &[f64], z: &[Vec<f64>], z_la
         .disable_mesh()
         .disable_x_axis()
         .y_desc(z_label)
-        .y_label_formatter(&tick)
+        .y_label_formatter(&ticker(lo, hi))
         .label_style(("sans-serif", 12))
         .draw()
         .map_err(fail)?;
@@ -173,8 +197,9 @@ fn panels_chart(area: &Area, plot: &Plot, panels: &[Panel]) -> Result<(), PlotEr
             .y_label_area_size(if k == 0 { 70 } else { 50 })
             .build_cartesian_2d(x0..x1, y0..y1)
             .map_err(fail)?;
+        let (xt, yt) = (ticker(x0, x1), ticker(y0, y1));
         let mut mesh = chart.configure_mesh();
-        mesh.x_desc(&panel.x_label).x_labels(5).x_label_formatter(&tick).y_label_formatter(&tick).label_style(("sans-serif", 13));
+        mesh.x_desc(&panel.x_label).x_labels(5).x_label_formatter(&xt).y_label_formatter(&yt).label_style(("sans-serif", 13));
         if k == 0 {
             mesh.y_desc(&plot.y_label);
         }
@@ -207,7 +232,7 @@ fn bars(area: &Area, plot: &Plot, labels: &[String], values: &[f64], highlight: 
         .x_label_formatter(&label_of)
         .x_desc(&plot.x_label)
         .y_desc(&plot.y_label)
-        .y_label_formatter(&tick)
+        .y_label_formatter(&ticker(0.0, y1))
         .label_style(("sans-serif", 14))
         .draw()
         .map_err(fail)?;

@@ -7,6 +7,7 @@ mod bearing;
 mod cam;
 mod contact;
 pub mod draw;
+pub mod scale;
 mod sweep;
 
 use serde_json::Value;

@@ -22,8 +22,11 @@ pub(super) fn sweep(result: &Value) -> Vec<Plot> {
         return Vec::new();
     }
     let kind = result.get("kind").and_then(Value::as_str).unwrap_or("sweep");
+    let unit = |c: &str| result.get("units").and_then(|u| u.get(c)).and_then(Value::as_str).unwrap_or("1").to_string();
+    let (x_scale, x_label) = super::scale::axis(x_name, &unit(x_name), rows.iter().filter_map(|r| r.get(*x_name).and_then(Value::as_f64)));
     let mut plots = Vec::new();
     for q in quantities {
+        let (y_scale, y_label) = super::scale::axis(q, &unit(q), rows.iter().filter_map(|r| r.get(q).and_then(Value::as_f64)));
         let mut series: Vec<Series> = Vec::new();
         for r in &rows {
             let (Some(x), Some(y)) = (r.get(*x_name).and_then(Value::as_f64), r.get(q).and_then(Value::as_f64)) else { continue };
@@ -33,8 +36,8 @@ pub(super) fn sweep(result: &Value) -> Vec<Plot> {
                 others.iter().map(|o| format!("{o} = {}", r.get(*o).map_or("–".into(), |v| v.to_string()))).collect::<Vec<_>>().join(", ")
             };
             match series.iter().position(|s| s.label == label) {
-                Some(k) => series[k].points.push((x, y)),
-                None if series.len() < MAX_CURVES => series.push(Series { label, points: vec![(x, y)] }),
+                Some(k) => series[k].points.push((x * x_scale, y * y_scale)),
+                None if series.len() < MAX_CURVES => series.push(Series { label, points: vec![(x * x_scale, y * y_scale)] }),
                 None => {}
             }
         }
@@ -48,8 +51,8 @@ pub(super) fn sweep(result: &Value) -> Vec<Plot> {
         plots.push(Plot {
             name: q.to_string(),
             title: format!("{kind}: {q} against {x_name}"),
-            x_label: format!("{x_name} (SI)"),
-            y_label: format!("{q} (SI)"),
+            x_label: x_label.clone(),
+            y_label,
             chart: Chart::Lines { series, marks: Vec::new(), markers },
         });
     }

@@ -387,11 +387,11 @@ fn example_runs_and_tables_render_as_csv() {
     let out = run("wear", &k.example()).unwrap();
     assert_eq!(out["termination"]["reason"], "completed", "{}", out["termination"]);
     for table in ["series", "history", "follower_face"] {
-        let csv = tribod::jobs::table::to_csv(&out[table]).unwrap_or_else(|e| panic!("{table}: {e}"));
+        let csv = tribod::jobs::table::to_csv(&out[table], &|_| None).unwrap_or_else(|e| panic!("{table}: {e}"));
         assert!(csv.lines().count() > 2, "{table}");
     }
     let ir = run("wear", &example("seed004_irgashev")).unwrap();
-    let csv = tribod::jobs::table::to_csv(&ir["rows"]).unwrap();
+    let csv = tribod::jobs::table::to_csv(&ir["rows"], &|_| None).unwrap();
     assert_eq!(csv.lines().count(), 23);
     assert!(csv.starts_with("part,step,role,"));
     assert_eq!(k.tables(), &["series", "rows", "history", "follower_face"]);

@@ -8,7 +8,8 @@ use crate::jobs::cost::{self, Cost};
 use crate::jobs::quantity as Q;
 use crate::jobs::kind::{Kind, Limits, Validation};
 use crate::physics::contact::{contact_modulus, hertz_line};
-use crate::physics::film::{model_for, ContactInput, ContactShape, Fidelity, FilmModelId};
+use super::contact::LubricatedContact;
+use crate::physics::film::{ContactInput, ContactShape, Fidelity, FilmModelId};
 use crate::physics::friction::SlipRegime;
 use crate::physics::roller::PointCase;
 use crate::physics::{ensure_finite, Convergence, Observer, SolveError};
@@ -93,6 +94,27 @@ pub struct CamPointSpec {
     /// Numerical EHL options (`accurate`, `auto`).
     #[serde(default)]
     pub ehl: EhlSpec,
+}
+
+impl LubricatedContact for CamPointSpec {
+    fn lubricant(&self) -> Option<&LubricantSpec> {
+        Some(&self.lubricant)
+    }
+    fn asperities(&self) -> &AsperitySpec {
+        &self.asperities
+    }
+    fn traction(&self) -> &TractionSpec {
+        &self.traction
+    }
+    fn film(&self) -> &FilmSpec {
+        &self.film
+    }
+    fn fidelity(&self) -> Fidelity {
+        self.fidelity
+    }
+    fn ehl(&self) -> &EhlSpec {
+        &self.ehl
+    }
 }
 
 /// The balance at one roller–pin friction coefficient.
@@ -250,14 +272,8 @@ impl Kind for CamPoint {
             b.material.validate(&format!("/{name}/material"), v);
             v.in_range(&format!("/{name}/roughness_rq"), b.roughness_rq, 0.0, 1e-4);
         }
-        spec.lubricant.validate("/lubricant", v);
-        spec.asperities.validate("/asperities", v);
-        spec.traction.validate("/traction", v);
-        spec.film.validate("/film", v);
+        spec.validate_lubrication(limits, v);
         v.check(!spec.film.squeeze, "/film/squeeze", "a point analysis is steady: no squeeze");
-        spec.ehl.validate("/ehl", limits, v);
-        v.check(spec.ehl.thermal.is_none() || spec.fidelity != Fidelity::Fast, "/ehl/thermal", "the thermal model runs with fidelity accurate or auto");
-        v.check(spec.ehl.geometry.is_line() || spec.fidelity != Fidelity::Fast, "/ehl/geometry", "finite is a model of the accurate and auto fidelities (fast keeps the closed form)");
         if let Some(c) = spec.roller.crown {
             v.check(c.middle_length > 0.0 && c.middle_length <= spec.contact_length, "/roller/crown/middle_length", "must be in (0, contact_length]");
             v.in_range("/roller/crown/crown_height", c.crown_height, 0.0, 1e-3);
@@ -304,7 +320,7 @@ fn solve_point(spec: &CamPointSpec, observer: &dyn Observer) -> Result<CamPointR
     if let (Some(f), Some(c)) = (settings.finite.as_mut(), spec.roller.crown) {
         f.crown = Some(crate::physics::geometry::Crown { length: spec.contact_length, middle_length: c.middle_length, crown_height: c.crown_height, end_radius: c.end_radius, profile: c.profile.into() });
     }
-    let model = model_for(spec.fidelity, spec.film.to_physics(), settings);
+    let model = spec.film_model(settings);
     let lub = spec.lubricant.to_physics();
     let rough = spec.asperities.roughness(composite_sigma(spec.cam.roughness_rq, spec.follower.roughness_rq));
     let law = spec.traction.to_physics();

@@ -230,6 +230,11 @@ impl Kind for Hertz {
         for (name, body) in [("/body_1", &spec.body_1), ("/body_2", &spec.body_2)] {
             body.material.validate(&format!("{name}/material"), v);
             let needs_radius = body.shape != Shape::Flat;
+            for (field, r) in [("radius", body.radius), ("transverse_radius", body.transverse_radius)] {
+                if let Some(r) = r.filter(|r| radius_ok(*r)) {
+                    v.plausible(&format!("{name}/{field}"), r.abs(), Q::RADIUS);
+                }
+            }
             match body.radius {
                 Some(r) => v.check(
                     needs_radius && radius_ok(r),

@@ -3,6 +3,7 @@
 pub mod bearing;
 pub mod bearing_optimisation;
 pub mod common;
+pub mod contact;
 pub mod cam_cycle;
 pub mod cam_point;
 pub mod ehl_point;

@@ -77,8 +77,12 @@ pub struct SweepSpec {
 pub struct SweepResult {
     pub kind: String,
     /// Column names of `cases`: `case`, the parameters (pointer with `/` → `.`), `status`,
-    /// `error_code`, then the quantities.
+    /// `error_code`, then the quantities (a value of a per-angle series is named by its angle:
+    /// `/series/slide_roll_ratio/200` of a 720-angle cycle is `slide_roll_ratio@100deg`).
     pub columns: Vec<String>,
+    /// The unit of every dimensional column (`1` for pure numbers), from the case kind's spec
+    /// and result units (`GET /v1/kinds`).
+    pub units: std::collections::BTreeMap<String, String>,
     /// One row per case: the parameter values, `status` (`succeeded` / `failed`), the
     /// quantities (absent when the case failed or the result lacks them) and `error_code`.
     #[schema(value_type = Vec<Object>)]
@@ -89,6 +93,38 @@ pub struct SweepResult {
 
 fn column(pointer: &str) -> String {
     pointer.trim_start_matches('/').replace('/', ".")
+}
+
+/// A quantity's column name: a value of a per-angle series by its angle
+/// (`slide_roll_ratio@100deg`, read from the first result's `angle_deg` beside it), otherwise
+/// the pointer with `/` → `.`.
+fn quantity_column(pointer: &str, first: Option<&Value>) -> String {
+    let Some((parent, index)) = pointer.rsplit_once('/') else { return column(pointer) };
+    let (Ok(i), Some((table, name))) = (index.parse::<usize>(), parent.rsplit_once('/')) else { return column(pointer) };
+    let angle = first.and_then(|r| r.pointer(&format!("{table}/angle_deg/{i}"))).and_then(Value::as_f64);
+    match angle {
+        Some(a) => format!("{name}@{}deg", crate::jobs::units::short_number(a)),
+        None => column(pointer),
+    }
+}
+
+/// The units of the sweep's columns: parameters from the case kind's spec units, quantities
+/// from its result units (a series value has its series' unit).
+fn column_units(k: &dyn crate::jobs::kind::DynKind, spec: &SweepSpec, quantities: &[String], names: &[String]) -> std::collections::BTreeMap<String, String> {
+    let spec_units = crate::jobs::units::spec_units(k);
+    let result_units = crate::jobs::units::result_units(k);
+    let mut out = std::collections::BTreeMap::new();
+    for p in &spec.parameters {
+        if let Some(u) = crate::jobs::units::unit_at(spec_units, &p.path) {
+            out.insert(column(&p.path), u.to_string());
+        }
+    }
+    for (q, name) in quantities.iter().zip(names) {
+        if let Some(u) = crate::jobs::units::unit_at(result_units, q) {
+            out.insert(name.clone(), u.to_string());
+        }
+    }
+    out
 }
 
 impl Parameter {
@@ -359,11 +395,14 @@ impl Kind for Sweep {
                 })
                 .unwrap_or_default()
         };
+        let first = outcomes.iter().find_map(|o| o.as_ref().ok());
+        let names: Vec<String> = quantities.iter().map(|q| quantity_column(q, first)).collect();
         let mut columns = vec!["case".to_string()];
         columns.extend(spec.parameters.iter().map(|p| column(&p.path)));
         columns.push("status".into());
         columns.push("error_code".into());
-        columns.extend(quantities.iter().map(|q| column(q)));
+        columns.extend(names.iter().cloned());
+        let units = column_units(k, spec, &quantities, &names);
         let mut rows = Vec::with_capacity(total);
         let (mut succeeded, mut failed) = (0, 0);
         for (i, (values, outcome)) in all.iter().zip(&outcomes).enumerate() {
@@ -376,9 +415,9 @@ impl Kind for Sweep {
                 Ok(result) => {
                     succeeded += 1;
                     row.insert("status".into(), json!("succeeded"));
-                    for q in &quantities {
+                    for (q, name) in quantities.iter().zip(&names) {
                         if let Some(x) = result.pointer(q).filter(|x| !x.is_null()) {
-                            row.insert(column(q), x.clone());
+                            row.insert(name.clone(), x.clone());
                         }
                     }
                 }
@@ -394,6 +433,6 @@ impl Kind for Sweep {
         if failed > 0 && !columns.contains(&"error".to_string()) {
             columns.push("error".into());
         }
-        Ok(SweepResult { kind: spec.kind.clone(), columns, cases: rows, succeeded, failed })
+        Ok(SweepResult { kind: spec.kind.clone(), columns, units, cases: rows, succeeded, failed })
     }
 }

@@ -17,6 +17,7 @@ impl Queue {
         spec: &Value,
         label: Option<String>,
         fresh: bool,
+        strict: bool,
         idempotency_key: Option<String>,
     ) -> Result<Submitted, Problem> {
         let Some(k) = registry::find(kind) else {
@@ -29,7 +30,13 @@ impl Queue {
         if !self.inner.claiming.load(Ordering::Relaxed) {
             return Err(Problem::new(ErrorCode::ShuttingDown, "the service is shutting down"));
         }
-        let (prepared, estimate) = self.validate(k, spec).await?;
+        let (prepared, estimate, warnings) = self.validate(k, spec).await?;
+        if strict && !warnings.is_empty() {
+            let n = warnings.len();
+            return Err(Problem::new(ErrorCode::InvalidSpec, format!("{n} field(s) look implausible (strict: warnings refuse the spec)"))
+                .with_errors(warnings)
+                .under("/spec"));
+        }
         let spec_text = serde_json::to_string(&prepared).unwrap_or_default();
         let hash = spec_hash(k.name(), &spec_text);
         let keyed = idempotency_key.clone().map(|key| Keyed { key, spec_hash: hash.clone(), label: label.clone() });
@@ -65,7 +72,8 @@ impl Queue {
         let job = NewJob {
             id: Uuid::now_v7(),
             kind: k.name().to_string(),
-            label: label.clone(),
+            // A job without a label gets one that tells it apart (`jobs::label`).
+            label: label.clone().or_else(|| Some(crate::jobs::label::auto_label(k, &prepared, &hash))),
             spec: spec_text,
             spec_hash: hash.clone(),
             solver_version: k.solver_version().to_string(),
@@ -124,7 +132,7 @@ impl Queue {
 
     /// Parse and validate a spec on a blocking thread (at most `validators` at once); the
     /// canonical spec (defaults filled) and the estimated cost.
-    async fn validate(&self, k: &'static dyn crate::jobs::kind::DynKind, spec: &Value) -> Result<(Value, Estimate), Problem> {
+    async fn validate(&self, k: &'static dyn crate::jobs::kind::DynKind, spec: &Value) -> Result<(Value, Estimate, Vec<crate::problem::FieldError>), Problem> {
         let _permit = self
             .inner
             .validating
@@ -133,7 +141,7 @@ impl Queue {
             .map_err(|_| Problem::new(ErrorCode::ShuttingDown, "the service is shutting down"))?;
         let spec = spec.clone();
         let limits = self.inner.config.limits;
-        tokio::task::spawn_blocking(move || k.prepare(&spec, &limits).map(|p| (p.canonical, p.cost.estimate)))
+        tokio::task::spawn_blocking(move || k.prepare(&spec, &limits).map(|p| (p.canonical, p.cost.estimate, p.warnings)))
             .await
             .map_err(|e| Problem::new(ErrorCode::InternalError, format!("validation task failed: {e}")))?
             .map_err(|p| p.under("/spec"))

@@ -12,6 +12,18 @@ let leave = () => {}; // stops what the current view started (timers, streams, o
 
 // ---- helpers ----------------------------------------------------------------------------------
 
+// A job's short id: the random tail of its UUIDv7 (the head is its creation time, the same for
+// every job submitted within a few milliseconds).
+function shortId(id) {
+  return id.replace(/-/g, "").slice(-8);
+}
+
+// A file-name stem for a job's downloads: its label (or kind) and short id.
+function fileStem(job, id) {
+  const base = (job.label || job.kind).replace(/#[0-9a-f]+/g, "").replace(/[^A-Za-z0-9._-]+/g, "_").replace(/^_+|_+$/g, "").slice(0, 60);
+  return (base || job.kind) + "-" + shortId(id);
+}
+
 function h(tag, attrs, ...children) {
   const el = document.createElement(tag);
   for (const [k, v] of Object.entries(attrs || {})) {
@@ -182,7 +194,7 @@ async function listView(params) {
       body.replaceChildren(...page.jobs.map((j) => {
         const open = () => { location.hash = "#/jobs/" + j.id; };
         return h("tr", { class: "job", tabindex: 0, "data-id": j.id, onclick: open, onkeydown: (e) => { if (e.key === "Enter") open(); } },
-          h("td", {}, h("a", { href: "#/jobs/" + j.id }, j.label || j.id.slice(0, 8))),
+          h("td", {}, h("a", { href: "#/jobs/" + j.id }, j.label || shortId(j.id))),
           h("td", {}, j.kind),
           h("td", {}, progressCell(j)),
           h("td", {}, when(j.created_at)),
@@ -325,7 +337,7 @@ async function jobView(id) {
   const head = h("div", { id: "job-head" });
   const actions = h("div", { class: "actions", id: "job-actions" });
   const body = h("div", { id: "job-body" });
-  root.replaceChildren(h("h1", {}, "Job ", h("code", {}, id.slice(0, 8))), head, actions, body);
+  root.replaceChildren(h("h1", {}, "Job ", h("code", {}, shortId(id))), head, actions, body);
 
   const { res, body: first } = await json("/v1/jobs/" + id);
   if (!res.ok || !first) {
@@ -373,10 +385,10 @@ async function jobView(id) {
     const kind = all.find((k) => k.name === job.kind);
     const downloads = h("div", { class: "actions", id: "downloads" },
       h("button", { type: "button", class: "secondary", onclick: () =>
-        download(new Blob([JSON.stringify(result, null, 2)], { type: "application/json" }), job.kind + "-" + id.slice(0, 8) + ".json") }, "Download JSON"),
+        download(new Blob([JSON.stringify(result, null, 2)], { type: "application/json" }), fileStem(job, id) + ".json") }, "Download JSON"),
       ((kind && kind.tables) || []).filter((t) => result[t] != null).map((t) => h("button", { type: "button", class: "secondary", "data-table": t, onclick: async () => {
         const r = await api("/v1/jobs/" + id + "/result?format=csv&table=" + encodeURIComponent(t), { headers: { Accept: "text/csv" } });
-        if (r.ok) download(await r.blob(), job.kind + "-" + id.slice(0, 8) + "-" + t + ".csv");
+        if (r.ok) download(await r.blob(), fileStem(job, id) + "-" + t + ".csv");
         else notice("No CSV for table " + t + " (" + r.status + ")");
       } }, "CSV: " + t)));
     const plots = h("div", { class: "plots", id: "plots" });

@@ -10,6 +10,7 @@
 //! this file is the kind: example, validation, solve.
 
 mod cost;
+mod output;
 mod result;
 mod solve;
 mod spec;
@@ -22,7 +23,8 @@ pub use cost::{cycle_cost, cycle_cost_with};
 use crate::jobs::cost::Cost;
 use crate::jobs::quantity as Q;
 use crate::jobs::kind::{Kind, Limits, OutputInfo, Validation};
-use crate::jobs::kinds::common::cam_spec_path;
+use crate::jobs::kinds::common::{cam_spec_path, AsperitySpec, EhlSpec, FilmSpec, LubricantSpec, TractionSpec};
+use crate::jobs::kinds::contact::LubricatedContact;
 use crate::physics::film::Fidelity;
 use crate::physics::{Observer, SolveError};
 use serde_json::{json, Value};
@@ -98,193 +100,11 @@ impl Kind for CamCycle {
     fn validate(spec: &CamCycleSpec, limits: &Limits, v: &mut Validation) {
         v.count_in_range("/angles", spec.angles, 8, usize::MAX);
         v.limit("/angles", spec.angles, limits.max_angles, "the number of cam angles");
-        spec.ehl.validate("/ehl", limits, v);
-        if spec.ehl.thermal.is_some() {
-            v.check(spec.fidelity != Fidelity::Fast, "/ehl/thermal", "the thermal model runs with fidelity accurate or auto");
-            v.check(!matches!(spec.follower, FollowerSpec::Spherical { .. }), "/ehl/thermal", "the thermal model is a line-contact model: not for a spherical follower");
-        }
-        if !spec.ehl.geometry.is_line() {
-            v.check(spec.fidelity != Fidelity::Fast, "/ehl/geometry", "finite is a model of the accurate and auto fidelities (fast keeps the closed forms)");
-            v.check(!matches!(spec.follower, FollowerSpec::FlatFaced { .. }), "/ehl/geometry", "finite needs a roller (finite line contact) or a spherical follower (point contact): a flat-faced follower is a line contact across the cam width");
-            if spec.outputs.contains(&CamOutput::Profiles) {
-                // The 2-D fields table: one row per node and angle (bounds the result's size).
-                let o = spec.ehl.grid_options(matches!(spec.follower, FollowerSpec::Spherical { .. }));
-                let rows = spec.profile_angles_deg.len() * o.nx * o.ny;
-                v.check(rows <= MAX_FIELD_ROWS, "/profile_angles_deg", format!("the 2-D fields of {} angles on {}×{} nodes are {rows} rows: at most {MAX_FIELD_ROWS} (fewer angles or a coarser ehl.nx/ny)", spec.profile_angles_deg.len(), o.nx, o.ny));
-            }
-        }
-        if spec.outputs.contains(&CamOutput::Profiles) {
-            v.check(spec.fidelity != Fidelity::Fast, "/outputs", "profiles need fidelity accurate or auto (the closed forms have none)");
-            v.check(!spec.profile_angles_deg.is_empty(), "/profile_angles_deg", "the profiles output needs at least one angle");
-            v.check(spec.profile_angles_deg.iter().all(|a| a.is_finite()), "/profile_angles_deg", "angles must be finite");
-        }
-        v.items("/profile_angles_deg", spec.profile_angles_deg.len(), 0, Some(64));
-        // Cam.
-        let base = match &spec.cam.profile {
-            ProfileSpec::RiseReturn { base_radius, lift, rise_start_deg, rise_deg, top_dwell_deg, return_deg, .. } => {
-                v.quantity("/cam/profile/lift", *lift, Q::HEIGHT.from(1e-7));
-                v.in_range("/cam/profile/rise_start_deg", *rise_start_deg, -360.0, 360.0);
-                v.in_range("/cam/profile/rise_deg", *rise_deg, 1e-3, 360.0);
-                v.in_range("/cam/profile/top_dwell_deg", *top_dwell_deg, 0.0, 360.0);
-                v.in_range("/cam/profile/return_deg", *return_deg, 1e-3, 360.0);
-                v.check(
-                    rise_deg + top_dwell_deg + return_deg <= 360.0 + 1e-9,
-                    "/cam/profile/return_deg",
-                    "rise + top dwell + return must fit in 360°",
-                );
-                Some(*base_radius)
-            }
-            ProfileSpec::MultiArc { arcs } => {
-                v.items("/cam/profile/arcs", arcs.len(), 2, Some(1000));
-                for (i, a) in arcs.iter().enumerate() {
-                    v.quantity(&format!("/cam/profile/arcs/{i}/radius"), a.radius, Q::RADIUS);
-                    v.in_range(&format!("/cam/profile/arcs/{i}/angle_deg"), a.angle_deg, 1e-9, 360.0);
-                }
-                arcs.first().map(|a| a.radius)
-            }
-            ProfileSpec::SymmetricArcs { base_radius, base_angle_deg, flanks } => {
-                v.in_range("/cam/profile/base_angle_deg", *base_angle_deg, 1e-9, 360.0);
-                v.items("/cam/profile/flanks", flanks.len(), 0, Some(1000));
-                for (i, a) in flanks.iter().enumerate() {
-                    v.quantity(&format!("/cam/profile/flanks/{i}/radius"), a.radius, Q::RADIUS);
-                    v.in_range(&format!("/cam/profile/flanks/{i}/angle_deg"), a.angle_deg, 1e-9, 360.0);
-                }
-                Some(*base_radius)
-            }
-            ProfileSpec::Table { base_radius, angle_deg, lift } => {
-                v.check(angle_deg.len() == lift.len(), "/cam/profile/lift", "must have as many entries as angle_deg");
-                v.items("/cam/profile/angle_deg", angle_deg.len(), 4, None);
-                v.limit("/cam/profile/angle_deg", angle_deg.len(), limits.max_angles, "the number of table points");
-                v.check(
-                    angle_deg.windows(2).all(|w| w[1] > w[0]) && angle_deg.last().zip(angle_deg.first()).is_none_or(|(l, f)| l - f < 360.0),
-                    "/cam/profile/angle_deg",
-                    "angles must increase strictly and span less than 360°",
-                );
-                v.check(lift.iter().all(|x| x.is_finite()), "/cam/profile/lift", "must be finite numbers");
-                Some(*base_radius)
-            }
-        };
-        if let Some(b) = base {
-            v.in_range("/cam/profile/base_radius", b, 1e-4, 10.0);
-        }
-        if let Some(w) = spec.cam.width {
-            v.quantity("/cam/width", w, Q::LENGTH);
-        }
-        spec.cam.material.validate("/cam/material", v);
-        v.in_range("/cam/roughness_rq", spec.cam.roughness_rq, 0.0, 1e-4);
-        // Follower.
-        let (material, rq) = match &spec.follower {
-            FollowerSpec::FlatFaced { offset, face_radius, material, roughness_rq } => {
-                v.in_range("/follower/offset", *offset, -1.0, 1.0);
-                if let Some(r) = face_radius {
-                    v.quantity("/follower/face_radius", *r, Q::RADIUS);
-                }
-                v.check(spec.cam.width.is_some(), "/cam/width", "is required with a flat-faced follower (it is the contact length)");
-                (*material, *roughness_rq)
-            }
-            FollowerSpec::Roller { radius, length, pin_radius, clearance, inertia, density, pin, crown, offset, material, roughness_rq } => {
-                v.in_range("/follower/radius", *radius, 1e-4, 1.0);
-                v.quantity("/follower/length", *length, Q::LENGTH);
-                v.check(*pin_radius > 0.0 && pin_radius < radius, "/follower/pin_radius", "must be > 0 and smaller than the roller radius");
-                v.in_range("/follower/clearance", *clearance, 1e-8, 1e-3);
-                if let Some(i) = inertia {
-                    v.quantity("/follower/inertia", *i, Q::INERTIA);
-                }
-                v.quantity("/follower/density", *density, Q::DENSITY);
-                match pin {
-                    PinSpec::Coefficient { coefficient } => {
-                        v.in_range("/follower/pin/coefficient", *coefficient, 0.0, 1.0);
-                    }
-                    PinSpec::Hydrodynamic { length: l } => {
-                        if let Some(l) = l {
-                            v.quantity("/follower/pin/length", *l, Q::LENGTH);
-                        }
-                        v.check(spec.lubricant.is_some(), "/lubricant", "is required by a hydrodynamic pin");
-                    }
-                    PinSpec::Finite { length: l, thermal, oil_specific_heat, convection_coefficient } => {
-                        if let Some(l) = l {
-                            v.quantity("/follower/pin/length", *l, Q::LENGTH);
-                        }
-                        let l = l.unwrap_or(*length);
-                        if l.is_finite() && l > 0.0 && *pin_radius > 0.0 {
-                            let ld = l / (2.0 * pin_radius);
-                            v.check(
-                                (0.05..=4.0).contains(&ld),
-                                "/follower/pin/length",
-                                format!("L/D = length/(2 pin_radius) = {ld:.3} must be in [0.05, 4] (length defaults to the roller length)"),
-                            );
-                        }
-                        if *thermal {
-                            v.in_range("/follower/pin/oil_specific_heat", *oil_specific_heat, 100.0, 1e4);
-                            v.in_range("/follower/pin/convection_coefficient", *convection_coefficient, 1e-3, 1e6);
-                        }
-                        v.check(spec.lubricant.is_some(), "/lubricant", "is required by a hydrodynamic pin");
-                    }
-                }
-                if let Some(c) = crown {
-                    v.check(c.middle_length > 0.0 && c.middle_length <= *length, "/follower/crown/middle_length", "must be in (0, length]");
-                    v.in_range("/follower/crown/crown_height", c.crown_height, 0.0, 1e-3);
-                    v.quantity("/follower/crown/end_radius", c.end_radius, Q::RADIUS);
-                }
-                v.in_range("/follower/offset", *offset, -1.0, 1.0);
-                if let Some(b) = base {
-                    v.check(offset.abs() < b + radius, "/follower/offset", "must be smaller than base radius + roller radius");
-                }
-                (*material, *roughness_rq)
-            }
-            FollowerSpec::Spherical { radius, offset, material, roughness_rq } => {
-                v.in_range("/follower/radius", *radius, 1e-4, 10.0);
-                v.in_range("/follower/offset", *offset, -1.0, 1.0);
-                if let Some(b) = base {
-                    v.check(offset.abs() < b + radius, "/follower/offset", "must be smaller than base radius + face radius");
-                }
-                (*material, *roughness_rq)
-            }
-        };
-        material.validate("/follower/material", v);
-        v.in_range("/follower/roughness_rq", rq, 0.0, 1e-4);
-        // Operation.
-        v.in_range("/operation/speed_rpm", spec.operation.speed_rpm, 1e-3, 1e5);
-        if let Some(s) = spec.operation.startup {
-            v.in_range("/operation/startup/rated_angle_deg", s.rated_angle_deg, 1.0, 360.0);
-        }
-        // Needs.
-        let needs = spec.needs();
-        if needs.loads {
-            v.check(spec.load.is_some(), "/load", "is required unless only kinematics are requested");
-        }
-        if needs.film {
-            v.check(spec.lubricant.is_some(), "/lubricant", "is required for film, friction, slip or temperature outputs");
-        }
-        match &spec.load {
-            Some(LoadSpec::ValveTrain { spring_preload, spring_stiffness, moving_mass, external }) => {
-                v.in_range("/load/spring_preload", *spring_preload, -1e7, 1e7);
-                v.in_range("/load/spring_stiffness", *spring_stiffness, 0.0, 1e10);
-                v.in_range("/load/moving_mass", *moving_mass, 0.0, 1e4);
-                if let Some(t) = external {
-                    check_table(v, "/load/external", &t.angle_deg, &t.force, "force", limits);
-                }
-            }
-            Some(LoadSpec::Spectrum { angle_deg, load, offset }) => {
-                check_table(v, "/load", angle_deg, load, "load", limits);
-                v.in_range("/load/offset", *offset, -1e7, 1e7);
-            }
-            Some(LoadSpec::Dynamic(d)) => validate_dynamic(spec, d, limits, v),
-            None => {}
-        }
-        if let Some(l) = &spec.lubricant {
-            l.validate("/lubricant", v);
-        }
-        spec.asperities.validate("/asperities", v);
-        spec.traction.validate("/traction", v);
-        spec.film.validate("/film", v);
-        v.in_range("/slip/tolerance", spec.slip.tolerance, 1e-14, 1e-1);
-        v.count_in_range("/slip/max_cycles", spec.slip.max_cycles, 1, 10_000);
-        for (name, t) in [("cam", spec.thermal.cam), ("follower", spec.thermal.follower)] {
-            v.quantity(&format!("/thermal/{name}/conductivity"), t.conductivity, Q::CONDUCTIVITY);
-            v.quantity(&format!("/thermal/{name}/density"), t.density, Q::DENSITY);
-            v.quantity(&format!("/thermal/{name}/specific_heat"), t.specific_heat, Q::SPECIFIC_HEAT);
-        }
+        spec.validate_lubrication(limits, v);
+        validate_models(spec, v);
+        let base = validate_cam(spec, limits, v);
+        validate_follower(spec, base, v);
+        validate_operation(spec, limits, v);
     }
 
     fn cost(spec: &CamCycleSpec) -> Cost {
@@ -293,6 +113,222 @@ impl Kind for CamCycle {
 
     fn solve(spec: &CamCycleSpec, observer: &dyn Observer) -> Result<CamCycleResult, SolveError> {
         solve_spec(spec, observer).map_err(|e| e.in_spec(cam_spec_path))
+    }
+}
+
+/// The cycle's lubricated contact (`wear` reaches it through its `cycle`).
+impl LubricatedContact for CamCycleSpec {
+    fn lubricant(&self) -> Option<&LubricantSpec> {
+        self.lubricant.as_ref()
+    }
+    fn asperities(&self) -> &AsperitySpec {
+        &self.asperities
+    }
+    fn traction(&self) -> &TractionSpec {
+        &self.traction
+    }
+    fn film(&self) -> &FilmSpec {
+        &self.film
+    }
+    fn fidelity(&self) -> Fidelity {
+        self.fidelity
+    }
+    fn ehl(&self) -> &EhlSpec {
+        &self.ehl
+    }
+}
+
+/// The models the follower and outputs allow (thermal and finite need a line or point contact
+/// they apply to; profiles need a numerical film), and the size of the 2-D fields table.
+fn validate_models(spec: &CamCycleSpec, v: &mut Validation) {
+    if spec.ehl.thermal.is_some() {
+        v.check(!matches!(spec.follower, FollowerSpec::Spherical { .. }), "/ehl/thermal", "the thermal model is a line-contact model: not for a spherical follower");
+    }
+    if !spec.ehl.geometry.is_line() {
+        v.check(!matches!(spec.follower, FollowerSpec::FlatFaced { .. }), "/ehl/geometry", "finite needs a roller (finite line contact) or a spherical follower (point contact): a flat-faced follower is a line contact across the cam width");
+        if spec.outputs.contains(&CamOutput::Profiles) {
+            // The 2-D fields table: one row per node and angle (bounds the result's size).
+            let o = spec.ehl.grid_options(matches!(spec.follower, FollowerSpec::Spherical { .. }));
+            let rows = spec.profile_angles_deg.len() * o.nx * o.ny;
+            v.check(rows <= MAX_FIELD_ROWS, "/profile_angles_deg", format!("the 2-D fields of {} angles on {}×{} nodes are {rows} rows: at most {MAX_FIELD_ROWS} (fewer angles or a coarser ehl.nx/ny)", spec.profile_angles_deg.len(), o.nx, o.ny));
+        }
+    }
+    if spec.outputs.contains(&CamOutput::Profiles) {
+        v.check(spec.fidelity != Fidelity::Fast, "/outputs", "profiles need fidelity accurate or auto (the closed forms have none)");
+        v.check(!spec.profile_angles_deg.is_empty(), "/profile_angles_deg", "the profiles output needs at least one angle");
+        v.check(spec.profile_angles_deg.iter().all(|a| a.is_finite()), "/profile_angles_deg", "angles must be finite");
+    }
+    v.items("/profile_angles_deg", spec.profile_angles_deg.len(), 0, Some(64));
+}
+
+/// The cam's profile and body; the base radius when the profile has one.
+fn validate_cam(spec: &CamCycleSpec, limits: &Limits, v: &mut Validation) -> Option<f64> {
+    let base = match &spec.cam.profile {
+        ProfileSpec::RiseReturn { base_radius, lift, rise_start_deg, rise_deg, top_dwell_deg, return_deg, .. } => {
+            v.quantity("/cam/profile/lift", *lift, Q::HEIGHT.from(1e-7));
+            v.in_range("/cam/profile/rise_start_deg", *rise_start_deg, -360.0, 360.0);
+            v.in_range("/cam/profile/rise_deg", *rise_deg, 1e-3, 360.0);
+            v.in_range("/cam/profile/top_dwell_deg", *top_dwell_deg, 0.0, 360.0);
+            v.in_range("/cam/profile/return_deg", *return_deg, 1e-3, 360.0);
+            v.check(
+                rise_deg + top_dwell_deg + return_deg <= 360.0 + 1e-9,
+                "/cam/profile/return_deg",
+                "rise + top dwell + return must fit in 360°",
+            );
+            Some(*base_radius)
+        }
+        ProfileSpec::MultiArc { arcs } => {
+            v.items("/cam/profile/arcs", arcs.len(), 2, Some(1000));
+            for (i, a) in arcs.iter().enumerate() {
+                v.quantity(&format!("/cam/profile/arcs/{i}/radius"), a.radius, Q::RADIUS);
+                v.in_range(&format!("/cam/profile/arcs/{i}/angle_deg"), a.angle_deg, 1e-9, 360.0);
+            }
+            arcs.first().map(|a| a.radius)
+        }
+        ProfileSpec::SymmetricArcs { base_radius, base_angle_deg, flanks } => {
+            v.in_range("/cam/profile/base_angle_deg", *base_angle_deg, 1e-9, 360.0);
+            v.items("/cam/profile/flanks", flanks.len(), 0, Some(1000));
+            for (i, a) in flanks.iter().enumerate() {
+                v.quantity(&format!("/cam/profile/flanks/{i}/radius"), a.radius, Q::RADIUS);
+                v.in_range(&format!("/cam/profile/flanks/{i}/angle_deg"), a.angle_deg, 1e-9, 360.0);
+            }
+            Some(*base_radius)
+        }
+        ProfileSpec::Table { base_radius, angle_deg, lift } => {
+            v.check(angle_deg.len() == lift.len(), "/cam/profile/lift", "must have as many entries as angle_deg");
+            v.items("/cam/profile/angle_deg", angle_deg.len(), 4, None);
+            v.limit("/cam/profile/angle_deg", angle_deg.len(), limits.max_angles, "the number of table points");
+            v.check(
+                angle_deg.windows(2).all(|w| w[1] > w[0]) && angle_deg.last().zip(angle_deg.first()).is_none_or(|(l, f)| l - f < 360.0),
+                "/cam/profile/angle_deg",
+                "angles must increase strictly and span less than 360°",
+            );
+            v.check(lift.iter().all(|x| x.is_finite()), "/cam/profile/lift", "must be finite numbers");
+            Some(*base_radius)
+        }
+    };
+    if let Some(b) = base {
+        v.in_range("/cam/profile/base_radius", b, 1e-4, 10.0);
+    }
+    if let Some(w) = spec.cam.width {
+        v.quantity("/cam/width", w, Q::LENGTH);
+    }
+    spec.cam.material.validate("/cam/material", v);
+    v.in_range("/cam/roughness_rq", spec.cam.roughness_rq, 0.0, 1e-4);
+    base
+}
+
+/// The follower of each type, its material and roughness.
+fn validate_follower(spec: &CamCycleSpec, base: Option<f64>, v: &mut Validation) {
+    let (material, rq) = match &spec.follower {
+        FollowerSpec::FlatFaced { offset, face_radius, material, roughness_rq } => {
+            v.in_range("/follower/offset", *offset, -1.0, 1.0);
+            if let Some(r) = face_radius {
+                v.quantity("/follower/face_radius", *r, Q::RADIUS);
+            }
+            v.check(spec.cam.width.is_some(), "/cam/width", "is required with a flat-faced follower (it is the contact length)");
+            (*material, *roughness_rq)
+        }
+        FollowerSpec::Roller { radius, length, pin_radius, clearance, inertia, density, pin, crown, offset, material, roughness_rq } => {
+            v.in_range("/follower/radius", *radius, 1e-4, 1.0);
+            v.quantity("/follower/length", *length, Q::LENGTH);
+            v.check(*pin_radius > 0.0 && pin_radius < radius, "/follower/pin_radius", "must be > 0 and smaller than the roller radius");
+            v.in_range("/follower/clearance", *clearance, 1e-8, 1e-3);
+            if let Some(i) = inertia {
+                v.quantity("/follower/inertia", *i, Q::INERTIA);
+            }
+            v.quantity("/follower/density", *density, Q::DENSITY);
+            match pin {
+                PinSpec::Coefficient { coefficient } => {
+                    v.in_range("/follower/pin/coefficient", *coefficient, 0.0, 1.0);
+                }
+                PinSpec::Hydrodynamic { length: l } => {
+                    if let Some(l) = l {
+                        v.quantity("/follower/pin/length", *l, Q::LENGTH);
+                    }
+                    v.check(spec.lubricant.is_some(), "/lubricant", "is required by a hydrodynamic pin");
+                }
+                PinSpec::Finite { length: l, thermal, oil_specific_heat, convection_coefficient } => {
+                    if let Some(l) = l {
+                        v.quantity("/follower/pin/length", *l, Q::LENGTH);
+                    }
+                    let l = l.unwrap_or(*length);
+                    if l.is_finite() && l > 0.0 && *pin_radius > 0.0 {
+                        let ld = l / (2.0 * pin_radius);
+                        v.check(
+                            (0.05..=4.0).contains(&ld),
+                            "/follower/pin/length",
+                            format!("L/D = length/(2 pin_radius) = {ld:.3} must be in [0.05, 4] (length defaults to the roller length)"),
+                        );
+                    }
+                    if *thermal {
+                        v.in_range("/follower/pin/oil_specific_heat", *oil_specific_heat, 100.0, 1e4);
+                        v.in_range("/follower/pin/convection_coefficient", *convection_coefficient, 1e-3, 1e6);
+                    }
+                    v.check(spec.lubricant.is_some(), "/lubricant", "is required by a hydrodynamic pin");
+                }
+            }
+            if let Some(c) = crown {
+                v.check(c.middle_length > 0.0 && c.middle_length <= *length, "/follower/crown/middle_length", "must be in (0, length]");
+                v.in_range("/follower/crown/crown_height", c.crown_height, 0.0, 1e-3);
+                v.quantity("/follower/crown/end_radius", c.end_radius, Q::RADIUS);
+            }
+            v.in_range("/follower/offset", *offset, -1.0, 1.0);
+            if let Some(b) = base {
+                v.check(offset.abs() < b + radius, "/follower/offset", "must be smaller than base radius + roller radius");
+            }
+            (*material, *roughness_rq)
+        }
+        FollowerSpec::Spherical { radius, offset, material, roughness_rq } => {
+            v.in_range("/follower/radius", *radius, 1e-4, 10.0);
+            v.in_range("/follower/offset", *offset, -1.0, 1.0);
+            if let Some(b) = base {
+                v.check(offset.abs() < b + radius, "/follower/offset", "must be smaller than base radius + face radius");
+            }
+            (*material, *roughness_rq)
+        }
+    };
+    material.validate("/follower/material", v);
+    v.in_range("/follower/roughness_rq", rq, 0.0, 1e-4);
+}
+
+/// Speed, startup, the load model and what the outputs need, the slip march and the bodies'
+/// heat properties.
+fn validate_operation(spec: &CamCycleSpec, limits: &Limits, v: &mut Validation) {
+    v.in_range("/operation/speed_rpm", spec.operation.speed_rpm, 1e-3, 1e5);
+    if let Some(s) = spec.operation.startup {
+        v.in_range("/operation/startup/rated_angle_deg", s.rated_angle_deg, 1.0, 360.0);
+    }
+    // Needs.
+    let needs = spec.needs();
+    if needs.loads {
+        v.check(spec.load.is_some(), "/load", "is required unless only kinematics are requested");
+    }
+    if needs.film {
+        v.check(spec.lubricant.is_some(), "/lubricant", "is required for film, friction, slip or temperature outputs");
+    }
+    match &spec.load {
+        Some(LoadSpec::ValveTrain { spring_preload, spring_stiffness, moving_mass, external }) => {
+            v.in_range("/load/spring_preload", *spring_preload, -1e7, 1e7);
+            v.in_range("/load/spring_stiffness", *spring_stiffness, 0.0, 1e10);
+            v.in_range("/load/moving_mass", *moving_mass, 0.0, 1e4);
+            if let Some(t) = external {
+                check_table(v, "/load/external", &t.angle_deg, &t.force, "force", limits);
+            }
+        }
+        Some(LoadSpec::Spectrum { angle_deg, load, offset }) => {
+            check_table(v, "/load", angle_deg, load, "load", limits);
+            v.in_range("/load/offset", *offset, -1e7, 1e7);
+        }
+        Some(LoadSpec::Dynamic(d)) => validate_dynamic(spec, d, limits, v),
+        None => {}
+    }
+    v.in_range("/slip/tolerance", spec.slip.tolerance, 1e-14, 1e-1);
+    v.count_in_range("/slip/max_cycles", spec.slip.max_cycles, 1, 10_000);
+    for (name, t) in [("cam", spec.thermal.cam), ("follower", spec.thermal.follower)] {
+        v.quantity(&format!("/thermal/{name}/conductivity"), t.conductivity, Q::CONDUCTIVITY);
+        v.quantity(&format!("/thermal/{name}/density"), t.density, Q::DENSITY);
+        v.quantity(&format!("/thermal/{name}/specific_heat"), t.specific_heat, Q::SPECIFIC_HEAT);
     }
 }
 

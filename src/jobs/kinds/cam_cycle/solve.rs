@@ -1,6 +1,7 @@
 //! Solving a `cam_cycle` spec: the spec turned into the physics input (`CycleSpec`), the cycle run,
 //! and its output mapped to the result fields.
 
+use super::output::{events_of, fields_of, film_model_counts, profiles_of, series_of, single_film_model};
 use super::result::*;
 use super::spec::*;
 use crate::jobs::kinds::common::{composite_sigma, LubricantSpec};
@@ -8,8 +9,7 @@ use crate::physics::cam::summary::{check_contact_on_face, summarise, CycleSummar
 use crate::physics::cam::cycle::{run_cycle, CycleSpec, FollowerKind, Needs, SlipMode};
 use crate::physics::cam::{CamProfile, FollowerGeometry, FollowerShape, LiftProgram, LoadModel, MultiArc, PeriodicSpline, PeriodicTable, SpeedSchedule};
 use crate::physics::contact::{contact_modulus, Elastic};
-use crate::physics::film::model_for;
-use std::collections::BTreeMap;
+use crate::jobs::kinds::contact::LubricatedContact;
 use crate::physics::roller::pin_finite::roller_cooled_area;
 use crate::physics::geometry::Crown;
 use crate::physics::roller::{FinitePin, PinFriction, PinTable, PinThermal, RollerParams};
@@ -383,128 +383,37 @@ pub(super) fn solve_spec(spec: &CamCycleSpec, observer: &dyn Observer) -> Result
             _ => {}
         }
     }
-    let model = needs.film.then(|| model_for(spec.fidelity, spec.film.to_physics(), settings));
+    let model = needs.film.then(|| spec.film_model(settings));
     let fast = crate::physics::film::ClosedForm { formula: spec.film.formula, squeeze: spec.film.squeeze };
     let out = run_cycle(&cycle, needs, model.as_deref().unwrap_or(&fast), observer)?;
     let figures = summarise(&out, spec.operation.startup.is_none());
-    let s = out.series;
     // Contact must stay on a flat face of finite radius (centred on the follower axis).
     if let FollowerSpec::FlatFaced { face_radius: Some(radius), offset, .. } = spec.follower {
-        check_contact_on_face(&s, FlatFace { centre: offset, radius })?;
+        check_contact_on_face(&out.series, FlatFace { centre: offset, radius })?;
     }
-    let degs = |v: &[f64]| v.iter().map(|x| x.to_degrees()).collect::<Vec<_>>();
-    let angle_deg = degs(&s.angle);
-    let at = |i: usize| angle_deg[i];
-    let mut summary = summary_of(&figures);
-    // The film model when one model ran at every angle (absent when `auto` mixed them).
-    let film_model = s.film_model.as_ref().and_then(|v| {
-        let first = *v.first()?;
-        v.iter().all(|m| *m == first).then_some(first)
-    });
-    if let Some(v) = &s.film_model {
-        let mut counts = BTreeMap::new();
-        for m in v {
-            *counts.entry(m.name().to_string()).or_insert(0) += 1;
-        }
-        summary.fidelity_used = Some(counts);
-    }
-    let (spike, spike_position) = match &s.pressure_spike {
-        Some(v) => (Some(v.iter().map(|x| x.map(|x| x.0)).collect()), Some(v.iter().map(|x| x.map(|x| x.1)).collect())),
-        None => (None, None),
-    };
-    let profiles = spec.outputs.contains(&CamOutput::Profiles).then(|| {
-        out.profiles
-            .iter()
-            .map(|(i, p)| FilmProfileAtAngle { angle_deg: at(*i), x: p.x.clone(), pressure: p.pressure.clone(), film: p.film.clone() })
-            .collect()
-    });
-    let fields = (spec.outputs.contains(&CamOutput::Profiles) && !out.fields.is_empty()).then(|| {
-        let mut t = FieldsTable { angle_deg: Vec::new(), x: Vec::new(), y: Vec::new(), pressure: Vec::new(), film: Vec::new() };
-        for (i, f) in &out.fields {
-            for &y in &f.y {
-                for &x in &f.x {
-                    t.angle_deg.push(at(*i));
-                    t.x.push(x);
-                    t.y.push(y);
-                }
-            }
-            t.pressure.extend_from_slice(&f.pressure);
-            t.film.extend_from_slice(&f.film);
-        }
-        t
-    });
     let es = cycle.contact_modulus;
     let mut result = CamCycleResult {
         fidelity_used: spec.fidelity,
-        film_model,
+        film_model: single_film_model(&out.series),
         contact_modulus: es,
         effective_modulus: 2.0 * es,
         angles: spec.angles,
         duration: out.duration,
-        series: CamSeries {
-            angle_deg,
-            time: s.time,
-            cam_speed: s.cam_speed,
-            lift: s.lift,
-            velocity: s.velocity,
-            acceleration: s.acceleration,
-            jerk: s.jerk,
-            pressure_angle_deg: degs(&s.pressure_angle),
-            cam_curvature: s.cam_curvature,
-            reduced_radius: s.reduced_radius,
-            contact_offset: s.contact_offset,
-            cam_surface_velocity: s.cam_surface_velocity,
-            follower_surface_velocity: s.follower_surface_velocity,
-            entrainment_velocity: s.entrainment_velocity,
-            sliding_velocity: s.sliding_velocity,
-            axial_load: s.axial_load,
-            contact_load: s.contact_load,
-            load_per_length: s.load_per_length,
-            effective_length: s.effective_length,
-            hertz_max_pressure: s.hertz_max_pressure,
-            hertz_half_width: s.hertz_half_width,
-            max_shear_stress: s.max_shear_stress,
-            max_shear_depth: s.max_shear_depth,
-            film_central: s.film_central,
-            film_min: s.film_min,
-            model: s.film_model,
-            exit_film: s.exit_film,
-            pressure_spike: spike,
-            pressure_spike_position: spike_position,
-            edge_pressure_peak: s.edge_pressure_peak.as_ref().map(|v| v.iter().map(|e| e.map(|e| e.0)).collect()),
-            edge_pressure_peak_position: s.edge_pressure_peak.as_ref().map(|v| v.iter().map(|e| e.map(|e| e.1)).collect()),
-            min_film_axial_position: s.min_film_axial_position,
-            newton_steps: s.newton_steps.map(|v| v.into_iter().map(f64::from).collect()),
-            lambda: s.lambda,
-            asperity_load_fraction: s.asperity_load_fraction,
-            friction_force: s.friction_force,
-            friction_coefficient: s.friction_coefficient,
-            friction_torque: s.friction_torque,
-            camshaft_torque: s.camshaft_torque,
-            power_loss: s.power_loss,
-            roller_speed: s.roller_speed,
-            slide_roll_ratio: s.slide_roll_ratio,
-            slip_regime: s.slip_regime,
-            pin_torque: s.pin_torque,
-            flash_temperature: s.flash_temperature,
-            film_temperature_max: s.film_temperature_max,
-            surface_temperature_cam: s.surface_temperature_cam,
-            surface_temperature_follower: s.surface_temperature_follower,
-            pin_temperature: s.pin_temperature,
-            ..Default::default()
-        },
-        summary,
-        events: CamEvents {
-            zero_entrainment_angles_deg: degs(&out.events.zero_entrainment),
-            separation_ranges_deg: out.events.separation.iter().map(|(a, b)| [a.to_degrees(), b.to_degrees()]).collect(),
-            run_up_separation_deg: None,
-        },
-        profiles,
-        fields,
-        convergence: out.convergence,
+        summary: summary_of(&figures),
+        profiles: None,
+        fields: None,
+        events: events_of(&out.events),
+        series: CamSeries::default(),
+        convergence: out.convergence.clone(),
         dynamics_convergence: None,
         run_up: None,
     };
+    result.summary.fidelity_used = film_model_counts(&out.series);
+    if spec.outputs.contains(&CamOutput::Profiles) {
+        result.profiles = Some(profiles_of(&out));
+        result.fields = (!out.fields.is_empty()).then(|| fields_of(&out));
+    }
+    result.series = series_of(out.series);
     if let Some((train, r, ramp)) = dynamics {
         add_dynamics(&mut result, &train, r);
         if let Some(u) = ramp {

@@ -1,4 +1,5 @@
 use super::*;
+use crate::physics::wear::WearEvolution;
 
 pub(super) fn role_name(r: ArcRole) -> &'static str {
     match r {
@@ -46,7 +47,7 @@ pub(super) fn solve_archard(spec: &WearSpec, observer: &dyn Observer) -> Result<
     let cc = spec.cycle_spec();
     let cycle = cc.cycle_spec()?;
     let needs = cc.needs();
-    let model = model_for(spec.cycle.fidelity, spec.cycle.film.to_physics(), spec.cycle.ehl.to_physics());
+    let model = spec.cycle.film_model(spec.cycle.ehl.to_physics());
     let mut cycle = cycle;
     if spec.cycle.fidelity != Fidelity::Fast {
         // The wear model reads the numerical film's pressure at every angle where it ran.
@@ -79,9 +80,48 @@ pub(super) fn solve_archard(spec: &WearSpec, observer: &dyn Observer) -> Result<
         max_updates: spec.max_updates(),
     };
     let ev = evolve(&run, model.as_ref(), observer)?;
-    let degs = |v: &[f64]| v.iter().map(|x| x.to_degrees()).collect::<Vec<_>>();
-    let (imax, dmax) = max_at(&ev.depth);
-    let termination = match &ev.stop {
+    let termination = termination_of(&ev.stop);
+    let numerical = spec.cycle.fidelity != Fidelity::Fast;
+    let summary = archard_summary(spec, &ev, numerical);
+    let film_model = if numerical {
+        // The model that ran, when one model ran at every angle of every cycle.
+        match ev.film_models.as_slice() {
+            [(m, _)] => Some(*m),
+            _ => None,
+        }
+    } else {
+        needs.film.then(|| match (&spec.cycle.follower, spec.cycle.film.formula) {
+            (FollowerSpec::Spherical { .. }, _) => FilmModelId::HamrockDowson,
+            (_, FilmFormula::PanHamrock) => FilmModelId::PanHamrock,
+            (_, FilmFormula::DowsonHigginson) => FilmModelId::DowsonHigginson,
+            (_, FilmFormula::Seed003) => FilmModelId::Seed003,
+        })
+        .map(|m| if spec.composite_sigma() > 0.0 { m.mixed() } else { m })
+    };
+    Ok(WearResult {
+        model: WearModel::Archard,
+        fidelity_used: spec.cycle.fidelity,
+        film_model,
+        wear_coefficient: Some(k_cam),
+        termination,
+        hours: ev.hours,
+        cycles: ev.hours * 3600.0 / ev.period,
+        updates: ev.updates,
+        angles: spec.cycle.angles,
+        series: archard_series(&ev, numerical),
+        rows: None,
+        history: Some(history_rows(&ev)),
+        follower_face: ev.face.as_ref().map(|(p, d)| FaceWear { position: p.clone(), wear_depth: d.clone() }),
+        snapshots: (spec.snapshots > 0)
+            .then(|| ev.snapshots.iter().map(|(h, d)| WearSnapshot { hours: *h, wear_depth: d.clone() }).collect()),
+        summary,
+        convergence: crate::physics::wear::evolution::convergence(ev.updates),
+    })
+}
+
+/// How the run ended, as the result reports it.
+fn termination_of(stop: &Stop) -> WearTermination {
+    match stop {
         Stop::Completed => WearTermination { reason: WearStopReason::Completed, code: None, message: None, at_hours: None },
         Stop::WearLimit => WearTermination { reason: WearStopReason::WearLimit, code: None, message: None, at_hours: None },
         Stop::Failed { code, message, at_hours } => WearTermination {
@@ -96,11 +136,15 @@ pub(super) fn solve_archard(spec: &WearSpec, observer: &dyn Observer) -> Result<
             message: Some(message.clone()),
             at_hours: Some(*at_hours),
         },
-    };
+    }
+}
+
+/// The figures of an Archard run: deepest wear and where, worn volumes, lift loss (plain and
+/// with the lash adjusted), films and pressures before and after, the time to the wear limit.
+fn archard_summary(spec: &WearSpec, ev: &WearEvolution, numerical: bool) -> WearSummary {
+    let (imax, dmax) = max_at(&ev.depth);
     let last = ev.history.last().expect("history starts with the unworn state");
     let first = &ev.history[0];
-    let fs = &ev.final_cycle.series;
-    let is_series = &ev.initial_cycle.series;
     let mut summary = WearSummary {
         max_wear_depth: dmax,
         max_wear_angle_deg: ev.angle[imax].to_degrees(),
@@ -135,28 +179,17 @@ pub(super) fn solve_archard(spec: &WearSpec, observer: &dyn Observer) -> Result<
         let l = spec.cycle.cam.width.map_or(length, |w| w.min(length));
         summary.roller_wear_depth = Some(last.follower_volume / (2.0 * std::f64::consts::PI * radius * l));
     }
-    let numerical = spec.cycle.fidelity != Fidelity::Fast;
-    let film_model = if numerical {
-        // The model that ran, when one model ran at every angle of every cycle.
-        match ev.film_models.as_slice() {
-            [(m, _)] => Some(*m),
-            _ => None,
-        }
-    } else {
-        needs.film.then(|| match (&spec.cycle.follower, spec.cycle.film.formula) {
-            (FollowerSpec::Spherical { .. }, _) => FilmModelId::HamrockDowson,
-            (_, FilmFormula::PanHamrock) => FilmModelId::PanHamrock,
-            (_, FilmFormula::DowsonHigginson) => FilmModelId::DowsonHigginson,
-            (_, FilmFormula::Seed003) => FilmModelId::Seed003,
-        })
-        .map(|m| if spec.composite_sigma() > 0.0 { m.mixed() } else { m })
-    };
     if numerical {
         summary.fidelity_used = Some(ev.film_models.iter().map(|(m, c)| (m.name().to_string(), *c)).collect());
         summary.initial_max_film_pressure = first.max_film_pressure;
         summary.final_max_film_pressure = last.max_film_pressure;
     }
-    let history = ev
+    summary
+}
+
+/// One row per profile update.
+fn history_rows(ev: &WearEvolution) -> Vec<WearHistoryRow> {
+    ev
         .history
         .iter()
         .map(|h| WearHistoryRow {
@@ -172,41 +205,28 @@ pub(super) fn solve_archard(spec: &WearSpec, observer: &dyn Observer) -> Result<
             max_pressure: h.max_pressure,
             max_film_pressure: h.max_film_pressure,
         })
-        .collect();
-    Ok(WearResult {
-        model: WearModel::Archard,
-        fidelity_used: spec.cycle.fidelity,
-        film_model,
-        wear_coefficient: Some(k_cam),
-        termination,
-        hours: ev.hours,
-        cycles: ev.hours * 3600.0 / ev.period,
-        updates: ev.updates,
-        angles: spec.cycle.angles,
-        series: WearSeries {
-            angle_deg: degs(&ev.angle),
-            wear_depth: ev.depth.clone(),
-            wear_rate: ev.rate.clone(),
-            lift_loss: Some(ev.lift_drop.clone()),
-            surface_position: Some(ev.surface_position.clone()),
-            initial_lift: Some(ev.initial_lift.clone()),
-            final_lift: Some(ev.final_lift.clone()),
-            worn_load_share: Some(ev.worn_share.clone()),
-            sliding_velocity: Some(fs.sliding_velocity.clone()),
-            initial_hertz_pressure: is_series.hertz_max_pressure.clone(),
-            final_hertz_pressure: fs.hertz_max_pressure.clone(),
-            initial_film_min: is_series.film_min.clone(),
-            final_film_min: fs.film_min.clone(),
-            film_model: if numerical { fs.film_model.clone() } else { None },
-        },
-        rows: None,
-        history: Some(history),
-        follower_face: ev.face.as_ref().map(|(p, d)| FaceWear { position: p.clone(), wear_depth: d.clone() }),
-        snapshots: (spec.snapshots > 0)
-            .then(|| ev.snapshots.iter().map(|(h, d)| WearSnapshot { hours: *h, wear_depth: d.clone() }).collect()),
-        summary,
-        convergence: crate::physics::wear::evolution::convergence(ev.updates),
-    })
+        .collect()
+}
+
+/// The per-angle columns: wear, lift and the worn pair's pressures and films.
+fn archard_series(ev: &WearEvolution, numerical: bool) -> WearSeries {
+    let (fs, is_series) = (&ev.final_cycle.series, &ev.initial_cycle.series);
+    WearSeries {
+        angle_deg: ev.angle.iter().map(|x| x.to_degrees()).collect(),
+        wear_depth: ev.depth.clone(),
+        wear_rate: ev.rate.clone(),
+        lift_loss: Some(ev.lift_drop.clone()),
+        surface_position: Some(ev.surface_position.clone()),
+        initial_lift: Some(ev.initial_lift.clone()),
+        final_lift: Some(ev.final_lift.clone()),
+        worn_load_share: Some(ev.worn_share.clone()),
+        sliding_velocity: Some(fs.sliding_velocity.clone()),
+        initial_hertz_pressure: is_series.hertz_max_pressure.clone(),
+        final_hertz_pressure: fs.hertz_max_pressure.clone(),
+        initial_film_min: is_series.film_min.clone(),
+        final_film_min: fs.film_min.clone(),
+        film_model: if numerical { fs.film_model.clone() } else { None },
+    }
 }
 
 /// The seed 004 inputs of a spec (validated), in SI.

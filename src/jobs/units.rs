@@ -1,0 +1,238 @@
+//! The unit of every numeric result field (issue 39), read from the one source that documents it:
+//! the result schemas' field descriptions, which feed the OpenAPI document ("Minimum film, m.",
+//! "Peak pressure, Pa (…)") and the field names (`*_deg` in degrees). A field that is a pure
+//! number says so by a cue (a ratio, a coefficient, a fraction, a count, a dimensionless group)
+//! and gets unit `1`. `GET /v1/kinds` lists the table as `result_units` (JSON pointer → unit;
+//! `*` stands for any index of a row table); CSV headers carry the units (`film_min [m]`).
+//! A test holds every numeric field of every kind to a unit.
+
+use super::kind::DynKind;
+use serde_json::Value;
+use std::collections::{BTreeMap, HashMap};
+use std::sync::OnceLock;
+
+/// Units as the descriptions write them, longer first (so `m/s` is not read as `m`).
+const UNITS: &[&str] = &[
+    "W/(m·K)", "J/(kg·K)", "W/(m²·K)", "N·m·s/rad", "N·m/rad", "N·s/m", "N·m·s", "kg·m²", "kg/m³", "m³/s", "mm²/s", "m²/s", "Pa·s", "rad/s²",
+    "rad/s", "m/s³", "m/s²", "mm/h", "m/s", "N/m", "N·m", "MPa", "GPa", "1/s", "1/Pa", "Pa", "rpm", "rev/s", "kg", "m²", "m³", "Hz", "°C", "J", "W", "N",
+    "K", "s", "h", "m", "°",
+];
+
+/// Words that say a field is a pure number.
+const DIMENSIONLESS_CUES: &[&str] = &[
+    "ratio", "coefficient", "fraction", "dimensionless", "number of", "count", "iterations", "steps", "λ", "lambda", "h_min/σ", "/c", "share",
+    "index", "score", "factor", "1 when", "exponent", "variable", "relative", "normalised", "margin", "per cent", "%", "cycles", "updates",
+    "angles", "ε", "order", "rank",
+];
+
+/// Field-name endings that say the unit (they win over the description).
+const NAME_UNITS: &[(&str, &str)] = &[("_deg", "°"), ("_rpm", "rpm"), ("_mm_per_h", "mm/h"), ("_hours", "h"), ("_per_s", "1/s")];
+
+/// Field names of pure numbers.
+const DIMENSIONLESS_NAMES: &[&str] = &[
+    "_ratio", "_fraction", "_coefficient", "_dimensionless", "_variable", "_number", "_count", "iterations", "lambda", "sticking", "_factor",
+    "_share", "pass", "angles", "updates", "cycles", "succeeded", "failed", "case", "step", "part", "_order", "newton_steps", "margin",
+];
+
+/// The unit of a numeric field from its name and description; `None` when neither tells.
+pub fn unit_of(name: &str, description: &str) -> Option<&'static str> {
+    if name == "hours" {
+        return Some("h");
+    }
+    if let Some((_, u)) = NAME_UNITS.iter().find(|(end, _)| name.ends_with(end)) {
+        return Some(u);
+    }
+    if let Some(u) = unit_in(description) {
+        return Some(u);
+    }
+    let d = description.to_lowercase();
+    if DIMENSIONLESS_CUES.iter().any(|c| d.contains(c)) || DIMENSIONLESS_NAMES.iter().any(|n| name.ends_with(n) || name == n.trim_start_matches('_')) {
+        return Some("1");
+    }
+    None
+}
+
+/// The first unit written as the descriptions write units: after ", " (or "in ") and before
+/// the end, a full stop, a comma, a semicolon, a space or a bracket; or a description that is
+/// only a unit ("Pa.").
+fn unit_in(description: &str) -> Option<&'static str> {
+    let d = description.replace('\n', " ");
+    let trimmed = d.trim().trim_end_matches('.');
+    if let Some(u) = UNITS.iter().find(|u| **u == trimmed) {
+        return Some(u);
+    }
+    let mut best: Option<(usize, &'static str)> = None;
+    for u in UNITS {
+        for lead in [", ", " in ", " (", "; "] {
+            let pat = format!("{lead}{u}");
+            let mut from = 0;
+            while let Some(i) = d[from..].find(&pat) {
+                let at = from + i;
+                let end = at + pat.len();
+                let next = d[end..].chars().next();
+                if matches!(next, None | Some('.' | ',' | ';' | ' ' | ')' | ':')) {
+                    if best.is_none_or(|(b, _)| at < b) {
+                        best = Some((at, u));
+                    }
+                    break;
+                }
+                from = end;
+            }
+        }
+    }
+    best.map(|(_, u)| u)
+}
+
+/// Every numeric field of a kind's result (or, `spec`, of its spec): JSON pointer → unit
+/// (`None`: undocumented).
+pub fn walk(k: &dyn DynKind, spec: bool) -> BTreeMap<String, Option<&'static str>> {
+    let mut schemas = Vec::new();
+    k.schemas(&mut schemas);
+    let by_name: HashMap<String, Value> = schemas.into_iter().map(|(n, s)| (n, serde_json::to_value(s).unwrap_or(Value::Null))).collect();
+    let (spec_name, result_name) = k.schema_names();
+    let mut out = BTreeMap::new();
+    if let Some(root) = by_name.get(if spec { &spec_name } else { &result_name }) {
+        fields(root, "", &by_name, &mut out, 0);
+    }
+    out
+}
+
+/// The numeric fields below `schema` at `path`.
+fn fields(schema: &Value, path: &str, by_name: &HashMap<String, Value>, out: &mut BTreeMap<String, Option<&'static str>>, depth: usize) {
+    if depth > 12 {
+        return;
+    }
+    let Some(props) = resolve(schema, by_name).get("properties").and_then(Value::as_object) else { return };
+    for (name, p) in props {
+        let here = format!("{path}/{name}");
+        let description = describe(p, by_name);
+        let s = resolve(p, by_name);
+        match kind_of(s, by_name) {
+            Shape::Number => {
+                out.insert(here, unit_of(name, &description));
+            }
+            Shape::Numbers => {
+                out.insert(here, unit_of(name, &description));
+            }
+            Shape::Object(o) => fields(o, &here, by_name, out, depth + 1),
+            Shape::Rows(o) => fields(o, &format!("{here}/*"), by_name, out, depth + 1),
+            Shape::Other => {}
+        }
+    }
+}
+
+enum Shape<'a> {
+    Number,
+    /// An array of numbers (a column), or of arrays of numbers (pairs, matrices).
+    Numbers,
+    Object(&'a Value),
+    /// An array of objects.
+    Rows(&'a Value),
+    Other,
+}
+
+fn kind_of<'a>(s: &'a Value, by_name: &'a HashMap<String, Value>) -> Shape<'a> {
+    let types: Vec<&str> = match s.get("type") {
+        Some(Value::String(t)) => vec![t.as_str()],
+        Some(Value::Array(ts)) => ts.iter().filter_map(Value::as_str).collect(),
+        _ => Vec::new(),
+    };
+    if types.iter().any(|t| *t == "number" || *t == "integer") {
+        return Shape::Number;
+    }
+    if types.contains(&"array") {
+        let item = resolve(s.get("items").unwrap_or(&Value::Null), by_name);
+        return match kind_of(item, by_name) {
+            Shape::Number | Shape::Numbers => Shape::Numbers,
+            Shape::Object(o) => Shape::Rows(o),
+            _ => Shape::Other,
+        };
+    }
+    if s.get("properties").is_some() {
+        return Shape::Object(s);
+    }
+    Shape::Other
+}
+
+/// A `$ref` (or a `oneOf`/`anyOf`/`allOf` of one schema and `null`) resolved to its schema.
+fn resolve<'a>(s: &'a Value, by_name: &'a HashMap<String, Value>) -> &'a Value {
+    if let Some(r) = s.get("$ref").and_then(Value::as_str) {
+        let name = r.rsplit('/').next().unwrap_or(r);
+        return by_name.get(name).map(|t| resolve(t, by_name)).unwrap_or(s);
+    }
+    for key in ["oneOf", "anyOf", "allOf"] {
+        if let Some(alts) = s.get(key).and_then(Value::as_array) {
+            if let Some(one) = alts.iter().find(|a| a.get("type").and_then(Value::as_str) != Some("null")) {
+                return resolve(one, by_name);
+            }
+        }
+    }
+    s
+}
+
+/// The field's description (its own, or its schema's).
+fn describe(p: &Value, by_name: &HashMap<String, Value>) -> String {
+    let own = p.get("description").and_then(Value::as_str).map(str::to_string);
+    let inner = ["oneOf", "anyOf", "allOf"].iter().find_map(|k| {
+        p.get(*k).and_then(Value::as_array).and_then(|alts| alts.iter().find_map(|a| a.get("description").and_then(Value::as_str).map(str::to_string)))
+    });
+    own.or(inner).or_else(|| resolve(p, by_name).get("description").and_then(Value::as_str).map(str::to_string)).unwrap_or_default()
+}
+
+/// A kind's `result_units` (the documented fields), computed once per kind.
+pub fn result_units(k: &dyn DynKind) -> &'static BTreeMap<String, String> {
+    cached(k, false)
+}
+
+/// The units of a kind's spec fields (what a sweep's parameters are in).
+pub fn spec_units(k: &dyn DynKind) -> &'static BTreeMap<String, String> {
+    cached(k, true)
+}
+
+fn cached(k: &dyn DynKind, spec: bool) -> &'static BTreeMap<String, String> {
+    type Cache = std::sync::Mutex<HashMap<(String, bool), &'static BTreeMap<String, String>>>;
+    static CACHE: OnceLock<Cache> = OnceLock::new();
+    let mut map = CACHE.get_or_init(Default::default).lock().unwrap_or_else(|e| e.into_inner());
+    map.entry((k.name().to_string(), spec))
+        .or_insert_with(|| Box::leak(Box::new(walk(k, spec).into_iter().filter_map(|(p, u)| u.map(|u| (p, u.to_string()))).collect())))
+}
+
+/// The unit at a JSON pointer into a result or spec: the field's own, or, for an element of a
+/// column (`/series/film_min/200`) or a row table (`/rows/3/film_min`), its column's.
+pub fn unit_at<'a>(units: &'a BTreeMap<String, String>, pointer: &str) -> Option<&'a str> {
+    if let Some(u) = units.get(pointer) {
+        return Some(u);
+    }
+    let segments: Vec<&str> = pointer.split('/').collect();
+    // An index at the end: the column's unit.
+    if let Some((last, parent)) = segments.split_last() {
+        if last.parse::<usize>().is_ok() {
+            if let Some(u) = units.get(&parent.join("/")) {
+                return Some(u);
+            }
+        }
+    }
+    // Indices inside: `*`.
+    let starred: Vec<&str> = segments.iter().map(|s| if s.parse::<usize>().is_ok() { "*" } else { s }).collect();
+    units.get(&starred.join("/")).map(String::as_str)
+}
+
+/// A number in a few characters for a name or a label (`100`, `0.0255`, `1.5e-05`).
+pub fn short_number(x: f64) -> String {
+    if x == x.round() && x.abs() < 1e9 {
+        return format!("{}", x as i64);
+    }
+    let s = format!("{x:.4}");
+    if x.abs() >= 1e-3 && x.abs() < 1e6 {
+        s.trim_end_matches('0').trim_end_matches('.').to_string()
+    } else {
+        format!("{x:.3e}")
+    }
+}
+
+/// The unit of the column `column` of table `table` (columnar `/table/column` or rows
+/// `/table/*/column`), when it has a dimension (`1` is left out of CSV headers).
+pub fn column_unit<'a>(units: &'a BTreeMap<String, String>, table: &str, column: &str) -> Option<&'a str> {
+    let unit = units.get(&format!("/{table}/{column}")).or_else(|| units.get(&format!("/{table}/*/{column}")))?;
+    (unit != "1").then_some(unit.as_str())
+}
