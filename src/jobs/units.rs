@@ -13,7 +13,7 @@ use std::sync::OnceLock;
 
 /// Units as the descriptions write them, longer first (so `m/s` is not read as `m`).
 const UNITS: &[&str] = &[
-    "W/(m·K)", "J/(kg·K)", "W/(m²·K)", "N·m·s/rad", "N·m/rad", "N·s/m", "N·m·s", "kg·m²", "kg/m³", "m³/s", "mm²/s", "m²/s", "Pa·s", "rad/s²",
+    "W/(m·K)", "J/(kg·K)", "W/(m²·K)", "W/m²", "W/m", "N·m·s/rad", "N·m/rad", "N·s/m", "N·m·s", "kg·m²", "kg/m³", "m³/s", "mm²/s", "m²/s", "Pa·s", "rad/s²",
     "rad/s", "m/s³", "m/s²", "mm/h", "m/s", "N/m", "N·m", "MPa", "GPa", "1/s", "1/Pa", "Pa", "rpm", "rev/s", "kg", "m²", "m³", "Hz", "°C", "J", "W", "N",
     "K", "s", "h", "m", "°",
 ];
@@ -32,6 +32,7 @@ const NAME_UNITS: &[(&str, &str)] = &[("_deg", "°"), ("_rpm", "rpm"), ("_mm_per
 const DIMENSIONLESS_NAMES: &[&str] = &[
     "_ratio", "_fraction", "_coefficient", "_dimensionless", "_variable", "_number", "_count", "iterations", "lambda", "sticking", "_factor",
     "_share", "pass", "angles", "updates", "cycles", "succeeded", "failed", "case", "step", "part", "_order", "newton_steps", "margin",
+    "ratio", "tolerance", "residual", "_level", "evaluations", "nodes", "score", "normalised", "bounces", "moes_", "_error", "axial", "circumferential",
 ];
 
 /// The unit of a numeric field from its name and description; `None` when neither tells.
@@ -45,11 +46,7 @@ pub fn unit_of(name: &str, description: &str) -> Option<&'static str> {
     if let Some(u) = unit_in(description) {
         return Some(u);
     }
-    let d = description.to_lowercase();
-    if DIMENSIONLESS_CUES.iter().any(|c| d.contains(c)) || DIMENSIONLESS_NAMES.iter().any(|n| name.ends_with(n) || name == n.trim_start_matches('_')) {
-        return Some("1");
-    }
-    None
+    is_pure_number(name, description).then_some("1")
 }
 
 /// The first unit written as the descriptions write units: after ", " (or "in ") and before
@@ -60,6 +57,14 @@ fn unit_in(description: &str) -> Option<&'static str> {
     let trimmed = d.trim().trim_end_matches('.');
     if let Some(u) = UNITS.iter().find(|u| **u == trimmed) {
         return Some(u);
+    }
+    // A description that opens with its unit ("Pa (plane strain …)").
+    for u in UNITS {
+        if let Some(rest) = d.trim_start().strip_prefix(u) {
+            if matches!(rest.chars().next(), None | Some('.' | ',' | ';' | ' ' | '(')) {
+                return Some(u);
+            }
+        }
     }
     let mut best: Option<(usize, &'static str)> = None;
     for u in UNITS {
@@ -102,23 +107,60 @@ fn fields(schema: &Value, path: &str, by_name: &HashMap<String, Value>, out: &mu
     if depth > 12 {
         return;
     }
+    fields_in(schema, path, None, by_name, out, depth)
+}
+
+/// The numeric fields below `schema`; `inherited` is the unit its parent field's doc gives
+/// (the value and limit of a `checks.min_film` are in the unit "Minimum film, m, …" names).
+fn fields_in(
+    schema: &Value,
+    path: &str,
+    inherited: Option<&'static str>,
+    by_name: &HashMap<String, Value>,
+    out: &mut BTreeMap<String, Option<&'static str>>,
+    depth: usize,
+) {
+    if depth > 12 {
+        return;
+    }
     let Some(props) = resolve(schema, by_name).get("properties").and_then(Value::as_object) else { return };
     for (name, p) in props {
         let here = format!("{path}/{name}");
         let description = describe(p, by_name);
         let s = resolve(p, by_name);
         match kind_of(s, by_name) {
-            Shape::Number => {
-                out.insert(here, unit_of(name, &description));
+            Shape::Number | Shape::Numbers => {
+                let own = unit_of(name, &description);
+                // A field of a parent that states the unit takes it unless its own doc says
+                // otherwise (a relative margin stays a pure number).
+                let unit = match (own, inherited) {
+                    (Some(u), _) if u != "1" || inherited.is_none() => Some(u),
+                    (Some("1"), Some(_)) if is_pure_number(name, &description) => Some("1"),
+                    (_, Some(u)) => Some(u),
+                    (own, None) => own,
+                };
+                out.insert(here, unit);
             }
-            Shape::Numbers => {
-                out.insert(here, unit_of(name, &description));
-            }
-            Shape::Object(o) => fields(o, &here, by_name, out, depth + 1),
-            Shape::Rows(o) => fields(o, &format!("{here}/*"), by_name, out, depth + 1),
+            Shape::Object(o) => fields_in(o, &here, parent_unit(name, &description), by_name, out, depth + 1),
+            Shape::Rows(o) => fields_in(o, &format!("{here}/*"), parent_unit(name, &description), by_name, out, depth + 1),
             Shape::Other => {}
         }
     }
+}
+
+/// The unit a parent field's doc gives its members: its stated unit, `1` for a dimensionless
+/// group or a convergence record (iterations, residual and tolerance are pure numbers).
+fn parent_unit(name: &str, description: &str) -> Option<&'static str> {
+    if name.contains("dimensionless") || name.contains("convergence") {
+        return Some("1");
+    }
+    unit_in(description)
+}
+
+/// A field that says it is a pure number by its own doc or name.
+fn is_pure_number(name: &str, description: &str) -> bool {
+    let d = description.to_lowercase();
+    DIMENSIONLESS_CUES.iter().any(|c| d.contains(c)) || DIMENSIONLESS_NAMES.iter().any(|n| name.contains(n.trim_start_matches('_')))
 }
 
 enum Shape<'a> {

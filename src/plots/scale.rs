@@ -19,9 +19,10 @@ pub fn multiple(unit: &str, max_abs: f64) -> (f64, String) {
     let Some((_, steps)) = MULTIPLES.iter().find(|(u, _)| *u == unit) else {
         return (1.0, if unit == "1" { String::new() } else { unit.to_string() });
     };
+    // The largest multiple that shows the largest value as 0.1 or more (0.3 µm, not 300 nm).
     let mut pick = steps[0];
     for s in steps.iter() {
-        if max_abs >= s.0 {
+        if max_abs >= 0.1 * s.0 {
             pick = *s;
         }
     }

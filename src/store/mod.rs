@@ -97,6 +97,9 @@ pub struct NewJob {
     /// that inserts the job; a key already recorded fails the insert with
     /// [`StoreError::DuplicateKey`].
     pub idempotency_key: Option<String>,
+    /// The label the client sent (`label` may be the one the service gave): what a repeat under
+    /// the same key is compared with.
+    pub key_label: Option<String>,
     /// Virtual deadline for fair scheduling (unix ms); queued jobs are claimed by `due_at`, `seq`.
     pub due_at: i64,
     /// The work model's CPU seconds and the memory model's bytes.

@@ -170,7 +170,7 @@ impl PgStore {
             .bind(key)
             .bind(job.id.to_string())
             .bind(&job.spec_hash)
-            .bind(&job.label)
+            .bind(&job.key_label)
             .bind(job.created_at)
             .execute(&mut *tx)
             .await?;

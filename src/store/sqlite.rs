@@ -127,7 +127,7 @@ async fn insert_on(conn: &mut SqliteConnection, jobs: &[&NewJob]) -> StoreResult
             .bind(key)
             .bind(job.id.to_string())
             .bind(&job.spec_hash)
-            .bind(&job.label)
+            .bind(&job.key_label)
             .bind(job.created_at)
             .execute(&mut *tx)
             .await

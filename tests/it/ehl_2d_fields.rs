@@ -94,7 +94,8 @@ async fn fields_table_is_served_as_csv_and_plots() {
     let csv = res.text().await.unwrap();
     let mut lines = csv.lines();
     let header = lines.next().unwrap();
-    for c in ["angle_deg", "x", "y", "pressure", "film"] {
+    // Each column with its unit (issue 39).
+    for c in ["angle_deg [°]", "x [m]", "y [m]", "pressure [Pa]", "film [m]"] {
         assert!(header.split(',').any(|h| h == c), "{header}");
     }
     assert_eq!(lines.count(), 2 * 33 * 65);

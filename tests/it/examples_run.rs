@@ -180,6 +180,6 @@ fn run_prints_csv_tables() {
     let out = Command::new(env!("CARGO_BIN_EXE_tribod")).arg("run").arg(&file).args(["--format", "csv"]).output().unwrap();
     assert!(out.status.success());
     let text = String::from_utf8(out.stdout).unwrap();
-    assert!(text.starts_with("depth,sigma_x,"), "{text}");
+    assert!(text.starts_with("depth [m],sigma_x [Pa],"), "{text}");
     assert_eq!(text.lines().count(), 62);
 }

@@ -86,7 +86,7 @@ async fn submit_poll_and_fetch_result_json_and_csv() {
     let csv = res.text().await.unwrap();
     let lines: Vec<&str> = csv.lines().collect();
     assert_eq!(lines.len(), 12, "{csv}");
-    assert_eq!(lines[0], "depth,sigma_x,sigma_y,sigma_z,principal_shear,von_mises");
+    assert_eq!(lines[0], "depth [m],sigma_x [Pa],sigma_y [Pa],sigma_z [Pa],principal_shear [Pa],von_mises [Pa]");
     s.stop().await;
 }
 

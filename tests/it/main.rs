@@ -37,6 +37,7 @@ mod rough_stability;
 mod rough_validation;
 mod browser;
 mod plots;
+mod readable_results;
 mod reliability;
 mod restart_recovery;
 mod storage_faults;

@@ -119,7 +119,7 @@ mod plots_draw {
         let doc = svg(&plot, "").unwrap();
         let labels: Vec<&str> = doc.lines().map(str::trim).filter(|l| !l.starts_with('<')).collect();
         assert!(!labels.iter().any(|l| *l == "-0.0" || *l == "-0"), "a signed zero tick: {labels:?}");
-        assert!(labels.iter().filter(|l| **l == "0.0").count() >= 2, "zero labelled on both axes: {labels:?}");
+        assert!(labels.iter().filter(|l| **l == "0").count() >= 2, "zero labelled on both axes: {labels:?}");
     }
 }
 

@@ -46,7 +46,7 @@ async fn sweep_tabulates_cases_and_serves_csv() {
         .text()
         .await
         .unwrap();
-    assert_eq!(csv.lines().next().unwrap(), "case,load,body_1.radius,status,max_pressure,half_width");
+    assert_eq!(csv.lines().next().unwrap(), "case,load [N],body_1.radius [m],status,max_pressure [Pa],half_width [m]");
     assert_eq!(csv.lines().count(), 7);
     s.stop().await;
 }
@@ -139,6 +139,6 @@ async fn a_speed_sweep_of_a_dynamic_cam_cycle_gives_the_jump_speed() {
     // The rigid figure is a property of the train and cam, the same in every case.
     assert!(rows.iter().all(|r| (r.2 / rows[0].2 - 1.0).abs() < 1e-12));
     let csv = s.client.get(s.url(&format!("/v1/jobs/{id}/result"))).header("accept", "text/csv").send().await.unwrap().text().await.unwrap();
-    assert_eq!(csv.lines().next().unwrap(), "case,operation.speed_rpm,status,summary.separation_duration,summary.rigid_jump_speed_rpm");
+    assert_eq!(csv.lines().next().unwrap(), "case,operation.speed_rpm [rpm],status,summary.separation_duration [s],summary.rigid_jump_speed_rpm [rpm]");
     s.stop().await;
 }

@@ -44,7 +44,7 @@ async fn run_up_table_is_served_as_csv() {
     assert_eq!(status, 200, "{csv}");
     assert!(ct.starts_with("text/csv"), "{ct}");
     let lines: Vec<&str> = csv.lines().collect();
-    assert_eq!(lines[0], "angle_deg,speed_rpm,contact_load,valve_lift,valve_velocity,spring_force_fixed_end");
+    assert_eq!(lines[0], "angle_deg [°],speed_rpm [rpm],contact_load [N],valve_lift [m],valve_velocity [m/s],spring_force_fixed_end [N]");
     assert_eq!(lines.len(), 1 + 6 * 36);
     // Every row parses, and the columns are the JSON's.
     let rows: Vec<Vec<f64>> = lines[1..].iter().map(|l| l.split(',').map(|c| c.parse::<f64>().unwrap()).collect()).collect();

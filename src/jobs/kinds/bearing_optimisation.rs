@@ -137,7 +137,7 @@ pub struct OptimisationSpec {
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, ToSchema)]
 pub struct Design {
     pub order: u32,
-    /// ξ
+    /// ξ = m_r/c, a dimensionless edge opening.
     pub height: f64,
     /// ψ
     pub length_fraction: f64,
@@ -165,6 +165,7 @@ pub struct Run {
     /// 1-based run number in the array's standard order.
     pub run: usize,
     pub order: u32,
+    /// ξ = m_r/c, a dimensionless edge opening.
     pub height: f64,
     pub length_fraction: f64,
     pub max_pressure_dimensionless: f64,
@@ -188,6 +189,7 @@ pub struct Effect {
     pub factor: String,
     /// 1-based level.
     pub level: usize,
+    /// The level's value of the factor (its own unit: ξ and the length fraction are dimensionless, the order a count).
     pub value: f64,
     pub mean_score: f64,
     pub mean_sn_ratio_db: f64,

@@ -186,8 +186,7 @@ pub struct PointSummary {
     /// μ_b W_a/F; the partial-slip laws `carter` and `micro_slip`: 0 — their traction vanishes
     /// with the sliding; seed 001's sweep procedure is `first_sliding_cam_roller_friction`).
     pub min_cam_roller_friction: f64,
-    /// Roller–pin friction where the asperity traction saturates (absent without asperity load;
-    /// 0 when the film's rolling resistance alone exceeds the asperities' stick capacity).
+    /// Roller–pin friction coefficient where the asperity traction saturates (absent without asperity load; 0 when the film's rolling resistance alone exceeds the asperities' stick capacity).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub gross_sliding_pin_friction: Option<f64>,
     /// `ehl.geometry: finite`: the edge pressure peak at pure rolling, Pa — the largest
@@ -202,10 +201,10 @@ pub struct PointSummary {
     /// centre (0: on the centre line).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub min_film_axial_position: Option<f64>,
-    /// Seed 001's procedure on the requested list: the first μ_rp with SRR > 0 …
+    /// Seed 001's procedure on the requested list: the first roller–pin friction coefficient μ_rp with SRR > 0 …
     #[serde(skip_serializing_if = "Option::is_none")]
     pub first_sliding_pin_friction: Option<f64>,
-    /// … and μ_cr there.
+    /// … and the cam–roller friction coefficient μ_cr there.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub first_sliding_cam_roller_friction: Option<f64>,
 }

@@ -202,14 +202,17 @@ pub struct ThermalResult {
     pub film_temperature_max: f64,
     /// Largest surface temperature of body 1 and body 2, K.
     pub surface_temperature_max_1: f64,
+    /// Largest surface temperature of body 2, K.
     pub surface_temperature_max_2: f64,
     /// Film temperature averaged across the film and weighted by pressure along it, K.
     pub film_temperature_mean: f64,
     /// Heat generated in the film (shear and compression) per unit length, W/m.
     pub heat_generated: f64,
-    /// Heat into body 1, body 2 and carried away by the oil, W/m.
+    /// Heat into body 1 per unit length, W/m.
     pub heat_to_body_1: f64,
+    /// Heat into body 2 per unit length, W/m.
     pub heat_to_body_2: f64,
+    /// Heat carried away by the oil per unit length, W/m.
     pub heat_convected: f64,
     /// |generated − removed| / generated.
     pub energy_balance_error: f64,

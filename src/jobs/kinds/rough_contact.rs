@@ -118,6 +118,7 @@ pub struct GapMap {
     pub film: Vec<f64>,
     /// m.
     pub gross_sliding_displacement: Vec<f64>,
+    /// Exponent of the micro-slip law, dimensionless.
     pub exponent: Vec<f64>,
 }
 
@@ -128,7 +129,7 @@ pub struct SurfaceStats {
     pub rq: f64,
     /// m.
     pub ra: f64,
-    /// RMS slope.
+    /// RMS slope, dimensionless.
     pub rms_slope: f64,
     /// Highest point above the mean plane, m.
     pub peak: f64,

@@ -242,7 +242,7 @@ impl Observer for CaseObserver<'_> {
 
 impl Kind for Sweep {
     const NAME: &'static str = "sweep";
-    const SOLVER_VERSION: &'static str = "sweep-1";
+    const SOLVER_VERSION: &'static str = "sweep-2";
     const DESCRIPTION: &'static str = "Run one base spec of any kind over varied parameters \
         (JSON pointer + values or linspace, grid or zip), cases in parallel; a table of chosen \
         result quantities per case.";

@@ -79,6 +79,7 @@ impl Queue {
             solver_version: k.solver_version().to_string(),
             created_at,
             idempotency_key: idempotency_key.clone(),
+            key_label: label.clone(),
             due_at: created_at + (AGING * self.estimate(k.name(), estimate.cpu_seconds) * 1e3).min(MAX_DUE_MS) as i64,
             estimate_cpu_seconds: estimate.cpu_seconds,
             estimate_memory_bytes: estimate.memory_bytes,

@@ -312,6 +312,40 @@ function showProblem(where, problem, status, editor) {
 
 // ---- one job ----------------------------------------------------------------------------------
 
+// Engineering multiples of the SI units the results use (the plots' own scaling, plots::scale).
+const MULTIPLES = {
+  "m": [[1e-9, "nm"], [1e-6, "µm"], [1e-3, "mm"], [1, "m"]],
+  "Pa": [[1, "Pa"], [1e3, "kPa"], [1e6, "MPa"], [1e9, "GPa"]],
+  "N": [[1, "N"], [1e3, "kN"], [1e6, "MN"]],
+  "W": [[1e-3, "mW"], [1, "W"], [1e3, "kW"]],
+  "N·m": [[1e-3, "N·mm"], [1, "N·m"]],
+  "Pa·s": [[1e-3, "mPa·s"], [1, "Pa·s"]],
+  "m³/s": [[1e-9, "mm³/s"], [1e-6, "cm³/s"], [1e-3, "L/s"], [1, "m³/s"]],
+  "s": [[1e-6, "µs"], [1e-3, "ms"], [1, "s"]],
+};
+
+// A number with its unit, in the multiple that suits it, to 4 significant figures.
+function withUnit(v, unit) {
+  if (typeof v !== "number" || !Number.isFinite(v)) return fmt(v);
+  let factor = 1, shown = unit === "1" ? "" : (unit || "");
+  const steps = MULTIPLES[unit];
+  if (steps && v !== 0) {
+    let pick = steps[0];
+    for (const s of steps) if (Math.abs(v) >= 0.1 * s[0]) pick = s; // 0.3 µm, not 300 nm
+    [factor, shown] = pick;
+  }
+  const x = v / factor;
+  const text = Number.isInteger(x) && Math.abs(x) < 1e9 ? String(x) : String(Number(x.toPrecision(4)));
+  return shown ? text + " " + shown : text;
+}
+
+// The unit of a result field (dotted path) from the kind's `result_units` (GET /v1/kinds).
+function unitOf(kind, path) {
+  const units = (kind && kind.result_units) || {};
+  const pointer = "/" + path.split(".").join("/");
+  return units[pointer] ?? units[pointer.replace(/\/\d+(?=\/|$)/g, "/*")] ?? "";
+}
+
 function summaryRows(result) {
   const rows = [];
   const walk = (value, prefix) => {
@@ -354,7 +388,9 @@ async function jobView(id) {
       h("dt", {}, "Created"), h("dd", {}, when(job.created_at)),
       job.finished_at ? [h("dt", {}, "Finished"), h("dd", {}, when(job.finished_at))] : null,
       h("dt", {}, "Attempts"), h("dd", {}, job.attempts),
-      h("dt", {}, "Solver"), h("dd", {}, job.solver_version)));
+      h("dt", {}, "Solver"), h("dd", {}, job.solver_version)),
+      ...((job.warnings || []).length ? [h("div", { class: "warnings", id: "job-warnings", role: "status" }, h("h2", {}, "Warnings"),
+        h("ul", {}, job.warnings.map((w) => h("li", { class: "field-warning", "data-path": w.path }, h("code", {}, w.path), " ", w.message))))] : []));
     const active = ACTIVE.has(job.status);
     actions.replaceChildren(
       h("button", { type: "button", class: "danger", id: active ? "cancel" : "delete", onclick: async () => {
@@ -393,12 +429,17 @@ async function jobView(id) {
       } }, "CSV: " + t)));
     const plots = h("div", { class: "plots", id: "plots" });
     const summary = summaryRows(result);
+    const key = summaryRows({ summary: result.summary, checks: result.checks }).filter(([, v]) => typeof v === "number" || typeof v === "boolean");
+    const cell = ([k, v]) => h("tr", {}, h("td", {}, k),
+      h("td", { class: typeof v === "number" ? "num" : (v === false ? "fail" : "") }, withUnit(v, unitOf(kind, k))));
     body.replaceChildren(
+      ...(key.length ? [h("section", { class: "card", id: "key-results" }, h("h2", {}, "Key results"),
+        h("table", { class: "summary" }, h("tbody", {}, key.map(cell))))] : []),
       h("h2", {}, "Plots"), plots,
       h("h2", {}, "Downloads"), downloads,
-      h("h2", {}, "Summary"),
+      h("h2", {}, "All figures"),
       summary.length
-        ? h("table", { class: "summary", id: "summary" }, h("tbody", {}, summary.map(([k, v]) => h("tr", {}, h("td", {}, k), h("td", { class: typeof v === "number" ? "num" : "" }, fmt(v))))))
+        ? h("table", { class: "summary", id: "summary" }, h("tbody", {}, summary.map(cell)))
         : h("p", { class: "muted" }, "The result is all tables: see the CSV downloads."));
     const names = (list && list.plots) || [];
     if (names.length === 0) plots.replaceChildren(h("p", { class: "muted" }, "No plots for this result."));

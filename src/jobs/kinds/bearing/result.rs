@@ -9,7 +9,7 @@ use utoipa::ToSchema;
 pub struct Location {
     /// Degrees from the unloaded side in the direction of rotation, [0, 360).
     pub angle_deg: f64,
-    /// Z = z/L, 0 to 1.
+    /// Z = z/L, 0 to 1 (a dimensionless axial position).
     pub z: f64,
 }
 
@@ -54,7 +54,7 @@ pub struct GridSteps {
 pub struct FieldTable {
     /// Degrees from the unloaded side in the direction of rotation.
     pub angle_deg: Vec<f64>,
-    /// Z = z/L.
+    /// Z = z/L (a dimensionless axial position).
     pub z: Vec<f64>,
     /// P = p (c/R)²/(6ηω).
     #[serde(skip_serializing_if = "Option::is_none")]
@@ -141,7 +141,7 @@ pub struct MomentCoefficientsResult {
     /// force–tilt block, N (N·m/m) in the moment–translation block, N·m/rad in the moment–tilt block.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub stiffness: Option<Vec<Vec<f64>>>,
-    /// `C_ij = −∂Q_i/∂q̇_j` (with dimensions): the units of `stiffness` times s.
+    /// `C_ij = −∂Q_i/∂q̇_j` (with dimensions), in N·s/m in the force–translation block (the units of `stiffness` times s: N·s/rad, N·s and N·m·s/rad in the other blocks).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub damping: Option<Vec<Vec<f64>>>,
     /// `K̄ = K_ij c/(W l_i l_j)` with `l = (1, 1, L, L)`: the coefficients of the dimensionless
@@ -191,6 +191,7 @@ pub struct BearingThermalResult {
 /// One operating-limit check.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, ToSchema)]
 pub struct BearingCheck {
+    /// The checked quantity, in its check's unit.
     pub value: f64,
     pub limit: f64,
     pub pass: bool,

@@ -158,6 +158,7 @@ pub struct CamSeries {
     /// Thermal EHL: largest surface temperature of the cam and of the follower, K.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub surface_temperature_cam: Option<Vec<f64>>,
+    /// The same of the follower, K.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub surface_temperature_follower: Option<Vec<f64>>,
     /// Effective film temperature of a thermal finite roller–pin bearing, K.
@@ -437,6 +438,7 @@ pub struct RunUpTable {
     pub contact_load: Vec<f64>,
     /// Valve lift (m) and velocity (m/s).
     pub valve_lift: Vec<f64>,
+    /// Valve velocity, m/s.
     pub valve_velocity: Vec<f64>,
     /// Spring force at the fixed end, N.
     pub spring_force_fixed_end: Vec<f64>,

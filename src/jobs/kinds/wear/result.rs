@@ -68,11 +68,13 @@ pub struct WearSeries {
     /// Hertz peak pressure on the original and on the worn profile, Pa.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub initial_hertz_pressure: Option<Vec<f64>>,
+    /// Hertz peak pressure on the worn profile, Pa.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub final_hertz_pressure: Option<Vec<f64>>,
     /// Minimum film on the original and on the worn profile, m.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub initial_film_min: Option<Vec<f64>>,
+    /// Minimum film on the worn profile, m.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub final_film_min: Option<Vec<f64>>,
     /// Film model that ran at each angle on the worn profile (fidelity accurate/auto).
@@ -111,7 +113,7 @@ pub struct WearRow {
     pub contact_width: f64,
     /// Contact area by eq. 3 (Table 3), m².
     pub contact_area: f64,
-    /// Slip δ (Table 4).
+    /// Slip δ (Table 4), dimensionless.
     pub slip: f64,
     /// Wear rate by eq. 15 as printed (Table 5's withheld column), mm/h.
     pub wear_rate_mm_per_h: f64,
@@ -199,6 +201,7 @@ pub struct WearSummary {
     /// Flat face: largest face wear depth, m, and its position from the axis, m.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub max_follower_wear_depth: Option<f64>,
+    /// Position of the largest face wear depth from the follower axis, m.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub max_follower_wear_position: Option<f64>,
     /// Roller: wear depth spread evenly over its circumference, m.
@@ -214,17 +217,20 @@ pub struct WearSummary {
     /// Smallest minimum film on the original and on the final profile, m.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub initial_min_film: Option<f64>,
+    /// Smallest minimum film on the final profile, m.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub final_min_film: Option<f64>,
     /// Largest Hertz pressure on the original and on the final profile, Pa.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub initial_max_pressure: Option<f64>,
+    /// Largest Hertz pressure on the final profile, Pa.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub final_max_pressure: Option<f64>,
     /// Largest numerical EHL film pressure (exit spike included) on the original and on the final
     /// profile, Pa (fidelity accurate/auto, where the numerical model ran).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub initial_max_film_pressure: Option<f64>,
+    /// Largest numerical EHL film pressure on the final profile, Pa (fidelity accurate/auto).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub final_max_film_pressure: Option<f64>,
     /// Fidelity accurate/auto: angles at which each film model ran (`numerical`, `pan_hamrock`,
