@@ -63,7 +63,7 @@ async fn run_up_table_is_served_as_csv() {
     // Default table: the series, one row per cycle angle.
     let (status, _, csv) = csv_of(None).await;
     assert_eq!(status, 200);
-    assert!(csv.starts_with("angle_deg,"));
+    assert!(csv.starts_with("angle_deg [°],"));
     assert_eq!(csv.lines().count(), 1 + 90);
 
     // A cycle without a run-up has no such table: 404 naming it.
