@@ -451,7 +451,7 @@ impl<K: Kind> DynKind for Registered<K> {
         let typed: K::Spec = parse_spec(spec)?;
         let mut v = Validation::new();
         K::validate(&typed, limits, &mut v);
-        let warnings = v.finish()?;
+        let warnings = v.finish().map_err(|p| with_units(self, p))?;
         let cost = K::cost(&typed);
         check_cost(&cost, limits)?;
         let canonical = canonicalize(serde_json::to_value(&typed).map_err(|e| {
@@ -526,13 +526,60 @@ pub fn parse_spec<T: DeserializeOwned>(spec: &Value) -> Result<T, Problem> {
 pub fn parse_value<T: DeserializeOwned>(value: &Value) -> Result<T, FieldError> {
     serde_path_to_error::deserialize(value).map_err(|err| {
         let mut pointer = path_to_pointer(err.path());
-        let message = err.inner().to_string();
+        let message = plain_words(&err.inner().to_string());
         // serde names a missing field in its message only; point at the field itself.
         if let Some(name) = message.strip_prefix("missing field `").and_then(|m| m.split('`').next()) {
             pointer = format!("{pointer}/{name}");
         }
         FieldError::new(pointer, message)
     })
+}
+
+/// A range rule's message with the field's unit (from the spec schema's docs, `jobs::units`):
+/// "must be in [0.0001, 10]" → "must be between 0.0001 m and 10 m".
+fn with_units(k: &dyn DynKind, mut problem: Problem) -> Problem {
+    let units = crate::jobs::units::spec_units(k);
+    for e in &mut problem.errors {
+        let Some(unit) = crate::jobs::units::unit_at(units, &e.path).filter(|u| *u != "1") else { continue };
+        if let Some(range) = e.message.strip_prefix("must be in [").and_then(|r| r.strip_suffix(']')) {
+            if let Some((lo, hi)) = range.split_once(", ") {
+                e.message = format!("must be between {lo} {unit} and {hi} {unit}");
+            }
+        }
+    }
+    problem
+}
+
+/// serde's message in an engineer's words: "expected a number", not "expected f64".
+fn plain_words(message: &str) -> String {
+    const WORDS: &[(&str, &str)] = &[
+        ("expected f64", "expected a number"),
+        ("expected f32", "expected a number"),
+        ("expected usize", "expected a whole number ≥ 0"),
+        ("expected u64", "expected a whole number ≥ 0"),
+        ("expected u32", "expected a whole number ≥ 0"),
+        ("expected u16", "expected a whole number ≥ 0"),
+        ("expected u8", "expected a whole number ≥ 0"),
+        ("expected i64", "expected a whole number"),
+        ("expected i32", "expected a whole number"),
+        ("expected a sequence", "expected a list [ … ]"),
+        ("expected a map", "expected an object { … }"),
+        ("expected a boolean", "expected true or false"),
+        ("invalid type: floating point", "invalid type: the number"),
+        ("invalid type: integer", "invalid type: the number"),
+        ("invalid type: sequence", "invalid type: a list"),
+        ("invalid type: map", "invalid type: an object"),
+    ];
+    let mut out = message.to_string();
+    for (from, to) in WORDS {
+        out = out.replace(from, to);
+    }
+    // "expected struct FooSpec" → "expected an object".
+    if let Some(i) = out.find("expected struct ") {
+        let end = out[i + 16..].find(|c: char| !c.is_alphanumeric() && c != '_').map_or(out.len(), |j| i + 16 + j);
+        out.replace_range(i..end, "expected an object { … }");
+    }
+    out
 }
 
 fn path_to_pointer(path: &serde_path_to_error::Path) -> String {

@@ -214,3 +214,30 @@ fn no_example_draws_a_warning() {
     }
     assert!(warned.is_empty(), "{}", warned.join("\n"));
 }
+
+/// Errors in an engineer's words: "a number", not "f64"; ranges with the field's unit.
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn error_messages_say_number_and_units() {
+    let s = start().await;
+    let mut bad = hertz(0.0255, 5000.0);
+    bad["spec"]["load"] = json!("five thousand");
+    let p = expect_problem(s.post_job(&bad).await, 422, "invalid_spec").await;
+    let m = p["errors"][0]["message"].as_str().unwrap();
+    assert!(m.contains("a number") && !m.contains("f64"), "{m}");
+    let (_, kinds) = s.get_json("/v1/kinds").await;
+    let mut cam = kinds["kinds"].as_array().unwrap().iter().find(|k| k["name"] == "cam_cycle").unwrap()["example"].clone();
+    cam["cam"]["profile"]["base_radius"] = json!(25.5);
+    let p = expect_problem(s.post_job(&json!({"kind": "cam_cycle", "spec": cam})).await, 422, "invalid_spec").await;
+    let e = p["errors"].as_array().unwrap().iter().find(|e| e["path"] == "/spec/cam/profile/base_radius").unwrap_or_else(|| panic!("{p}"));
+    assert_eq!(e["message"], "must be between 0.0001 m and 10 m", "{p}");
+    s.stop().await;
+}
+
+/// `tribod run` of a file that is not there says so (not "malformed JSON").
+#[test]
+fn run_of_a_missing_file_says_it_cannot_read_it() {
+    let out = std::process::Command::new(env!("CARGO_BIN_EXE_tribod")).args(["run", "no-such-spec.json"]).output().unwrap();
+    assert_eq!(out.status.code(), Some(2));
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(err.contains("cannot read the spec file no-such-spec.json") && !err.contains("malformed_json"), "{err}");
+}
