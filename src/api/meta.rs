@@ -44,6 +44,9 @@ pub struct KindView {
     /// but angles in degrees (`°`), speeds in `rpm` and running times in hours (`h`) where the
     /// field name says so.
     pub result_units: std::collections::BTreeMap<String, String>,
+    /// The figures an engineer checks first (JSON pointers into the result, most important
+    /// first; a pointer may be absent from a result that did not compute it).
+    pub key_figures: Vec<String>,
 }
 
 /// The kinds this server runs.
@@ -73,6 +76,7 @@ pub async fn list_kinds() -> Json<KindList> {
                 spec_schema: format!("#/components/schemas/{spec}"),
                 result_schema: format!("#/components/schemas/{result}"),
                 result_units: crate::jobs::units::result_units(*k).clone(),
+                key_figures: k.key_figures().iter().map(|p| p.to_string()).collect(),
             }
         })
         .collect();

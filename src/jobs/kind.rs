@@ -288,6 +288,9 @@ pub trait Kind: Send + Sync + 'static {
     /// Result fields that are tables, servable as CSV (`?table=` picks one; first is default).
     /// A table is an object of equal-length arrays (columnar) or an array of flat objects.
     const TABLES: &'static [&'static str] = &[];
+    /// The figures an engineer checks first (JSON pointers into the result, most important
+    /// first): the dashboard's key-results card, `GET /v1/kinds` `key_figures`.
+    const KEY_FIGURES: &'static [&'static str] = &[];
 
     /// The payload. Derive `Deserialize` with `#[serde(deny_unknown_fields)]` and defaults.
     /// Every field documented with its unit (doc comments become the OpenAPI description).
@@ -352,6 +355,7 @@ pub trait DynKind: Send + Sync {
     fn solver_version(&self) -> &'static str;
     fn description(&self) -> &'static str;
     fn tables(&self) -> &'static [&'static str];
+    fn key_figures(&self) -> &'static [&'static str];
     fn example(&self) -> Value;
     fn outputs(&self) -> &'static [OutputInfo];
     /// OpenAPI component names of the spec and output schemas.
@@ -401,6 +405,9 @@ impl<K: Kind> DynKind for Registered<K> {
     }
     fn tables(&self) -> &'static [&'static str] {
         K::TABLES
+    }
+    fn key_figures(&self) -> &'static [&'static str] {
+        K::KEY_FIGURES
     }
     fn example(&self) -> Value {
         K::example()

@@ -241,3 +241,15 @@ fn run_of_a_missing_file_says_it_cannot_read_it() {
     let err = String::from_utf8_lossy(&out.stderr);
     assert!(err.contains("cannot read the spec file no-such-spec.json") && !err.contains("malformed_json"), "{err}");
 }
+
+/// Every kind's key figures point at numeric (or pass/fail) fields its result documents.
+#[test]
+fn key_figures_point_at_documented_fields() {
+    for k in registry::KINDS.iter() {
+        let units = tribod::jobs::units::result_units(*k);
+        for p in k.key_figures() {
+            assert!(units.contains_key(*p) || p.ends_with("/pass"), "{}: key figure {p} is not a documented numeric field", k.name());
+        }
+        assert!(k.name() == "sweep" || k.key_figures().len() >= 3, "{}: no key figures", k.name());
+    }
+}

@@ -258,6 +258,7 @@ impl Kind for BearingOptimisation {
         L4/L9/L27 array with the weighted-sum score of eq. (19), main effects and S/N ratios, then a \
         continuous Nelder–Mead search over height and length fraction for each profile order.";
     const TABLES: &'static [&'static str] = &["runs", "main_effects"];
+    const KEY_FIGURES: &'static [&'static str] = &["/best_run", "/best_levels/design/score", "/best_levels/design/min_film", "/continuous/design/score", "/continuous/design/min_film", "/baseline/score", "/baseline/min_film"];
     type Spec = OptimisationSpec;
     type Output = OptimisationResult;
 

@@ -230,6 +230,7 @@ impl Kind for CamPoint {
     const DESCRIPTION: &'static str = "Cam–roller contact at a fixed operating point: roller slip against \
         roller–pin friction, minimum cam–roller friction to drive the roller, gross-sliding threshold (seed 001).";
     const TABLES: &'static [&'static str] = &["rows"];
+    const KEY_FIGURES: &'static [&'static str] = &["/summary/film_min", "/summary/film_central", "/summary/max_pressure", "/summary/pressure_spike", "/summary/lambda", "/summary/min_cam_roller_friction", "/summary/first_sliding_pin_friction"];
     type Spec = CamPointSpec;
     type Output = CamPointResult;
 

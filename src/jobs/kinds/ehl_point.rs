@@ -358,6 +358,7 @@ impl Kind for EhlPoint {
         contact on a 2-D grid: central and minimum film, pressure spike, edge pressure peak, \
         traction, temperatures, optional pressure/film profile.";
     const TABLES: &'static [&'static str] = &["profile"];
+    const KEY_FIGURES: &'static [&'static str] = &["/central_film", "/min_film", "/max_pressure", "/pressure_spike/pressure", "/edge_pressure_peak", "/friction_coefficient", "/thermal/film_temperature_max"];
     type Spec = EhlPointSpec;
     type Output = EhlPointResult;
 

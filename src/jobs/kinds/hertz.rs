@@ -202,6 +202,7 @@ impl Kind for Hertz {
     const DESCRIPTION: &'static str = "Dry Hertzian line or point contact: contact size, peak \
         pressure and sub-surface stress maxima (closed forms, Johnson's Contact Mechanics).";
     const TABLES: &'static [&'static str] = &["stress_profile"];
+    const KEY_FIGURES: &'static [&'static str] = &["/max_pressure", "/half_width", "/mean_pressure", "/max_shear/value", "/max_shear/depth", "/max_von_mises/value", "/approach"];
     type Spec = HertzSpec;
     type Output = HertzResult;
 

@@ -165,6 +165,7 @@ impl Kind for RoughContact {
     const DESCRIPTION: &'static str = "Dry contact of a rough surface pair (generated Gaussian or measured heights): \
         the asperity pressure–gap curve of mixed lubrication with contact and plastic area fractions (seed 001 eq. 8–12).";
     const TABLES: &'static [&'static str] = &["rows"];
+    const KEY_FIGURES: &'static [&'static str] = &["/surface/rq", "/surface/rms_slope", "/contact_modulus"];
     type Spec = RoughContactSpec;
     type Output = RoughContactResult;
 

@@ -67,6 +67,7 @@ impl Kind for BearingKind {
         heat balance (effective temperature, ISO VG/Walther viscosity), operating-limit checks and \
         stiffness/damping coefficients (linearised Reynolds) with the rigid-rotor stability threshold.";
     const TABLES: &'static [&'static str] = &["field"];
+    const KEY_FIGURES: &'static [&'static str] = &["/eccentricity_ratio", "/attitude_angle_deg", "/min_film", "/max_pressure", "/thermal/effective_temperature", "/power_loss", "/friction_coefficient", "/side_flow", "/checks/pass"];
     type Spec = BearingSpec;
     type Output = BearingResult;
 

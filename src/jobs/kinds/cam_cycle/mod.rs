@@ -42,6 +42,7 @@ impl Kind for CamCycle {
         (fidelity fast: closed forms; accurate: numerical line-contact EHL with squeeze at every angle; auto: \
         closed forms where their estimated error is within tolerance).";
     const TABLES: &'static [&'static str] = &["series", "run_up", "fields"];
+    const KEY_FIGURES: &'static [&'static str] = &["/summary/min_film", "/summary/min_lambda", "/summary/max_hertz_pressure", "/summary/max_subsurface_shear", "/summary/max_abs_slide_roll_ratio", "/summary/mean_power_loss", "/summary/max_flash_temperature", "/summary/separation_duration", "/summary/seating_velocity"];
     type Spec = CamCycleSpec;
     type Output = CamCycleResult;
 

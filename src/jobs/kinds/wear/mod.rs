@@ -63,6 +63,7 @@ impl Kind for Wear {
     const DESCRIPTION: &'static str = "Cam wear over running hours: Archard wear over the cam cycle (asperity load share in \
         mixed lubrication, roller slip) with worn-profile evolution, or seed 004's method (model irgashev).";
     const TABLES: &'static [&'static str] = &["series", "rows", "history", "follower_face"];
+    const KEY_FIGURES: &'static [&'static str] = &["/summary/max_wear_depth", "/summary/max_wear_angle_deg", "/summary/valve_lift_loss", "/summary/valve_lift_loss_lash_adjusted", "/summary/hours_to_limit", "/summary/final_min_film", "/summary/final_max_pressure"];
     type Spec = WearSpec;
     type Output = WearResult;
 
