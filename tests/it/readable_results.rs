@@ -40,6 +40,7 @@ fn units_are_read_from_the_field_docs_and_names() {
     let units = tribod::jobs::units::result_units(cam);
     assert_eq!(units.get("/series/film_min").map(String::as_str), Some("m"));
     assert_eq!(units.get("/series/angle_deg").map(String::as_str), Some("°"));
+    assert_eq!(units.get("/series/cam_curvature").map(String::as_str), Some("1/m"));
     assert_eq!(unit_at(units, "/series/film_min/200"), Some("m"));
     let bearing = tribod::jobs::units::result_units(registry::find("bearing").unwrap());
     assert_eq!(bearing.get("/eccentricity_ratio").map(String::as_str), Some("1"));
