@@ -75,7 +75,7 @@ pub async fn list_kinds() -> Json<KindList> {
                 tables: k.tables().iter().map(|t| t.to_string()).collect(),
                 spec_schema: format!("#/components/schemas/{spec}"),
                 result_schema: format!("#/components/schemas/{result}"),
-                result_units: crate::jobs::units::result_units(*k).clone(),
+                result_units: k.result_units().clone(),
                 key_figures: k.key_figures().iter().map(|p| p.to_string()).collect(),
             }
         })

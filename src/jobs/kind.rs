@@ -10,6 +10,7 @@ use crate::physics::{Observer, SolveError};
 use crate::problem::{ErrorCode, FieldError, Problem};
 use serde::{de::DeserializeOwned, Serialize};
 use serde_json::Value;
+use std::collections::BTreeMap;
 use utoipa::openapi::{schema::Schema, RefOr};
 use utoipa::ToSchema;
 
@@ -378,6 +379,30 @@ pub trait DynKind: Send + Sync {
     }
 }
 
+/// Units of a kind's fields, read from its schemas' doc comments (`jobs::units`).
+impl dyn DynKind + '_ {
+    /// The kind's schemas and the names of its spec and result roots.
+    pub fn documents(&self) -> crate::jobs::units::Documents {
+        let mut schemas = Vec::new();
+        self.schemas(&mut schemas);
+        let (spec, result) = self.schema_names();
+        crate::jobs::units::Documents { schemas, spec, result }
+    }
+    /// Every numeric result field (or, `spec`, spec field) and its unit, `None` where the doc
+    /// gives none (a test holds results to having one).
+    pub fn documented_units(&self, spec: bool) -> BTreeMap<String, Option<&'static str>> {
+        crate::jobs::units::walk(self.documents(), spec)
+    }
+    /// `result_units` of `GET /v1/kinds`: JSON pointer → unit.
+    pub fn result_units(&self) -> &'static BTreeMap<String, String> {
+        crate::jobs::units::cached(self.name(), false, || self.documents())
+    }
+    /// The units of the spec's fields (a sweep's parameters, range messages).
+    pub fn spec_units(&self) -> &'static BTreeMap<String, String> {
+        crate::jobs::units::cached(self.name(), true, || self.documents())
+    }
+}
+
 /// The `DynKind` of a `Kind` type.
 pub struct Registered<K: Kind>(std::marker::PhantomData<K>);
 
@@ -545,7 +570,7 @@ pub fn parse_value<T: DeserializeOwned>(value: &Value) -> Result<T, FieldError> 
 /// A range rule's message with the field's unit (from the spec schema's docs, `jobs::units`):
 /// "must be in [0.0001, 10]" → "must be between 0.0001 m and 10 m".
 fn with_units(k: &dyn DynKind, mut problem: Problem) -> Problem {
-    let units = crate::jobs::units::spec_units(k);
+    let units = k.spec_units();
     for e in &mut problem.errors {
         let Some(unit) = crate::jobs::units::unit_at(units, &e.path).filter(|u| *u != "1") else { continue };
         if let Some(range) = e.message.strip_prefix("must be in [").and_then(|r| r.strip_suffix(']')) {

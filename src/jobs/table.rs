@@ -71,7 +71,7 @@ pub fn units_of(k: Option<&dyn crate::jobs::kind::DynKind>, result: &Value, tabl
         return Box::new(move |column: &str| own.get(column).and_then(Value::as_str).filter(|u| *u != "1").map(str::to_string));
     }
     let Some(k) = k else { return Box::new(|_: &str| None) };
-    let units = crate::jobs::units::result_units(k);
+    let units = k.result_units();
     let table = table.to_string();
     Box::new(move |column: &str| crate::jobs::units::column_unit(units, &table, column).map(str::to_string))
 }

@@ -6,7 +6,7 @@
 //! `*` stands for any index of a row table); CSV headers carry the units (`film_min [m]`).
 //! A test holds every numeric field of every kind to a unit.
 
-use super::kind::DynKind;
+use utoipa::openapi::{RefOr, Schema};
 use serde_json::Value;
 use std::collections::{BTreeMap, HashMap};
 use std::sync::OnceLock;
@@ -88,15 +88,20 @@ fn unit_in(description: &str) -> Option<&'static str> {
     best.map(|(_, u)| u)
 }
 
+/// The schemas of a kind (its spec's and result's and everything they reference) and the
+/// names of the two roots, as `DynKind::documents` gives them.
+pub struct Documents {
+    pub schemas: Vec<(String, RefOr<Schema>)>,
+    pub spec: String,
+    pub result: String,
+}
+
 /// Every numeric field of a kind's result (or, `spec`, of its spec): JSON pointer → unit
 /// (`None`: undocumented).
-pub fn walk(k: &dyn DynKind, spec: bool) -> BTreeMap<String, Option<&'static str>> {
-    let mut schemas = Vec::new();
-    k.schemas(&mut schemas);
-    let by_name: HashMap<String, Value> = schemas.into_iter().map(|(n, s)| (n, serde_json::to_value(s).unwrap_or(Value::Null))).collect();
-    let (spec_name, result_name) = k.schema_names();
+pub fn walk(docs: Documents, spec: bool) -> BTreeMap<String, Option<&'static str>> {
+    let by_name: HashMap<String, Value> = docs.schemas.into_iter().map(|(n, s)| (n, serde_json::to_value(s).unwrap_or(Value::Null))).collect();
     let mut out = BTreeMap::new();
-    if let Some(root) = by_name.get(if spec { &spec_name } else { &result_name }) {
+    if let Some(root) = by_name.get(if spec { &docs.spec } else { &docs.result }) {
         fields(root, "", &by_name, &mut out, 0);
     }
     out
@@ -221,22 +226,14 @@ fn describe(p: &Value, by_name: &HashMap<String, Value>) -> String {
     own.or(inner).or_else(|| resolve(p, by_name).get("description").and_then(Value::as_str).map(str::to_string)).unwrap_or_default()
 }
 
-/// A kind's `result_units` (the documented fields), computed once per kind.
-pub fn result_units(k: &dyn DynKind) -> &'static BTreeMap<String, String> {
-    cached(k, false)
-}
-
-/// The units of a kind's spec fields (what a sweep's parameters are in).
-pub fn spec_units(k: &dyn DynKind) -> &'static BTreeMap<String, String> {
-    cached(k, true)
-}
-
-fn cached(k: &dyn DynKind, spec: bool) -> &'static BTreeMap<String, String> {
+/// The documented units of kind `kind`'s result (or, `spec`, of its spec), computed once per
+/// kind from `docs` (`DynKind::result_units`, `DynKind::spec_units`).
+pub fn cached(kind: &str, spec: bool, docs: impl FnOnce() -> Documents) -> &'static BTreeMap<String, String> {
     type Cache = std::sync::Mutex<HashMap<(String, bool), &'static BTreeMap<String, String>>>;
     static CACHE: OnceLock<Cache> = OnceLock::new();
     let mut map = CACHE.get_or_init(Default::default).lock().unwrap_or_else(|e| e.into_inner());
-    map.entry((k.name().to_string(), spec))
-        .or_insert_with(|| Box::leak(Box::new(walk(k, spec).into_iter().filter_map(|(p, u)| u.map(|u| (p, u.to_string()))).collect())))
+    map.entry((kind.to_string(), spec))
+        .or_insert_with(|| Box::leak(Box::new(walk(docs(), spec).into_iter().filter_map(|(p, u)| u.map(|u| (p, u.to_string()))).collect())))
 }
 
 /// The unit at a JSON pointer into a result or spec: the field's own, or, for an element of a

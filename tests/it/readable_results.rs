@@ -6,13 +6,13 @@ use crate::common::*;
 use serde_json::{json, Value};
 use std::time::Duration;
 use tribod::jobs::registry;
-use tribod::jobs::units::{unit_at, unit_of, walk};
+use tribod::jobs::units::{unit_at, unit_of};
 
 #[test]
 fn every_numeric_result_field_of_every_kind_has_a_unit() {
     let mut missing = Vec::new();
     for k in registry::KINDS.iter() {
-        let fields = walk(*k, false);
+        let fields = k.documented_units(false);
         assert!(k.name() == "sweep" || fields.len() >= 3, "{}: {} numeric fields found", k.name(), fields.len());
         for (pointer, unit) in fields {
             if unit.is_none() {
@@ -37,12 +37,12 @@ fn units_are_read_from_the_field_docs_and_names() {
     assert_eq!(unit_of("mystery", "Something."), None);
     // Kinds' tables as the service lists them.
     let cam = registry::find("cam_cycle").unwrap();
-    let units = tribod::jobs::units::result_units(cam);
+    let units = cam.result_units();
     assert_eq!(units.get("/series/film_min").map(String::as_str), Some("m"));
     assert_eq!(units.get("/series/angle_deg").map(String::as_str), Some("°"));
     assert_eq!(units.get("/series/cam_curvature").map(String::as_str), Some("1/m"));
     assert_eq!(unit_at(units, "/series/film_min/200"), Some("m"));
-    let bearing = tribod::jobs::units::result_units(registry::find("bearing").unwrap());
+    let bearing = registry::find("bearing").unwrap().result_units();
     assert_eq!(bearing.get("/eccentricity_ratio").map(String::as_str), Some("1"));
 }
 
@@ -247,7 +247,7 @@ fn run_of_a_missing_file_says_it_cannot_read_it() {
 #[test]
 fn key_figures_point_at_documented_fields() {
     for k in registry::KINDS.iter() {
-        let units = tribod::jobs::units::result_units(*k);
+        let units = k.result_units();
         for p in k.key_figures() {
             assert!(units.contains_key(*p) || p.ends_with("/pass"), "{}: key figure {p} is not a documented numeric field", k.name());
         }

@@ -111,8 +111,8 @@ fn quantity_column(pointer: &str, first: Option<&Value>) -> String {
 /// The units of the sweep's columns: parameters from the case kind's spec units, quantities
 /// from its result units (a series value has its series' unit).
 fn column_units(k: &dyn crate::jobs::kind::DynKind, spec: &SweepSpec, quantities: &[String], names: &[String]) -> std::collections::BTreeMap<String, String> {
-    let spec_units = crate::jobs::units::spec_units(k);
-    let result_units = crate::jobs::units::result_units(k);
+    let spec_units = k.spec_units();
+    let result_units = k.result_units();
     let mut out = std::collections::BTreeMap::new();
     for p in &spec.parameters {
         if let Some(u) = crate::jobs::units::unit_at(spec_units, &p.path) {
