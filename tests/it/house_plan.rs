@@ -506,13 +506,10 @@ fn no_file_is_over_800_lines() {
 /// Functions still over the cap when the rule was written (issue 41), with their length then: each
 /// may only shrink, and leaves this list when it is under the cap. No other function may exceed it.
 const LONG_FUNCTIONS_LEFT: &[(&str, &str, usize)] = &[
-    ("crates/physics/src/cam/cycle/context.rs", "march_roller", 265),
-    ("crates/physics/src/cam/cycle/run.rs", "run_cycle", 289),
     ("crates/physics/src/ehl/thermal/energy.rs", "energy_iterated", 561),
     ("crates/physics/src/journal/analysis.rs", "position", 194),
     ("crates/physics/src/journal/balance.rs", "load_balance", 184),
     ("crates/physics/src/journal/figures.rs", "figures", 167),
-    ("crates/physics/src/valvetrain/integrator.rs", "integrate", 257),
 ];
 
 /// No function over 150 lines outside test code, but for the ones listed above, which may only

@@ -191,10 +191,9 @@ pub fn integrate<S: System>(
     mut on_event: impl FnMut(Event),
 ) -> Result<(Vec<f64>, Stats), SolveError> {
     let n = sys.dim();
-    let scale = sys.scale().to_vec();
     let tol = control.tolerance;
     let ne = sys.events();
-    let mut stats = Stats::default();
+    let mut stages = Stages::new(sys);
     let mut t = t0;
     let mut y = y0.to_vec();
     let mut f0 = vec![0.0; n];
@@ -203,49 +202,152 @@ pub fn integrate<S: System>(
     sys.event_values(t, &y, &mut g0);
     let mut h = control.first_step.min(control.max_step).min(t1 - t0);
     let mut next_sample = samples.partition_point(|&s| s <= t0);
-    let mut factor: Option<Factor> = None;
-    let mut jac = vec![0.0; n * n];
-    // Work arrays.
-    let (mut y2, mut y3, mut k2, mut k3) = (vec![0.0; n], vec![0.0; n], vec![0.0; n], vec![0.0; n]);
-    let (mut rhs, mut g1, mut tmp, mut err) = (vec![0.0; n], vec![0.0; ne], vec![0.0; n], vec![0.0; n]);
+    let mut w = Work::new(n, ne);
     let mut retakes = 0;
     let mut steps = 0usize;
 
-    // Factorise I − d h J in `regime` unless cached.
-    let mut ensure = |factor: &mut Option<Factor>, h: f64, regime: u32, stats: &mut Stats| -> Result<(), SolveError> {
-        if factor.as_ref().is_some_and(|f| f.h == h && f.regime == regime) {
+    while t < t1 {
+        steps += 1;
+        if steps > control.max_steps {
+            return Err(gave_up("valve-train integrator (step cap)", steps, h, tol));
+        }
+        let last = t + h >= t1 - 1e-12 * t1.abs().max(1.0);
+        let hh = if last { t1 - t } else { h };
+        if !(hh > 1e-14 * t1.abs().max(1e-3)) {
+            return Err(gave_up("valve-train integrator (step size underflow)", steps, hh, tol));
+        }
+        if !stages.take_step(t, &y, &f0, hh, &mut w)? {
+            stages.stats.rejected += 1;
+            h = hh * 0.25;
+            continue;
+        }
+        let norm = stages.error_norm(tol, &y, &f0, hh, &mut w);
+        if !norm.is_finite() {
+            stages.stats.rejected += 1;
+            h = hh * 0.25;
+            continue;
+        }
+        let ratio = (0.9 * norm.max(1e-10).powf(-1.0 / 3.0)).clamp(0.2, 4.0);
+        if norm > 1.0 {
+            stages.stats.rejected += 1;
+            h = hh * ratio.min(0.9);
+            continue;
+        }
+        // Events in the step.
+        sys.event_values(t + hh, &w.y3, &mut w.g1);
+        let span = Span { t, h: hh, y0: &y, f0: &f0, y1: &w.y3, f1: &w.k3 };
+        if let Some((_, s)) = span.first_switch(sys, &g0, &w.g1, &mut w.tmp) {
+            // A switch inside the step: retake the step to end just past it.
+            if s < 0.99 && s * hh > 1e-12 * t1.abs().max(1e-3) && retakes < 3 {
+                retakes += 1;
+                h = s * hh * (1.0 + 1e-6);
+                continue;
+            }
+        }
+        retakes = 0;
+        // Accept.
+        stages.stats.accepted += 1;
+        span.report_switches(sys, &g0, &w.g1, &mut w.tmp, &mut on_event);
+        let t_new = if last { t1 } else { t + hh };
+        let end = if last { t1 + 1e-9 * (t1 - t0).abs() } else { t_new };
+        while next_sample < samples.len() && samples[next_sample] <= end {
+            let s = ((samples[next_sample] - t) / hh).clamp(0.0, 1.0);
+            span.state(s, &mut w.tmp);
+            on_sample(next_sample, samples[next_sample], &w.tmp);
+            next_sample += 1;
+        }
+        t = t_new;
+        y.copy_from_slice(&w.y3);
+        // FSAL: the last stage's derivative is f at the new point.
+        f0.copy_from_slice(&w.k3);
+        g0.copy_from_slice(&w.g1);
+        // Step size: keep h (and its factorisation) unless the controller wants a real change.
+        let grow = if (1.0..=1.25).contains(&ratio) { 1.0 } else { ratio };
+        h = (hh * grow).min(control.max_step);
+        if last {
+            h = hh.max(h.min(control.max_step));
+        }
+        stages.stats.last_step = h;
+    }
+    Ok((y, stages.stats))
+}
+
+/// The integration gave up (`residual`: the step size at that point).
+fn gave_up(solver: &'static str, steps: usize, residual: f64, tolerance: f64) -> SolveError {
+    SolveError::NotConverged { solver, iterations: steps as u32, residual, tolerance, history: vec![] }
+}
+
+/// Work arrays of one step.
+struct Work {
+    /// Stage values and derivatives (stage 2 at `t + γh`, stage 3 at `t + h`).
+    y2: Vec<f64>,
+    y3: Vec<f64>,
+    k2: Vec<f64>,
+    k3: Vec<f64>,
+    /// Right-hand side of a stage equation.
+    rhs: Vec<f64>,
+    /// Event functions at the end of the step.
+    g1: Vec<f64>,
+    /// Scratch (Newton corrections, interpolated states).
+    tmp: Vec<f64>,
+    /// Error estimate.
+    err: Vec<f64>,
+}
+
+impl Work {
+    fn new(n: usize, ne: usize) -> Self {
+        let (y2, y3, k2, k3) = (vec![0.0; n], vec![0.0; n], vec![0.0; n], vec![0.0; n]);
+        let (rhs, g1, tmp, err) = (vec![0.0; n], vec![0.0; ne], vec![0.0; n], vec![0.0; n]);
+        Work { y2, y3, k2, k3, rhs, g1, tmp, err }
+    }
+}
+
+/// The implicit stages of TR-BDF2: the system, the factorisation of `I − d h J` for the last
+/// `(h, regime)`, and the counters.
+struct Stages<'s, S: System> {
+    sys: &'s S,
+    n: usize,
+    scale: Vec<f64>,
+    factor: Option<Factor>,
+    jac: Vec<f64>,
+    stats: Stats,
+}
+
+impl<'s, S: System> Stages<'s, S> {
+    fn new(sys: &'s S) -> Self {
+        let n = sys.dim();
+        Stages { sys, n, scale: sys.scale().to_vec(), factor: None, jac: vec![0.0; n * n], stats: Stats::default() }
+    }
+
+    /// Factorise I − d h J in `regime` unless cached.
+    fn ensure(&mut self, h: f64, regime: u32) -> Result<(), SolveError> {
+        if self.factor.as_ref().is_some_and(|f| f.h == h && f.regime == regime) {
             return Ok(());
         }
-        sys.jacobian(regime, &mut jac);
-        let mut m: Vec<f64> = jac.iter().map(|j| -D * h * j).collect();
+        let n = self.n;
+        self.sys.jacobian(regime, &mut self.jac);
+        let mut m: Vec<f64> = self.jac.iter().map(|j| -D * h * j).collect();
         for i in 0..n {
             m[i * n + i] += 1.0;
         }
         let lu = Lu::new(n, m).ok_or_else(|| SolveError::NonFinite { quantity: "valve-train iteration matrix".into() })?;
-        stats.factorisations += 1;
-        *factor = Some(Factor { h, regime, lu });
+        self.stats.factorisations += 1;
+        self.factor = Some(Factor { h, regime, lu });
         Ok(())
-    };
+    }
 
-    // Solve the stage equation Y − d h f(ts, Y) = rhs from the guess in `yy`; the stage
-    // derivative goes to `kk`. `false`: no convergence.
-    let mut stage = |factor: &mut Option<Factor>,
-                     ts: f64,
-                     h: f64,
-                     rhs: &[f64],
-                     yy: &mut [f64],
-                     kk: &mut [f64],
-                     tmp: &mut [f64],
-                     stats: &mut Stats|
-     -> Result<bool, SolveError> {
+    /// Solve the stage equation Y − d h f(ts, Y) = rhs from the guess in `yy`; the stage
+    /// derivative goes to `kk`. `false`: no convergence.
+    fn stage(&mut self, ts: f64, h: f64, rhs: &[f64], yy: &mut [f64], kk: &mut [f64], tmp: &mut [f64]) -> Result<bool, SolveError> {
+        let (sys, n) = (self.sys, self.n);
         let mut regime = sys.regime(ts, yy);
         for _ in 0..8 {
-            ensure(factor, h, regime, stats)?;
+            self.ensure(h, regime)?;
             sys.rhs(ts, yy, kk);
             for i in 0..n {
                 tmp[i] = rhs[i] + D * h * kk[i] - yy[i];
             }
-            factor.as_ref().unwrap().lu.solve(tmp);
+            self.factor.as_ref().unwrap().lu.solve(tmp);
             for i in 0..n {
                 yy[i] += tmp[i];
             }
@@ -265,177 +367,143 @@ pub fn integrate<S: System>(
             regime = after;
         }
         Ok(false)
-    };
+    }
 
-    while t < t1 {
-        steps += 1;
-        if steps > control.max_steps {
-            return Err(SolveError::NotConverged {
-                solver: "valve-train integrator (step cap)",
-                iterations: steps as u32,
-                residual: h,
-                tolerance: tol,
-                history: vec![],
-            });
-        }
-        let last = t + h >= t1 - 1e-12 * t1.abs().max(1.0);
-        let hh = if last { t1 - t } else { h };
-        if !(hh > 1e-14 * t1.abs().max(1e-3)) {
-            return Err(SolveError::NotConverged {
-                solver: "valve-train integrator (step size underflow)",
-                iterations: steps as u32,
-                residual: hh,
-                tolerance: tol,
-                history: vec![],
-            });
-        }
+    /// Both stages of a step of size `hh` from `(t, y)` with `f0 = f(t, y)`: the trapezoid to
+    /// `t + γh`, then BDF2 to `t + h` (into `w.y3`, `w.k3`). `false`: a stage did not converge.
+    fn take_step(&mut self, t: f64, y: &[f64], f0: &[f64], hh: f64, w: &mut Work) -> Result<bool, SolveError> {
+        let n = self.n;
         // Stage 2 (trapezoid to t + γh).
         for i in 0..n {
-            rhs[i] = y[i] + D * hh * f0[i];
-            y2[i] = y[i] + GAMMA * hh * f0[i];
+            w.rhs[i] = y[i] + D * hh * f0[i];
+            w.y2[i] = y[i] + GAMMA * hh * f0[i];
         }
-        let ok2 = stage(&mut factor, t + GAMMA * hh, hh, &rhs, &mut y2, &mut k2, &mut tmp, &mut stats)?;
+        let ok2 = self.stage(t + GAMMA * hh, hh, &w.rhs, &mut w.y2, &mut w.k2, &mut w.tmp)?;
         let ok3 = ok2 && {
             for i in 0..n {
-                rhs[i] = y[i] + W * hh * (f0[i] + k2[i]);
-                y3[i] = y[i] + (y2[i] - y[i]) / GAMMA;
+                w.rhs[i] = y[i] + W * hh * (f0[i] + w.k2[i]);
+                w.y3[i] = y[i] + (w.y2[i] - y[i]) / GAMMA;
             }
-            stage(&mut factor, t + hh, hh, &rhs, &mut y3, &mut k3, &mut tmp, &mut stats)?
+            self.stage(t + hh, hh, &w.rhs, &mut w.y3, &mut w.k3, &mut w.tmp)?
         };
-        if !ok3 {
-            stats.rejected += 1;
-            h = hh * 0.25;
-            continue;
-        }
-        // Error estimate, filtered.
+        Ok(ok3)
+    }
+
+    /// Weighted RMS norm of the step's error estimate (filtered through the last factorisation)
+    /// over the controlled components; relative tolerance `tol`.
+    fn error_norm(&self, tol: f64, y: &[f64], f0: &[f64], hh: f64, w: &mut Work) -> f64 {
         let (e1, e2, e3) = (W - (1.0 - W) / 3.0, W - (3.0 * W + 1.0) / 3.0, D - D / 3.0);
-        for i in 0..n {
-            err[i] = hh * (e1 * f0[i] + e2 * k2[i] + e3 * k3[i]);
+        for (i, err) in w.err.iter_mut().enumerate() {
+            *err = hh * (e1 * f0[i] + e2 * w.k2[i] + e3 * w.k3[i]);
         }
-        if let Some(f) = factor.as_ref() {
-            f.lu.solve(&mut err);
+        if let Some(f) = self.factor.as_ref() {
+            f.lu.solve(&mut w.err);
         }
         let mut norm: f64 = 0.0;
         let mut count = 0;
-        for i in 0..n {
-            if sys.controlled(i) {
-                let w = tol * (scale[i] + y[i].abs().max(y3[i].abs()));
-                norm += (err[i] / w).powi(2);
+        for (i, (yi, err)) in y.iter().zip(&w.err).enumerate() {
+            if self.sys.controlled(i) {
+                let wi = tol * (self.scale[i] + yi.abs().max(w.y3[i].abs()));
+                norm += (err / wi).powi(2);
                 count += 1;
             }
         }
-        let norm = (norm / count.max(1) as f64).sqrt();
-        if !norm.is_finite() {
-            stats.rejected += 1;
-            h = hh * 0.25;
-            continue;
-        }
-        let ratio = (0.9 * norm.max(1e-10).powf(-1.0 / 3.0)).clamp(0.2, 4.0);
-        if norm > 1.0 {
-            stats.rejected += 1;
-            h = hh * ratio.min(0.9);
-            continue;
-        }
-        // Events in the step.
-        sys.event_values(t + hh, &y3, &mut g1);
+        (norm / count.max(1) as f64).sqrt()
+    }
+}
+
+/// A step `[t, t + h]` from `(y0, f0)` to `(y1, f1)` with its dense output.
+struct Span<'v> {
+    t: f64,
+    h: f64,
+    y0: &'v [f64],
+    f0: &'v [f64],
+    y1: &'v [f64],
+    f1: &'v [f64],
+}
+
+impl Span<'_> {
+    /// Interpolated state at fraction `s` of the step.
+    fn state(&self, s: f64, out: &mut [f64]) {
+        hermite(self.y0, self.f0, self.y1, self.f1, self.h, s, out);
+    }
+
+    /// Event function `e` on the interpolated state at fraction `s` (`tmp` receives the state).
+    fn event<S: System>(&self, sys: &S, e: usize, s: f64, tmp: &mut [f64]) -> f64 {
+        self.state(s, tmp);
+        let mut g = vec![0.0; sys.events()];
+        sys.event_values(self.t + s * self.h, tmp, &mut g);
+        g[e]
+    }
+
+    /// The earliest regime switch in the step (event functions `g0` at its start, `g1` at its
+    /// end): the event and the fraction of the step just past it.
+    fn first_switch<S: System>(&self, sys: &S, g0: &[f64], g1: &[f64], tmp: &mut [f64]) -> Option<(usize, f64)> {
         let mut first: Option<(usize, f64)> = None;
-        for e in 0..ne {
+        for e in 0..sys.events() {
             if sys.switches(e) && (g0[e] > 0.0) != (g1[e] > 0.0) {
-                // Illinois on the interpolated event function.
-                let value = |s: f64, tmp: &mut [f64]| -> f64 {
-                    hermite(&y, &f0, &y3, &k3, hh, s, tmp);
-                    let mut g = vec![0.0; ne];
-                    sys.event_values(t + s * hh, tmp, &mut g);
-                    g[e]
-                };
-                let (mut a, mut b) = (0.0, 1.0);
-                let (mut fa, mut fb) = (g0[e], g1[e]);
-                let mut side = 0;
-                for _ in 0..60 {
-                    let c = (a * fb - b * fa) / (fb - fa);
-                    let c = if c.is_finite() && c > a && c < b { c } else { 0.5 * (a + b) };
-                    let fc = value(c, &mut tmp);
-                    if (fc > 0.0) == (fa > 0.0) {
-                        a = c;
-                        fa = fc;
-                        if side == -1 {
-                            fb *= 0.5;
-                        }
-                        side = -1;
-                    } else {
-                        b = c;
-                        fb = fc;
-                        if side == 1 {
-                            fa *= 0.5;
-                        }
-                        side = 1;
-                    }
-                    if b - a < 1e-12 {
-                        break;
-                    }
-                }
+                let b = self.illinois(sys, e, g0[e], g1[e], tmp);
                 if first.is_none_or(|(_, s)| b < s) {
                     first = Some((e, b));
                 }
             }
         }
-        if let Some((_, s)) = first {
-            // A switch inside the step: retake the step to end just past it.
-            if s < 0.99 && s * hh > 1e-12 * t1.abs().max(1e-3) && retakes < 3 {
-                retakes += 1;
-                h = s * hh * (1.0 + 1e-6);
-                continue;
-            }
-        }
-        retakes = 0;
-        // Accept.
-        stats.accepted += 1;
-        {
-            for e in 0..ne {
-                if (g0[e] > 0.0) != (g1[e] > 0.0) {
-                    // Locate each switch of this step (usually one) for the caller.
-                    let (mut a, mut b) = (0.0, 1.0);
-                    for _ in 0..60 {
-                        let c = 0.5 * (a + b);
-                        hermite(&y, &f0, &y3, &k3, hh, c, &mut tmp);
-                        let mut g = vec![0.0; ne];
-                        sys.event_values(t + c * hh, &tmp, &mut g);
-                        if (g[e] > 0.0) == (g0[e] > 0.0) {
-                            a = c;
-                        } else {
-                            b = c;
-                        }
-                        if b - a < 1e-10 {
-                            break;
-                        }
-                    }
-                    hermite(&y, &f0, &y3, &k3, hh, b, &mut tmp);
-                    on_event(Event { index: e, time: t + b * hh, rising: g1[e] > 0.0, state: tmp.clone() });
-                }
-            }
-        }
-        let t_new = if last { t1 } else { t + hh };
-        let end = if last { t1 + 1e-9 * (t1 - t0).abs() } else { t_new };
-        while next_sample < samples.len() && samples[next_sample] <= end {
-            let s = ((samples[next_sample] - t) / hh).clamp(0.0, 1.0);
-            hermite(&y, &f0, &y3, &k3, hh, s, &mut tmp);
-            on_sample(next_sample, samples[next_sample], &tmp);
-            next_sample += 1;
-        }
-        t = t_new;
-        y.copy_from_slice(&y3);
-        // FSAL: the last stage's derivative is f at the new point.
-        f0.copy_from_slice(&k3);
-        g0.copy_from_slice(&g1);
-        // Step size: keep h (and its factorisation) unless the controller wants a real change.
-        let grow = if (1.0..=1.25).contains(&ratio) { 1.0 } else { ratio };
-        h = (hh * grow).min(control.max_step);
-        if last {
-            h = hh.max(h.min(control.max_step));
-        }
-        stats.last_step = h;
+        first
     }
-    Ok((y, stats))
+
+    /// Illinois on the interpolated event function `e` (`fa`, `fb`: its values at the step's
+    /// ends): the end of the final bracket just past the sign change.
+    fn illinois<S: System>(&self, sys: &S, e: usize, fa: f64, fb: f64, tmp: &mut [f64]) -> f64 {
+        let (mut a, mut b) = (0.0, 1.0);
+        let (mut fa, mut fb) = (fa, fb);
+        let mut side = 0;
+        for _ in 0..60 {
+            let c = (a * fb - b * fa) / (fb - fa);
+            let c = if c.is_finite() && c > a && c < b { c } else { 0.5 * (a + b) };
+            let fc = self.event(sys, e, c, tmp);
+            if (fc > 0.0) == (fa > 0.0) {
+                a = c;
+                fa = fc;
+                if side == -1 {
+                    fb *= 0.5;
+                }
+                side = -1;
+            } else {
+                b = c;
+                fb = fc;
+                if side == 1 {
+                    fa *= 0.5;
+                }
+                side = 1;
+            }
+            if b - a < 1e-12 {
+                break;
+            }
+        }
+        b
+    }
+
+    /// Locate each switch of this step (usually one) by bisection and report it to `on_event`.
+    fn report_switches<S: System>(&self, sys: &S, g0: &[f64], g1: &[f64], tmp: &mut [f64], on_event: &mut impl FnMut(Event)) {
+        for e in 0..sys.events() {
+            if (g0[e] > 0.0) != (g1[e] > 0.0) {
+                let (mut a, mut b) = (0.0, 1.0);
+                for _ in 0..60 {
+                    let c = 0.5 * (a + b);
+                    if (self.event(sys, e, c, tmp) > 0.0) == (g0[e] > 0.0) {
+                        a = c;
+                    } else {
+                        b = c;
+                    }
+                    if b - a < 1e-10 {
+                        break;
+                    }
+                }
+                self.state(b, tmp);
+                on_event(Event { index: e, time: self.t + b * self.h, rising: g1[e] > 0.0, state: tmp.to_vec() });
+            }
+        }
+    }
 }
 
 #[cfg(test)]

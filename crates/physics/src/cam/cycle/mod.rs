@@ -26,8 +26,15 @@ use std::f64::consts::TAU;
 
 mod run;
 mod context;
+mod hertz;
+mod series;
+mod roller_step;
+mod roller_march;
 pub use run::*;
 use context::*;
+use hertz::*;
+use series::*;
+use roller_step::*;
 
 /// The follower, as far as contact and friction are concerned.
 #[derive(Debug, Clone, PartialEq)]
