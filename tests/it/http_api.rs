@@ -485,7 +485,7 @@ async fn cors_is_off_by_default_and_configurable() {
 }
 
 /// Parse a Server-Sent Events body into `(event, data)` pairs (comments and keep-alives skipped).
-fn sse_events(text: &str) -> Vec<(String, String)> {
+pub fn sse_events(text: &str) -> Vec<(String, String)> {
     text.split("\n\n")
         .filter_map(|block| {
             let mut name = None;

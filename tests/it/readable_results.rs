@@ -254,3 +254,31 @@ fn key_figures_point_at_documented_fields() {
         assert!(k.name() == "sweep" || k.key_figures().len() >= 3, "{}: no key figures", k.name());
     }
 }
+
+/// Progress that moves: the seed 000 thermal cycle (36 angles, a thermal film at each) streams
+/// at least three distinct progress fractions before it is done, never going back.
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn the_thermal_example_streams_moving_progress() {
+    let s = start_with(|c| c.queue.workers = 1).await;
+    let example: Value = serde_json::from_str(&std::fs::read_to_string("examples/seed000_thermal_steady.json").unwrap()).unwrap();
+    let res = s.client.post(s.url("/v1/jobs?fresh=true")).json(&example).send().await.unwrap();
+    let job = expect_status(res, 202).await;
+    let id = job["id"].as_str().unwrap().to_string();
+    let mut res = s.client.get(s.url(&format!("/v1/jobs/{id}/events"))).header("accept", "text/event-stream").send().await.unwrap();
+    let mut body = String::new();
+    let read = tokio::time::timeout(Duration::from_secs(120), async {
+        while let Some(chunk) = res.chunk().await.unwrap() {
+            body.push_str(&String::from_utf8_lossy(&chunk));
+        }
+    })
+    .await;
+    assert!(read.is_ok(), "the stream did not end: {body}");
+    let jobs: Vec<Value> = crate::http_api::sse_events(&body).iter().map(|(_, d)| serde_json::from_str(d).unwrap()).collect();
+    assert_eq!(jobs.last().unwrap()["status"], "succeeded", "{body}");
+    let fractions: Vec<f64> = jobs.iter().filter(|j| j["status"] == "running").filter_map(|j| j["progress"]["fraction"].as_f64()).collect();
+    let mut distinct = fractions.clone();
+    distinct.dedup();
+    assert!(distinct.len() >= 3, "progress fractions while running: {fractions:?}");
+    assert!(fractions.windows(2).all(|w| w[0] <= w[1]), "progress went back: {fractions:?}");
+    s.stop().await;
+}

@@ -164,9 +164,7 @@ impl<'c, 'a> RollerMarch<'c, 'a> {
         let mut last_diff = f64::NAN;
         for m in 1..=last_step {
             observer.check()?;
-            if m % 256 == 0 {
-                observer.progress(0.2 + 0.7 * (m as f64 / n as f64 + cycle as f64) / cycles as f64, "roller slip");
-            }
+            observer.progress(0.2 + 0.7 * (m as f64 / n as f64 + cycle as f64) / cycles as f64, "roller slip");
             let (i, ip) = (self.index(m), self.index(m - 1));
             let t = self.time(cycle * n + m);
             let old = if cycle > 0 && m < n { self.states[i].as_ref().map(|s| s.omega) } else { None };
