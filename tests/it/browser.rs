@@ -2,6 +2,9 @@
 //! headless Chromium over the DevTools protocol — the seed 002 L9 example submitted through the
 //! form against a server that needs a token, followed until it finishes, its plots opened and a
 //! screenshot taken; a bad spec shows the server's field errors; no console errors anywhere.
+//! And (issue 39) the example picker and the schema form of the new-job page, the key-results
+//! card's units, plausibility warnings, interactive uPlot charts (hover, zoom, legend toggles) and
+//! the comparison of jobs.
 //!
 //! The browser test needs Chromium (`apt-get install chromium`; `.ci/run` installs it). Without
 //! one it prints SKIPPED and passes; `TRIBOD_CHROMIUM=/path/to/chrome` picks another binary.
@@ -23,6 +26,9 @@ async fn dashboard_and_docs_are_served_without_a_token() {
         ("/", "text/html", "<main id=\"view\""),
         ("/assets/app.js", "text/javascript", "/v1/jobs"),
         ("/assets/style.css", "text/css", "progress"),
+        ("/assets/vendor/uPlot.iife.min.js", "text/javascript", "uPlot"),
+        ("/assets/vendor/uPlot.min.css", "text/css", ".u-legend"),
+        ("/assets/examples.json", "application/json", "\"file\""),
         ("/docs", "text/html", "swagger-ui"),
         ("/docs/swagger-initializer.js", "text/javascript", "\"/openapi.json\""),
     ] {
@@ -30,11 +36,30 @@ async fn dashboard_and_docs_are_served_without_a_token() {
         assert_eq!(res.status(), 200, "{path}");
         let ct = res.headers()["content-type"].to_str().unwrap().to_string();
         assert!(ct.starts_with(content_type), "{path}: {ct}");
-        if path == "/" {
-            assert!(res.headers().contains_key("content-security-policy"));
+        if path == "/" || path.starts_with("/assets/") {
+            let csp = res.headers()["content-security-policy"].to_str().unwrap().to_string();
+            assert!(csp.contains("script-src 'self'") && csp.contains("style-src 'self'"), "{path}: {csp}");
         }
         let text = res.text().await.unwrap();
         assert!(text.contains(needle), "{path}: no '{needle}'");
+    }
+    // The page loads uPlot (vendored) before the app.
+    let page = s.client.get(s.url("/")).send().await.unwrap().text().await.unwrap();
+    let (uplot, app) = (page.find("/assets/vendor/uPlot.iife.min.js").unwrap(), page.find("/assets/app.js").unwrap());
+    assert!(uplot < app, "uPlot loads before app.js");
+    // Every example of examples/ is embedded, as it is on disk.
+    let served: Value = s.client.get(s.url("/assets/examples.json")).send().await.unwrap().json().await.unwrap();
+    let mut on_disk: Vec<String> = std::fs::read_dir("examples")
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .filter(|n| n.ends_with(".json"))
+        .collect();
+    on_disk.sort();
+    let listed: Vec<String> = served.as_array().unwrap().iter().map(|e| e["file"].as_str().unwrap().to_string()).collect();
+    assert_eq!(listed, on_disk, "src/web/mod.rs EXAMPLES lists every examples/*.json");
+    for e in served.as_array().unwrap() {
+        let file: Value = serde_json::from_str(&std::fs::read_to_string(format!("examples/{}", e["file"].as_str().unwrap())).unwrap()).unwrap();
+        assert_eq!((&e["kind"], &e["spec"]), (&file["kind"], &file["spec"]), "{}", e["file"]);
     }
     // The docs page resolves its files under /docs/ also when opened as /docs.
     let page = s.client.get(s.url("/docs")).send().await.unwrap().text().await.unwrap();
@@ -187,6 +212,29 @@ impl Page {
         self.wait_for("document.readyState === 'complete'", Duration::from_secs(20)).await;
     }
 
+    /// A mouse event at page coordinates (`kind`: mousePressed, mouseMoved, mouseReleased).
+    async fn mouse(&mut self, kind: &str, x: f64, y: f64, pressed: bool, clicks: u32) {
+        let button = if pressed || kind != "mouseMoved" { "left" } else { "none" };
+        self.call(
+            "Input.dispatchMouseEvent",
+            json!({"type": kind, "x": x, "y": y, "button": button, "buttons": if pressed { 1 } else { 0 }, "clickCount": clicks}),
+        )
+        .await;
+    }
+
+    /// The viewport rectangle `[left, top, width, height]` of the first element matching
+    /// `selector`, scrolled into view.
+    async fn rect(&mut self, selector: &str) -> [f64; 4] {
+        let r = self
+            .eval(&format!(
+                "const e = document.querySelector({}); e.scrollIntoView({{block: 'center'}}); const r = e.getBoundingClientRect(); [r.left, r.top, r.width, r.height]",
+                js(selector)
+            ))
+            .await;
+        let v: Vec<f64> = r.as_array().unwrap().iter().map(|x| x.as_f64().unwrap()).collect();
+        [v[0], v[1], v[2], v[3]]
+    }
+
     async fn screenshot(&mut self, path: &std::path::Path) {
         let r = self.call("Page.captureScreenshot", json!({"format": "png", "captureBeyondViewport": false})).await;
         let bytes = decode_base64(r["data"].as_str().unwrap());
@@ -323,6 +371,183 @@ async fn the_dashboard_runs_the_seed002_l9_example_in_a_real_browser() {
     // The browser itself logs the two refused requests the test provoked (401 without the token,
     // 422 for the bad spec) as network errors; anything else is a defect of the page.
     page.errors.retain(|e| !(e.starts_with("log[network]") && (e.contains("status of 401") || e.contains("status of 422"))));
+    assert!(page.errors.is_empty(), "console errors: {:#?}", page.errors);
+    drop(page);
+    drop(browser);
+    s.stop().await;
+}
+
+/// Sets a form control's value and fires `input` as a person's edit would.
+fn set_input(selector: &str, value: &str) -> String {
+    format!(
+        "const e = document.querySelector({}); e.value = {}; e.dispatchEvent(new Event('input', {{bubbles: true}}));",
+        js(selector),
+        js(value)
+    )
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn the_dashboard_picks_examples_edits_specs_as_a_form_charts_and_compares_jobs() {
+    let Some(binary) = chromium() else {
+        eprintln!(
+            "SKIPPED the_dashboard_picks_examples_edits_specs_as_a_form_charts_and_compares_jobs: no Chromium on PATH. \
+             Install it (`apt-get install chromium`) or set TRIBOD_CHROMIUM, then `cargo test --test it browser`."
+        );
+        return;
+    };
+    let s = start().await;
+    let browser = Browser::launch(&binary);
+    let mut page = Page::open(&browser).await;
+    let wait = Duration::from_secs(30);
+    let spec_of_editor = "JSON.parse(document.getElementById('spec').value)";
+
+    // The example picker lists every example and fills kind, label and spec from one.
+    page.navigate(&s.url("/#/new")).await;
+    page.wait_for("document.querySelectorAll('#example option').length > 1", wait).await;
+    let files = std::fs::read_dir("examples").unwrap().filter(|e| e.as_ref().unwrap().path().extension().is_some_and(|x| x == "json")).count();
+    let offered = page.eval("document.querySelectorAll('#example option:not([value=\"\"])').length").await;
+    assert_eq!(offered, json!(files), "one choice per examples/*.json");
+    let example: Value = serde_json::from_str(&std::fs::read_to_string("examples/hertz_roller_on_cam.json").unwrap()).unwrap();
+    page.eval("const x = document.getElementById('example'); x.value = 'hertz_roller_on_cam.json'; x.dispatchEvent(new Event('change'))").await;
+    assert_eq!(page.eval("document.getElementById('kind').value").await, "hertz");
+    assert_eq!(page.eval("document.getElementById('label').value").await, example["label"]);
+    let same = page.eval(&format!("JSON.stringify({spec_of_editor}) === JSON.stringify({})", example["spec"])).await;
+    assert_eq!(same, true, "the editor holds the example's spec");
+
+    // The form (from the kind's schema in /openapi.json) shows the same spec: a field per
+    // property with its description and range, enums as selects, nested objects as fieldsets.
+    let radius = "#spec-form [data-pointer=\"/body_1/radius\"]";
+    page.wait_for(&format!("document.querySelector({})", js(radius)), wait).await;
+    assert_eq!(page.eval(&format!("document.querySelector({}).value", js(radius))).await, "0.0255");
+    assert_eq!(page.eval("document.querySelector('#spec-form select[data-pointer=\"/contact\"]').value").await, "\"line\"");
+    assert_eq!(page.eval("document.querySelector('#spec-form fieldset[data-pointer=\"/body_1\"] legend').textContent").await, "body_1");
+    let hint = page.eval("document.querySelector('#spec-form [data-pointer=\"/load\"]').closest('.field').innerText").await;
+    assert!(hint.as_str().unwrap().contains("Total normal load, N.") && hint.as_str().unwrap().contains("≥ 0.001"), "{hint}");
+    // The editor drives the form while it parses; invalid JSON leaves the form as it was.
+    page.eval("const t = document.getElementById('spec'); const v = JSON.parse(t.value); v.load = 7000; t.value = JSON.stringify(v, null, 2); t.dispatchEvent(new Event('input'))").await;
+    assert_eq!(page.eval("document.querySelector('#spec-form [data-pointer=\"/load\"]').value").await, "7000");
+    page.eval("const t = document.getElementById('spec'); t.value = t.value.replace('7000', '70 00'); t.dispatchEvent(new Event('input'))").await;
+    assert_eq!(page.eval("document.querySelector('#spec-form [data-pointer=\"/load\"]').value").await, "7000");
+    assert!(page.eval("document.getElementById('spec-status').textContent").await.as_str().unwrap().contains("JSON"));
+    // The form drives the editor: an implausible radius (millimetres where SI wants metres).
+    page.eval(&set_input(radius, "25.5")).await;
+    let edited = page.eval(spec_of_editor).await;
+    assert_eq!(edited["body_1"]["radius"], 25.5);
+    assert_eq!(edited["load"], 7000.0, "the form edited its last valid spec");
+    assert_eq!(page.eval("document.getElementById('spec-status').textContent").await, "");
+    page.eval("document.getElementById('submit').click()").await;
+    page.wait_for("location.hash.startsWith('#/jobs/')", wait).await;
+    page.wait_for("document.querySelector('#job-status [data-status=succeeded]') && document.getElementById('key-results')", wait).await;
+    // The job page warns about the implausible field, by its path.
+    let warned = page.eval("[...document.querySelectorAll('#job-warnings .field-warning')].map(w => w.dataset.path)").await;
+    assert_eq!(warned, json!(["/spec/body_1/radius"]));
+    // The key-results card shows engineering units.
+    let card = page.eval("document.getElementById('key-results').innerText").await.as_str().unwrap().to_string();
+    assert!(card.contains("max_pressure") && (card.contains("GPa") || card.contains("MPa")), "{card}");
+    assert!(card.contains(" mm") || card.contains(" µm"), "{card}");
+
+    // A cam_cycle job (the kind's example, fidelity fast) through the form: its curves as
+    // interactive charts.
+    page.eval("document.getElementById('nav-new').click()").await;
+    page.wait_for("document.getElementById('kind') && location.hash === '#/new'", wait).await;
+    page.eval("const k = document.getElementById('kind'); k.value = 'cam_cycle'; k.dispatchEvent(new Event('change'))").await;
+    page.wait_for("document.querySelector('#spec-form [data-pointer=\"/fidelity\"]')", wait).await;
+    page.eval(&set_input("#spec-form [data-pointer=\"/fidelity\"]", "\"fast\"")).await;
+    assert_eq!(page.eval(&format!("{spec_of_editor}.fidelity")).await, "fast");
+    assert_eq!(page.eval("document.getElementById('label').value").await, "", "the hertz example's label went with it");
+    // A tagged union is a select of its variants.
+    let variants = page.eval("[...document.querySelectorAll('#spec-form select[data-variant=\"/follower\"] option')].map(o => o.value).filter(Boolean)").await;
+    assert!(variants.as_array().unwrap().len() >= 2 && variants.as_array().unwrap().contains(&json!("flat_faced")), "{variants}");
+    page.eval("document.getElementById('label').value = 'cam fast A'; document.getElementById('submit').click()").await;
+    page.wait_for("location.hash.startsWith('#/jobs/')", wait).await;
+    let cam_a = page.eval("location.hash.slice(7)").await.as_str().unwrap().to_string();
+    page.wait_for("document.querySelector('#job-status [data-status=succeeded]') && document.querySelector('#charts canvas')", wait).await;
+    let card = page.eval("document.getElementById('key-results').innerText").await.as_str().unwrap().to_string();
+    assert!(card.contains("MPa") || card.contains("GPa"), "{card}");
+    // One chart per unit group, films together in µm or nm, against the cam angle.
+    let film = "#charts figure.chart[data-columns*=\"film_min\"]";
+    let columns = page.eval(&format!("document.querySelector({}).dataset.columns", js(film))).await;
+    assert!(columns.as_str().unwrap().split(',').all(|c| c.contains("film")), "{columns}");
+    let unit = page.eval(&format!("document.querySelector({} + ' .chart-box').dataset.unit", js(film))).await;
+    assert!(unit == "µm" || unit == "nm", "{unit}");
+    assert!(page.eval(&format!("document.querySelector({}).innerText", js(film))).await.as_str().unwrap().contains("angle_deg"));
+    // The server's SVG plots stay, below.
+    assert_eq!(page.eval("document.querySelectorAll('#server-plots #plots figure').length > 0").await, true);
+    // Hover: the legend reads the values under the cursor, with the unit.
+    let [left, top, width, height] = page.rect(&format!("{film} .u-over")).await;
+    page.mouse("mouseMoved", left + width * 0.4, top + height / 2.0, false, 0).await;
+    let reading = format!("document.querySelector({} + ' .u-legend .u-series:nth-child(2) .u-value').textContent", js(film));
+    page.wait_for(&format!("{reading}.endsWith({})", js(&format!(" {}", unit.as_str().unwrap()))), wait).await;
+    // Drag to zoom, double-click to reset.
+    let zoomed = format!("document.querySelector({} + ' .chart-box').dataset.zoomed", js(film));
+    assert_eq!(page.eval(&zoomed).await, "false");
+    page.mouse("mousePressed", left + width * 0.3, top + height / 2.0, true, 1).await;
+    page.mouse("mouseMoved", left + width * 0.5, top + height / 2.0, true, 0).await;
+    page.mouse("mouseMoved", left + width * 0.6, top + height / 2.0, true, 0).await;
+    page.mouse("mouseReleased", left + width * 0.6, top + height / 2.0, false, 1).await;
+    page.wait_for(&format!("{zoomed} === 'true'"), wait).await;
+    for clicks in [1, 2] {
+        page.mouse("mousePressed", left + width * 0.5, top + height / 2.0, true, clicks).await;
+        page.mouse("mouseReleased", left + width * 0.5, top + height / 2.0, false, clicks).await;
+    }
+    page.wait_for(&format!("{zoomed} === 'false'"), wait).await;
+    // A legend entry toggles its series.
+    let entry = format!("{film} .u-legend .u-series:nth-child(2)");
+    let off = format!("document.querySelector({}).classList.contains('u-off')", js(&entry));
+    for hidden in [true, false] {
+        let [left, top, width, height] = page.rect(&format!("{entry} th")).await;
+        page.mouse("mousePressed", left + width / 2.0, top + height / 2.0, true, 1).await;
+        page.mouse("mouseReleased", left + width / 2.0, top + height / 2.0, false, 1).await;
+        page.wait_for(&format!("{off} === {hidden}"), wait).await;
+    }
+    let shot = std::path::Path::new(env!("CARGO_TARGET_TMPDIR")).join("dashboard-cam-charts.png");
+    page.screenshot(&shot).await;
+
+    // A second cam job, faster; both ticked on the list and compared.
+    let kinds: Value = s.get_json("/v1/kinds").await.1;
+    let mut spec = kinds["kinds"].as_array().unwrap().iter().find(|k| k["name"] == "cam_cycle").unwrap()["example"].clone();
+    spec["fidelity"] = json!("fast");
+    spec["operation"]["speed_rpm"] = json!(2000.0);
+    let res = s.post_job(&json!({"kind": "cam_cycle", "label": "cam fast B", "spec": spec})).await;
+    assert!(res.status().is_success(), "{}", res.status());
+    let cam_b = res.json::<Value>().await.unwrap()["id"].as_str().unwrap().to_string();
+    assert_eq!(s.wait_finished(&cam_b, wait).await["status"], "succeeded");
+    page.eval("location.hash = '#/?kind=cam_cycle'").await;
+    for id in [&cam_a, &cam_b] {
+        page.wait_for(&format!("document.querySelector('#jobs input.pick[data-id={}]')", js(id)), wait).await;
+    }
+    assert_eq!(page.eval("document.getElementById('compare').disabled").await, true, "one job is no comparison");
+    for id in [&cam_a, &cam_b] {
+        page.eval(&format!("document.querySelector('#jobs input.pick[data-id={}]').click()", js(id))).await;
+    }
+    assert_eq!(page.eval("location.hash").await, "#/?kind=cam_cycle", "ticking a job does not open it");
+    page.eval("document.getElementById('compare').click()").await;
+    let url = format!("#/compare?ids={cam_a},{cam_b}");
+    page.wait_for(&format!("location.hash === {}", js(&url)), wait).await;
+    // The comparison's address reopens it.
+    page.navigate(&s.url(&format!("/{url}"))).await;
+    page.wait_for("document.querySelector('#compare-chart canvas')", wait).await;
+    // Key results side by side: a column per job (by label), a row per figure with its unit.
+    let heads = page.eval("[...document.querySelectorAll('#compare-table thead th[data-id]')].map(t => t.querySelector('a').textContent)").await;
+    assert_eq!(heads, json!(["cam fast A", "cam fast B"]));
+    let row = page.eval("[...document.querySelector('#compare-table tr[data-path=\"summary.min_film\"]').cells].map(c => c.textContent)").await;
+    let row: Vec<&str> = row.as_array().unwrap().iter().map(|c| c.as_str().unwrap()).collect();
+    assert_eq!(row.len(), 4, "{row:?}");
+    assert!(row[1] == "nm" || row[1] == "µm", "{row:?}");
+    assert!(row[2].parse::<f64>().is_ok() && row[3].parse::<f64>().is_ok() && row[2] != row[3], "{row:?}");
+    // One curve overlaid, a series per job: the first film column by default.
+    assert_eq!(page.eval("document.getElementById('compare-column').value").await, "series.film_min");
+    assert_eq!(page.eval("document.getElementById('compare-chart').dataset.series").await, "2");
+    let legend = page.eval("[...document.querySelectorAll('#compare-chart .u-legend .u-series')].slice(1).map(s => s.querySelector('.u-label').textContent)").await;
+    assert_eq!(legend, json!(["cam fast A", "cam fast B"]));
+    // Another column redraws it.
+    page.eval("const c = document.getElementById('compare-column'); c.value = 'series.hertz_max_pressure'; c.dispatchEvent(new Event('change'))").await;
+    page.wait_for("document.getElementById('compare-chart').dataset.unit === 'MPa' || document.getElementById('compare-chart').dataset.unit === 'GPa'", wait).await;
+    assert_eq!(page.eval("document.querySelectorAll('#compare-chart canvas').length").await, 1);
+    let shot = std::path::Path::new(env!("CARGO_TARGET_TMPDIR")).join("dashboard-compare.png");
+    page.screenshot(&shot).await;
+    eprintln!("screenshot: {}", shot.display());
+
     assert!(page.errors.is_empty(), "console errors: {:#?}", page.errors);
     drop(page);
     drop(browser);
