@@ -58,31 +58,28 @@ pub fn solve(case: &Case, observer: &dyn Observer) -> Result<Solution, SolveErro
     let mut ws = Workspace::new(bearing, settings);
     let (analysis, target, dimensions, thermal) = match &case.heat {
         Some(heat) => {
-            observer.progress(0.0, "heat balance");
-            let b = heat_balance::solve(bearing, settings, &case.load, case.size.as_ref(), case.want_fields, heat, &mut ws, observer)?;
+            // Progress moves with the solver's own checks (one per balance or Newton step).
+            let stage = crate::Stage::new(observer, 0.0, 0.8, 40.0, "heat balance");
+            let b = heat_balance::solve(bearing, settings, &case.load, case.size.as_ref(), case.want_fields, heat, &mut ws, &stage)?;
             (b.analysis, b.target, Some(b.dimensions), Some(b.thermal))
         }
         None => {
-            observer.progress(0.0, "load");
             let d = case.dimensions();
-            let p = resolve_load(bearing, settings, &case.load, d.as_ref(), None, observer)?;
-            observer.progress(0.3, "analysis");
-            let a = analyse(bearing, &p.operating, settings, Some(&mut ws), p.guess, case.want_fields, observer)?;
+            let p = resolve_load(bearing, settings, &case.load, d.as_ref(), None, &crate::Stage::new(observer, 0.0, 0.3, 20.0, "load"))?;
+            let a = analyse(bearing, &p.operating, settings, Some(&mut ws), p.guess, case.want_fields, &crate::Stage::new(observer, 0.3, 0.8, 20.0, "analysis"))?;
             (a, p.target, d, None)
         }
     };
     let (mut dynamic, mut moment) = (None, None);
     if case.moment_coefficients {
         // the 4×4 set; its translations block is `coefficients`' computation from the same state
-        observer.progress(0.8, "moment coefficients");
-        let c = tilt_coefficients(bearing, &analysis, settings, &mut ws, observer)?;
+        let c = tilt_coefficients(bearing, &analysis, settings, &mut ws, &crate::Stage::new(observer, 0.8, 1.0, 20.0, "moment coefficients"))?;
         if case.dynamic_coefficients {
             dynamic = Some(dynamic_figures(&c.translation(), analysis.load, dimensions.as_ref()));
         }
         moment = Some(moment_figures(&c, analysis.load, dimensions.as_ref()));
     } else if case.dynamic_coefficients {
-        observer.progress(0.8, "dynamic coefficients");
-        let c = coefficients(bearing, &analysis, settings, &mut ws, observer)?;
+        let c = coefficients(bearing, &analysis, settings, &mut ws, &crate::Stage::new(observer, 0.8, 1.0, 20.0, "dynamic coefficients"))?;
         dynamic = Some(dynamic_figures(&c, analysis.load, dimensions.as_ref()));
     }
     observer.progress(1.0, "done");
