@@ -8,7 +8,7 @@
 //! maximum film of the mid-plane lies at `θ = β`, the minimum at `θ = β + 180°`.
 
 use super::film::Film;
-use super::multigrid::Hierarchy;
+use super::multigrid::{Hierarchy, Level};
 use crate::{Convergence, Observer, SolveError, Termination};
 use std::f64::consts::TAU;
 use super::balance::*;
@@ -108,7 +108,9 @@ pub fn symmetric_load(
 
 /// The position search of [`analyse`] on the grids of `h` (the full grids or a mirrored half):
 /// the film at the end, ε, β, the last finest-grid evaluation, its convergence and the steps
-/// per grid (full-grid sizes).
+/// per grid (full-grid sizes). From the start grid ([`start_level`]) to the finest, each grid
+/// starts from the coarser one's solution ([`nested_start`]) and balances the load on it
+/// ([`balance_on_level`]).
 #[allow(clippy::type_complexity)]
 fn position(
     h: &mut Hierarchy,
@@ -118,22 +120,8 @@ fn position(
     guess: Option<Guess>,
     observer: &dyn Observer,
 ) -> Result<(Film, f64, f64, Eval, Convergence, Vec<(usize, usize, u32)>), SolveError> {
-    // the full grid's axial node count of a level (a mirrored half: its rows up to the
-    // mid-plane, mirrored)
-    let full_nz = |l: &super::multigrid::Level| if l.mirror { 2 * (l.nz - 2) + 1 } else { l.nz };
-    let nlev = h.levels.len();
-    // start level: the coarsest grid with at least ~1000 nodes (or the finest); ~500 for a
-    // load on a bearing that turns with the journal, whose balance is one secant iteration in ε
-    // that the next grids only correct (BENCHMARKS.md, journal speed)
     let one_dimensional_load = matches!(operating, Operating::Load(_)) && bearing.turns_with_journal();
-    let min_nodes = if one_dimensional_load { 500 } else { 1000 };
-    let mut ks = 0;
-    for (k, l) in h.levels.iter().enumerate() {
-        if l.nt * full_nz(l) >= min_nodes && l.nt >= 24 && full_nz(l) >= 9 {
-            ks = k;
-        }
-    }
-    let ks = ks.min(nlev - 1);
+    let ks = start_level(h, one_dimensional_load);
     // coarse grids only start the finer ones: solve them loosely where the balance on them is
     // one-dimensional (fixed ε, or a load on a bearing that turns with the journal)
     let coarse_loose = bearing.rotation_invariant() && (!matches!(operating, Operating::Load(_)) || bearing.turns_with_journal());
@@ -144,8 +132,81 @@ fn position(
     let reuse_coarse = matches!(operating, Operating::Load(_));
     let mut prob = BalanceSearch { bearing, settings, h, coarse_loose, start_level: ks, reuse_coarse };
     let mut steps_per_grid = Vec::new();
+    let (mut eps, mut beta) = start_position(&prob, operating, guess)?;
+    let mut carried = Carried { jac: None, slope: None, invariant_failed: false };
+    let mut final_eval = None;
+    let mut final_conv = None;
+    // ε at the end of each grid's stage (the start grid's equilibrium, then each predicted one)
+    let mut eps_end: Vec<f64> = Vec::new();
+    for k in (0..=ks).rev() {
+        if k == 0 && k < ks && eps_end.len() >= 2 && one_dimensional_load && !carried.invariant_failed {
+            // Start the finest grid at the extrapolated equilibrium: the equilibrium ε of these
+            // grids converges as h² and every level halves the spacing, so the finest grid's
+            // ε − ε₁ ≈ (ε₁ − ε₂)/4 (Richardson). ROSS 121×41: the start's load error 2.4e-3 →
+            // 1.0e-4 (ε 5.6e-4 → 2.4e-5 from the equilibrium), two finest pressure solves instead
+            // of three (BENCHMARKS.md, speed fifth round). Not for the two-dimensional balance:
+            // the misaligned equilibria do not converge regularly enough on these grids.
+            let (e1, e2) = (eps_end[eps_end.len() - 1], eps_end[eps_end.len() - 2]);
+            let e_new = eps + 0.25 * (e1 - e2);
+            if e_new > 0.0 && prob.feasible(e_new, beta) {
+                eps = e_new;
+            }
+        }
+        if k < ks {
+            nested_start(&mut prob, operating, k, eps, beta);
+        }
+        let (ev, conv, steps) = balance_on_level(&mut prob, operating, k, &mut eps, &mut beta, &mut carried, observer)?;
+        let level = &prob.h.levels[k];
+        steps_per_grid.push((level.nt + 1, full_nz(level), steps));
+        eps_end.push(eps);
+        if k == 0 {
+            final_eval = Some(ev);
+            final_conv = Some(conv);
+        }
+    }
+    let ev = final_eval.unwrap();
+    let conv = final_conv.unwrap();
+    let film = bearing.film(eps, beta);
+    if bearing.turns_with_journal() && matches!(operating, Operating::Load(_)) {
+        // the attitude was turned after the last pressure solve (exact for this bearing: the
+        // pressure relative to the supply line does not change); put the finest grid's film
+        // and angles at the final attitude for the figures. (The attitude search at a fixed ε
+        // turns the journal after its last solve too and leaves the grid at the previous
+        // attitude, a difference of the order of the last turn; kept as it was, since the
+        // roller–pin tables of the cam kinds are built on it.)
+        let (_, theta0) = bearing.groove_angle(beta);
+        prob.h.set_film_level(0, &film, theta0);
+    }
+    Ok((film, eps, beta, ev, conv, steps_per_grid))
+}
 
-    // unknowns and starting point
+/// The full grid's axial node count of a level (a mirrored half: its rows up to the mid-plane,
+/// mirrored).
+fn full_nz(l: &Level) -> usize {
+    if l.mirror { 2 * (l.nz - 2) + 1 } else { l.nz }
+}
+
+/// The grid the position search starts on: the coarsest grid with at least ~1000 nodes (or the
+/// finest); ~500 for a load on a bearing that turns with the journal (`one_dimensional_load`),
+/// whose balance is one secant iteration in ε that the next grids only correct (BENCHMARKS.md,
+/// journal speed).
+fn start_level(h: &Hierarchy, one_dimensional_load: bool) -> usize {
+    let min_nodes = if one_dimensional_load { 500 } else { 1000 };
+    let mut ks = 0;
+    for (k, l) in h.levels.iter().enumerate() {
+        if l.nt * full_nz(l) >= min_nodes && l.nt >= 24 && full_nz(l) >= 9 {
+            ks = k;
+        }
+    }
+    ks.min(h.levels.len() - 1)
+}
+
+/// The unknowns' starting point (the given position; for a fixed ε the guess's attitude or the
+/// rough one; for a load the guess or the short-bearing estimate), moved to an open film where
+/// the film is closed there: a load's journal pulled towards the centre, a fixed ε's attitude
+/// searched around the circle.
+fn start_position(prob: &BalanceSearch, operating: &Operating, guess: Option<Guess>) -> Result<(f64, f64), SolveError> {
+    let (bearing, settings) = (prob.bearing, prob.settings);
     let (mut eps, mut beta) = match *operating {
         Operating::Position { eccentricity, attitude } => (eccentricity, attitude),
         Operating::Eccentricity(e) => (e, guess.map_or(initial_attitude(e), |g| g.attitude)),
@@ -191,118 +252,108 @@ fn position(
             }
         }
     }
+    Ok((eps, beta))
+}
 
-    let dims = |p: &BalanceSearch, k: usize| (p.h.levels[k].nt + 1, full_nz(&p.h.levels[k]));
-    let mut jac: Option<[[f64; 2]; 2]> = None;
-    let mut slope: Option<f64> = None;
-    let mut invariant_failed = false;
-    let mut final_eval = None;
-    let mut final_conv = None;
-    // ε at the end of each grid's stage (the start grid's equilibrium, then each predicted one)
-    let mut eps_end: Vec<f64> = Vec::new();
-    for k in (0..=ks).rev() {
-        if k == 0 && k < ks && eps_end.len() >= 2 && one_dimensional_load && !invariant_failed {
-            // Start the finest grid at the extrapolated equilibrium: the equilibrium ε of these
-            // grids converges as h² and every level halves the spacing, so the finest grid's
-            // ε − ε₁ ≈ (ε₁ − ε₂)/4 (Richardson). ROSS 121×41: the start's load error 2.4e-3 →
-            // 1.0e-4 (ε 5.6e-4 → 2.4e-5 from the equilibrium), two finest pressure solves instead
-            // of three (BENCHMARKS.md, speed fifth round). Not for the two-dimensional balance:
-            // the misaligned equilibria do not converge regularly enough on these grids.
-            let (e1, e2) = (eps_end[eps_end.len() - 1], eps_end[eps_end.len() - 2]);
-            let e_new = eps + 0.25 * (e1 - e2);
-            if e_new > 0.0 && prob.feasible(e_new, beta) {
-                eps = e_new;
-            }
+/// Nested iteration: the coarser solution at this position starts grid `k`.
+fn nested_start(prob: &mut BalanceSearch, operating: &Operating, k: usize, eps: f64, beta: f64) {
+    let film = prob.bearing.film(eps, beta);
+    let (_, theta0) = prob.bearing.groove_angle(beta);
+    prob.h.set_film_from(k, &film, theta0);
+    prob.h.interpolate_up(k);
+    if matches!(operating, Operating::Load(_)) {
+        // two projected Gauss–Seidel sweeps settle the interpolated free boundary: the
+        // first solve on this grid then takes fewer active-set steps and V-cycles
+        // (misaligned 361×181: finest 4 steps/7 cycles → 3/6, 181×91 3/7 → 2/5; ROSS
+        // 121×21 3/6 → 2/3; BENCHMARKS.md, speed fourth round). The fixed-eccentricity
+        // and fixed-position analyses keep the plain start (the roller–pin tables of
+        // the cam kinds are built on them).
+        prob.h.projected_sweeps(k, 2);
+    }
+}
+
+/// What the position search carries from grid to grid: the two-dimensional load balance's
+/// Jacobian, the one-dimensional balance's secant slope, and whether the one-dimensional balance
+/// has failed (the general Newton iteration from then on).
+struct Carried {
+    jac: Option<[[f64; 2]; 2]>,
+    slope: Option<f64>,
+    invariant_failed: bool,
+}
+
+/// The stage of grid `k` of the position search: one evaluation at a fixed position, the attitude
+/// search at a fixed ε, or the load balance (one-dimensional where the bearing turns with the
+/// journal, else two-dimensional). The start grid solves cold; the grids between it and the
+/// finest only pass a start on (one solve and one Newton/secant step each).
+fn balance_on_level(
+    prob: &mut BalanceSearch,
+    operating: &Operating,
+    k: usize,
+    eps: &mut f64,
+    beta: &mut f64,
+    carried: &mut Carried,
+    observer: &dyn Observer,
+) -> Result<(Eval, Convergence, u32), SolveError> {
+    let (bearing, settings, ks) = (prob.bearing, prob.settings, prob.start_level);
+    let cold = k == ks;
+    let predict = k > 0 && k < ks;
+    let coarse_load_tol = if bearing.turns_with_journal() { 1e-4 } else { 1e-5 };
+    let tol_load = if k == 0 { settings.load_tolerance } else { settings.load_tolerance.max(coarse_load_tol) };
+    let cap = if k == 0 { settings.max_load_iterations } else { settings.max_load_iterations.max(60) };
+    match *operating {
+        Operating::Position { .. } => {
+            let ev = prob.eval(k, *eps, *beta, cold)?;
+            let conv = Convergence { iterations: 0, residual: 0.0, tolerance: settings.load_tolerance, termination: Termination::Converged };
+            Ok((ev, conv, 0))
         }
-        if k < ks {
-            // nested iteration: the coarser solution at this position starts this grid
-            let film = bearing.film(eps, beta);
-            let (_, theta0) = bearing.groove_angle(beta);
-            prob.h.set_film_from(k, &film, theta0);
-            prob.h.interpolate_up(k);
-            if matches!(operating, Operating::Load(_)) {
-                // two projected Gauss–Seidel sweeps settle the interpolated free boundary: the
-                // first solve on this grid then takes fewer active-set steps and V-cycles
-                // (misaligned 361×181: finest 4 steps/7 cycles → 3/6, 181×91 3/7 → 2/5; ROSS
-                // 121×21 3/6 → 2/3; BENCHMARKS.md, speed fourth round). The fixed-eccentricity
-                // and fixed-position analyses keep the plain start (the roller–pin tables of
-                // the cam kinds are built on them).
-                prob.h.projected_sweeps(k, 2);
-            }
-        }
-        let cold = k == ks;
-        // grids between the start grid and the finest only pass a start on (one solve and
-        // one Newton/secant step each)
-        let predict = k > 0 && k < ks;
-        let coarse_load_tol = if bearing.turns_with_journal() { 1e-4 } else { 1e-5 };
-        let tol_load = if k == 0 { settings.load_tolerance } else { settings.load_tolerance.max(coarse_load_tol) };
-        let cap = if k == 0 { settings.max_load_iterations } else { settings.max_load_iterations.max(60) };
-        let (ev, conv, steps) = match *operating {
-            Operating::Position { .. } => {
-                let ev = prob.eval(k, eps, beta, cold)?;
-                let conv = Convergence { iterations: 0, residual: 0.0, tolerance: settings.load_tolerance, termination: Termination::Converged };
-                (ev, conv, 0)
-            }
-            Operating::Eccentricity(_) => attitude_search(&mut prob, k, eps, &mut beta, cold, tol_load, cap, observer)?,
-            Operating::Load(w) if bearing.turns_with_journal() && !invariant_failed => {
-                match load_balance_invariant(&mut prob, k, w, &mut eps, &mut beta, &mut slope, cold, predict, tol_load, cap, observer)? {
-                    Some(out) => out,
-                    None => {
-                        // no progress on the one-dimensional iteration: the general Newton
-                        // iteration from here on
-                        invariant_failed = true;
-                        load_balance(&mut prob, k, w, &mut eps, &mut beta, &mut jac, false, false, tol_load, cap, observer)?
-                    }
+        Operating::Eccentricity(_) => attitude_search(prob, k, *eps, beta, cold, tol_load, cap, observer),
+        Operating::Load(w) if bearing.turns_with_journal() && !carried.invariant_failed => {
+            match load_balance_invariant(prob, k, w, eps, beta, &mut carried.slope, cold, predict, tol_load, cap, observer)? {
+                Some(out) => Ok(out),
+                None => {
+                    // no progress on the one-dimensional iteration: the general Newton
+                    // iteration from here on
+                    carried.invariant_failed = true;
+                    load_balance(prob, k, w, eps, beta, &mut carried.jac, false, false, tol_load, cap, observer)
                 }
             }
-            Operating::Load(w) => {
-                match load_balance(&mut prob, k, w, &mut eps, &mut beta, &mut jac, cold, predict, tol_load, cap, observer) {
-                    Err(SolveError::NotConverged { .. }) if k == ks => {
-                        // Newton from the starting guess stalled on the coarse grid (misalignment
-                        // can make the force map far from linear): scan the journal positions for
-                        // the best start and try once more.
-                        let (e0, b0) = scan_positions(&mut prob, k, w)?;
-                        eps = e0;
-                        beta = b0;
-                        jac = None;
-                        match load_balance(&mut prob, k, w, &mut eps, &mut beta, &mut jac, false, false, tol_load, cap, observer) {
-                            Err(SolveError::NotConverged { residual, .. }) => {
-                                return Err(SolveError::physical(
-                                    crate::PhysicalFailure::NoEquilibriumPosition,
-                                    format!(
-                                        "no journal position carries this load along the load line (best relative load residual {residual:.3e}); \
-                                         the misalignment's own film force is comparable with the load"
-                                    ),
-                                ));
-                            }
-                            other => other?,
-                        }
-                    }
-                    other => other?,
-                }
-            }
-        };
-        steps_per_grid.push((dims(&prob, k).0, dims(&prob, k).1, steps));
-        eps_end.push(eps);
-        if k == 0 {
-            final_eval = Some(ev);
-            final_conv = Some(conv);
         }
+        Operating::Load(w) => match load_balance(prob, k, w, eps, beta, &mut carried.jac, cold, predict, tol_load, cap, observer) {
+            Err(SolveError::NotConverged { .. }) if k == ks => rescan_and_balance(prob, k, w, eps, beta, &mut carried.jac, tol_load, cap, observer),
+            other => other,
+        },
     }
-    let ev = final_eval.unwrap();
-    let conv = final_conv.unwrap();
-    let film = bearing.film(eps, beta);
-    if bearing.turns_with_journal() && matches!(operating, Operating::Load(_)) {
-        // the attitude was turned after the last pressure solve (exact for this bearing: the
-        // pressure relative to the supply line does not change); put the finest grid's film
-        // and angles at the final attitude for the figures. (The attitude search at a fixed ε
-        // turns the journal after its last solve too and leaves the grid at the previous
-        // attitude, a difference of the order of the last turn; kept as it was, since the
-        // roller–pin tables of the cam kinds are built on it.)
-        let (_, theta0) = bearing.groove_angle(beta);
-        prob.h.set_film_level(0, &film, theta0);
+}
+
+/// Newton from the starting guess stalled on the coarse grid `k` (misalignment can make the force
+/// map far from linear): scan the journal positions for the best start and try once more; a
+/// second stall means no position carries the load.
+#[allow(clippy::too_many_arguments)]
+fn rescan_and_balance(
+    prob: &mut BalanceSearch,
+    k: usize,
+    w: f64,
+    eps: &mut f64,
+    beta: &mut f64,
+    jac: &mut Option<[[f64; 2]; 2]>,
+    tol_load: f64,
+    cap: u32,
+    observer: &dyn Observer,
+) -> Result<(Eval, Convergence, u32), SolveError> {
+    let (e0, b0) = scan_positions(prob, k, w)?;
+    *eps = e0;
+    *beta = b0;
+    *jac = None;
+    match load_balance(prob, k, w, eps, beta, jac, false, false, tol_load, cap, observer) {
+        Err(SolveError::NotConverged { residual, .. }) => Err(SolveError::physical(
+            crate::PhysicalFailure::NoEquilibriumPosition,
+            format!(
+                "no journal position carries this load along the load line (best relative load residual {residual:.3e}); \
+                 the misalignment's own film force is comparable with the load"
+            ),
+        )),
+        other => other,
     }
-    Ok((film, eps, beta, ev, conv, steps_per_grid))
 }
 
 fn validate(bearing: &Bearing, operating: &Operating, s: &Settings) -> Result<(), SolveError> {

@@ -4,6 +4,7 @@
 use super::problem::*;
 use super::film::wrap_angle;
 use super::multigrid::{Hierarchy, LcpReport};
+use crate::numerics::newton::backtrack;
 use crate::{Convergence, Observer, SolveError, Termination};
 use std::f64::consts::{PI, TAU};
 
@@ -221,26 +222,25 @@ pub(super) fn attitude_search(
         // Newton on the force angle with a secant slope: the force turns with the journal,
         // d(angle)/dβ = 1 exactly without misalignment and with a groove that follows the
         // journal, otherwise the slope is learnt from the steps taken.
-        let mut step = (-r / slope).clamp(-1.0, 1.0);
-        let mut accepted = false;
-        for _ in 0..30 {
+        // The step halved (at most 30 times) until the angle's residual falls.
+        let taken = backtrack::<_, SolveError>((-r / slope).clamp(-1.0, 1.0), 30, |step| {
             let b = *beta + step;
-            if p.feasible(eps, b) {
-                let e2 = p.eval(k, eps, b, false)?;
-                let r2 = resid(&e2);
-                if r2.abs() < r.abs() {
-                    let s_new = (r2 - r) / (b - *beta);
-                    if s_new.is_finite() && s_new.abs() > 1e-3 {
-                        slope = s_new;
-                    }
-                    *beta = b;
-                    ev = e2;
-                    r = r2;
-                    accepted = true;
-                    break;
-                }
+            if !p.feasible(eps, b) {
+                return Ok(None);
             }
-            step *= 0.5;
+            let e2 = p.eval(k, eps, b, false)?;
+            let r2 = resid(&e2);
+            Ok((r2.abs() < r.abs()).then_some((b, e2, r2)))
+        })?;
+        let accepted = taken.is_some();
+        if let Some((b, e2, r2)) = taken {
+            let s_new = (r2 - r) / (b - *beta);
+            if s_new.is_finite() && s_new.abs() > 1e-3 {
+                slope = s_new;
+            }
+            *beta = b;
+            ev = e2;
+            r = r2;
         }
         history.push(r.abs());
         if !accepted {
@@ -292,6 +292,18 @@ pub(super) fn attitude_search(
     Ok((ev, Convergence { iterations: it, residual: r.abs(), tolerance: tol, termination: Termination::Converged }, it))
 }
 
+/// The two-dimensional load balance on level `k`: Newton in (ε, β) with a difference Jacobian
+/// (carried in `jac`, Broyden-updated), damped by step halving ([`damped_step`]). With
+/// `predict_only` and a carried Jacobian, one step only ([`predict_next_start`]).
+///
+/// Inexact Newton: trial pressures are solved to a tolerance tied to the load error, the
+/// accepted point is then re-solved to the full tolerance before convergence is declared.
+///
+/// Stagnation guard: a light load on a strongly misaligned journal is the small difference of
+/// large opposing forces (the tilt's pressure peaks at the two edges), so the pressure
+/// tolerance, relative to the pressure field, can leave a load error above `tol` relative to
+/// the load. When the error stops falling, tighten the pressure tolerance (to 1e-12 at most)
+/// and rebuild the Jacobian. (Proptest case: L/D 1.59, W = 0.0017, vertical tilt 0.74.)
 #[allow(clippy::too_many_arguments)]
 pub(super) fn load_balance(
     p: &mut BalanceSearch,
@@ -306,59 +318,25 @@ pub(super) fn load_balance(
     cap: u32,
     observer: &dyn Observer,
 ) -> Result<(Eval, Convergence, u32), SolveError> {
-    // Inexact Newton: trial pressures are solved to a tolerance tied to the load error, the
-    // accepted point is then re-solved to the full tolerance before convergence is declared.
     let mut full = p.tol_at(k);
-    let inexact = |err: f64, full: f64| (1e-3 * err).clamp(full, full.max(1e-5));
     // a grid that only predicts the next one's start (below) solves to 1e-4: its one Newton step
     // steers the finest grid's start as well as from 1e-5 (misaligned 361×181: the same finest
     // V-cycles, 2 % fewer instructions; BENCHMARKS.md, speed fifth round)
-    let t0 = if predict_only && jac.is_some() { full.max(1e-4) } else { inexact(1e-2, full) };
+    let t0 = if predict_only && jac.is_some() { full.max(1e-4) } else { inexact_tolerance(1e-2, full) };
     let mut ev = p.eval_tol(k, *eps, *beta, cold, if cold { full } else { t0 })?;
     let mut exact = cold || t0 <= full;
     let mut r = load_residual(&ev, w);
     let mut err = relative_load_error(&ev, w);
-    if predict_only {
-        // a grid between the start grid and the finest: one pressure solve at the coarser
-        // grid's equilibrium and one Newton step with the carried Jacobian give the next grid
-        // its start (its own equilibrium is not needed)
-        if k + 1 == p.start_level && jac.is_some() && err > FRESH_JACOBIAN_ABOVE {
-            // the first grid above the start grid finds the load off by more than 1e-3 at the
-            // carried position: the carried Jacobian (the start grid's differences) is stale for
-            // this film, and with it the finest grid would need two or three Newton steps.
-            // Re-solve here to this grid's tolerance and take fresh difference columns first.
-            ev = p.eval_tol(k, *eps, *beta, false, full)?;
-            r = load_residual(&ev, w);
-            err = relative_load_error(&ev, w);
-            *jac = Some(fd_jacobian(p, k, w, *eps, *beta, &r)?);
-        }
-        if let Some(j) = *jac {
-            let (de, db) = newton_step(&j, &r, *eps);
-            if *eps + de > 0.0 && p.feasible(*eps + de, *beta + db) {
-                *eps += de;
-                *beta = wrap_pm(*beta + db);
-            }
-            return Ok((ev, Convergence { iterations: 0, residual: err, tolerance: tol, termination: Termination::Converged }, 0));
-        }
+    if predict_only && let Some(j) = jac.as_mut() {
+        return predict_next_start(p, k, w, eps, beta, j, (ev, r, err), full, tol);
     }
     let mut history = vec![err];
     let mut it = 0;
     let mut blocked = 0;
-    // Stagnation guard: a light load on a strongly misaligned journal is the small difference of
-    // large opposing forces (the tilt's pressure peaks at the two edges), so the pressure
-    // tolerance, relative to the pressure field, can leave a load error above `tol` relative to
-    // the load. When the error stops falling, tighten the pressure tolerance (to 1e-12 at most)
-    // and rebuild the Jacobian. (Proptest case: L/D 1.59, W = 0.0017, vertical tilt 0.74.)
+    // the stagnation guard's best error and the steps since
     let mut best = err;
     let mut stalled = 0;
-    // The pressure and position of the accepted point before the current one: the next Newton
-    // trial starts from the current pressure extrapolated along the last step (the steps of a
-    // converging Newton iteration are nearly collinear, so `P(x + δ) ≈ P(x) + s (P(x) − P(x_prev))`
-    // with `s` the new step projected on the last one): a start closer to the trial's solution
-    // than the current pressure alone. L9 at 361×181: V-cycles on the finest grid −4 %, on the
-    // 46×24 start grid −4 % (BENCHMARKS.md, speed sixth round); results move at the tolerances.
-    let mut prev: Option<(f64, f64)> = None;
-    let (mut prev_u, mut base_u): (Vec<f64>, Vec<f64>) = (Vec::new(), Vec::new());
+    let mut last = LastStep::default();
     loop {
         if err < 0.5 * best {
             best = err;
@@ -369,10 +347,8 @@ pub(super) fn load_balance(
         if stalled >= 4 && err < 1e-3 && full > 1e-12 && err > tol {
             full = (full * 1e-2).max(1e-12);
             stalled = 0;
-            ev = p.eval_tol(k, *eps, *beta, false, full)?;
+            (ev, r, err) = resolve(p, k, w, *eps, *beta, full)?;
             exact = true;
-            r = load_residual(&ev, w);
-            err = relative_load_error(&ev, w);
             best = err;
             *jac = Some(fd_jacobian(p, k, w, *eps, *beta, &r)?);
             continue;
@@ -381,18 +357,13 @@ pub(super) fn load_balance(
             if exact {
                 break;
             }
-            ev = p.eval_tol(k, *eps, *beta, false, full)?;
+            (ev, r, err) = resolve(p, k, w, *eps, *beta, full)?;
             exact = true;
-            r = load_residual(&ev, w);
-            err = relative_load_error(&ev, w);
             continue;
         }
         observer.check()?;
         if it >= cap {
-            if r[0] < 0.0 && near_closure(p, *eps, *beta) {
-                return Err(film_closed(p.settings));
-            }
-            return Err(SolveError::NotConverged { solver: "journal load balance", iterations: it, residual: err, tolerance: tol, history });
+            return Err(balance_failure(p, *eps, *beta, &r, it, err, tol, history));
         }
         it += 1;
         if jac.is_none() {
@@ -400,75 +371,36 @@ pub(super) fn load_balance(
         }
         let j = jac.unwrap();
         let (de, db) = newton_step(&j, &r, *eps);
-        let norm0 = r[0].hypot(r[1]);
-        let mut t = 1.0;
-        let mut accepted = false;
-        let mut infeasible = false;
-        base_u.clear();
-        base_u.extend_from_slice(&p.h.levels[k].u);
-        for _ in 0..40 {
-            let (e1, b1) = (*eps + t * de, *beta + t * db);
-            if e1 > 0.0 && p.feasible(e1, b1) {
-                if t == 1.0
-                    && let Some((pe, pb)) = prev
-                {
-                    let (le, lb) = (*eps - pe, *beta - pb);
-                    let ll = le * le + lb * lb;
-                    let s = if ll > 0.0 { ((e1 - *eps) * le + (b1 - *beta) * lb) / ll } else { 0.0 };
-                    if s.is_finite() && s.abs() <= 1.0 && s != 0.0 {
-                        for (u, q) in p.h.levels[k].u.iter_mut().zip(&prev_u) {
-                            *u = (*u + s * (*u - q)).max(0.0);
-                        }
-                    }
-                }
-                // near convergence the trial is likely the answer: solve it fully at once
-                let t_p = if err < 1e3 * tol { full } else { inexact(err, full) };
-                let ev1 = p.eval_tol(k, e1, b1, false, t_p)?;
-                exact = t_p <= full;
-                let r1 = load_residual(&ev1, w);
-                let norm1 = r1[0].hypot(r1[1]);
-                if norm1 < norm0 || t < 1e-3 {
-                    // Broyden update of the Jacobian with the step actually taken
-                    let s = [e1 - *eps, b1 - *beta];
-                    let y = [r1[0] - r[0], r1[1] - r[1]];
-                    let ss = s[0] * s[0] + s[1] * s[1];
-                    if ss > 0.0 {
-                        let mut jn = j;
-                        for a in 0..2 {
-                            let js = j[a][0] * s[0] + j[a][1] * s[1];
-                            for b in 0..2 {
-                                jn[a][b] += (y[a] - js) * s[b] / ss;
-                            }
-                        }
-                        *jac = Some(jn);
-                    }
-                    std::mem::swap(&mut prev_u, &mut base_u);
-                    prev = Some((*eps, *beta));
-                    *eps = e1;
-                    *beta = b1;
-                    ev = ev1;
-                    r = r1;
-                    accepted = true;
-                    break;
-                }
-            } else {
-                infeasible = true;
+        last.keep_base(&p.h.levels[k].u);
+        // near convergence the trial is likely the answer: solve it fully at once
+        let t_p = if err < 1e3 * tol { full } else { inexact_tolerance(err, full) };
+        let mut seen = Trials::default();
+        let taken = damped_step(p, k, w, (*eps, *beta), (de, db), r[0].hypot(r[1]), t_p, last.last(), &mut seen)?;
+        if seen.evaluated {
+            exact = t_p <= full;
+        }
+        let accepted = taken.is_some();
+        if let Some((e1, b1, ev1, r1)) = taken {
+            // Broyden update of the Jacobian with the step actually taken
+            if let Some(jn) = broyden_update(&j, [e1 - *eps, b1 - *beta], [r1[0] - r[0], r1[1] - r[1]]) {
+                *jac = Some(jn);
             }
-            t *= 0.5;
+            last.accepted_from((*eps, *beta));
+            *eps = e1;
+            *beta = b1;
+            ev = ev1;
+            r = r1;
         }
         err = relative_load_error(&ev, w);
         history.push(err);
         if !accepted {
-            if infeasible && r[0] < 0.0 {
+            if seen.infeasible && r[0] < 0.0 {
                 return Err(film_closed(p.settings));
             }
             // a stale Jacobian: rebuild it once before giving up
             blocked += 1;
             if blocked > 2 {
-                if r[0] < 0.0 && near_closure(p, *eps, *beta) {
-                    return Err(film_closed(p.settings));
-                }
-                return Err(SolveError::NotConverged { solver: "journal load balance", iterations: it, residual: err, tolerance: tol, history });
+                return Err(balance_failure(p, *eps, *beta, &r, it, err, tol, history));
             }
             *jac = Some(fd_jacobian(p, k, w, *eps, *beta, &r)?);
             ev = p.eval(k, *eps, *beta, false)?;
@@ -476,6 +408,171 @@ pub(super) fn load_balance(
     }
     *beta = wrap_pm(*beta);
     Ok((ev, Convergence { iterations: it, residual: err, tolerance: tol, termination: Termination::Converged }, it))
+}
+
+/// A pressure solve at a position with its load residual and relative load error.
+type Solved = (Eval, [f64; 2], f64);
+
+/// The pressure tolerance of an inexact Newton trial at the relative load error `err`: 1e-3 of
+/// it, within `full` (the level's tolerance) and `max(full, 1e-5)`.
+fn inexact_tolerance(err: f64, full: f64) -> f64 {
+    (1e-3 * err).clamp(full, full.max(1e-5))
+}
+
+/// The pressure on level `k` at `(eps, beta)` solved (warm) to `tol`, with its load residual and
+/// relative load error.
+fn resolve(p: &mut BalanceSearch, k: usize, w: f64, eps: f64, beta: f64, tol: f64) -> Result<Solved, SolveError> {
+    let ev = p.eval_tol(k, eps, beta, false, tol)?;
+    let r = load_residual(&ev, w);
+    let err = relative_load_error(&ev, w);
+    Ok((ev, r, err))
+}
+
+/// [`load_balance`] on a grid between the start grid and the finest: one pressure solve at the
+/// coarser grid's equilibrium (`at`) and one Newton step with the carried Jacobian `jac` give the
+/// next grid its start (its own equilibrium is not needed).
+#[allow(clippy::too_many_arguments)]
+fn predict_next_start(
+    p: &mut BalanceSearch,
+    k: usize,
+    w: f64,
+    eps: &mut f64,
+    beta: &mut f64,
+    jac: &mut [[f64; 2]; 2],
+    at: Solved,
+    full: f64,
+    tol: f64,
+) -> Result<(Eval, Convergence, u32), SolveError> {
+    let (mut ev, mut r, mut err) = at;
+    if k + 1 == p.start_level && err > FRESH_JACOBIAN_ABOVE {
+        // the first grid above the start grid finds the load off by more than 1e-3 at the
+        // carried position: the carried Jacobian (the start grid's differences) is stale for
+        // this film, and with it the finest grid would need two or three Newton steps.
+        // Re-solve here to this grid's tolerance and take fresh difference columns first.
+        (ev, r, err) = resolve(p, k, w, *eps, *beta, full)?;
+        *jac = fd_jacobian(p, k, w, *eps, *beta, &r)?;
+    }
+    let (de, db) = newton_step(jac, &r, *eps);
+    if *eps + de > 0.0 && p.feasible(*eps + de, *beta + db) {
+        *eps += de;
+        *beta = wrap_pm(*beta + db);
+    }
+    Ok((ev, Convergence { iterations: 0, residual: err, tolerance: tol, termination: Termination::Converged }, 0))
+}
+
+/// The accepted point of [`load_balance`] before the current one, its position and pressure: the
+/// next full Newton trial starts from the current pressure extrapolated along the last step
+/// ([`damped_step`]). `base` keeps the current pressure while a step is tried.
+#[derive(Default)]
+struct LastStep {
+    at: Option<(f64, f64)>,
+    pressure: Vec<f64>,
+    base: Vec<f64>,
+}
+
+impl LastStep {
+    /// Keep the current pressure `u` before a step is tried.
+    fn keep_base(&mut self, u: &[f64]) {
+        self.base.clear();
+        self.base.extend_from_slice(u);
+    }
+
+    /// The previous accepted position and its pressure, if any.
+    fn last(&self) -> Option<((f64, f64), &[f64])> {
+        self.at.map(|at| (at, self.pressure.as_slice()))
+    }
+
+    /// A step from `at` was accepted: `at` and its kept pressure become the last step.
+    fn accepted_from(&mut self, at: (f64, f64)) {
+        std::mem::swap(&mut self.pressure, &mut self.base);
+        self.at = Some(at);
+    }
+}
+
+/// A trial [`damped_step`] accepted: the position `(ε, β)`, its pressure solve and load residual.
+type Trial = (f64, f64, Eval, [f64; 2]);
+
+/// What the trials of a [`damped_step`] met: whether any was solved, whether any was infeasible.
+#[derive(Default)]
+struct Trials {
+    evaluated: bool,
+    infeasible: bool,
+}
+
+/// The damped Newton step of [`load_balance`] from `from = (ε, β)` along `step = (Δε, Δβ)`: the
+/// step halved (at most 40 times) until a feasible trial's load residual norm falls below `norm0`
+/// (or the step is below 1e-3 of the full one), each trial's pressure solved to `t_p`. The full
+/// step starts from the current pressure extrapolated along the last step (`last`: the previous
+/// accepted position and its pressure): the steps of a converging Newton iteration are nearly
+/// collinear, so `P(x + δ) ≈ P(x) + s (P(x) − P(x_prev))` with `s` the new step projected on the
+/// last one, a start closer to the trial's solution than the current pressure alone (L9 at
+/// 361×181: V-cycles on the finest grid −4 %, on the 46×24 start grid −4 %; BENCHMARKS.md, speed
+/// sixth round; results move at the tolerances). Returns the accepted position, its pressure solve
+/// and load residual.
+#[allow(clippy::too_many_arguments)]
+fn damped_step(
+    p: &mut BalanceSearch,
+    k: usize,
+    w: f64,
+    (eps, beta): (f64, f64),
+    (de, db): (f64, f64),
+    norm0: f64,
+    t_p: f64,
+    last: Option<((f64, f64), &[f64])>,
+    seen: &mut Trials,
+) -> Result<Option<Trial>, SolveError> {
+    backtrack(1.0, 40, |t| {
+        let (e1, b1) = (eps + t * de, beta + t * db);
+        if !(e1 > 0.0 && p.feasible(e1, b1)) {
+            seen.infeasible = true;
+            return Ok(None);
+        }
+        if t == 1.0
+            && let Some(((pe, pb), prev_u)) = last
+        {
+            let (le, lb) = (eps - pe, beta - pb);
+            let ll = le * le + lb * lb;
+            let s = if ll > 0.0 { ((e1 - eps) * le + (b1 - beta) * lb) / ll } else { 0.0 };
+            if s.is_finite() && s.abs() <= 1.0 && s != 0.0 {
+                for (u, q) in p.h.levels[k].u.iter_mut().zip(prev_u) {
+                    *u = (*u + s * (*u - q)).max(0.0);
+                }
+            }
+        }
+        let ev1 = p.eval_tol(k, e1, b1, false, t_p)?;
+        seen.evaluated = true;
+        let r1 = load_residual(&ev1, w);
+        let norm1 = r1[0].hypot(r1[1]);
+        Ok((norm1 < norm0 || t < 1e-3).then_some((e1, b1, ev1, r1)))
+    })
+}
+
+/// Broyden's update of the Jacobian `j` with the step `s` taken and the residual's change `y`;
+/// `None` for a zero step.
+fn broyden_update(j: &[[f64; 2]; 2], s: [f64; 2], y: [f64; 2]) -> Option<[[f64; 2]; 2]> {
+    let ss = s[0] * s[0] + s[1] * s[1];
+    if ss > 0.0 {
+        let mut jn = *j;
+        for a in 0..2 {
+            let js = j[a][0] * s[0] + j[a][1] * s[1];
+            for b in 0..2 {
+                jn[a][b] += (y[a] - js) * s[b] / ss;
+            }
+        }
+        Some(jn)
+    } else {
+        None
+    }
+}
+
+/// The load balance's failure after `it` steps at `(eps, beta)`: a closed film where the load
+/// is not reached near the closure floor ([`near_closure`]), else not converged.
+#[allow(clippy::too_many_arguments)]
+fn balance_failure(p: &BalanceSearch, eps: f64, beta: f64, r: &[f64; 2], it: u32, err: f64, tol: f64, history: Vec<f64>) -> SolveError {
+    if r[0] < 0.0 && near_closure(p, eps, beta) {
+        return film_closed(p.settings);
+    }
+    SolveError::NotConverged { solver: "journal load balance", iterations: it, residual: err, tolerance: tol, history }
 }
 
 /// Newton step `−J⁻¹ r` in (ε, β), shortened so that the eccentricity moves at most halfway
@@ -592,35 +689,35 @@ pub(super) fn load_balance_invariant(
         if de.abs() > lim {
             de = lim.copysign(de);
         }
-        let mut accepted = false;
-        for _ in 0..30 {
+        // The step halved (at most 30 times) until |ln(|F|/W)| falls. (Every solved trial turns
+        // the journal, an accepted one or not.)
+        let taken = backtrack::<_, SolveError>(de, 30, |de| {
             let e1 = *eps + de;
-            if e1 > 0.0 && p.feasible(e1, *beta) {
-                let t = if err < 1e3 * tol { full } else { inexact(err) };
-                let mut ev1 = p.eval_tol(k, e1, *beta, false, t)?;
-                let mag1 = turn(&mut ev1, beta);
-                if mag1 > 0.0 {
-                    let r1 = (mag1 / w).ln();
-                    if r1.abs() < r.abs() {
-                        let m1 = (r1 - r) / (e1 - *eps);
-                        if m1 > 0.0 && m1.is_finite() {
-                            m = m1;
-                        }
-                        *eps = e1;
-                        ev = ev1;
-                        r = r1;
-                        mag = mag1;
-                        t_used = t;
-                        accepted = true;
-                        break;
-                    }
-                }
+            if !(e1 > 0.0 && p.feasible(e1, *beta)) {
+                return Ok(None);
             }
-            de *= 0.5;
-        }
-        if !accepted {
+            let t = if err < 1e3 * tol { full } else { inexact(err) };
+            let mut ev1 = p.eval_tol(k, e1, *beta, false, t)?;
+            let mag1 = turn(&mut ev1, beta);
+            if mag1 > 0.0 {
+                let r1 = (mag1 / w).ln();
+                Ok((r1.abs() < r.abs()).then_some((e1, ev1, r1, mag1, t)))
+            } else {
+                Ok(None)
+            }
+        })?;
+        let Some((e1, ev1, r1, mag1, t)) = taken else {
             return Ok(None);
+        };
+        let m1 = (r1 - r) / (e1 - *eps);
+        if m1 > 0.0 && m1.is_finite() {
+            m = m1;
         }
+        *eps = e1;
+        ev = ev1;
+        r = r1;
+        mag = mag1;
+        t_used = t;
         err = (mag - w).abs() / w;
         history.push(err);
     }

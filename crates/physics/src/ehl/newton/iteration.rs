@@ -1,4 +1,6 @@
 use super::*;
+use crate::numerics::newton::armijo_backtrack;
+use std::convert::Infallible;
 
 /// Scaled complementarity residuals `φ_i = min(P_f, −c F)` (0 at boundaries) for scalings `c`.
 pub(super) fn phi(v: &Fields, c: &[f64], out: &mut [f64]) {
@@ -104,28 +106,25 @@ pub(super) fn newton(
             }
         }
         let m0 = merit(&ws.ph, ws.v.load, &grid.cell);
-        let mut accepted = false;
-        for _ in 0..MAX_HALVINGS {
+        // The trial point at `alpha` into `ws.p_trial`/`ws.trial`, its merit (`None`: not evaluable).
+        let Ok(accepted) = armijo_backtrack(alpha, MAX_HALVINGS, m0, |alpha| {
             for i in 0..n {
                 ws.p_trial[i] = p[i] + alpha * ws.dp[i];
             }
             let h0_trial = *h0 + alpha * dh0;
-            if prob.evaluate(&ws.p_trial, h0_trial, &mut ws.trial) {
-                phi(&ws.trial, &ws.c, &mut ws.ph_trial);
-                let mt = merit(&ws.ph_trial, ws.trial.load, &grid.cell);
-                if mt <= (1.0 - 1e-4 * alpha) * m0 {
-                    p.copy_from_slice(&ws.p_trial);
-                    *h0 = h0_trial;
-                    std::mem::swap(&mut ws.v, &mut ws.trial);
-                    accepted = true;
-                    break;
-                }
+            if !prob.evaluate(&ws.p_trial, h0_trial, &mut ws.trial) {
+                return Ok::<_, Infallible>(None);
             }
-            alpha *= 0.5;
-        }
-        if !accepted {
+            phi(&ws.trial, &ws.c, &mut ws.ph_trial);
+            Ok(Some(merit(&ws.ph_trial, ws.trial.load, &grid.cell)))
+        });
+        let Some(alpha) = accepted else {
             return Ok(Run { iterations: iter + 1, residual: res, history, converged: false });
-        }
+        };
+        // The accepted trial is the last one evaluated.
+        p.copy_from_slice(&ws.p_trial);
+        *h0 += alpha * dh0;
+        std::mem::swap(&mut ws.v, &mut ws.trial);
     }
     // Final check after the last step.
     for i in 1..n - 1 {

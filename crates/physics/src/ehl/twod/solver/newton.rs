@@ -4,6 +4,7 @@
 use super::precond::Precond;
 use super::*;
 use crate::numerics::krylov;
+use crate::numerics::newton::armijo_backtrack;
 
 /// Restarted GMRES for `A x = b` right-preconditioned by `lu`, at most `max_its` iterations;
 /// `x` starts at 0 (`from_x`: at its own value, when finite). Returns the iterations and the final
@@ -235,7 +236,8 @@ impl Newton {
 
     /// The damped step from `(p, h0)` along `sol`: the first trial length from [`film_damping`],
     /// halved until the merit `Σ φ² ΔXΔY + G²` falls by the Armijo fraction (at most
-    /// [`MAX_HALVINGS`]); the accepted point replaces `(p, h0)` and `v`. Whether one was accepted.
+    /// [`MAX_HALVINGS`]; [`armijo_backtrack`], the cancellation checked before each trial); the
+    /// accepted point replaces `(p, h0)` and `v`. Whether one was accepted.
     fn line_search(&mut self, prob: &mut Problem, p: &mut [f64], h0: &mut f64, cell: f64, observer: &dyn Observer) -> Result<bool, SolveError> {
         let m = prob.nodes.len();
         self.dpn.iter_mut().for_each(|d| *d = 0.0);
@@ -243,35 +245,36 @@ impl Newton {
             self.dpn[k] = self.sol[u];
         }
         let dh0 = self.sol[m];
-        let mut alpha = film_damping(prob, &self.v, &self.dpn, dh0, &mut self.dw);
+        let alpha0 = film_damping(prob, &self.v, &self.dpn, dh0, &mut self.dw);
         if trace() {
-            eprintln!("   film damping alpha {alpha:.3e}");
+            eprintln!("   film damping alpha {alpha0:.3e}");
         }
         let m0 = dot(&self.phi, &self.phi) * cell + self.v.g * self.v.g;
-        let mut accepted = false;
-        for _ in 0..MAX_HALVINGS {
+        // The trial point at `alpha` into `p_trial`/`trial`, its merit (`None`: not evaluable).
+        let accepted = armijo_backtrack(alpha0, MAX_HALVINGS, m0, |alpha| -> Result<Option<f64>, SolveError> {
             observer.check()?;
             for k in 0..p.len() {
                 self.p_trial[k] = p[k] + alpha * self.dpn[k];
             }
             let h0_trial = *h0 + alpha * dh0;
-            if prob.evaluate(&self.p_trial, h0_trial, &mut self.trial) {
-                prob.phi(&self.p_trial, &self.trial, &self.c, &mut self.phi_t);
-                let mt = dot(&self.phi_t, &self.phi_t) * cell + self.trial.g * self.trial.g;
-                if mt <= (1.0 - 1e-4 * alpha) * m0 {
-                    p.copy_from_slice(&self.p_trial);
-                    *h0 = h0_trial;
-                    std::mem::swap(&mut self.v, &mut self.trial);
-                    accepted = true;
-                    break;
-                }
+            if !prob.evaluate(&self.p_trial, h0_trial, &mut self.trial) {
+                return Ok(None);
             }
-            alpha *= 0.5;
+            prob.phi(&self.p_trial, &self.trial, &self.c, &mut self.phi_t);
+            Ok(Some(dot(&self.phi_t, &self.phi_t) * cell + self.trial.g * self.trial.g))
+        })?;
+        if let Some(alpha) = accepted {
+            // The accepted trial is the last one evaluated.
+            p.copy_from_slice(&self.p_trial);
+            *h0 += alpha * dh0;
+            std::mem::swap(&mut self.v, &mut self.trial);
         }
         if trace() {
-            eprintln!("   accepted {accepted} alpha {alpha:.3e}");
+            // (the length after the last halving when none was accepted)
+            let alpha = accepted.unwrap_or(alpha0 * 0.5f64.powi(MAX_HALVINGS as i32));
+            eprintln!("   accepted {} alpha {alpha:.3e}", accepted.is_some());
         }
-        Ok(accepted)
+        Ok(accepted.is_some())
     }
 
     /// Development aid ([`trace`]): the step's numbers and, at the first step, the worst node and
