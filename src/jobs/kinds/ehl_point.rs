@@ -506,7 +506,8 @@ fn solve_2d(spec: &EhlPointSpec, observer: &dyn Observer) -> Result<EhlPointResu
     let input = Ehl2dInput { load: spec.load, geometry, effective_modulus: ep, entrainment_velocity: spec.entrainment_velocity, lubricant, temperature };
     let profile = spec.outputs.contains(&EhlPointOutput::Profile);
     let options = Ehl2dOptions { nx, ny, tolerance: spec.tolerance, max_iterations: spec.max_iterations, fields: profile, ..Ehl2dOptions::default() };
-    let s = twod::solve(&input, &options, observer)?;
+    // Progress moves with the solver's checks (Newton steps, Krylov restarts, grid levels).
+    let s = twod::solve(&input, &options, &crate::physics::Stage::new(observer, 0.0, 0.95, 60.0, "2-D film"))?;
     let profile = s.fields.as_ref().map(|f| {
         // The row nearest the centre line y = 0.
         let j = (0..f.y.len()).min_by(|&a, &b| f.y[a].abs().total_cmp(&f.y[b].abs())).unwrap_or(0);

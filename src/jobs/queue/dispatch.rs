@@ -66,7 +66,7 @@ impl Queue {
                 deadline,
                 events: events.clone(),
                 interval,
-                last: Mutex::new(None),
+                last: Mutex::new((None, 0.0)),
             };
             // Canceled (or shut down) while it waited in the pool's queue: do not start it.
             let mut modelled = 0.0;
@@ -117,18 +117,21 @@ struct JobObserver {
     deadline: Option<Instant>,
     events: mpsc::UnboundedSender<Event>,
     interval: Duration,
-    last: Mutex<Option<Instant>>,
+    /// When progress was last sent, and the largest fraction sent: a job's progress never goes
+    /// back (nested stages of a solver may report a smaller fraction than an outer one did).
+    last: Mutex<(Option<Instant>, f64)>,
 }
 
 impl Observer for JobObserver {
     fn progress(&self, fraction: f64, stage: &str) {
         let now = Instant::now();
         let mut last = self.last.lock().unwrap_or_else(|e| e.into_inner());
-        if last.is_some_and(|t| now.duration_since(t) < self.interval) {
+        if last.0.is_some_and(|t| now.duration_since(t) < self.interval) {
             return;
         }
-        *last = Some(now);
         let fraction = if fraction.is_finite() { fraction.clamp(0.0, 1.0) } else { 0.0 };
+        let fraction = fraction.max(last.1);
+        *last = (Some(now), fraction);
         let _ = self.events.send(Event::Progress { id: self.id, fraction, stage: stage.to_string() });
     }
 
