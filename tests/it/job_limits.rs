@@ -232,10 +232,8 @@ async fn a_tiny_job_does_not_wait_behind_a_backlog_after_a_restart() {
     cfg.queue.workers = 0;
     let s = start_in(dir, cfg.clone()).await;
     let mut heavy = Vec::new();
-    // Heavy jobs of 4 s: the tiny job's submission after the restart has that long before a
-    // second heavy job could be claimed (2 s was too short on a loaded 2-core machine).
     for i in 0..6 {
-        let res: Value = s.post_job(&sleep_job(4.0, 700 + i)).await.json().await.unwrap();
+        let res: Value = s.post_job(&sleep_job(2.0, 700 + i)).await.json().await.unwrap();
         heavy.push(res["id"].as_str().unwrap().to_string());
     }
     let dir = s.stop().await;
