@@ -11,9 +11,9 @@ const NAMED: usize = 3;
 
 /// The label of a spec (canonical, defaults filled) of kind `k` with hash `hash` (hex).
 pub fn auto_label(k: &'static dyn DynKind, canonical: &Value, hash: &str) -> String {
-    let example = k.prepare(&k.example(), &Limits::UNLIMITED).map(|p| p.canonical).unwrap_or(Value::Null);
+    let example = canonical_example(k);
     let mut diffs = Vec::new();
-    differences("", canonical, &example, &mut diffs);
+    differences("", canonical, example, &mut diffs);
     let tag = &hash[..hash.len().min(6)];
     let mut parts = vec![k.name().to_string()];
     if diffs.is_empty() {
@@ -27,6 +27,17 @@ pub fn auto_label(k: &'static dyn DynKind, canonical: &Value, hash: &str) -> Str
     }
     parts.push(format!("#{tag}"));
     parts.join(" · ")
+}
+
+/// The kind's example, canonical (defaults filled): validated once per kind and kept, not on
+/// every submission.
+fn canonical_example(k: &'static dyn DynKind) -> &'static Value {
+    static CACHE: std::sync::OnceLock<std::sync::Mutex<std::collections::HashMap<&'static str, &'static Value>>> = std::sync::OnceLock::new();
+    let mut map = CACHE.get_or_init(Default::default).lock().unwrap_or_else(|e| e.into_inner());
+    map.entry(k.name()).or_insert_with(|| {
+        let example = k.prepare(&k.example(), &Limits::UNLIMITED).map(|p| p.canonical).unwrap_or(Value::Null);
+        Box::leak(Box::new(example))
+    })
 }
 
 /// `path=value` for every input of `spec` that differs from `example` (a whole object or list
