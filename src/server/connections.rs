@@ -7,9 +7,9 @@
 //! it also closes a keep-alive connection idle for that long — and the number of open connections
 //! is capped by the connection table ([`super::slots`]): when it is full, a new connection takes
 //! the place of the connection that has waited longest on its client (headers or body still
-//! arriving, or idle), which is closed; only when every connection is busy being served is the new
-//! one answered `503` with `Retry-After` and closed at once (issue 40: 4,096 tricklers no longer
-//! lock everyone out). The request body's own deadline is a request layer in `api`. Shutdown asks
+//! arriving, or idle), which is closed; only when every connection is busy being served (or has a
+//! request the server has not read yet) is the new one answered `503` with `Retry-After` and
+//! closed at once (issue 40: 4,096 tricklers no longer lock everyone out). The request body's own deadline is a request layer in `api`. Shutdown asks
 //! every connection to finish its request in flight, then drops whatever is still open when the
 //! drain deadline passes.
 
@@ -110,18 +110,20 @@ pub async fn serve(
         };
         let Some((place, admission)) = slots.admit() else {
             let _ = stream.try_write(&busy_response());
-            debug!(%peer, "connection refused: at the connection cap, every connection busy");
+            debug!(%peer, "connection refused: at the connection cap, every connection busy or with a request unread");
             continue;
         };
         if let Admission::Evicted { waited_ms } = admission {
             debug!(%peer, waited_ms, "at the connection cap: closed the connection waiting longest on its client");
         }
         let _ = stream.set_nodelay(true);
+        place.slot.watch(std::os::fd::AsRawFd::as_raw_fd(&stream));
         let (on_request, on_response) = (place.slot.clone(), place.slot.clone());
         let service = tower::ServiceBuilder::new()
             .map_request(move |req: Request<Incoming>| slots::track_request(req, &on_request))
             .map_response(move |res: Response| slots::track_response(res, &on_response))
             .service(app.clone());
+        let stream = slots::Heard::new(stream, place.slot.clone());
         let conn = http.serve_connection(TokioIo::new(stream), TowerToHyperService::new(service)).with_upgrades();
         let mut stop = stop.clone();
         // The task owns the connection's place in the table, freed when the task ends.
