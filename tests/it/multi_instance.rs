@@ -337,3 +337,45 @@ async fn identical_submissions_racing_on_three_instances_are_solved_once() {
         s.stop().await;
     }
 }
+
+/// Issue 46: a running job's lease renewals and progress updates are HOT updates on PostgreSQL —
+/// no index entry written, the row's new version on its own page — so the queue's cost per running
+/// second is a page write, not a page and an index write per index. While three 2-s jobs ran
+/// (renewals every 0.5 s, progress batched), the only updates of `jobs` that were not HOT are the
+/// claims and the finishes, which change `status`.
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn lease_renewals_and_progress_are_hot_updates() {
+    if !postgres_available("lease_renewals_and_progress_are_hot_updates") {
+        return;
+    }
+    let url = fresh_postgres_database().await;
+    let servers = servers_on(&url, &[3]).await;
+    let s = &servers[0];
+    let mut ids = Vec::new();
+    for i in 0..3 {
+        let job: Value = s.post_job(&sleep_job(2.0, 4600 + i)).await.json().await.unwrap();
+        ids.push(job["id"].as_str().unwrap().to_string());
+    }
+    for id in &ids {
+        let done = s.wait_status(id, "succeeded", Duration::from_secs(20)).await;
+        assert_eq!(done["status"], "succeeded", "{done}");
+    }
+    // The server's database sessions end with it and hand their statistics over as they exit.
+    for s in servers {
+        s.stop().await;
+    }
+    let mut conn = sqlx::PgConnection::connect(&url).await.unwrap();
+    let deadline = Instant::now() + Duration::from_secs(10);
+    let (updates, hot) = loop {
+        let row = conn.fetch_one("SELECT n_tup_upd, n_tup_hot_upd FROM pg_stat_user_tables WHERE relname = 'jobs'").await.unwrap();
+        let (updates, hot): (i64, i64) = (row.get(0), row.get(1));
+        if updates >= 12 || Instant::now() > deadline {
+            break (updates, hot);
+        }
+        tokio::time::sleep(Duration::from_millis(200)).await;
+    };
+    eprintln!("jobs: {updates} row updates, {hot} HOT");
+    let claims_and_finishes = 2 * ids.len() as i64;
+    assert!(updates >= claims_and_finishes + 6, "renewals and progress updates were made: {updates} updates in all");
+    assert_eq!(updates - hot, claims_and_finishes, "{updates} updates, {hot} HOT: only the claims and finishes may touch an index");
+}
