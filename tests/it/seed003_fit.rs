@@ -105,3 +105,63 @@ fn seed003_fit_reversals_within_90_to_270() {
     let free = run_fit(w, false, "reversals, free span");
     assert!(free.cost < 0.01, "{}", free.cost);
 }
+
+fn col(out: &Value, name: &str) -> Vec<f64> {
+    out["series"][name].as_array().unwrap_or_else(|| panic!("no column {name}")).iter().map(|v| v.as_f64().unwrap()).collect()
+}
+
+fn at_deg(out: &Value, name: &str, angle: f64) -> f64 {
+    let a = col(out, "angle_deg");
+    let i = a.iter().enumerate().min_by(|x, y| (x.1 - angle).abs().total_cmp(&(y.1 - angle).abs())).unwrap().0;
+    col(out, name)[i]
+}
+
+fn pearson(x: &[f64], y: &[f64]) -> f64 {
+    let n = x.len() as f64;
+    let (mx, my) = (x.iter().sum::<f64>() / n, y.iter().sum::<f64>() / n);
+    let cov: f64 = x.iter().zip(y).map(|(a, b)| (a - mx) * (b - my)).sum();
+    let vx: f64 = x.iter().map(|a| (a - mx).powi(2)).sum();
+    let vy: f64 = y.iter().map(|b| (b - my).powi(2)).sum();
+    cov / (vx * vy).sqrt()
+}
+
+/// The example (the all-statements fit) against seed 003 §6 / Fig. 10–12. Where the model
+/// differs the assertion is what the model gives (docs/seeds.md says why; the bound is the two
+/// tests above): reversals at ±28.8°/±61.7° (paper ±15°/±51°), Hertz 257 MPa at ±62° and 213 MPa
+/// at the nose (325/180), its maximum 329 MPa at ±45.7° (±62°), nose film 0.71 µm at 3.93 m/s
+/// (just below 1 µm, > 4 m/s), film ≤ 1.12 µm (≤ 1.3), shear 98.7 MPa (96). Tolerances: 0.1°
+/// on angles, 0.5 % on pressures, films and velocities (the fit's own figures, rounded in the
+/// example). Fig. 11: deflection and contact width rise with the load.
+#[test]
+fn seed003_example_against_the_paper() {
+    let out = crate::in_process::run("cam_cycle", &example("seed003_cycloidal_flat")).unwrap();
+    let z: Vec<f64> = out["events"]["zero_entrainment_angles_deg"].as_array().unwrap().iter().map(|v| v.as_f64().unwrap()).collect();
+    assert_eq!(z.len(), 4, "{z:?}");
+    let from_nose: Vec<f64> = z.iter().map(|a| (a - 180.0).abs()).collect();
+    for (got, want) in from_nose.iter().zip([61.75, 28.78, 28.78, 61.75]) {
+        assert!((got - want).abs() < 0.1, "{from_nose:?}");
+    }
+    let close = |a: f64, b: f64| (a / b - 1.0).abs() < 5e-3;
+    let (p62a, p62b, pn) = (at_deg(&out, "hertz_max_pressure", 118.0), at_deg(&out, "hertz_max_pressure", 242.0), at_deg(&out, "hertz_max_pressure", 180.0));
+    assert!(close(p62a, 256.9e6) && close(p62b, 256.9e6) && close(pn, 213.3e6), "{p62a} {p62b} {pn}");
+    let sm = &out["summary"];
+    let pmax = sm["max_hertz_pressure"].as_f64().unwrap();
+    assert!(close(pmax, 328.7e6), "{pmax}");
+    assert!(((sm["max_hertz_pressure_angle_deg"].as_f64().unwrap() - 180.0).abs() - 45.5).abs() < 0.6);
+    let (hn, un) = (at_deg(&out, "film_central", 180.0), at_deg(&out, "entrainment_velocity", 180.0));
+    assert!(close(hn, 0.7116e-6) && close(un, 3.934), "{hn} {un}");
+    let h = col(&out, "film_central");
+    let hmax = h.iter().copied().fold(0.0, f64::max);
+    assert!(close(hmax, 1.1195e-6) && hmax < 1.3e-6, "{hmax}");
+    // Minimum film: the entraining-only formula vanishes with the entrainment; the sampled
+    // minimum (0.5° grid) is 0.048 µm, the paper's 0.03 µm a sampling of the same collapse.
+    let hmin = h.iter().copied().fold(f64::INFINITY, f64::min);
+    assert!(hmin < 0.06e-6, "{hmin}");
+    let tau = col(&out, "max_shear_stress").into_iter().fold(0.0, f64::max);
+    assert!(close(tau, 98.71e6), "{tau}");
+    // Fig. 11: deflection (eq. 6) and contact width over the cycle rise with the load.
+    let (w, d, b) = (col(&out, "contact_load"), col(&out, "contact_deflection"), col(&out, "hertz_half_width"));
+    let (rd, rb) = (pearson(&w, &d), pearson(&w, &b));
+    println!("seed 003 Fig. 11: deflection {:.3e}–{:.3e} m; correlation with load: deflection {rd:.4}, half-width {rb:.4}", d.iter().copied().fold(f64::INFINITY, f64::min), d.iter().copied().fold(0.0, f64::max));
+    assert!(rd > 0.99 && rb > 0.9, "{rd} {rb}");
+}
