@@ -44,11 +44,14 @@ fn cycloidal_peaks_through_the_job() {
         s["angles"] = json!(3600);
     });
     let out = run("cam_cycle", &spec).unwrap();
-    let (h, beta, w) = (0.008, std::f64::consts::FRAC_PI_2, 3000.0 * std::f64::consts::PI / 30.0);
+    // The example's fitted cam (tests/it/seed003_fit.rs): lift 13.998 mm over 120.40°, 2672 rpm.
+    let (h, beta, w) = (0.013998, 120.40f64.to_radians(), 2672.0 * std::f64::consts::PI / 30.0);
     let sm = &out["summary"];
-    assert!(close(sm["max_velocity"].as_f64().unwrap(), 2.0 * h * w / beta, 1e-9));
-    assert!(close(sm["max_acceleration"].as_f64().unwrap(), std::f64::consts::TAU * h * w * w / (beta * beta), 1e-9));
-    assert!(close(sm["max_abs_jerk"].as_f64().unwrap(), 4.0 * std::f64::consts::PI.powi(2) * h * w.powi(3) / beta.powi(3), 1e-9));
+    // The peaks fall 0.025° off the 0.1° grid (rise from 45.725°): relative error ≤ (2π·0.025/120.4)²/2 ≈ 9e-7.
+    let tol = 2e-6;
+    assert!(close(sm["max_velocity"].as_f64().unwrap(), 2.0 * h * w / beta, tol));
+    assert!(close(sm["max_acceleration"].as_f64().unwrap(), std::f64::consts::TAU * h * w * w / (beta * beta), tol));
+    assert!(close(sm["max_abs_jerk"].as_f64().unwrap(), 4.0 * std::f64::consts::PI.powi(2) * h * w.powi(3) / beta.powi(3), tol));
     // Kinematics only: nothing else was computed.
     for absent in ["contact_load", "hertz_max_pressure", "film_central", "friction_coefficient", "slide_roll_ratio"] {
         assert!(out["series"].get(absent).is_none(), "{absent} present");
@@ -71,7 +74,7 @@ fn flat_follower_radius_of_curvature_matches_differences_of_the_lift() {
     let d = std::f64::consts::TAU / n as f64;
     for i in (0..n).step_by(97) {
         let s2 = (s[(i + 1) % n] - 2.0 * s[i] + s[(i + n - 1) % n]) / (d * d);
-        let rho = 0.018 + s[i] + s2;
+        let rho = 0.014121 + s[i] + s2;
         assert!((rho - r[i]).abs() < 2e-6, "angle {}: {} vs {}", i as f64 * 0.05, rho, r[i]);
     }
 }
@@ -85,7 +88,7 @@ fn seed003_zero_entrainment_and_subsurface_shear() {
     let z: Vec<f64> = out["events"]["zero_entrainment_angles_deg"].as_array().unwrap().iter().map(|v| v.as_f64().unwrap()).collect();
     assert_eq!(z.len(), 4, "{z:?}");
     assert!((z[0] + z[3] - 360.0).abs() < 1e-6 && (z[1] + z[2] - 360.0).abs() < 1e-6, "{z:?}");
-    assert!(z.iter().all(|a| (a - 180.0).abs() < 60.0));
+    assert!(z.iter().all(|a| (a - 180.0).abs() < 65.0));
     let p = col(&out, "hertz_max_pressure");
     let b = col(&out, "hertz_half_width");
     let tau = col(&out, "max_shear_stress");

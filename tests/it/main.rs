@@ -41,6 +41,7 @@ mod readable_results;
 mod reliability;
 mod restart_recovery;
 mod storage_faults;
+mod seed003_fit;
 mod service_units;
 mod sweep_api;
 mod thermal_ehl;

@@ -75,6 +75,24 @@ pub fn hertz_line(load_per_length: f64, reduced_radius: f64, contact_modulus: f6
     }
 }
 
+/// Central elastic deflection (approach) of a line contact of length `length` (m) under the
+/// Hertz pressure of `load_per_length` (N/m) on a reduced radius `reduced_radius` (m), contact
+/// modulus E* (Pa): seed 003 eq. (6), `δ = b₀ p₀ (1/E*) (ln(4b/b₀) + 0.5)` with `b₀ p₀ = 2w/π`
+/// (eq. (4)) and `b₀` the Hertz half-width (eq. (3) with `D = 2R`). The seed does not define the
+/// `b` in its logarithm; it is read here as the half-length of the line, `L/2` (the only other
+/// length of the contact: the deflection of a line contact depends on where it is referred to,
+/// and the line's half-length is the reference of the cylinder-on-flat solutions the seed
+/// cites). The logarithm is kept ≥ 0.5 (δ ≥ 0) for the degenerate `b₀ > 2L`. Zero load: 0 m.
+pub fn line_contact_deflection(load_per_length: f64, length: f64, reduced_radius: f64, contact_modulus: f64) -> f64 {
+    let hz = hertz_line(load_per_length, reduced_radius, contact_modulus);
+    if hz.half_width <= 0.0 {
+        return 0.0;
+    }
+    // seed 003 eq. (6), b = L/2: ln(4b/b₀) = ln(2L/b₀)
+    let log = ((2.0 * length / hz.half_width).ln() + 0.5).max(0.5);
+    hz.half_width * hz.max_pressure / contact_modulus * log
+}
+
 /// Plane-strain stresses at one point below a Hertzian line contact, Pa (compression negative).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct PlaneStress {

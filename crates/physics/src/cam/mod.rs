@@ -10,6 +10,7 @@ pub mod kinematics;
 pub mod lift;
 pub mod loads;
 pub mod profile;
+pub mod seed003_fit;
 pub mod seed004;
 pub mod spline;
 pub mod summary;

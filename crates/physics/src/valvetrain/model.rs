@@ -503,4 +503,26 @@ impl Assembly {
         }
         (m, k)
     }
+
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Seed 003 eq. (6): W/δ is the secant stiffness the valve-train dynamics use (same reading
+    /// of `b`), and δ grows with the load (Fig. 11b), less than linearly.
+    #[test]
+    fn line_contact_deflection_is_the_stiffness_of_the_dynamics() {
+        let (len, r, es) = (0.012, 0.02, 1.15e11);
+        let mut prev = 0.0;
+        for load in [50.0, 200.0, 800.0, 3200.0] {
+            let d = crate::contact::line_contact_deflection(load / len, len, r, es);
+            let k = line_contact_stiffness(load, len, r, es);
+            assert!((load / d - k).abs() <= 1e-9 * k, "{load} N: {} vs {k}", load / d);
+            assert!(d > prev && (prev == 0.0 || d < 4.0 * prev), "{load} N: {d} after {prev}");
+            prev = d;
+        }
+        assert_eq!(crate::contact::line_contact_deflection(0.0, len, r, es), 0.0);
+    }
 }

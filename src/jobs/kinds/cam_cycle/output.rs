@@ -94,6 +94,7 @@ pub(super) fn series_of(s: CycleSeries) -> CamSeries {
         hertz_half_width: s.hertz_half_width,
         max_shear_stress: s.max_shear_stress,
         max_shear_depth: s.max_shear_depth,
+        contact_deflection: s.contact_deflection,
         film_central: s.film_central,
         film_min: s.film_min,
         model: s.film_model,

@@ -69,6 +69,12 @@ pub struct CamSeries {
     /// Its depth (0.786 b), m.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub max_shear_depth: Option<Vec<f64>>,
+    /// Central elastic deflection of the line contact (seed 003 eq. 6; the `b` of its logarithm
+    /// read as the contact's half-length), m. Straight line contacts (flat faces, uncrowned
+    /// rollers). With `hertz_half_width` it is seed 003's Fig. 11 (deflection and contact width
+    /// over the cycle).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub contact_deflection: Option<Vec<f64>>,
     /// Central film thickness, m.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub film_central: Option<Vec<f64>>,

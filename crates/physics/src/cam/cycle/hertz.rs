@@ -17,6 +17,8 @@ struct HertzColumns {
     max_shear_stress: Option<Vec<f64>>,
     /// Line contacts only.
     max_shear_depth: Option<Vec<f64>>,
+    /// Straight line contacts only (seed 003 eq. 6).
+    deflection: Option<Vec<f64>>,
 }
 
 impl HertzColumns {
@@ -29,6 +31,7 @@ impl HertzColumns {
             effective_length: None,
             max_shear_stress: None,
             max_shear_depth: None,
+            deflection: None,
         }
     }
 }
@@ -47,13 +50,14 @@ pub(super) fn hertz_contact(spec: &CycleSpec, kin: &[KinematicState], loads: &[F
         FollowerKind::Roller { crown: Some(crown), .. } => crowned_columns(kin, loads, crown, es, factors),
         FollowerKind::Spherical { face_radius } => point_columns(kin, loads, *face_radius, es)?,
     };
-    ensure_finite("hertz contact", c.max_pressure.iter().chain(&c.half_width))?;
+    ensure_finite("hertz contact", c.max_pressure.iter().chain(&c.half_width).chain(c.deflection.iter().flatten()))?;
     series.hertz_max_pressure = Some(c.max_pressure);
     series.hertz_half_width = Some(c.half_width);
     series.load_per_length = c.load_per_length;
     series.effective_length = c.effective_length;
     series.max_shear_stress = c.max_shear_stress;
     series.max_shear_depth = c.max_shear_depth;
+    series.contact_deflection = c.deflection;
     Ok(c.shapes)
 }
 
@@ -62,9 +66,11 @@ fn line_columns(kin: &[KinematicState], loads: &[FollowerLoad], contact_length: 
     let n = kin.len();
     let mut c = HertzColumns::with_capacity(n);
     let (mut w_v, mut t_v, mut d_v) = (Vec::with_capacity(n), Vec::with_capacity(n), Vec::with_capacity(n));
+    let mut defl = Vec::with_capacity(n);
     for (k, l) in kin.iter().zip(loads) {
         let w = l.contact / contact_length;
         let hz = hertz_line(w, k.reduced_radius, es);
+        defl.push(line_contact_deflection(w, contact_length, k.reduced_radius, es));
         c.shapes.push(ContactShape::Line { reduced_radius: k.reduced_radius, length: contact_length });
         c.max_pressure.push(hz.max_pressure);
         c.half_width.push(hz.half_width);
@@ -73,6 +79,7 @@ fn line_columns(kin: &[KinematicState], loads: &[FollowerLoad], contact_length: 
         d_v.push(depth_factor * hz.half_width);
     }
     (c.load_per_length, c.max_shear_stress, c.max_shear_depth) = (Some(w_v), Some(t_v), Some(d_v));
+    c.deflection = Some(defl);
     c
 }
 

@@ -12,7 +12,7 @@ use crate::contact::slide_roll_ratio;
 use super::kinematics::{kinematics, FollowerGeometry, KinematicState, SpeedSchedule};
 use super::loads::{FollowerLoad, LoadModel};
 use super::profile::CamProfile;
-use crate::contact::{hertz_line, hertz_point, line_stress_maxima};
+use crate::contact::{hertz_line, hertz_point, line_contact_deflection, line_stress_maxima};
 use crate::film::{ContactInput, ContactShape, FilmModel, FilmModelId, FilmProfile, FilmSolution, Traction};
 use crate::ehl::twod::Fields2d;
 use crate::friction::{AsperityFriction, Roughness, TractionLaw};
@@ -151,6 +151,9 @@ pub struct CycleSeries {
     pub hertz_half_width: Option<Vec<f64>>,
     pub max_shear_stress: Option<Vec<f64>>,
     pub max_shear_depth: Option<Vec<f64>>,
+    /// Central elastic deflection of a line contact (seed 003 eq. 6, `b` read as the line's
+    /// half-length), m; straight line contacts only.
+    pub contact_deflection: Option<Vec<f64>>,
     pub film_central: Option<Vec<f64>>,
     pub film_min: Option<Vec<f64>>,
     /// Film model that ran at each angle.
