@@ -426,11 +426,11 @@ pub struct EhlPointResult {
 
 impl Kind for EhlPoint {
     const NAME: &'static str = "ehl_point";
-    const SOLVER_VERSION: &'static str = "ehl_point-9";
+    const SOLVER_VERSION: &'static str = "ehl_point-10";
     const DESCRIPTION: &'static str = "Numerical elastohydrodynamic line contact (compressible \
         Reynolds, elastic half-space, cavitation; isothermal or, with `thermal`, the thermal model \
-        of seed 000), or with `geometry` an isothermal point or finite-length (crowned roller) \
-        contact on a 2-D grid: central and minimum film, pressure spike, edge pressure peak, \
+        of seed 000), or with `geometry` a point or finite-length (crowned roller) contact on a 2-D \
+        grid, isothermal or with `thermal` the thermal finite-line model: central and minimum film, pressure spike, edge pressure peak, \
         traction, temperatures, optional pressure/film profile.";
     const TABLES: &'static [&'static str] = &["profile"];
     const KEY_FIGURES: &'static [&'static str] = &["/central_film", "/min_film", "/max_pressure", "/pressure_spike/pressure", "/edge_pressure_peak", "/friction_coefficient", "/thermal/film_temperature_max"];

@@ -79,8 +79,9 @@
 //! (`∫|p − p_dry|/F` 0.46 → 0.16 → 0.05 at M 2.9 → 8.9 → 28 on 65×129).
 //!
 //! # Not modelled
-//! Thermal and non-Newtonian effects, grid grading and mixed lubrication are the 1-D solver's
-//! only: this solver is isothermal, Newtonian, smooth; its transient steps are first order in
+//! Grid grading and mixed lubrication are the 1-D solver's only: this solver is Newtonian and
+//! smooth, isothermal unless [`crate::ehl::thermal_finite`] couples it to the energy equations
+//! through generalized Reynolds multipliers ([`Factors2d`], [`solve_factored`]); its transient steps are first order in
 //! time (backward Euler) with the load held at the step's end value.
 
 pub mod dry;
