@@ -184,6 +184,15 @@ pub fn ehl_2d_seconds(nx: usize, ny: usize) -> f64 {
     0.3 * (n / 4225.0).powf(1.4)
 }
 
+/// The thermal finite-line / point model on `nx × ny` nodes on top of its isothermal start, s:
+/// about four coupling passes, each the row energies (≈ 5 ms a row of 65 columns at the default
+/// layers, debug build; seed 000's nose on 65×129: 0.5–0.9 s a pass on 2 threads) and a warm 2-D
+/// solve (a fifth of a cold one).
+pub fn ehl_thermal_2d_seconds(nx: usize, ny: usize, film_points: usize, solid_points: usize) -> f64 {
+    let rows = ny as f64 * (nx as f64 / 65.0) * 0.005 * thermal_layers(film_points, solid_points);
+    4.0 * (rows + 0.2 * ehl_2d_seconds(nx, ny))
+}
+
 /// One 2-D film along a cam cycle against a cold solve, by the angle step (degrees): a step of
 /// 45° is as costly as a cold solve; the warm start (and the squeeze step's short pseudo-time)
 /// makes fine steps cheap (the seed 000 finite cycle at 33×65: 0.13 s an angle at 8 angles,

@@ -9,6 +9,7 @@ use crate::physics::ehl::formulas::{
     moes_central_film, pan_hamrock_central_film, pan_hamrock_minimum_film, Groups,
 };
 use crate::physics::ehl::thermal::{self, FilmHeat, ThermalBodies, ThermalInput, ThermalOptions};
+use crate::physics::ehl::thermal_finite;
 use crate::physics::ehl::{solve, EhlInput, EhlOptions, Rheology, Upwind};
 use super::common::{ExtrapolationSpec, LubricantSpec, Material, ThermalSpec};
 use crate::physics::ehl::twod::{self, Ehl2dInput, Ehl2dOptions, Geometry2d};
@@ -46,8 +47,9 @@ pub enum EhlPointOutput {
 }
 
 /// Contact geometry of an `ehl_point` job (issue 16). `line` (default): the contact is uniform
-/// along `length` (1-D solver, Richardson extrapolation, thermal model available); `point` and
-/// `finite`: the 2-D solver (`physics::ehl::twod`, isothermal, Newtonian, one grid).
+/// along `length` (1-D solver, Richardson extrapolation); `point` and `finite`: the 2-D solver
+/// (`physics::ehl::twod`, Newtonian, one grid), isothermal or with `thermal` the thermal
+/// finite-line / point model (`physics::ehl::thermal_finite`, issue 43).
 #[derive(Debug, Clone, Copy, PartialEq, Default, Serialize, Deserialize, ToSchema)]
 #[serde(tag = "type", rename_all = "snake_case", deny_unknown_fields)]
 pub enum EhlGeometrySpec {
@@ -153,7 +155,10 @@ pub struct EhlPointSpec {
     pub outputs: Vec<EhlPointOutput>,
     /// The thermal model (seed 000 eq. 2, 4–5, 7–9: generalized Reynolds, film and solid energy
     /// equations, traction from the sheared film). Absent: isothermal at the lubricant's
-    /// `temperature`; present, that temperature is the inlet (ambient) temperature `T0`.
+    /// `temperature`; present, that temperature is the inlet (ambient) temperature `T0`. With a
+    /// `point` or `finite` geometry the 2-D thermal model: the energy equations at each row of the
+    /// grid across the roller, coupled to the 2-D Reynolds equation (result `thermal_finite`);
+    /// the traction law is `rheology` (Newtonian without an Eyring stress, as seed 000).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub thermal: Option<EhlPointThermalSpec>,
 }
@@ -232,6 +237,68 @@ fn d_tol() -> f64 {
 }
 fn d_iter() -> u32 {
     60
+}
+
+/// One row of the 2-D thermal solution (a section across the entrainment at `y`).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, ToSchema)]
+pub struct ThermalRowResult {
+    /// Position of the row along the roller axis (across the entrainment), m from the centre.
+    pub y: f64,
+    /// Largest film temperature of the row, K.
+    pub film_temperature_max: f64,
+    /// Film at the contact centre line `x = 0` in this row, m.
+    pub central_film: f64,
+    /// Smallest film of the row, m.
+    pub min_film: f64,
+    /// Largest pressure of the row, Pa.
+    pub max_pressure: f64,
+    /// Sliding friction coefficient of the row alone (its shear forces over its load), signed
+    /// like the sliding velocity.
+    pub friction_coefficient: f64,
+}
+
+/// Temperatures, heat flows and traction of the 2-D thermal model (whole contact).
+#[derive(Debug, Clone, PartialEq, Serialize, ToSchema)]
+pub struct ThermalFiniteResult {
+    /// Largest film temperature, K.
+    pub film_temperature_max: f64,
+    /// Where it is along the entrainment, m from the centre.
+    pub film_temperature_max_position: f64,
+    /// Where it is along the roller axis, m from the centre.
+    pub film_temperature_max_axial_position: f64,
+    /// Largest surface temperature of body 1, K.
+    pub surface_temperature_max_1: f64,
+    /// Largest surface temperature of body 2, K.
+    pub surface_temperature_max_2: f64,
+    /// Heat generated in the film (shear and compression), W.
+    pub heat_generated: f64,
+    /// Heat into body 1, W.
+    pub heat_to_body_1: f64,
+    /// Heat into body 2, W.
+    pub heat_to_body_2: f64,
+    /// Heat carried out of the contact by the oil along the entrainment, W.
+    pub heat_convected: f64,
+    /// Heat carried out sideways by the oil each row loses to its neighbours, W.
+    pub heat_side: f64,
+    /// |generated − removed| / generated.
+    pub energy_balance_error: f64,
+    /// Shear force on body 1 along +x, N.
+    pub traction_force_body_1: f64,
+    /// Shear force on body 2 along +x, N.
+    pub traction_force_body_2: f64,
+    /// Central film of the isothermal solution at the inlet temperature, m.
+    pub isothermal_central_film: f64,
+    /// Smallest film of the isothermal solution, m.
+    pub isothermal_min_film: f64,
+    /// The row through the contact centre (`y = 0`).
+    pub mid_plane: ThermalRowResult,
+    /// Finite roller: the row at the crown's start (`y = middle_length/2`), where the crown
+    /// relieves the load.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub crown_edge: Option<ThermalRowResult>,
+    /// Coupling iterations (row energies ↔ 2-D Reynolds) and the last relative change.
+    #[schema(value_type = crate::jobs::schemas::ConvergenceDoc)]
+    pub convergence: Convergence,
 }
 
 /// Pressure and film along the rolling direction.
@@ -314,7 +381,7 @@ pub struct EhlPointResult {
     #[serde(skip_serializing_if = "Option::is_none")]
     pub pressure_spike: Option<SpikeResult>,
     /// Sliding friction coefficient `(F2 − F1)/(2w')`, signed like the sliding velocity (line
-    /// contacts).
+    /// contacts; 2-D with `thermal`: `(F2 − F1)/(2F)` of the forces over the whole contact).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub friction_coefficient: Option<f64>,
     /// Shear force on body 1 along +x, N/m (line contacts).
@@ -347,15 +414,23 @@ pub struct EhlPointResult {
     /// films, pressures and traction above are then the thermal ones).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub thermal: Option<ThermalResult>,
+    /// Largest film temperature of the thermal model, K (with `thermal`; also in `thermal` or
+    /// `thermal_finite`).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub film_temperature_max: Option<f64>,
+    /// The 2-D thermal model's temperatures, heat flows and traction (`thermal` with a `point` or
+    /// `finite` geometry).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub thermal_finite: Option<ThermalFiniteResult>,
 }
 
 impl Kind for EhlPoint {
     const NAME: &'static str = "ehl_point";
-    const SOLVER_VERSION: &'static str = "ehl_point-9";
+    const SOLVER_VERSION: &'static str = "ehl_point-10";
     const DESCRIPTION: &'static str = "Numerical elastohydrodynamic line contact (compressible \
         Reynolds, elastic half-space, cavitation; isothermal or, with `thermal`, the thermal model \
-        of seed 000), or with `geometry` an isothermal point or finite-length (crowned roller) \
-        contact on a 2-D grid: central and minimum film, pressure spike, edge pressure peak, \
+        of seed 000), or with `geometry` a point or finite-length (crowned roller) contact on a 2-D \
+        grid, isothermal or with `thermal` the thermal finite-line model: central and minimum film, pressure spike, edge pressure peak, \
         traction, temperatures, optional pressure/film profile.";
     const TABLES: &'static [&'static str] = &["profile"];
     const KEY_FIGURES: &'static [&'static str] = &["/central_film", "/min_film", "/max_pressure", "/pressure_spike/pressure", "/edge_pressure_peak", "/friction_coefficient", "/thermal/film_temperature_max"];
@@ -408,7 +483,6 @@ impl Kind for EhlPoint {
             v.count_in_range("/geometry/nx", nx, 17, 1025);
             v.count_in_range("/geometry/ny", ny, 17, 1025);
             v.limit("/geometry/nx", nx * ny, limits.max_grid_nodes, "the number of grid nodes (nx·ny)");
-            v.check(spec.thermal.is_none(), "/thermal", "the thermal model is available for line contacts only");
         };
         match spec.geometry {
             EhlGeometrySpec::Line => {}
@@ -444,7 +518,8 @@ impl Kind for EhlPoint {
         match spec.geometry {
             EhlGeometrySpec::Point { nx, ny, .. } | EhlGeometrySpec::Finite { nx, ny, .. } => {
                 let what = format!("the 2-D EHL solver on {nx}×{ny} nodes");
-                Cost::new(cost::JOB_OVERHEAD_S + cost::ehl_2d_seconds(nx, ny), cost::ehl_2d_bytes(nx, ny))
+                let thermal = spec.thermal.as_ref().map_or(0.0, |t| cost::ehl_thermal_2d_seconds(nx, ny, t.film_points, t.solid_points));
+                Cost::new(cost::JOB_OVERHEAD_S + cost::ehl_2d_seconds(nx, ny) + thermal, cost::ehl_2d_bytes(nx, ny))
                     .work_at("/geometry/nx", what.clone())
                     .memory_at("/geometry/nx", what)
             }
@@ -507,7 +582,16 @@ fn solve_2d(spec: &EhlPointSpec, observer: &dyn Observer) -> Result<EhlPointResu
     let profile = spec.outputs.contains(&EhlPointOutput::Profile);
     let options = Ehl2dOptions { nx, ny, tolerance: spec.tolerance, max_iterations: spec.max_iterations, fields: profile, ..Ehl2dOptions::default() };
     // Progress moves with the solver's checks (Newton steps, Krylov restarts, grid levels).
-    let s = twod::solve(&input, &options, &crate::physics::Stage::new(observer, 0.0, 0.95, 60.0, "2-D film"))?;
+    let stage = crate::physics::Stage::new(observer, 0.0, 0.95, 60.0, "2-D film");
+    let (s, thermal_finite, friction) = match &spec.thermal {
+        None => (twod::solve(&input, &options, &stage)?, None, None),
+        Some(t) => {
+            let th = solve_thermal_2d(spec, t, input, &options, &stage)?;
+            let mu = th.traction.friction_coefficient;
+            let result = thermal_finite_result(spec, &th);
+            (th.ehl, Some(result), Some(mu))
+        }
+    };
     let profile = s.fields.as_ref().map(|f| {
         // The row nearest the centre line y = 0.
         let j = (0..f.y.len()).min_by(|&a, &b| f.y[a].abs().total_cmp(&f.y[b].abs())).unwrap_or(0);
@@ -533,7 +617,7 @@ fn solve_2d(spec: &EhlPointSpec, observer: &dyn Observer) -> Result<EhlPointResu
         edge_pressure_peak: s.edge_pressure_peak.map(|e| e.value),
         edge_pressure_peak_axial_position: s.edge_pressure_peak.map(|e| e.y.abs()),
         pressure_spike: None,
-        friction_coefficient: None,
+        friction_coefficient: friction,
         traction_body_1: None,
         traction_body_2: None,
         rolling_force: None,
@@ -544,7 +628,64 @@ fn solve_2d(spec: &EhlPointSpec, observer: &dyn Observer) -> Result<EhlPointResu
         convergence: s.convergence,
         profile,
         thermal: None,
+        film_temperature_max: thermal_finite.as_ref().map(|t| t.film_temperature_max),
+        thermal_finite,
     })
+}
+
+/// The thermal finite-line / point model of a 2-D `ehl_point` (`physics::ehl::thermal_finite`).
+fn solve_thermal_2d(spec: &EhlPointSpec, t: &EhlPointThermalSpec, input: Ehl2dInput, options: &Ehl2dOptions, observer: &dyn Observer) -> Result<thermal_finite::ThermalFiniteSolution, SolveError> {
+    let bodies = ThermalBodies {
+        film: FilmHeat { conductivity: t.oil_conductivity, specific_heat: t.oil_specific_heat },
+        body_1: t.body_1.to_physics(),
+        body_2: t.body_2.to_physics(),
+    };
+    let rheology = Rheology {
+        eyring_stress: spec.rheology.eyring_stress,
+        limiting_shear_coefficient: spec.rheology.limiting_shear_coefficient,
+        limiting_shear_stress: spec.rheology.limiting_shear_stress,
+    };
+    let tin = thermal_finite::ThermalFiniteInput { ehl: input, sliding_velocity: spec.sliding_velocity, rheology, bodies };
+    let topts = ThermalOptions { film_points: t.film_points, solid_points: t.solid_points, ..ThermalOptions::default() };
+    thermal_finite::solve(&tin, options, &topts, observer)
+}
+
+/// The result part of a 2-D thermal solution.
+fn thermal_finite_result(spec: &EhlPointSpec, th: &thermal_finite::ThermalFiniteSolution) -> ThermalFiniteResult {
+    let row = |r: &thermal_finite::RowThermal| ThermalRowResult {
+        y: r.y,
+        film_temperature_max: r.summary.film_temperature_max,
+        central_film: r.central_film,
+        min_film: r.min_film,
+        max_pressure: r.max_pressure,
+        friction_coefficient: r.traction.friction_coefficient,
+    };
+    let t0 = spec.lubricant.inlet_temperature();
+    let unsolved = |y: f64| ThermalRowResult { y, film_temperature_max: t0, central_film: 0.0, min_film: 0.0, max_pressure: 0.0, friction_coefficient: 0.0 };
+    let crown_edge = match spec.geometry {
+        EhlGeometrySpec::Finite { middle_length, .. } => Some(th.row_near(0.5 * middle_length).map_or(unsolved(0.5 * middle_length), row)),
+        _ => None,
+    };
+    ThermalFiniteResult {
+        film_temperature_max: th.film_temperature_max.value,
+        film_temperature_max_position: th.film_temperature_max.x,
+        film_temperature_max_axial_position: th.film_temperature_max.y,
+        surface_temperature_max_1: th.surface_temperature_max_1,
+        surface_temperature_max_2: th.surface_temperature_max_2,
+        heat_generated: th.heat.generated,
+        heat_to_body_1: th.heat.to_body_1,
+        heat_to_body_2: th.heat.to_body_2,
+        heat_convected: th.heat.convected,
+        heat_side: th.heat.side,
+        energy_balance_error: th.heat.error,
+        traction_force_body_1: th.traction.force_body_1,
+        traction_force_body_2: th.traction.force_body_2,
+        isothermal_central_film: th.isothermal_central_film.unwrap_or(th.ehl.central_film),
+        isothermal_min_film: th.isothermal_min_film.unwrap_or(th.ehl.min_film.value),
+        mid_plane: th.row_near(0.0).map_or(unsolved(0.0), row),
+        crown_edge,
+        convergence: th.convergence.clone(),
+    }
 }
 
 fn solve_point(spec: &EhlPointSpec, observer: &dyn Observer) -> Result<EhlPointResult, SolveError> {
@@ -647,6 +788,8 @@ fn solve_point(spec: &EhlPointSpec, observer: &dyn Observer) -> Result<EhlPointR
         extrapolated,
         convergence: s.convergence,
         profile: s.profiles.map(|p| ProfileTable { x: p.x, pressure: p.pressure, film: p.film }),
+        film_temperature_max: thermal.as_ref().map(|t| t.film_temperature_max),
         thermal,
+        thermal_finite: None,
     })
 }

@@ -52,6 +52,7 @@ mod linear;
 pub mod newton;
 pub(crate) mod rheology;
 pub mod thermal;
+pub mod thermal_finite;
 pub mod traction;
 pub mod transient;
 pub mod twod;

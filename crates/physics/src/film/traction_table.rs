@@ -96,6 +96,7 @@ impl TableProblem {
         for (candidate, &shrink) in shrinks(srr).iter().enumerate() {
             let us = shrink * srr * self.scale;
             let input = EnergyInput {
+                limited_gradient: false,
                 velocity_1: self.entrainment + 0.5 * us,
                 velocity_2: self.entrainment - 0.5 * us,
                 lubricant: &self.lubricant,

@@ -1,8 +1,9 @@
 use super::*;
 
-/// The contiguous columns around the minimum film where the film is at most `extent` times it
-/// (at least three).
-pub(super) fn thermal_range(film: &[f64], extent: f64) -> (usize, usize) {
+/// The columns `[a, e]` of a film profile on which the energy equation is solved: the contiguous
+/// columns around the minimum film where the film is at most `extent` times it
+/// ([`ThermalOptions::film_extent`]), at least three.
+pub fn thermal_range(film: &[f64], extent: f64) -> (usize, usize) {
     let n = film.len();
     let imin = (0..n).fold(0, |j, i| if film[i] < film[j] { i } else { j });
     let limit = extent * film[imin];
@@ -110,6 +111,7 @@ impl ThermalEngine {
         };
         let energy_at = |sol: &EhlSolution, warm: Option<&TemperatureField>| {
             let ein = EnergyInput {
+                limited_gradient: false,
                 velocity_1: u1,
                 velocity_2: u2,
                 lubricant: &ehl.lubricant,

@@ -180,6 +180,11 @@ pub struct ThermalSummary {
     pub heat_to_body_2: f64,
     /// Heat carried out of the domain by the film, W/m.
     pub heat_convected: f64,
+    /// Heat carried away across the columns' sides by the flow they lose (`ρ c` times the loss
+    /// times the film's top-level temperature rise, summed along `x`), W/m: a row of a 2-D
+    /// contact loses flow to its neighbours ([`crate::ehl::thermal_finite`]); in a line contact
+    /// it is the pressure solution's discrete mass defect (not in `energy_balance_error`).
+    pub heat_side: f64,
     /// `|generated − (to bodies + convected)| / generated` (0 without heat).
     pub energy_balance_error: f64,
     /// Gauss–Seidel sweeps of the last energy solve.
@@ -218,6 +223,13 @@ pub struct EnergyInput<'a> {
     pub previous: Option<(&'a TemperatureField, f64)>,
     /// A field to start the sweeps from (any grid); `None`: the inlet temperature.
     pub warm: Option<&'a TemperatureField>,
+    /// The pressure gradient at a column: `false` the central difference; `true` the smaller in
+    /// magnitude of the two one-sided differences, zero where they differ in sign (minmod): a row
+    /// of a coarse 2-D grid whose pressure drops by most of its peak within one cell at the exit
+    /// would otherwise drive the low-pressure column's thin, hot oil with the drop's gradient
+    /// (measured on seed 000's nose on 65×129: a 1280 K runaway at that column with the central
+    /// difference; [`crate::ehl::thermal_finite`]).
+    pub limited_gradient: bool,
 }
 
 /// Film quantities of one column at the current temperatures.

@@ -79,8 +79,9 @@
 //! (`∫|p − p_dry|/F` 0.46 → 0.16 → 0.05 at M 2.9 → 8.9 → 28 on 65×129).
 //!
 //! # Not modelled
-//! Thermal and non-Newtonian effects, grid grading and mixed lubrication are the 1-D solver's
-//! only: this solver is isothermal, Newtonian, smooth; its transient steps are first order in
+//! Grid grading and mixed lubrication are the 1-D solver's only: this solver is Newtonian and
+//! smooth, isothermal unless [`crate::ehl::thermal_finite`] couples it to the energy equations
+//! through generalized Reynolds multipliers ([`Factors2d`], [`solve_factored`]); its transient steps are first order in
 //! time (backward Euler) with the load held at the step's end value.
 
 pub mod dry;
@@ -89,7 +90,7 @@ mod geometry;
 pub mod solver;
 
 pub use dry::{solve_dry, DryOptions, DrySolution};
-pub use solver::{solve, solve_from, solve_kept, solve_transient, Kept2d};
+pub use solver::{solve, solve_factored, solve_from, solve_kept, solve_transient, Kept2d};
 
 use crate::lubricant::Lubricant;
 use crate::geometry::Crown;
@@ -258,6 +259,47 @@ pub struct Warm2d {
 pub struct Squeeze2d<'a> {
     pub previous: &'a Warm2d,
     pub time_step: f64,
+}
+
+/// Generalized Reynolds multipliers over the contact plane (the thermal finite-line model,
+/// [`crate::ehl::thermal_finite`]; seed 000 eq. 2): at each node of the grid `x` × `y` (m, both
+/// ascending; row-major `[j·nx + i]`) the Poiseuille coefficient `(ρ/η)_e` and the wedge density
+/// `(u1 ρ*_1 + u2 ρ*_2)/(2u_m)` relative to the isothermal film's at the node's pressure
+/// ([`crate::ehl::thermal::ThermalFactors`]). The solver takes them as multipliers of `ε` in both
+/// directions (the flow across the entrainment is pure Poiseuille) and of `ρ̄` in the wedge term;
+/// they are held fixed during a solve (the coupling iterates them) and interpolated bilinearly
+/// (the Poiseuille factor in its logarithm) onto each grid level. All ones is the isothermal
+/// problem to the last bit; `None` skips the multiplication.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Factors2d {
+    pub x: Vec<f64>,
+    pub y: Vec<f64>,
+    pub poiseuille: Vec<f64>,
+    pub wedge: Vec<f64>,
+}
+
+impl Factors2d {
+    /// The factors at the physical point `(x, y)`, m (bilinear; held at the grid's edges).
+    pub fn at(&self, x: f64, y: f64) -> (f64, f64) {
+        let loc = |v: &[f64], at: f64| {
+            let n = v.len();
+            if n < 2 {
+                return (0, 0, 0.0);
+            }
+            let i = v.partition_point(|&a| a <= at).clamp(1, n - 1);
+            let t = ((at - v[i - 1]) / (v[i] - v[i - 1])).clamp(0.0, 1.0);
+            (i - 1, i, t)
+        };
+        let (i0, i1, tx) = loc(&self.x, x);
+        let (j0, j1, ty) = loc(&self.y, y);
+        let nx = self.x.len();
+        let mix = |f: &dyn Fn(usize) -> f64| {
+            let a = f(j0 * nx + i0) * (1.0 - tx) + f(j0 * nx + i1) * tx;
+            let b = f(j1 * nx + i0) * (1.0 - tx) + f(j1 * nx + i1) * tx;
+            a * (1.0 - ty) + b * ty
+        };
+        (mix(&|k| self.poiseuille[k].max(1e-300).ln()).exp(), mix(&|k| self.wedge[k]))
+    }
 }
 
 /// Memory estimate of a solve on `nx × ny` nodes, bytes: about 40 node arrays, the padded FFT

@@ -2,6 +2,7 @@
 //! eq. 2, 9) of the film's properties at the converged field, the heat balance (generated,
 //! convected out of the domain, conducted to the depth, stored) and the summary.
 
+use super::convection::Convection;
 use super::properties::FilmState;
 use super::setup::EnergyGrid;
 use super::*;
@@ -29,6 +30,7 @@ pub(super) fn solution(g: &EnergyGrid, film: &FilmState, field: TemperatureField
     let heat_to_body_1 = a1 + c1 + deep_1 + store_1;
     let heat_to_body_2 = a2 + c2 + deep_2 + store_2;
     let heat_convected = af + cf_ + store_f;
+    let heat_side = heat_side(g, film, &field);
     let total_out = heat_to_body_1 + heat_to_body_2 + heat_convected;
     let energy_balance_error = if generated.abs() > 0.0 { ((generated - total_out) / generated).abs() } else { 0.0 };
     let (s1, s2) = field.surface_max();
@@ -48,6 +50,7 @@ pub(super) fn solution(g: &EnergyGrid, film: &FilmState, field: TemperatureField
         heat_to_body_1,
         heat_to_body_2,
         heat_convected,
+        heat_side,
         energy_balance_error,
         sweeps,
         sweep_change: last_change,
@@ -130,6 +133,20 @@ fn out_flux(g: &EnergyGrid, film: &FilmState, field: &TemperatureField, i: usize
         }
     }
     (b1, fl, b2)
+}
+
+/// Heat carried across the columns' sides by the flow they lose, W/m. The film's flow across its
+/// levels follows from continuity ([`Convection`]) and leaves a column's net loss at its top level,
+/// whose node convects it out at its own temperature (the donor-cell form): `Σ Δx (−leak)⁺ (T_top − T0)`.
+fn heat_side(g: &EnergyGrid, film: &FilmState, field: &TemperatureField) -> f64 {
+    let mut conv = Convection::new(g);
+    conv.update(g, &film.columns);
+    let mut side = 0.0;
+    for i in 0..g.n {
+        let lost = (-conv.leak[i]).max(0.0);
+        side += g.wx[i] * lost * (field.film_column(i)[g.nz - 1] - g.t0);
+    }
+    side
 }
 
 /// Heat conducted through the depth boundaries of body 1 and body 2, W/m.

@@ -74,7 +74,13 @@ impl<'a> EnergyGrid<'a> {
         let dpdx: Vec<f64> = (0..n)
             .map(|i| {
                 let (a, c) = (i.saturating_sub(1), (i + 1).min(n - 1));
-                (p[c] - p[a]) / (x[c] - x[a])
+                if input.limited_gradient && a < i && i < c {
+                    // minmod of the one-sided differences
+                    let (l, r) = ((p[i] - p[a]) / (x[i] - x[a]), (p[c] - p[i]) / (x[c] - x[i]));
+                    if l * r <= 0.0 { 0.0 } else if l.abs() < r.abs() { l } else { r }
+                } else {
+                    (p[c] - p[a]) / (x[c] - x[a])
+                }
             })
             .collect();
         let old = input.previous.filter(|(f, dt)| f.film_points == nz && f.solid_points == ns && *dt > 0.0).map(|(f, dt)| (f.resampled(x), dt));

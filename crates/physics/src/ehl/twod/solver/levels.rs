@@ -154,7 +154,7 @@ pub(super) fn warm_start(prob: &mut Problem, s: &Scales, w: &Warm2d, prior: Opti
 /// steps and the final residual.
 /// Also the central and minimum film (units of `a²/R_x`) and grid of the previous level, if any.
 #[allow(clippy::type_complexity)]
-pub(super) fn solve_levels(input: &Ehl2dInput, options: &Ehl2dOptions, s: &Scales, d: Domain, observer: &dyn Observer) -> Result<(Problem, Vec<f64>, f64, u32, f64, Option<(f64, f64, usize, usize)>), SolveError> {
+pub(super) fn solve_levels(input: &Ehl2dInput, options: &Ehl2dOptions, s: &Scales, d: Domain, factors: Option<&Factors2d>, observer: &dyn Observer) -> Result<(Problem, Vec<f64>, f64, u32, f64, Option<(f64, f64, usize, usize)>), SolveError> {
     let s = s.clone();
     // Nested iteration: grids of (n − 1)/2^k + 1 nodes down to ≥ 17 per side, the coarsest
     // one that resolves the film: a grid whose spacing is not small against sqrt(H) carries a
@@ -186,7 +186,7 @@ pub(super) fn solve_levels(input: &Ehl2dInput, options: &Ehl2dOptions, s: &Scale
         let (lx, ly) = levels[0];
         let along_x = |&(cx, _): &(usize, usize)| ((d.x_out - d.x_in) / (cx - 1) as f64).powi(2) <= RESOLVED * s.h_est;
         if let Some((cx, cy)) = half((lx, ly)).filter(along_x) {
-            let mut prob = Problem::new(input, &s, d, lx, ly, options.near_field);
+            let mut prob = Problem::new(input, &s, d, lx, ly, options.near_field).with_thermal(factors, s.a, if input.entrainment_velocity >= 0.0 { 1.0 } else { -1.0 });
             let (mut p, mut h0) = cold(&mut prob, input, &s);
             prob.theta = 0.0;
             match newton(&mut prob, &mut p, &mut h0, tol, COLD_TRIAL.min(options.max_iterations), observer) {
@@ -221,7 +221,7 @@ pub(super) fn solve_levels(input: &Ehl2dInput, options: &Ehl2dOptions, s: &Scale
             // The cold start's θ = 0 solution from the trial above (the only level).
             Some(t) => t,
             None => {
-                let mut prob = Problem::new(input, &s, d, lx, ly, options.near_field);
+                let mut prob = Problem::new(input, &s, d, lx, ly, options.near_field).with_thermal(factors, s.a, if input.entrainment_velocity >= 0.0 { 1.0 } else { -1.0 });
                 let (p, h0) = match &guess {
                     // The coarse pressure, and `H0` that keeps the coarse central film (the coarse
                     // grid's `H0` carries its deflection discretisation error).

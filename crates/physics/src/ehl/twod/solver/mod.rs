@@ -28,7 +28,7 @@
 
 use super::elastic::Deflection;
 use super::geometry::{domain, node_grid, scales, side_gap, Domain, NodeGrid, Scales};
-use super::{Ehl2dInput, Ehl2dOptions, Ehl2dSolution, Fields2d, Geometry2d, Located, Squeeze2d, Warm2d};
+use super::{Ehl2dInput, Ehl2dOptions, Ehl2dSolution, Factors2d, Fields2d, Geometry2d, Located, Squeeze2d, Warm2d};
 use crate::ehl::rheology::PressureRheology;
 use crate::numerics::krylov::{self, dot};
 use crate::{Convergence, Observer, SolveError, Termination};
@@ -49,7 +49,7 @@ mod validate;
 
 pub(super) use finish::{edge_peak_node, mirror_tie};
 pub use probe::truncation_probe;
-pub use solve::{solve, solve_from, solve_kept, Kept2d};
+pub use solve::{solve, solve_factored, solve_from, solve_kept, Kept2d};
 pub(super) use solve::frame_sign;
 pub use transient::solve_transient;
 pub(super) use validate::validate;
@@ -223,6 +223,9 @@ struct Problem {
     /// The forcing terms of the Newton steps ([`Forcing`]; `None`: `GMRES_TOL`, tighter near the
     /// solution).
     forcing: Option<Forcing>,
+    /// The thermal model's generalized Reynolds multipliers at the nodes ([`Factors2d`]):
+    /// `(Poiseuille, wedge)`; `None`: isothermal.
+    thermal: Option<(Vec<f64>, Vec<f64>)>,
 }
 
 /// The Poiseuille coefficient at a cell face from its two nodes' `ε = ρ̄H³/η̄`, with its

@@ -16,7 +16,7 @@ pub fn truncation_probe(input: &Ehl2dInput, options: &Ehl2dOptions, strides: &[u
     validate(input, options)?;
     let s = scales(input)?;
     let d = domain(input, options, &s);
-    let (mut pf, p, h0, _, _, _) = solve_levels(input, options, &s, d, &Silent)?;
+    let (mut pf, p, h0, _, _, _) = solve_levels(input, options, &s, d, None, &Silent)?;
     let mut vf = Fields::default();
     pf.evaluate(&p, h0, &mut vf);
     let (pois_f, wedge_f) = pf.pieces(&p, &vf.h, &vf.rho, &vf.eps);
@@ -32,7 +32,7 @@ pub fn truncation_probe(input: &Ehl2dInput, options: &Ehl2dOptions, strides: &[u
         let (pois_c, wedge_c) = pc.pieces(&p_c, &h_c, &rho_c, &eps_c);
         let (pois_fi, wedge_fi) = (inj(&pois_f), inj(&wedge_f));
         let co = Ehl2dOptions { nx: cx, ny: cy, ..*options };
-        let actual = solve_levels(input, &co, &s, d, &Silent).ok().map(|(mut q, pp, hh, _, _, _)| {
+        let actual = solve_levels(input, &co, &s, d, None, &Silent).ok().map(|(mut q, pp, hh, _, _, _)| {
             let mut v = Fields::default();
             q.evaluate(&pp, hh, &mut v);
             (v.h, pp, hh)

@@ -40,7 +40,24 @@ impl Problem {
             kept: None,
             factorisations: 0,
             forcing: None,
+            thermal: None,
         }
+    }
+
+    /// The problem with the thermal multipliers `factors` at its nodes (physical position
+    /// `x = sign·X·a`, `y = Y·a`); `None`: unchanged (isothermal).
+    pub(super) fn with_thermal(mut self, factors: Option<&Factors2d>, a: f64, sign: f64) -> Self {
+        if let Some(f) = factors {
+            let (nx, n) = (self.nx, self.nx * self.ny);
+            let (mut fp, mut fw) = (vec![1.0; n], vec![1.0; n]);
+            for k in 0..n {
+                let (p, w) = f.at(sign * self.x[k % nx] * a, self.y[k / nx] * a);
+                fp[k] = p;
+                fw[k] = w;
+            }
+            self.thermal = Some((fp, fw));
+        }
+        self
     }
 
     /// The squeeze term of the problem itself: none (`κ = 0`, steady) or the transient step's
@@ -120,12 +137,22 @@ impl Problem {
             }
             let (ln_eta, dln, rho, drho) = self.rheo.at(p[k] * self.p_ref);
             let ln_eta = ln_eta.min(LN_ETA_CAP);
-            let eps = rho * h * h * h * (-ln_eta).exp();
+            let mut eps = rho * h * h * h * (-ln_eta).exp();
+            let mut deps = eps * (drho / rho - dln) * self.p_ref;
+            let (mut rho_w, mut drho_w) = (rho, drho * self.p_ref);
+            // Thermal: the generalized Reynolds multipliers, held fixed in the Newton solve
+            // (seed 000 eq. 2; see `Factors2d`).
+            if let Some((fp, fw)) = &self.thermal {
+                eps *= fp[k];
+                deps *= fp[k];
+                rho_w *= fw[k];
+                drho_w *= fw[k];
+            }
             v.h[k] = h;
-            v.rho[k] = rho;
-            v.drho[k] = drho * self.p_ref;
+            v.rho[k] = rho_w;
+            v.drho[k] = drho_w;
             v.eps[k] = eps;
-            v.deps[k] = eps * (drho / rho - dln) * self.p_ref;
+            v.deps[k] = deps;
         }
         let (nx, dx2, dy2) = (self.nx, self.dx * self.dx, self.dy * self.dy);
         let mut sum = 0.0;

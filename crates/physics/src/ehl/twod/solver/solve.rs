@@ -54,7 +54,14 @@ impl std::fmt::Debug for Kept2d {
 /// the previous one along a chain); the start is then the better, by the Newton merit, of `warm`
 /// and the secant extrapolation through both (`warm_start`).
 pub fn solve_kept(input: &Ehl2dInput, options: &Ehl2dOptions, warm: Option<&Warm2d>, prior: Option<&Warm2d>, kept: &mut Kept2d, observer: &dyn Observer) -> Result<(Ehl2dSolution, Warm2d), SolveError> {
-    solve_inner(input, options, warm, prior, kept, observer)
+    solve_inner(input, options, None, warm, prior, kept, observer)
+}
+
+/// [`solve_kept`] with the thermal model's generalized Reynolds multipliers `factors` (held
+/// fixed; [`Factors2d`]) on every grid the solve uses, the resolution check's included. `None`
+/// is [`solve_kept`] itself.
+pub fn solve_factored(input: &Ehl2dInput, options: &Ehl2dOptions, factors: Option<&Factors2d>, warm: Option<&Warm2d>, kept: &mut Kept2d, observer: &dyn Observer) -> Result<(Ehl2dSolution, Warm2d), SolveError> {
+    solve_inner(input, options, factors, warm, None, kept, observer)
 }
 
 /// Solve one 2-D EHL problem starting from `warm` (a neighbouring problem's converged solution,
@@ -68,10 +75,10 @@ pub fn solve_kept(input: &Ehl2dInput, options: &Ehl2dOptions, warm: Option<&Warm
 /// resolution check runs as in [`solve`] (with a warm start: always a check solve on the grid with
 /// half the intervals, unless `options.grid_check` is off).
 pub fn solve_from(input: &Ehl2dInput, options: &Ehl2dOptions, warm: Option<&Warm2d>, observer: &dyn Observer) -> Result<(Ehl2dSolution, Warm2d), SolveError> {
-    solve_inner(input, options, warm, None, &mut Kept2d::default(), observer)
+    solve_inner(input, options, None, warm, None, &mut Kept2d::default(), observer)
 }
 
-fn solve_inner(input: &Ehl2dInput, options: &Ehl2dOptions, warm: Option<&Warm2d>, prior: Option<&Warm2d>, kept: &mut Kept2d, observer: &dyn Observer) -> Result<(Ehl2dSolution, Warm2d), SolveError> {
+fn solve_inner(input: &Ehl2dInput, options: &Ehl2dOptions, factors: Option<&Factors2d>, warm: Option<&Warm2d>, prior: Option<&Warm2d>, kept: &mut Kept2d, observer: &dyn Observer) -> Result<(Ehl2dSolution, Warm2d), SolveError> {
     validate(input, options)?;
     let mut kept_pc = kept.take_for(options.nx, options.ny);
     let kept_pattern = kept.pattern_for(options.nx, options.ny);
@@ -81,7 +88,7 @@ fn solve_inner(input: &Ehl2dInput, options: &Ehl2dOptions, warm: Option<&Warm2d>
     let mut warm_run = None;
     let mut failed_steps = 0;
     if let Some(w) = warm.filter(|w| w.finite == finite && w.central > 0.0 && w.h_est > 0.0) {
-        let mut prob = Problem::new(input, &s, d, options.nx, options.ny, options.near_field);
+        let mut prob = Problem::new(input, &s, d, options.nx, options.ny, options.near_field).with_thermal(factors, s.a, frame_sign(input));
         prob.kept = kept_pc.take();
         prob.pattern = std::cell::RefCell::new(kept_pattern.clone());
         prob.forcing = warm_forcing();
@@ -97,11 +104,11 @@ fn solve_inner(input: &Ehl2dInput, options: &Ehl2dOptions, warm: Option<&Warm2d>
     let solved = match warm_run {
         Some((prob, p, h0, iterations, residual)) => Solved { prob, p, h0, iterations, residual, coarse: None, warm_used: true },
         None => {
-            let (prob, p, h0, its, residual, coarse) = solve_levels(input, options, &s, d, observer)?;
+            let (prob, p, h0, its, residual, coarse) = solve_levels(input, options, &s, d, factors, observer)?;
             Solved { prob, p, h0, iterations: its + failed_steps, residual, coarse, warm_used: false }
         }
     };
-    conclude(input, options, &s, d, solved, kept, kept_pattern, observer)
+    conclude(input, options, &s, d, solved, kept, kept_pattern, factors, observer)
 }
 
 /// A converged problem on the finest grid: its pressure, `H0`, the Newton steps and the final
@@ -121,7 +128,7 @@ pub(super) struct Solved {
 /// start, the check solve on the grid with half the intervals — of the same problem, a transient
 /// step's squeeze term included); `kept` takes the problem's preconditioner.
 #[allow(clippy::too_many_arguments)]
-pub(super) fn conclude(input: &Ehl2dInput, options: &Ehl2dOptions, s: &Scales, d: Domain, solved: Solved, kept: &mut Kept2d, kept_pattern: Option<std::sync::Arc<NearPattern>>, observer: &dyn Observer) -> Result<(Ehl2dSolution, Warm2d), SolveError> {
+pub(super) fn conclude(input: &Ehl2dInput, options: &Ehl2dOptions, s: &Scales, d: Domain, solved: Solved, kept: &mut Kept2d, kept_pattern: Option<std::sync::Arc<NearPattern>>, factors: Option<&Factors2d>, observer: &dyn Observer) -> Result<(Ehl2dSolution, Warm2d), SolveError> {
     let Solved { mut prob, p, h0, iterations: total, residual, coarse, warm_used } = solved;
     let finite = matches!(input.geometry, Geometry2d::Finite { .. });
     let pattern = prob.pattern.borrow().clone().or(kept_pattern);
@@ -146,7 +153,7 @@ pub(super) fn conclude(input: &Ehl2dInput, options: &Ehl2dOptions, s: &Scales, d
     }
     let coarse = match coarse {
         Some(c) => Some(c),
-        None if options.grid_check || !warm_used => check_half(s, d, input, options, &p, h0, prob.target.as_ref(), observer)?,
+        None if options.grid_check || !warm_used => check_half(s, d, input, options, &p, h0, prob.target.as_ref(), factors, observer)?,
         None => None,
     };
     if let Some((hc, hm, cnx, cny)) = coarse {
@@ -182,13 +189,13 @@ pub(in crate::ehl::twod) fn frame_sign(input: &Ehl2dInput) -> f64 {
 /// the intervals, started from the injected solution; `None` when that grid has fewer than 9
 /// nodes per side, the node counts are even, or Newton does not converge there.
 #[allow(clippy::too_many_arguments)]
-pub(super) fn check_half(s: &Scales, d: Domain, input: &Ehl2dInput, options: &Ehl2dOptions, p: &[f64], h0: f64, target: Option<&(f64, Vec<f64>)>, observer: &dyn Observer) -> Result<Option<(f64, f64, usize, usize)>, SolveError> {
+pub(super) fn check_half(s: &Scales, d: Domain, input: &Ehl2dInput, options: &Ehl2dOptions, p: &[f64], h0: f64, target: Option<&(f64, Vec<f64>)>, factors: Option<&Factors2d>, observer: &dyn Observer) -> Result<Option<(f64, f64, usize, usize)>, SolveError> {
     let (nx, ny) = (options.nx, options.ny);
     if (nx - 1) % 2 != 0 || (ny - 1) % 2 != 0 || (nx - 1) / 2 + 1 < 9 || (ny - 1) / 2 + 1 < 9 {
         return Ok(None);
     }
     let (cx, cy) = ((nx - 1) / 2 + 1, (ny - 1) / 2 + 1);
-    let mut prob = Problem::new(input, s, d, cx, cy, options.near_field);
+    let mut prob = Problem::new(input, s, d, cx, cy, options.near_field).with_thermal(factors, s.a, frame_sign(input));
     let inject = |f: &[f64]| -> Vec<f64> { (0..cx * cy).map(|k| f[(k / cx) * 2 * nx + (k % cx) * 2]).collect() };
     let mut pc = inject(p);
     // A transient step's squeeze term, at the coinciding nodes.

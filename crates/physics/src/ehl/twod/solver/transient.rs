@@ -78,7 +78,7 @@ pub fn solve_transient(input: &Ehl2dInput, options: &Ehl2dOptions, squeeze: Sque
         if converged {
             let residual = last.as_ref().map_or(0.0, |r| r.residual);
             let solved = Solved { prob, p, h0, iterations, residual, coarse: None, warm_used: true };
-            let (mut sol, next) = conclude(input, options, &s, d, solved, kept, kept_pattern, observer)?;
+            let (mut sol, next) = conclude(input, options, &s, d, solved, kept, kept_pattern, None, observer)?;
             sol.substeps = Some(n);
             return Ok((sol, next));
         }
