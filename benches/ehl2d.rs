@@ -59,8 +59,9 @@ fn main() {
         let input = Ehl2dInput { load: 100.0, geometry: Geometry2d::Point { rx: 0.01, ry: 0.01 }, effective_modulus: E_PRIME, entrainment_velocity: 1.0, lubricant: lub, temperature: 313.0 };
         let o = Ehl2dOptions { nx: fine, ny: fine, inlet: Some(3.5), outlet: Some(1.5), side: Some(2.0), ..Default::default() };
         let strides: Vec<usize> = [2, 4, 8].into_iter().filter(|s| (fine - 1) / s >= 16).collect();
-        if let Err(e) = tribod::physics::ehl::twod::solver::truncation_probe(&input, &o, &strides) {
-            println!("probe failed: {e}");
+        match tribod::physics::ehl::twod::solver::truncation_probe(&input, &o, &strides) {
+            Ok(report) => print!("{report}"),
+            Err(e) => println!("probe failed: {e}"),
         }
         return;
     }

@@ -111,3 +111,24 @@ fn no_unit_tests_hide_in_the_service_crate() {
         assert!(!text.contains("#[test]") && !text.contains("#[cfg(test)]"), "{} holds a unit test that cargo test would not run; move it to tests/it/", file.display());
     }
 }
+
+/// Physics does no I/O: outside its test modules (a `tests.rs` file, or what follows a file's
+/// `#[cfg(test)]`) no solver reads the environment, a file or the clock's wall date, or prints.
+/// Development traces go through the `Observer`, or stay on a branch.
+#[test]
+fn physics_does_no_io() {
+    let forbidden = ["std::env::", "std::fs::", "println!", "eprintln!", "print!(", "eprint!(", "dbg!(", "SystemTime"];
+    for file in files("crates/physics/src") {
+        if file.file_name().is_some_and(|n| n == "tests.rs") || file.components().any(|c| c.as_os_str() == "tests") {
+            continue;
+        }
+        let text = std::fs::read_to_string(&file).unwrap();
+        let code = text.split("#[cfg(test)]").next().unwrap();
+        for (i, line) in code.lines().enumerate() {
+            let line = line.split("//").next().unwrap();
+            for f in forbidden {
+                assert!(!line.contains(f), "{}:{}: physics does no I/O, found `{f}`", file.display(), i + 1);
+            }
+        }
+    }
+}

@@ -26,18 +26,6 @@ pub fn thermal_range(film: &[f64], extent: f64) -> (usize, usize) {
     (a, e)
 }
 
-/// Development trace of one coupling iteration (`TRIBOD_THERMAL_TRACE`): where the film is
-/// hottest and the range of the new generalized-Reynolds factors.
-pub(super) fn trace_coupling(iteration: u32, relax: f64, sol: &EhlSolution, en: &EnergySolution) {
-    let mm = |v: &[f64]| v.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &x| (a.min(x), b.max(x)));
-    let nzp = en.field.film.len() / en.field.x.len();
-    let kmax = (0..en.field.film.len()).max_by(|&a, &b| en.field.film[a].total_cmp(&en.field.film[b])).unwrap_or(0);
-    let (ix, iz) = (kmax / nzp, kmax % nzp);
-    let ip = sol.state.x.partition_point(|&v| v < en.field.x[ix]).min(sol.state.x.len() - 1);
-    eprintln!("   Tmax at x/b {:.3} level {iz}/{nzp} p {:.3e} h {:.3e}", en.field.x[ix] / sol.hertz_half_width, sol.state.pressure[ip], sol.state.film[ip]);
-    eprintln!("thermal coupling {iteration}: relax {relax:.3} Tmax {:.1} poiseuille {:?} wedge {:?} mass {:?}", en.summary.film_temperature_max, mm(&en.factors.poiseuille), mm(&en.factors.wedge), mm(&en.factors.mass));
-}
-
 pub(super) fn blend(old: &ThermalFactors, new: &ThermalFactors, w: f64) -> ThermalFactors {
     if w >= 1.0 {
         return new.clone();
@@ -148,9 +136,6 @@ impl ThermalEngine {
                 Some(old) => blend(old, &raw, relax),
                 None => raw.clone(),
             };
-            if std::env::var_os("TRIBOD_THERMAL_TRACE").is_some() {
-                trace_coupling(iterations, relax, &sol, &en);
-            }
             let ph = sol.hertz_pressure;
             let pred: Vec<f64> = sol.state.pressure.iter().map(|p| p / ph).collect();
             let prediction = Prediction { pressure: &pred, centre_film: sol.central_film };

@@ -57,14 +57,8 @@ impl ThermalFiniteEngine {
         let mut termination = Termination::Converged;
         loop {
             observer.check()?;
-            let clock = std::time::Instant::now();
             let pass = energy_pass(input, &sol, thermal, &fields)?;
             iterations += 1;
-            let trace = std::env::var_os("TRIBOD_THERMAL_TRACE").is_some();
-            if trace {
-                eprintln!("thermal finite pass {iterations}: energy {:.3} s, T_max {:.2} K", clock.elapsed().as_secs_f64(), pass.film_temperature_max.value);
-            }
-            let clock = std::time::Instant::now();
             let rise = pass.film_temperature_max.value - input.ehl.temperature;
             let raw = pass.factors;
             let mut f = blend(used.as_ref(), &raw, relax);
@@ -79,9 +73,6 @@ impl ThermalFiniteEngine {
                     Err(e) => return Err(e),
                 }
             };
-            if trace {
-                eprintln!("thermal finite pass {iterations}: 2-D {:.3} s, relax {relax:.2}, hc {:.4e}, {} Newton steps", clock.elapsed().as_secs_f64(), next.central_film, next.convergence.iterations);
-            }
             used = Some(f);
             fields = pass.fields;
             let rel = |a: f64, b: f64| ((a - b) / b.abs().max(1e-30)).abs();

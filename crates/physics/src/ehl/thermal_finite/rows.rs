@@ -76,15 +76,6 @@ pub(super) fn energy_pass(input: &ThermalFiniteInput, sol: &Ehl2dSolution, therm
             if matches!(en, Err(SolveError::NotConverged { .. })) && thermal.iteration != EnergyIteration::Anderson {
                 en = energy(&x[a..=e], &p[a..=e], &h[a..=e], &ein, &ThermalOptions { iteration: EnergyIteration::Anderson, ..*thermal });
             }
-            if std::env::var_os("TRIBOD_THERMAL_TRACE").is_some() {
-                let hmin = h.iter().cloned().fold(f64::INFINITY, f64::min);
-                eprintln!("row {j} y {:.3e}: columns {a}..={e} of {nx}, p_max {row_peak:.3e}, h_min {hmin:.3e}, warm {}: {}", f.y[j], warm.get(j).is_some_and(|w| w.is_some()), match &en { Ok(s) => format!("T_max {:.2} K, sweeps {}", s.summary.film_temperature_max, s.summary.sweeps), Err(e) => format!("{e}") });
-                if en.is_err() {
-                    for i in a..=e {
-                        eprintln!("  x {:.4e} p {:.4e} h {:.4e}", x[i], p[i], h[i]);
-                    }
-                }
-            }
             let en = en?;
             let ic = x.partition_point(|&v| v < 0.0).min(nx - 1);
             let row = RowThermal {

@@ -99,14 +99,9 @@ pub(super) fn merit_at(prob: &mut Problem, p: &[f64], h0: f64) -> f64 {
     dot(&phi, &phi) * prob.dx * prob.dy + v.g * v.g
 }
 
-/// Extrapolation ratios tried by [`warm_start`] besides 0 (the warm start alone); development
-/// aid: `TRIBOD_EHL2D_EXTRAP=r1,r2,…` overrides them (empty: none).
+/// Extrapolation ratios tried by [`warm_start`] besides 0 (the warm start alone).
 pub(super) fn extrapolation_ratios() -> &'static [f64] {
-    static R: std::sync::OnceLock<Vec<f64>> = std::sync::OnceLock::new();
-    R.get_or_init(|| match std::env::var("TRIBOD_EHL2D_EXTRAP") {
-        Ok(v) => v.split(',').filter_map(|x| x.trim().parse().ok()).collect(),
-        Err(_) => EXTRAPOLATION.to_vec(),
-    })
+    &EXTRAPOLATION
 }
 
 /// Ratios of the secant extrapolation along a chain of neighbouring problems ([`warm_start`]).
@@ -129,7 +124,6 @@ pub(super) fn warm_start(prob: &mut Problem, s: &Scales, w: &Warm2d, prior: Opti
     };
     let (p0, q0) = p0;
     let mut best = (merit_at(prob, &p1, h1), p1.clone(), h1, 0.0);
-    let m1 = best.0;
     for &r in ratios {
         let mut p: Vec<f64> = p1.iter().zip(&p0).map(|(a, b)| (a + r * (a - b)).max(0.0)).collect();
         let sum: f64 = p.iter().sum::<f64>() * prob.dx * prob.dy;
@@ -143,9 +137,6 @@ pub(super) fn warm_start(prob: &mut Problem, s: &Scales, w: &Warm2d, prior: Opti
         if mr < best.0 {
             best = (mr, p, h0, r);
         }
-    }
-    if trace() {
-        eprintln!("ehl2d warm start: merit {m1:.3e} carried, {:.3e} extrapolated r {}", best.0, best.3);
     }
     Some((best.1, best.2))
 }
@@ -255,9 +246,6 @@ pub(super) fn solve_levels(input: &Ehl2dInput, options: &Ehl2dOptions, s: &Scale
         let hc = if prob.evaluate(&p, h0, &mut v) {
             let hc = bilinear(&prob.x, &prob.y, &v.h, 0.0, 0.0);
             coarse = Some((hc, v.h.iter().cloned().fold(f64::INFINITY, f64::min), lx, ly));
-            if trace() {
-                eprintln!("ehl2d level {lx}x{ly}: Hc {hc:.4e} Hmin {:.4e} floor {:.4e} at floor {}", v.h.iter().cloned().fold(f64::INFINITY, f64::min), prob.floor, v.on.iter().filter(|o| **o == 0.0).count());
-            }
             hc
         } else {
             coarse = None;

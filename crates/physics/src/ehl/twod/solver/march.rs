@@ -97,7 +97,7 @@ pub(super) fn march(prob: &mut Problem, p: &mut [f64], h0: &mut f64, tol: f64, m
     let mut last = Run { iterations: 0, residual: f64::INFINITY, history: Vec::new(), converged: false, gmres: 0 };
     let mut saved = p.to_vec();
     let mut v = Fields::default();
-    for step in 0..MAX_STEPS {
+    for _ in 0..MAX_STEPS {
         if dt >= DT_STEADY {
             saved.copy_from_slice(p);
             let h0_saved = *h0;
@@ -105,9 +105,6 @@ pub(super) fn march(prob: &mut Problem, p: &mut [f64], h0: &mut f64, tol: f64, m
             let r = newton(prob, p, h0, tol, max_iter.min(NESTED_ITER), observer)?;
             its += r.iterations;
             gm += r.gmres;
-            if trace() {
-                eprintln!("ehl2d march {}x{} step {step} steady try: converged {} res {:.3e} in {}", prob.nx, prob.ny, r.converged, r.residual, r.iterations);
-            }
             if r.converged {
                 return Ok(Run { iterations: its, gmres: gm, ..r });
             }
@@ -128,9 +125,6 @@ pub(super) fn march(prob: &mut Problem, p: &mut [f64], h0: &mut f64, tol: f64, m
         prob.restore_target();
         its += r.iterations;
         gm += r.gmres;
-        if trace() {
-            eprintln!("ehl2d march {}x{} step {step} dT {dt:.3e}: converged {} res {:.3e} in {} (H0 {:.4e})", prob.nx, prob.ny, r.converged, r.residual, r.iterations, *h0);
-        }
         if r.converged {
             dt *= if r.iterations <= 3 { 4.0 } else { 2.0 };
             dt = dt.min(DT_MAX);

@@ -68,18 +68,10 @@ const GMRES_TOL: f64 = 1e-3;
 const REUSE_MAX: usize = 25;
 const REUSE_REFRESH: usize = 15;
 
-/// Development aid (policy scan): `TRIBOD_EHL2D_REUSE=max,refresh,across` overrides the two
-/// thresholds above and whether a factor is kept across solves (1) or not (0).
-fn reuse_policy() -> (usize, usize, bool) {
-    static P: std::sync::OnceLock<(usize, usize, bool)> = std::sync::OnceLock::new();
-    *P.get_or_init(|| {
-        let v: Vec<usize> = std::env::var("TRIBOD_EHL2D_REUSE").ok().map(|s| s.split(',').filter_map(|x| x.trim().parse().ok()).collect()).unwrap_or_default();
-        if v.len() == 3 {
-            (v[0], v[1], v[2] != 0)
-        } else {
-            (REUSE_MAX, REUSE_REFRESH, true)
-        }
-    })
+/// The factor-reuse policy: at most [`REUSE_MAX`] GMRES iterations with a kept factor, refreshed
+/// after [`REUSE_REFRESH`], and a factor kept across solves.
+const fn reuse_policy() -> (usize, usize, bool) {
+    (REUSE_MAX, REUSE_REFRESH, true)
 }
 /// Forcing terms of the inexact Newton steps after Eisenstat & Walker (SIAM J. Sci. Comput. 17
 /// (1996), choice 2): the first step's GMRES tolerance `first`, then
@@ -123,33 +115,21 @@ impl Forcing {
 /// films unchanged to the printed digits.
 const WARM_FORCING: Forcing = Forcing { first: 0.1, max: 0.1, gamma: 0.9, alpha: 2.0, over: 0.5 };
 
-/// [`WARM_FORCING`], or (development aid) `TRIBOD_EHL2D_FORCING=first,max,gamma,alpha,over`
-/// (`γ < 0`: the fixed rule with the `over` floor); `TRIBOD_EHL2D_FORCING=off`: the fixed rule.
-fn warm_forcing() -> Option<Forcing> {
-    static F: std::sync::OnceLock<Option<Forcing>> = std::sync::OnceLock::new();
-    *F.get_or_init(|| match std::env::var("TRIBOD_EHL2D_FORCING") {
-        Err(_) => Some(WARM_FORCING),
-        Ok(s) => {
-            let v: Vec<f64> = s.split(',').filter_map(|x| x.trim().parse().ok()).collect();
-            (v.len() == 5).then(|| Forcing { first: v[0], max: v[1], gamma: v[2], alpha: v[3], over: v[4] })
-        }
-    })
+/// The warm path's forcing terms: [`WARM_FORCING`].
+const fn warm_forcing() -> Option<Forcing> {
+    Some(WARM_FORCING)
 }
 
 /// Whether the near-field preconditioner carries the Poiseuille terms' film dependence
-/// ([`Problem::precondition`]); development aid: `TRIBOD_EHL2D_PFILM=0` leaves it out (the
-/// wedge-only near field before `ehl2d-12`).
-fn poiseuille_film() -> bool {
-    static B: std::sync::OnceLock<bool> = std::sync::OnceLock::new();
-    *B.get_or_init(|| std::env::var("TRIBOD_EHL2D_PFILM").map(|s| s.trim() != "0").unwrap_or(true))
+/// ([`Problem::precondition`]): yes since `ehl2d-12` (before, the wedge-only near field).
+const fn poiseuille_film() -> bool {
+    true
 }
 
 /// Whether a node whose film is at the floor may take the contact row `H = floor` (the film
-/// floor as a complementarity, [`Problem::row_kind`]); development aid: `TRIBOD_EHL2D_CONTACT=0`
-/// keeps every non-cavitated row a Reynolds row (before `ehl2d-13`).
-fn floor_contact() -> bool {
-    static B: std::sync::OnceLock<bool> = std::sync::OnceLock::new();
-    *B.get_or_init(|| std::env::var("TRIBOD_EHL2D_CONTACT").map(|s| s.trim() != "0").unwrap_or(true))
+/// floor as a complementarity, [`Problem::row_kind`]): yes since `ehl2d-13`.
+const fn floor_contact() -> bool {
+    true
 }
 
 /// Row kinds of the semismooth Newton matrix ([`Problem::row_kind`]).
@@ -274,12 +254,6 @@ struct Buffers {
     de: Vec<f64>,
     /// GMRES' work arrays.
     krylov: krylov::Workspace,
-}
-
-/// `TRIBOD_EHL2D_TRACE` set: print each Newton step, the line search and (first step) a
-/// finite-difference check of the Jacobian product to stderr (development aid).
-fn trace() -> bool {
-    std::env::var_os("TRIBOD_EHL2D_TRACE").is_some()
 }
 
 /// Report norm: the larger of `max|φ|/max P` and `|G|`.

@@ -78,9 +78,6 @@ pub(super) fn newton(prob: &mut Problem, p: &mut [f64], h0: &mut f64, tol: f64, 
         if !lin.fresh && lin.its > reuse_policy().1 {
             st.refresh = true;
         }
-        if trace() {
-            st.trace(prob, p, *h0, iter, res, gtol, &lin);
-        }
         if !st.sol.iter().all(|s| s.is_finite()) {
             return Ok(st.run(iter + 1, res, false));
         }
@@ -122,14 +119,11 @@ struct Newton {
     gm_total: usize,
 }
 
-/// What the linear solve of a Newton step did: GMRES iterations and relative residual of its
-/// last run, whether a fresh factor was used, and the seconds spent factorising and in GMRES.
+/// What the linear solve of a Newton step did: GMRES iterations of its last run and whether a
+/// fresh factor was used.
 struct Linear {
     its: usize,
-    rel: f64,
     fresh: bool,
-    t_lu: f64,
-    t_gm: f64,
 }
 
 impl Newton {
@@ -194,7 +188,6 @@ impl Newton {
     /// `super::super::newton`). `None` when the factorisation fails.
     fn linear_solve(&mut self, prob: &mut Problem, p: &[f64], gtol: f64, observer: &dyn Observer) -> Result<Option<Linear>, SolveError> {
         let m = prob.nodes.len();
-        let (mut t_lu, mut t_gm) = (0.0, 0.0);
         let (mut its, mut rel);
         let mut fresh = false;
         let (reuse_max, _, _) = reuse_policy();
@@ -205,9 +198,7 @@ impl Newton {
                 Some(pc) => pc,
                 None => {
                     observer.check()?;
-                    let t = std::time::Instant::now();
                     let lu = prob.precondition(p, &self.v, &mut self.active, &mut self.c, true, observer)?;
-                    t_lu += t.elapsed().as_secs_f64();
                     let Some(lu) = lu else { return Ok(None) };
                     prob.factorisations += 1;
                     crate::work::add(&crate::work::FINITE_FACTORISATIONS, 1);
@@ -218,10 +209,8 @@ impl Newton {
                     pc
                 }
             };
-            let t = std::time::Instant::now();
             let max_its = if fresh { GMRES_MAX } else { reuse_max };
             (its, rel) = gmres(prob, p, &self.v, &self.active, &self.c, &pc, &self.rhs, &mut self.sol, &mut self.buf, gtol, max_its, from_x, observer)?;
-            t_gm += t.elapsed().as_secs_f64();
             self.gm_total += its;
             crate::work::add(&crate::work::FINITE_GMRES_ITERATIONS, its as u64);
             if fresh || rel <= gtol {
@@ -231,7 +220,7 @@ impl Newton {
             self.refresh = true;
             from_x = true;
         }
-        Ok(Some(Linear { its, rel, fresh, t_lu, t_gm }))
+        Ok(Some(Linear { its, fresh }))
     }
 
     /// The damped step from `(p, h0)` along `sol`: the first trial length from [`film_damping`],
@@ -246,9 +235,6 @@ impl Newton {
         }
         let dh0 = self.sol[m];
         let alpha0 = film_damping(prob, &self.v, &self.dpn, dh0, &mut self.dw);
-        if trace() {
-            eprintln!("   film damping alpha {alpha0:.3e}");
-        }
         let m0 = dot(&self.phi, &self.phi) * cell + self.v.g * self.v.g;
         // The trial point at `alpha` into `p_trial`/`trial`, its merit (`None`: not evaluable).
         let accepted = armijo_backtrack(alpha0, MAX_HALVINGS, m0, |alpha| -> Result<Option<f64>, SolveError> {
@@ -269,48 +255,7 @@ impl Newton {
             *h0 += alpha * dh0;
             std::mem::swap(&mut self.v, &mut self.trial);
         }
-        if trace() {
-            // (the length after the last halving when none was accepted)
-            let alpha = accepted.unwrap_or(alpha0 * 0.5f64.powi(MAX_HALVINGS as i32));
-            eprintln!("   accepted {} alpha {alpha:.3e}", accepted.is_some());
-        }
         Ok(accepted.is_some())
-    }
-
-    /// Development aid ([`trace`]): the step's numbers and, at the first step, the worst node and
-    /// a finite-difference check of the Jacobian product.
-    #[allow(clippy::too_many_arguments)]
-    fn trace(&mut self, prob: &mut Problem, p: &[f64], h0: f64, iter: u32, res: f64, gtol: f64, lin: &Linear) {
-        let Linear { its, rel, fresh, t_lu, t_gm } = *lin;
-        let (v, active, phi, c) = (&self.v, &self.active, &self.phi, &self.c);
-        let m = prob.nodes.len();
-        eprintln!("ehl2d {}x{} κ {:.3e} iter {iter} res {res:.3e} g {:.2e} gtol {gtol:.1e} gmres {its} rel {rel:.2e} fresh {fresh} active {} contact {} lu {t_lu:.3} s gmres {t_gm:.3} s", prob.nx, prob.ny, prob.kappa, v.g, active.iter().filter(|a| **a == CAVITATED).count(), active.iter().filter(|a| **a == CONTACT).count());
-        if iter == 0 {
-            let (u, _) = phi.iter().enumerate().fold((0, 0.0f64), |b, (u, v)| if v.abs() > b.1 { (u, v.abs()) } else { b });
-            let k = prob.nodes[u];
-            eprintln!("ehl2d worst node i {} j {} X {:.3} Y {:.3} P {:.3e} phi {:.3e} active {}", k % prob.nx, k / prob.nx, prob.x[k % prob.nx], prob.y[k / prob.nx], p[k], phi[u], active[u]);
-            // Directional-derivative check of the Jacobian product.
-            let mut x: Vec<f64> = (0..m + 1).map(|u| (((u * 7919) % 13) as f64 - 6.0) * 1e-3).collect();
-            for (u, &k) in prob.nodes.iter().enumerate() {
-                if p[k] <= 0.0 { x[u] = 0.0; }
-            }
-            let mut jx = vec![0.0; m + 1];
-            let mut inactive = active.clone();
-            inactive.iter_mut().for_each(|a| *a = FLUID);
-            prob.apply(p, &v, &inactive, &c, &x, &mut jx, &mut self.buf);
-            let t = 1e-4;
-            let mut pt = p.to_vec();
-            for (u, &k) in prob.nodes.iter().enumerate() { pt[k] += t * x[u]; }
-            let mut vt = Fields::default();
-            if prob.evaluate(&pt, h0 + t * x[m], &mut vt) {
-                let mut num = 0.0; let mut den = 0.0;
-                for (u, &k) in prob.nodes.iter().enumerate() {
-                    let fd = c[u] * (vt.f[k] - v.f[k]) / t;
-                    num += (fd - jx[u]).powi(2); den += fd * fd;
-                }
-                eprintln!("ehl2d jacobian check: rel diff {:.3e}", (num / den.max(1e-300)).sqrt());
-            }
-        }
     }
 }
 

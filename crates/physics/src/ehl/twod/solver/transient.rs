@@ -55,9 +55,6 @@ pub fn solve_transient(input: &Ehl2dInput, options: &Ehl2dOptions, squeeze: Sque
             }
             let run = solve_level(&mut prob, &mut p, &mut h0, options.tolerance, options.max_iterations.min(NESTED_ITER), options.max_iterations, DT_NESTED, true, observer)?;
             iterations += run.iterations;
-            if trace() {
-                eprintln!("ehl2d transient: {n} sub-steps, κ {kappa_n:.3e}: converged {} in {} steps", run.converged, run.iterations);
-            }
             converged = run.converged;
             last = Some(run);
             if !converged {
