@@ -1,7 +1,10 @@
 //! Seed 003 §6 as published (issue 42 item 1): the inverse fit of the cycloidal cam and flat
 //! follower over the paper's unknowns, the bound that shows which statements conflict, and the
 //! example's figures against the paper's statements.
-//! Run: `cargo test --test it -- seed003_fit --nocapture` (prints the residual tables).
+//! Run: `cargo test --release --test it -- seed003_fit --include-ignored --nocapture` (prints the
+//! residual tables). The three searches (a 3⁷ grid and Nelder–Mead restarts, ≈ 18,000 cycle
+//! evaluations, 3.5 min in a debug build) are `#[ignore]`d in CI; the example's figures against
+//! the paper run in CI.
 
 use serde_json::{json, Value};
 use std::f64::consts::PI;
@@ -73,6 +76,7 @@ fn run_fit(weights: [f64; STATEMENT_COUNT], span: bool, label: &str) -> CamFit {
 /// All statements at once (unit weights; the scales are 1°, 2 % and, for the nose film, 5 %):
 /// the best compromise, which the example carries.
 #[test]
+#[ignore = "the inverse fit's search: 3.5 min in debug; run with --include-ignored in release"]
 fn seed003_fit_all_statements() {
     let f = run_fit([1.0; STATEMENT_COUNT], false, "all statements");
     assert!(f.cost.is_finite());
@@ -84,6 +88,7 @@ fn seed003_fit_all_statements() {
 /// them, ≈ ±33°, unless inertia nearly unloads the contact there, which moves the maximum past
 /// ±85°).
 #[test]
+#[ignore = "the inverse fit's search: 3.5 min in debug; run with --include-ignored in release"]
 fn seed003_fit_reversals_against_hertz_peak_angle() {
     let mut w = [0.0; STATEMENT_COUNT];
     w[0] = 1.0;
@@ -96,6 +101,7 @@ fn seed003_fit_reversals_against_hertz_peak_angle() {
 /// The paper's "flank and nose actions from 90° to 270°" (rise + dwell/2 = 90°) with the
 /// reversals at ±15°/±51°: only a negative base radius (r_b = −0.10 h) puts them there.
 #[test]
+#[ignore = "the inverse fit's search: 3.5 min in debug; run with --include-ignored in release"]
 fn seed003_fit_reversals_within_90_to_270() {
     let mut w = [0.0; STATEMENT_COUNT];
     w[0] = 1.0;
