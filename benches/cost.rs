@@ -98,7 +98,7 @@ fn variants(large: bool) -> Vec<(String, Value)> {
     }
     let carried = with(example("seed000_thermal_steady"), "/spec/ehl/thermal/carry_tolerance", json!(0.05));
     out.push(("thermal cycle 360 angles carried".into(), with(carried, "/spec/angles", json!(360))));
-    let thermal = example("seed000_thermal_steady");
+    let thermal = with(example("seed000_thermal_steady"), "/spec/ehl/thermal/carry_tolerance", json!(0.0));
     for a in [72, 360] {
         out.push((format!("thermal cycle {a} angles"), with(thermal.clone(), "/spec/angles", json!(a))));
     }

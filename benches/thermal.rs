@@ -45,7 +45,7 @@ fn cycle_table() {
     // THERMAL_BENCH_NO_FULL: leave out the every-angle thermal cycles (full and plain `auto`:
     // minutes each); errors then against the carried cycle at carry_tolerance 0.01.
     let skip_full = std::env::var("THERMAL_BENCH_NO_FULL").is_ok();
-    let (full, t_full) = if skip_full { cycle_job(&spec(&|s| s["ehl"]["thermal"]["carry_tolerance"] = 0.01.into())) } else { cycle_job(&spec(&|_| {})) };
+    let (full, t_full) = if skip_full { cycle_job(&spec(&|s| s["ehl"]["thermal"]["carry_tolerance"] = 0.01.into())) } else { cycle_job(&spec(&|s| s["ehl"]["thermal"]["carry_tolerance"] = 0.0.into())) };
     let srr_full = series(&full, "slide_roll_ratio");
     let srr_scale = srr_full.iter().fold(0.0f64, |m, s| m.max(s.abs()));
     println!("\n## Seed 000 thermal cycle, {angles} angles (whole job, release, rayon pool of the machine)\n");
@@ -86,7 +86,10 @@ fn cycle_table() {
         row(&format!("accurate, carry_tolerance {tol}"), &out, t);
     }
     if !skip_full {
-        let (out, t) = cycle_job(&spec(&|s| s["fidelity"] = "auto".into()));
+        let (out, t) = cycle_job(&spec(&|s| {
+            s["fidelity"] = "auto".into();
+            s["ehl"]["thermal"]["carry_tolerance"] = 0.0.into();
+        }));
         row("auto", &out, t);
     }
     let (out, t) = cycle_job(&spec(&|s| {

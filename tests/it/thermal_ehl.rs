@@ -290,9 +290,17 @@ mod seed000_cycle {
         v[i]
     }
 
+    /// The seed 000 example with the full thermal solve at every angle (`carry_tolerance` 0; the
+    /// examples run with the default key points, 0.05).
+    fn every_angle(name: &str) -> Value {
+        let mut s = example(name);
+        s["ehl"]["thermal"]["carry_tolerance"] = 0.0.into();
+        s
+    }
+
     #[test]
     fn slide_to_roll_features_steady_and_startup() {
-        let steady = run("cam_cycle", &example("seed000_thermal_steady")).unwrap();
+        let steady = run("cam_cycle", &every_angle("seed000_thermal_steady")).unwrap();
         assert_eq!(steady["summary"]["fidelity_used"]["thermal"].as_u64(), Some(36), "{}", steady["summary"]["fidelity_used"]);
         let a = series(&steady, "angle_deg");
         let srr = series(&steady, "slide_roll_ratio");
@@ -329,7 +337,7 @@ mod seed000_cycle {
         assert!((160.0..=190.0).contains(&amin), "extreme at {amin}°");
 
         // Startup: the roller starts from rest — far more slip at 0–18° than in steady running.
-        let startup = run("cam_cycle", &example("seed000_thermal_startup")).unwrap();
+        let startup = run("cam_cycle", &every_angle("seed000_thermal_startup")).unwrap();
         let sa = series(&startup, "angle_deg");
         let ss = series(&startup, "slide_roll_ratio");
         println!("startup SRR: {:?}", sa.iter().zip(&ss).map(|(a, s)| format!("{a:.0}:{s:.3}")).collect::<Vec<_>>());
@@ -356,7 +364,7 @@ mod seed000_cycle {
     /// the lagged iteration's noise on the traction table.)
     #[test]
     fn carried_thermal_factors_against_the_full_cycle() {
-        let base = example("seed000_thermal_steady");
+        let base = every_angle("seed000_thermal_steady");
         let full = run("cam_cycle", &base).unwrap();
         let mut spec = base.clone();
         spec["ehl"]["thermal"]["carry_tolerance"] = 0.01.into();
@@ -400,7 +408,7 @@ mod seed000_cycle {
     /// BENCHMARKS.md.)
     #[test]
     fn carried_cycle_follows_the_load_spike() {
-        let mut base = example("seed000_thermal_steady");
+        let mut base = every_angle("seed000_thermal_steady");
         base["angles"] = 360.into();
         let carry = |tolerance: f64| {
             let mut spec = base.clone();

@@ -501,7 +501,7 @@ pub struct EhlSpec {
     /// and the traction table's energy solves around the angle's slip (the rest when the roller
     /// balance reaches them) — the seed 000 cycle at 36 angles takes ≈ 1.8 s in a debug build
     /// (`examples/seed000_thermal_steady.json`), 720 angles ≈ 11 s in release (1.6 s with
-    /// `carry_tolerance` 0.05); see BENCHMARKS.md, "Thermal EHL". The film's
+    /// `carry_tolerance` 0.05, the default); see BENCHMARKS.md, "Thermal EHL". The film's
     /// shear law is the spec's `traction` (default Eyring, seed 001); seed 000's own model is
     /// Newtonian, which its examples set (`traction.model: newtonian`). A contact
     /// the model cannot settle fails with a typed `not_converged`. `cam_point` uses steel bodies.
@@ -586,11 +586,19 @@ pub struct EhlThermalSpec {
     /// conditions jump (by more than this within the film's transit time), the full transient
     /// solve runs at every angle until its film agrees with the carried one to a tenth of this.
     /// The carried traction's closed-form ratio is calibrated between each key and the one
-    /// before it. 0.001–0.5; absent: the full solve at every angle. Seed 000 at 720 angles: 0.05
-    /// keeps films and slide-to-roll ratio within 1 % of the every-angle cycle in 1.6 s against
-    /// its 10.5 s (release; BENCHMARKS.md, "Thermal EHL").
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub carry_tolerance: Option<f64>,
+    /// before it. 0 (the full solve at every angle) or 0.001–0.5. Default 0.05: seed 000 at 720
+    /// angles keeps films and slide-to-roll ratio within 1 % of the every-angle cycle in 1.3–1.6 s
+    /// against its 8–10.5 s (release; BENCHMARKS.md, "Thermal EHL").
+    #[serde(default = "default_carry_tolerance")]
+    pub carry_tolerance: f64,
+}
+
+/// The thermal cycle's key-point tolerance unless the spec says otherwise (issue 46: the fast
+/// path is the default; films and SRR within 1 % of the every-angle cycle on seed 000).
+pub const DEFAULT_CARRY_TOLERANCE: f64 = 0.05;
+
+fn default_carry_tolerance() -> f64 {
+    DEFAULT_CARRY_TOLERANCE
 }
 
 fn default_oil_conductivity() -> f64 {
@@ -612,7 +620,7 @@ impl EhlThermalSpec {
         ThermalFilmSettings {
             options: ThermalOptions { film_points: self.film_points, solid_points: self.solid_points, ..ThermalOptions::default() },
             bodies: ThermalBodies { film: FilmHeat { conductivity: self.oil_conductivity, specific_heat: self.oil_specific_heat }, body_1, body_2 },
-            carry_tolerance: self.carry_tolerance,
+            carry_tolerance: (self.carry_tolerance > 0.0).then_some(self.carry_tolerance),
         }
     }
 
@@ -621,8 +629,8 @@ impl EhlThermalSpec {
         v.quantity(&format!("{path}/oil_specific_heat"), self.oil_specific_heat, Q::SPECIFIC_HEAT);
         v.count_in_range(&format!("{path}/film_points"), self.film_points, 3, 41);
         v.count_in_range(&format!("{path}/solid_points"), self.solid_points, 4, 81);
-        if let Some(t) = self.carry_tolerance {
-            v.in_range(&format!("{path}/carry_tolerance"), t, 0.001, 0.5);
+        if self.carry_tolerance != 0.0 {
+            v.in_range(&format!("{path}/carry_tolerance"), self.carry_tolerance, 0.001, 0.5);
         }
     }
 }

@@ -113,7 +113,7 @@ pub fn film_cost(fidelity: Fidelity, ehl: &EhlSpec, contact: ContactKind) -> Fil
             thermal_angle: cost::ehl_thermal_angle_seconds(n, t.film_points, t.solid_points),
             // Key points: the full solve only where the conditions moved by more than the
             // carry tolerance.
-            thermal_share: t.carry_tolerance.map_or(1.0, |c| (KEY_SHARE_AT_005 * (0.05 / c).powf(0.7)).clamp(0.01, 1.0)),
+            thermal_share: if t.carry_tolerance > 0.0 { (KEY_SHARE_AT_005 * (0.05 / t.carry_tolerance).powf(0.7)).clamp(0.01, 1.0) } else { 1.0 },
             // The temperature fields of the film and the solids at each angle.
             kept_per_angle: line.kept_per_angle + 6.0 * 8.0 * (t.film_points + 2 * t.solid_points) as f64 * n as f64,
             path: "/ehl/thermal",
