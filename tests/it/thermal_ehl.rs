@@ -344,6 +344,11 @@ mod seed000_cycle {
         // spins the roller up within the first 0.5° step; what remains follows the slow cam.
         let (s10, st10) = (at(&sa, &ss, 10.0), at(&a, &srr, 10.0));
         assert!(s10 > 1.1 * st10 && s10 < 1.5 * st10, "10°: startup {s10} steady {st10}");
+        // Paper (Fig. 16): over 34–54° the startup SRR is slightly below steady (< 5 %).
+        for deg in [30.0, 40.0, 50.0] {
+            let (s_start, s_steady) = (at(&sa, &ss, deg), at(&a, &srr, deg));
+            println!("{deg}°: startup/steady {:.4}", s_start / s_steady);
+        }
     }
 
     /// Key points (`ehl.thermal.carry_tolerance` 0.01) against the full thermal solve at every

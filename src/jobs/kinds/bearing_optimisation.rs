@@ -215,8 +215,37 @@ pub struct Continuous {
     pub per_order: Vec<Design>,
     /// Whether `design` scores above the best of the runs and the best-level combination.
     pub improves_on_taguchi: bool,
+    /// Whether `design` scores above the best run of the array (`best_run`). The search starts
+    /// from the best of the array's runs, the best-level confirmation and the baseline, and keeps
+    /// its start unless it finds a higher score, so it never ends below them.
+    pub beats_best_run: bool,
     /// Bearing analyses spent by the search.
     pub evaluations: usize,
+}
+
+/// Where the recommended design comes from.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, ToSchema)]
+#[serde(rename_all = "snake_case")]
+pub enum DesignSource {
+    /// The best run of the array (`best_run`).
+    ArrayRun,
+    /// The best-level combination (`best_levels`, its confirmation run).
+    BestLevels,
+    /// The continuous search (`continuous`).
+    Continuous,
+    /// The unprofiled base bearing (`baseline`).
+    Baseline,
+}
+
+/// The design to build: the highest score among the best run, the best-level combination, the
+/// continuous search's design and the baseline (on a tie, the earlier in that list).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, ToSchema)]
+pub struct Recommended {
+    pub source: DesignSource,
+    /// 1-based run number, when the source is `array_run`.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub run: Option<usize>,
+    pub design: Design,
 }
 
 /// Result of a `bearing_optimisation` job.
@@ -233,6 +262,9 @@ pub struct OptimisationResult {
     pub load_dimensionless: f64,
     #[serde(skip_serializing_if = "Option::is_none")]
     pub continuous: Option<Continuous>,
+    /// The better of the best run, the best-level confirmation and the continuous design (and
+    /// the baseline): what to build.
+    pub recommended: Recommended,
     /// Bearing analyses in total.
     pub evaluations: usize,
     #[schema(value_type = crate::jobs::schemas::ConvergenceDoc)]
@@ -253,12 +285,12 @@ fn planned_evaluations(spec: &OptimisationSpec) -> usize {
 
 impl Kind for BearingOptimisation {
     const NAME: &'static str = "bearing_optimisation";
-    const SOLVER_VERSION: &'static str = "bearing_optimisation-11";
+    const SOLVER_VERSION: &'static str = "bearing_optimisation-12";
     const DESCRIPTION: &'static str = "Axial edge profile design of a journal bearing (seed 002): Taguchi \
         L4/L9/L27 array with the weighted-sum score of eq. (19), main effects and S/N ratios, then a \
         continuous Nelder–Mead search over height and length fraction for each profile order.";
     const TABLES: &'static [&'static str] = &["runs", "main_effects"];
-    const KEY_FIGURES: &'static [&'static str] = &["/best_run", "/best_levels/design/score", "/best_levels/design/min_film", "/continuous/design/score", "/continuous/design/min_film", "/baseline/score", "/baseline/min_film"];
+    const KEY_FIGURES: &'static [&'static str] = &["/recommended/design/score", "/recommended/design/min_film", "/best_run", "/best_levels/design/score", "/best_levels/design/min_film", "/continuous/design/score", "/continuous/design/min_film", "/baseline/score", "/baseline/min_film"];
     type Spec = OptimisationSpec;
     type Output = OptimisationResult;
 
@@ -432,8 +464,19 @@ fn result(d: &ProfileDesign) -> OptimisationResult {
             design: design(&c.design),
             per_order: c.per_order.iter().map(design).collect(),
             improves_on_taguchi: c.improves_on_taguchi,
+            beats_best_run: c.beats_best_run,
             evaluations: c.evaluations,
         }),
+        recommended: Recommended {
+            source: match d.recommended.source {
+                opt::DesignSource::ArrayRun => DesignSource::ArrayRun,
+                opt::DesignSource::BestLevels => DesignSource::BestLevels,
+                opt::DesignSource::Continuous => DesignSource::Continuous,
+                opt::DesignSource::Baseline => DesignSource::Baseline,
+            },
+            run: d.recommended.run,
+            design: design(&d.recommended.design),
+        },
         evaluations: d.evaluations,
         convergence: d.convergence.clone(),
     }

@@ -150,8 +150,33 @@ pub struct Continuous {
     pub per_order: Vec<Design>,
     /// Whether `design` scores above the best of the runs and the best-level combination.
     pub improves_on_taguchi: bool,
+    /// Whether `design` scores above the best run of the array.
+    pub beats_best_run: bool,
     /// Bearing analyses spent by the search.
     pub evaluations: usize,
+}
+
+/// Where the recommended design comes from.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum DesignSource {
+    /// The best run of the array.
+    ArrayRun,
+    /// The combination of the best levels (the confirmation run).
+    BestLevels,
+    /// The continuous search.
+    Continuous,
+    /// The unprofiled base bearing.
+    Baseline,
+}
+
+/// The design to build: the highest score among the best run, the best-level combination, the
+/// continuous search's design and the baseline (ties go to the earlier in that order).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Recommended {
+    pub source: DesignSource,
+    /// 1-based run number when the source is a run of the array.
+    pub run: Option<usize>,
+    pub design: Design,
 }
 
 /// The outcome of a profile design.
@@ -167,6 +192,8 @@ pub struct ProfileDesign {
     /// Dimensionless load W̄ every design carries.
     pub load_dimensionless: f64,
     pub continuous: Option<Continuous>,
+    /// The best of the candidates (see [`Recommended`]).
+    pub recommended: Recommended,
     /// Bearing analyses in total.
     pub evaluations: usize,
     pub convergence: Convergence,
@@ -282,19 +309,30 @@ pub fn optimise(problem: &Problem, observer: &dyn Observer) -> Result<ProfileDes
     };
     let mut best_design = best_combo;
     best_design.score = score(&best_combo);
-    let taguchi_best = best_design.score.max(runs[best_run - 1].score);
+    let best_run_score = runs[best_run - 1].score;
+    let taguchi_best = best_design.score.max(best_run_score);
     baseline.score = score(&baseline);
 
     let continuous = match &problem.continuous {
         Some(c) => {
             observer.progress(0.5, "continuous search");
-            let (per_order, used) = continuous::search(&ev, c, &designs, &score, observer)?;
+            let starts: Vec<Design> = designs.iter().chain([&best_design, &baseline]).copied().collect();
+            let (per_order, used) = continuous::search(&ev, c, &starts, &score, observer)?;
             evaluations += used;
             let design = *per_order.iter().max_by(|a, b| a.score.total_cmp(&b.score)).unwrap();
-            Some(Continuous { design, per_order, improves_on_taguchi: design.score > taguchi_best, evaluations: used })
+            Some(Continuous {
+                design,
+                per_order,
+                improves_on_taguchi: design.score > taguchi_best,
+                beats_best_run: design.score > best_run_score,
+                evaluations: used,
+            })
         }
         None => None,
     };
+    let mut best_run_design = designs[best_run - 1];
+    best_run_design.score = best_run_score;
+    let recommended = recommend(best_run, best_run_design, best_design, continuous.as_ref().map(|c| c.design), baseline);
     observer.progress(1.0, "done");
     Ok(ProfileDesign {
         runs,
@@ -304,9 +342,23 @@ pub fn optimise(problem: &Problem, observer: &dyn Observer) -> Result<ProfileDes
         baseline,
         load_dimensionless: load,
         continuous,
+        recommended,
         evaluations,
         convergence: Convergence { iterations: evaluations as u32, residual: 0.0, tolerance: 0.0, termination: Termination::Converged },
     })
+}
+
+/// The candidate with the highest score, the earlier in (run, best levels, continuous,
+/// baseline) on a tie.
+fn recommend(best_run: usize, run: Design, best_levels: Design, continuous: Option<Design>, baseline: Design) -> Recommended {
+    let mut r = Recommended { source: DesignSource::ArrayRun, run: Some(best_run), design: run };
+    let others = [(DesignSource::BestLevels, Some(best_levels)), (DesignSource::Continuous, continuous), (DesignSource::Baseline, Some(baseline))];
+    for (source, d) in others {
+        if let Some(d) = d.filter(|d| d.score > r.design.score) {
+            r = Recommended { source, run: None, design: d };
+        }
+    }
+    r
 }
 
 /// The runs of the array on the array's normalisation.
