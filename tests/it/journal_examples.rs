@@ -121,11 +121,12 @@ fn seed002_table5_profile_direction() {
     let mis = run("examples/seed002_misaligned.json");
     let opt = run("examples/seed002_optimised.json");
     let g = |r: &Value, k: &str| r[k].as_f64().unwrap();
-    for k in ["max_pressure_dimensionless", "min_film_dimensionless", "friction_variable", "min_film", "max_pressure"] {
+    for k in ["max_pressure_dimensionless", "min_film_dimensionless", "friction_variable", "friction_variable_seed002", "min_film", "max_pressure"] {
         println!("{k}: misaligned {:.5e}, profiled {:.5e}", g(&mis, k), g(&opt, k));
     }
     assert!(g(&opt, "max_pressure_dimensionless") < g(&mis, "max_pressure_dimensionless"));
     assert!(g(&opt, "friction_variable") < g(&mis, "friction_variable"));
+    assert!(g(&opt, "friction_variable_seed002") < g(&mis, "friction_variable_seed002"));
     let ratio = g(&opt, "min_film_dimensionless") / g(&mis, "min_film_dimensionless");
     assert!((ratio - 4.39).abs() < 0.05, "{ratio}");
     let against_paper = g(&opt, "min_film_dimensionless") / 0.0820;
