@@ -631,6 +631,54 @@ fn seed001_nose_micro_slip_map_drives_the_roller_from_the_first_step() {
     }
 }
 
+/// Seed 001 Fig. 8b: the traction along the contact at the nose with μ_rp = 0.013 (the
+/// micro-slip setup above, `outputs: ["traction_along"]`). Paper: gross sliding is not yet
+/// reached — the asperity traction has not filled its bound μ_b p_a; in the static-friction
+/// (stick) regime it starts from zero at the leading edge and grows through the contact until it
+/// meets the bound, not linearly. Asserted on the model: |τ_a| ≤ μ_b p_a everywhere, below it over
+/// part of the contact, τ_a/(μ_b p_a) zero at the inlet edge and non-decreasing downstream, the
+/// nodes' sum equal to the row's asperity traction; the output is absent unless asked for.
+#[test]
+fn seed001_traction_along_the_contact_at_the_nose() {
+    let e2 = std::f64::consts::E * std::f64::consts::E;
+    let spec = |outputs: Value| {
+        move |s: &mut Value| {
+            s["asperities"]["pressure_gap_curve"] = json!({"film": [0.17e-6, 0.37e-6], "pressure": [46e6 * e2, 46e6 / e2]});
+            s["asperities"]["model"] = json!("micro_slip");
+            s["asperities"]["gross_sliding_displacement"] = json!(45e-9);
+            s["pin_friction"] = json!([0.013]);
+            s["outputs"] = outputs.clone();
+        }
+    };
+    let plain = point("seed001_mixed_nose", spec(json!([])));
+    assert!(plain.get("traction_along").is_none());
+    let out = point("seed001_mixed_nose", spec(json!(["traction_along"])));
+    assert_eq!(out["rows"], plain["rows"], "the output changes nothing else");
+    let t = &out["traction_along"][0];
+    let v = |k: &str| -> Vec<f64> { t[k].as_array().unwrap().iter().map(|x| x.as_f64().unwrap()).collect() };
+    let (x, tau, lim, visc) = (v("x"), v("asperity_shear"), v("asperity_shear_limit"), v("viscous_shear"));
+    let loaded: Vec<usize> = (0..x.len()).filter(|&i| lim[i] > 1e-3 * lim.iter().cloned().fold(0.0, f64::max)).collect();
+    let share: Vec<f64> = loaded.iter().map(|&i| tau[i] / lim[i]).collect();
+    println!("μ_rp 0.013: u_s {:.4e} m/s, {} nodes, {} with asperity load", t["sliding_velocity"], x.len(), loaded.len());
+    for k in (0..loaded.len()).step_by((loaded.len() / 12).max(1)) {
+        let i = loaded[k];
+        println!("x {:+.3e} m: τ_a/μp_a {:.4}, τ_a {:.4e} Pa, film shear {:.4e} Pa", x[i], share[k], tau[i], visc[i]);
+    }
+    assert!(tau.iter().zip(&lim).all(|(t, l)| t.abs() <= l * (1.0 + 1e-12)));
+    assert!(share[0] < 1e-2, "inlet edge: {}", share[0]);
+    assert!(share.windows(2).all(|w| w[1] >= w[0] - 1e-9), "grows downstream");
+    assert!(share.iter().any(|s| *s < 0.99), "gross sliding not reached everywhere");
+    // not linear in x: the share's midpoint is not the midpoint of the way to saturation
+    let mid = share[share.len() / 4];
+    println!("share a quarter of the way in: {mid:.4}");
+    // the nodes add up to the row's asperity traction (trapezoid cells × 21 mm)
+    let cell = |i: usize| 0.5 * (x[(i + 1).min(x.len() - 1)] - x[i.saturating_sub(1)]);
+    let sum: f64 = (0..x.len()).map(|i| tau[i] * cell(i) * 0.021).sum();
+    let row = out["rows"][0]["asperity_traction"].as_f64().unwrap();
+    println!("Σ τ_a A = {sum:.5e} N, row {row:.5e} N");
+    assert!(close(sum, row, 0.01), "{sum} vs {row}");
+}
+
 /// The chain from a surface to the roller: `rough_contact` on a Gaussian surface of the paper's
 /// composite Rq (0.207 µm, correlation 8 µm, 128² at 0.5 µm, 6 GPa) gives the pressure–gap curve,
 /// which `cam_point` takes as `asperities.pressure_gap_curve` at the seed 001 nose. This surface

@@ -344,10 +344,19 @@ mod seed000_cycle {
         // spins the roller up within the first 0.5° step; what remains follows the slow cam.
         let (s10, st10) = (at(&sa, &ss, 10.0), at(&a, &srr, 10.0));
         assert!(s10 > 1.1 * st10 && s10 < 1.5 * st10, "10°: startup {s10} steady {st10}");
-        // Paper (Fig. 16): over 34–54° the startup SRR is slightly below steady (< 5 %).
+        // Paper (Fig. 16): over 34–54° the startup SRR is slightly below steady (< 5 %). Model:
+        // above it, ×1.35 at 40° and ×1.43 at 50° (×1.27 at 30°), the gap still growing towards
+        // the opening ramp — the startup SRR never dips below steady before 60°. Not traced; the
+        // candidates are the roller's inertia torque under the cam's constant acceleration (a
+        // solid steel ring, not in Table 1 — the same inertia that lifts the 100° rise) and the
+        // slower cam's thinner, colder film (docs/seeds.md).
         for deg in [30.0, 40.0, 50.0] {
             let (s_start, s_steady) = (at(&sa, &ss, deg), at(&a, &srr, deg));
             println!("{deg}°: startup/steady {:.4}", s_start / s_steady);
+        }
+        for (deg, measured) in [(40.0, 1.350), (50.0, 1.431)] {
+            let r = at(&sa, &ss, deg) / at(&a, &srr, deg);
+            assert!((r - measured).abs() < 0.02, "{deg}°: startup/steady {r}");
         }
     }
 
