@@ -659,7 +659,7 @@ fn seed001_traction_along_the_contact_at_the_nose() {
     let (x, tau, lim, visc) = (v("x"), v("asperity_shear"), v("asperity_shear_limit"), v("viscous_shear"));
     let loaded: Vec<usize> = (0..x.len()).filter(|&i| lim[i] > 1e-3 * lim.iter().cloned().fold(0.0, f64::max)).collect();
     let share: Vec<f64> = loaded.iter().map(|&i| tau[i] / lim[i]).collect();
-    println!("μ_rp 0.013: u_s {:.4e} m/s, {} nodes, {} with asperity load", t["sliding_velocity"], x.len(), loaded.len());
+    println!("μ_rp 0.013: u_s {:.4e} m/s, {} nodes, {} with asperity load", t["sliding_velocity"].as_f64().unwrap(), x.len(), loaded.len());
     for k in (0..loaded.len()).step_by((loaded.len() / 12).max(1)) {
         let i = loaded[k];
         println!("x {:+.3e} m: τ_a/μp_a {:.4}, τ_a {:.4e} Pa, film shear {:.4e} Pa", x[i], share[k], tau[i], visc[i]);

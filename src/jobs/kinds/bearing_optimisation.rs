@@ -115,6 +115,19 @@ impl Default for ContinuousSpec {
     }
 }
 
+/// Optional outputs of a `bearing_optimisation` job.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, ToSchema)]
+#[serde(rename_all = "snake_case")]
+pub enum OptimisationOutput {
+    /// Score maps over (n, ξ), (ξ, ψ) and (n, ψ), the third factor at its best level (seed 002
+    /// Figs. 8–10): every cell a bearing analysis.
+    ScoreGrid,
+}
+
+fn d_grid_points() -> usize {
+    5
+}
+
 /// Spec of a `bearing_optimisation` job.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize, ToSchema)]
 #[serde(deny_unknown_fields)]
@@ -131,6 +144,13 @@ pub struct OptimisationSpec {
     pub friction: FrictionDefinition,
     #[serde(default)]
     pub continuous: ContinuousSpec,
+    /// Optional outputs: `score_grid`.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub outputs: Vec<OptimisationOutput>,
+    /// `score_grid`: values evenly along each continuous axis (ξ, ψ), 2 to 15, besides the
+    /// factor's levels; the order axis takes the order levels. Default 5.
+    #[serde(default = "d_grid_points")]
+    pub score_grid_points: usize,
 }
 
 /// One analysed design.
@@ -248,6 +268,25 @@ pub struct Recommended {
     pub design: Design,
 }
 
+/// The score over two factors, the third held at its best level (seed 002 Figs. 8–10).
+#[derive(Debug, Clone, PartialEq, Serialize, ToSchema)]
+pub struct ScoreGrid {
+    /// Factor along x: `order`, `height` or `length_fraction`.
+    pub x_factor: String,
+    /// Factor along y.
+    pub y_factor: String,
+    /// Values of the x factor (dimensionless: an order, ξ or ψ).
+    pub x: Vec<f64>,
+    /// Values of the y factor (dimensionless: an order, ξ or ψ).
+    pub y: Vec<f64>,
+    /// Score (dimensionless, eq. 19 on the array's normalisation): `score[j][i]` at (`x[i]`, `y[j]`).
+    pub score: Vec<Vec<f64>>,
+    /// The factor held at its best level.
+    pub held_factor: String,
+    /// Its value (dimensionless).
+    pub held_value: f64,
+}
+
 /// Result of a `bearing_optimisation` job.
 #[derive(Debug, Clone, PartialEq, Serialize, ToSchema)]
 pub struct OptimisationResult {
@@ -265,6 +304,9 @@ pub struct OptimisationResult {
     /// The better of the best run, the best-level confirmation and the continuous design (and
     /// the baseline): what to build.
     pub recommended: Recommended,
+    /// `outputs: ["score_grid"]`: the score maps of Figs. 8–10.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub score_grids: Option<Vec<ScoreGrid>>,
     /// Bearing analyses in total.
     pub evaluations: usize,
     #[schema(value_type = crate::jobs::schemas::ConvergenceDoc)]
@@ -279,6 +321,11 @@ fn planned_evaluations(spec: &OptimisationSpec) -> usize {
         let orders = spec.factors.order.len();
         let per_order = spec.continuous.evaluations_per_order.saturating_add(if spec.continuous.coarse_search { 15 } else { 0 });
         n = n.saturating_add(orders.saturating_mul(per_order));
+    }
+    if spec.outputs.contains(&OptimisationOutput::ScoreGrid) {
+        let (orders, k) = (spec.factors.order.len(), spec.score_grid_points);
+        let k = k.saturating_add(3); // the levels join the even values
+        n = n.saturating_add(k.saturating_mul(k).saturating_add(2usize.saturating_mul(orders).saturating_mul(k)));
     }
     n
 }
@@ -307,6 +354,10 @@ impl Kind for BearingOptimisation {
             "factors": {"order": [1, 2, 3], "height": [0.1, 0.4, 1.0], "length_fraction": [0.01, 0.2, 0.4]},
             "weights": {"film": 0.5, "pressure": 0.25, "friction": 0.25}
         })
+    }
+
+    fn outputs() -> &'static [crate::jobs::kind::OutputInfo] {
+        &[crate::jobs::kind::OutputInfo { name: "score_grid", description: "score maps over (n, ξ), (ξ, ψ), (n, ψ), the third factor at its best level (seed 002 Figs. 8–10)" }]
     }
 
     fn validate(spec: &OptimisationSpec, limits: &Limits, v: &mut Validation) {
@@ -340,6 +391,7 @@ impl Kind for BearingOptimisation {
         if let Some([lo, hi]) = c.length_fraction {
             v.check(lo.is_finite() && hi.is_finite() && 0.0 < lo && lo < hi && hi <= 0.5, "/continuous/length_fraction", "needs 0 < lo < hi <= 0.5");
         }
+        v.count_in_range("/score_grid_points", spec.score_grid_points, 2, 15);
         v.limit("/continuous/evaluations_per_order", planned_evaluations(spec), limits.max_evaluations, "planned bearing analyses");
     }
 
@@ -396,6 +448,7 @@ fn problem(spec: &OptimisationSpec) -> Result<Problem, SolveError> {
             evaluations_per_order: c.evaluations_per_order,
             coarse_search: c.coarse_search,
         }),
+        score_grid_points: spec.outputs.contains(&OptimisationOutput::ScoreGrid).then_some(spec.score_grid_points),
     })
 }
 
@@ -477,6 +530,20 @@ fn result(d: &ProfileDesign) -> OptimisationResult {
             run: d.recommended.run,
             design: design(&d.recommended.design),
         },
+        score_grids: (!d.score_grids.is_empty()).then(|| {
+            d.score_grids
+                .iter()
+                .map(|g| ScoreGrid {
+                    x_factor: g.x_factor.into(),
+                    y_factor: g.y_factor.into(),
+                    x: g.x.clone(),
+                    y: g.y.clone(),
+                    score: g.score.clone(),
+                    held_factor: g.held_factor.into(),
+                    held_value: g.held_value,
+                })
+                .collect()
+        }),
         evaluations: d.evaluations,
         convergence: d.convergence.clone(),
     }

@@ -15,6 +15,7 @@
 
 mod array;
 mod continuous;
+mod grid;
 
 use super::operating::{resolve_load, LoadDemand};
 use super::taguchi::{level_means, sn_larger_better, Array, Criteria, Reference, Weights};
@@ -66,6 +67,8 @@ pub struct Problem {
     pub friction: FrictionFigure,
     /// The continuous search (none: the array only).
     pub continuous: Option<ContinuousSearch>,
+    /// Points per continuous axis of the score maps over two factors (none: no maps).
+    pub score_grid_points: Option<usize>,
 }
 
 impl Problem {
@@ -156,6 +159,20 @@ pub struct Continuous {
     pub evaluations: usize,
 }
 
+/// The score over two factors, the third held at its best level (seed 002 Figs. 8–10).
+#[derive(Debug, Clone, PartialEq)]
+pub struct ScoreGrid {
+    /// `order`, `height` or `length_fraction`.
+    pub x_factor: &'static str,
+    pub y_factor: &'static str,
+    pub x: Vec<f64>,
+    pub y: Vec<f64>,
+    /// `score[j][i]` at (`x[i]`, `y[j]`), eq. (19) on the array's normalisation.
+    pub score: Vec<Vec<f64>>,
+    pub held_factor: &'static str,
+    pub held_value: f64,
+}
+
 /// Where the recommended design comes from.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum DesignSource {
@@ -194,6 +211,8 @@ pub struct ProfileDesign {
     pub continuous: Option<Continuous>,
     /// The best of the candidates (see [`Recommended`]).
     pub recommended: Recommended,
+    /// Score maps over (n, ξ), (ξ, ψ), (n, ψ) (empty unless asked for).
+    pub score_grids: Vec<ScoreGrid>,
     /// Bearing analyses in total.
     pub evaluations: usize,
     pub convergence: Convergence,
@@ -333,6 +352,15 @@ pub fn optimise(problem: &Problem, observer: &dyn Observer) -> Result<ProfileDes
     let mut best_run_design = designs[best_run - 1];
     best_run_design.score = best_run_score;
     let recommended = recommend(best_run, best_run_design, best_design, continuous.as_ref().map(|c| c.design), baseline);
+    let score_grids = match problem.score_grid_points {
+        Some(points) => {
+            observer.progress(0.9, "score maps");
+            let (g, used) = grid::score_grids(&ev, best, points, &score, observer)?;
+            evaluations += used;
+            g
+        }
+        None => Vec::new(),
+    };
     observer.progress(1.0, "done");
     Ok(ProfileDesign {
         runs,
@@ -343,6 +371,7 @@ pub fn optimise(problem: &Problem, observer: &dyn Observer) -> Result<ProfileDes
         load_dimensionless: load,
         continuous,
         recommended,
+        score_grids,
         evaluations,
         convergence: Convergence { iterations: evaluations as u32, residual: 0.0, tolerance: 0.0, termination: Termination::Converged },
     })
