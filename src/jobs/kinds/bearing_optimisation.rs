@@ -262,7 +262,7 @@ pub enum DesignSource {
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, ToSchema)]
 pub struct Recommended {
     pub source: DesignSource,
-    /// 1-based run number, when the source is `array_run`.
+    /// 1-based run number (a count), when the source is `array_run`.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub run: Option<usize>,
     pub design: Design,
