@@ -195,6 +195,11 @@ fn seed002_score_maps_over_two_factors() {
         println!("  maximum {:.4} at {xf} {}, {yf} {}", z[bj][bi], x[bi], y[bj]);
         map_max.push((x[bi], y[bj], z[bj][bi]));
     }
+    // drawn as heat maps, one per pair
+    let names: Vec<String> = tribod::plots::available("bearing_optimisation", &r).into_iter().map(|p| p.name).collect();
+    for k in 1..=3 {
+        assert!(names.contains(&format!("score_map_{k}")), "{names:?}");
+    }
     // (ξ, ψ) at n = 2: the model's best cell is at ψ = 0.4 and scores above the confirmation
     let (_, psi, top) = map_max[1];
     assert_eq!(psi, 0.4);

@@ -80,3 +80,37 @@ pub fn traction_along(film: &FilmSolution, input: &ContactInput, sliding: f64) -
     };
     Some(TractionAlong { x: p.x[..n].to_vec(), film: p.film[..n].to_vec(), fluid_pressure: fluid, asperity_pressure: asperity, viscous_shear, asperity_shear, asperity_shear_limit })
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::ehl::EhlOptions;
+    use crate::film::closed_form::test_inputs::{oil, seed001_nose};
+    use crate::film::{ClosedForm, FilmFormula, FilmModel, Numerical};
+    use crate::friction::{AsperityFriction, AsperityModel, Rheology, Roughness, TractionLaw};
+
+    /// Seed 001's smooth nose, Newtonian film at u_s = 0.04 m/s: the film shear along the contact
+    /// adds up (trapezoid cells × length) to the model's viscous traction within 0.5 %, is zero
+    /// without fluid pressure, and there is no asperity shear on smooth surfaces. A closed form
+    /// keeps no profile: `None`.
+    #[test]
+    fn film_shear_along_the_contact_adds_up_to_the_traction() {
+        let lub = oil();
+        let rough = Roughness { sigma: 0.0, eta_beta_sigma: 0.04, sigma_over_beta: 0.001, plastic_limit: f64::INFINITY, curve: None };
+        let law = TractionLaw { rheology: Rheology::Newtonian, limiting_shear_coefficient: None };
+        let asp = AsperityFriction { coefficient: 0.12, model: AsperityModel::Coulomb, map: None };
+        let input = seed001_nose(&lub, &rough, &law, &asp);
+        let model = Numerical::new(EhlOptions { nodes: 192, tolerance: 1e-8, ..EhlOptions::default() }, ClosedForm { formula: FilmFormula::PanHamrock, squeeze: false });
+        let film = model.solve(&input, None).unwrap();
+        let t = traction_along(&film, &input, 0.04).expect("a numerical film keeps its profile");
+        let n = t.x.len();
+        let cell = |i: usize| 0.5 * (t.x[(i + 1).min(n - 1)] - t.x[i.saturating_sub(1)]);
+        let sum: f64 = (0..n).map(|i| t.viscous_shear[i] * cell(i) * 0.021).sum();
+        let expect = model.traction(&film, &input, 0.04).viscous;
+        assert!((sum / expect - 1.0).abs() < 5e-3, "{sum} vs {expect}");
+        assert!(t.asperity_shear.iter().chain(&t.asperity_shear_limit).all(|v| *v == 0.0));
+        assert!((0..n).all(|i| t.fluid_pressure[i] > 0.0 || t.viscous_shear[i] == 0.0));
+        let closed = ClosedForm { formula: FilmFormula::PanHamrock, squeeze: false };
+        assert!(traction_along(&closed.solve(&input, None).unwrap(), &input, 0.04).is_none());
+    }
+}

@@ -436,3 +436,26 @@ fn main_effects(problem: &Problem, rows: &[[usize; 3]], levels: usize, runs: &[R
     }
     main_effects
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn scored(order: u32, score: f64) -> Design {
+        Design { order, height: 0.4, length_fraction: 0.2, max_pressure_dimensionless: 1.0, min_film_dimensionless: 0.1, friction_variable: 2.0, score, eccentricity_ratio: 0.6, max_pressure: None, min_film: None }
+    }
+
+    /// The recommendation is the highest score; a tie goes to the earlier candidate (run, best
+    /// levels, continuous, baseline); without a search the run or the best levels.
+    #[test]
+    fn recommend_takes_the_best_and_ties_to_the_earlier() {
+        let r = recommend(5, scored(2, 0.984), scored(2, 0.809), Some(scored(1, 1.011)), scored(0, 0.434));
+        assert_eq!((r.source, r.run, r.design.score), (DesignSource::Continuous, None, 1.011));
+        let r = recommend(5, scored(2, 0.984), scored(2, 0.809), None, scored(0, 0.434));
+        assert_eq!((r.source, r.run), (DesignSource::ArrayRun, Some(5)));
+        let r = recommend(5, scored(2, 0.984), scored(2, 0.984), Some(scored(2, 0.984)), scored(0, 0.2));
+        assert_eq!(r.source, DesignSource::ArrayRun);
+        let r = recommend(1, scored(2, 0.5), scored(2, 0.7), Some(scored(2, 0.6)), scored(0, 0.9));
+        assert_eq!(r.source, DesignSource::Baseline);
+    }
+}
