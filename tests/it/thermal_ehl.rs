@@ -329,6 +329,10 @@ mod seed000_cycle {
         assert!((160.0..=190.0).contains(&amin), "extreme at {amin}°");
 
         // Fig. 5: skidding against pure rolling (the same example with `slip.mode: pure_rolling`).
+        // Paper: the film barely moves, the temperature rise and the friction do. Model: minimum
+        // film within 4.1 % at every angle, the largest film temperature rise 32.0 K against
+        // 11.0 K, the mean |μ_cr| ×3.6. (The pin is not solved under pure rolling here: its
+        // comparison is the fast model's, `cam_validation::seed000_skidding_against_pure_rolling`.)
         let mut rolling_spec = example("seed000_thermal_steady");
         rolling_spec["slip"] = serde_json::json!({"mode": "pure_rolling"});
         let rolling = run("cam_cycle", &rolling_spec).unwrap();
@@ -338,11 +342,14 @@ mod seed000_cycle {
         };
         let rise = |o: &Value| series(o, "film_temperature_max").iter().map(|t| t - 313.0).fold(0.0, f64::max);
         let mean_mu = |o: &Value| series(o, "friction_coefficient").iter().map(|m| m.abs()).sum::<f64>() / a.len() as f64;
-        let (film_w, pin_w) = (worst("film_min", 0.0), worst("pin_temperature", 313.0));
+        let film_w = worst("film_min", 0.0);
         println!(
-            "Fig. 5: film_min worst {film_w:.3e}, pin temperature rise worst {pin_w:.3e}; film temperature rise skid {:.3} K / rolling {:.3} K; mean |μ_cr| {:.4e} / {:.4e}",
+            "Fig. 5: film_min worst {film_w:.3e}; film temperature rise skid {:.3} K / rolling {:.3} K; mean |μ_cr| {:.4e} / {:.4e}",
             rise(&steady), rise(&rolling), mean_mu(&steady), mean_mu(&rolling)
         );
+        assert!(film_w < 0.05, "film {film_w}");
+        assert!(rise(&steady) > 2.5 * rise(&rolling) && rise(&rolling) > 0.0, "temperature rise");
+        assert!(mean_mu(&steady) > 3.0 * mean_mu(&rolling), "friction");
 
         // Startup: the roller starts from rest — far more slip at 0–18° than in steady running.
         let startup = run("cam_cycle", &example("seed000_thermal_startup")).unwrap();
