@@ -121,6 +121,24 @@ pub(super) fn optimisation(result: &Value) -> Vec<Plot> {
             });
         }
     }
+    for (k, g) in result.get("score_grids").and_then(Value::as_array).into_iter().flatten().enumerate() {
+        let label = |f: &str| match f {
+            "order" => "order n, –".to_string(),
+            "height" => "ξ = m_r/c, –".to_string(),
+            "length_fraction" => "ψ = m_l/L, –".to_string(),
+            other => other.to_string(),
+        };
+        let nums = |v: &Value| v.as_array().map(|a| a.iter().filter_map(Value::as_f64).collect::<Vec<f64>>());
+        let (Some(x), Some(y), Some(z)) = (nums(&g["x"]), nums(&g["y"]), g["score"].as_array().map(|r| r.iter().filter_map(nums).collect::<Vec<_>>())) else { continue };
+        let (xf, yf, held) = (g["x_factor"].as_str().unwrap_or(""), g["y_factor"].as_str().unwrap_or(""), g["held_factor"].as_str().unwrap_or(""));
+        plots.push(Plot {
+            name: format!("score_map_{}", k + 1),
+            title: format!("Score over {xf} and {yf}, {held} = {} (seed 002 Fig. {})", g["held_value"], 8 + k),
+            x_label: label(xf),
+            y_label: label(yf),
+            chart: Chart::HeatMap { x, y, z, z_label: "score, –".into() },
+        });
+    }
     if let Some(runs) = result.get("runs").and_then(Value::as_array) {
         let numbers = column(&Value::Array(runs.clone()), "run", 1.0).unwrap_or_default();
         if let Some(scores) = column(&Value::Array(runs.clone()), "score", 1.0) {

@@ -336,6 +336,29 @@ mod seed000_cycle {
         assert!(smin < 0.0 && smin > -0.05, "negative on the closing ramp: {closing:?}");
         assert!((160.0..=190.0).contains(&amin), "extreme at {amin}°");
 
+        // Fig. 5: skidding against pure rolling (the same example with `slip.mode: pure_rolling`).
+        // Paper: the film barely moves, the temperature rise and the friction do. Model: minimum
+        // film within 4.1 % at every angle, the largest film temperature rise 32.0 K against
+        // 11.0 K, the mean |μ_cr| ×3.6. (The pin is not solved under pure rolling here: its
+        // comparison is the fast model's, `cam_validation::seed000_skidding_against_pure_rolling`.)
+        let mut rolling_spec = example("seed000_thermal_steady");
+        rolling_spec["slip"] = serde_json::json!({"mode": "pure_rolling"});
+        let rolling = run("cam_cycle", &rolling_spec).unwrap();
+        let worst = |name: &str, offset: f64| {
+            let (x, y) = (series(&steady, name), series(&rolling, name));
+            x.iter().zip(&y).map(|(a, b)| ((a - offset) - (b - offset)).abs() / (b - offset).abs()).fold(0.0, f64::max)
+        };
+        let rise = |o: &Value| series(o, "film_temperature_max").iter().map(|t| t - 313.0).fold(0.0, f64::max);
+        let mean_mu = |o: &Value| series(o, "friction_coefficient").iter().map(|m| m.abs()).sum::<f64>() / a.len() as f64;
+        let film_w = worst("film_min", 0.0);
+        println!(
+            "Fig. 5: film_min worst {film_w:.3e}; film temperature rise skid {:.3} K / rolling {:.3} K; mean |μ_cr| {:.4e} / {:.4e}",
+            rise(&steady), rise(&rolling), mean_mu(&steady), mean_mu(&rolling)
+        );
+        assert!(film_w < 0.05, "film {film_w}");
+        assert!(rise(&steady) > 2.5 * rise(&rolling) && rise(&rolling) > 0.0, "temperature rise");
+        assert!(mean_mu(&steady) > 3.0 * mean_mu(&rolling), "friction");
+
         // Startup: the roller starts from rest — far more slip at 0–18° than in steady running.
         let startup = run("cam_cycle", &every_angle("seed000_thermal_startup")).unwrap();
         let sa = series(&startup, "angle_deg");
@@ -352,6 +375,20 @@ mod seed000_cycle {
         // spins the roller up within the first 0.5° step; what remains follows the slow cam.
         let (s10, st10) = (at(&sa, &ss, 10.0), at(&a, &srr, 10.0));
         assert!(s10 > 1.1 * st10 && s10 < 1.5 * st10, "10°: startup {s10} steady {st10}");
+        // Paper (Fig. 16): over 34–54° the startup SRR is slightly below steady (< 5 %). Model:
+        // above it, ×1.35 at 40° and ×1.43 at 50° (×1.27 at 30°), the gap still growing towards
+        // the opening ramp — the startup SRR never dips below steady before 60°. Not traced; the
+        // candidates are the roller's inertia torque under the cam's constant acceleration (a
+        // solid steel ring, not in Table 1 — the same inertia that lifts the 100° rise) and the
+        // slower cam's thinner, colder film (docs/seeds.md).
+        for deg in [30.0, 40.0, 50.0] {
+            let (s_start, s_steady) = (at(&sa, &ss, deg), at(&a, &srr, deg));
+            println!("{deg}°: startup/steady {:.4}", s_start / s_steady);
+        }
+        for (deg, measured) in [(40.0, 1.350), (50.0, 1.431)] {
+            let r = at(&sa, &ss, deg) / at(&a, &srr, deg);
+            assert!((r - measured).abs() < 0.02, "{deg}°: startup/steady {r}");
+        }
     }
 
     /// Key points (`ehl.thermal.carry_tolerance` 0.01) against the full thermal solve at every

@@ -115,6 +115,19 @@ impl Default for ContinuousSpec {
     }
 }
 
+/// Optional outputs of a `bearing_optimisation` job.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, ToSchema)]
+#[serde(rename_all = "snake_case")]
+pub enum OptimisationOutput {
+    /// Score maps over (n, ξ), (ξ, ψ) and (n, ψ), the third factor at its best level (seed 002
+    /// Figs. 8–10): every cell a bearing analysis.
+    ScoreGrid,
+}
+
+fn d_grid_points() -> usize {
+    5
+}
+
 /// Spec of a `bearing_optimisation` job.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize, ToSchema)]
 #[serde(deny_unknown_fields)]
@@ -131,6 +144,13 @@ pub struct OptimisationSpec {
     pub friction: FrictionDefinition,
     #[serde(default)]
     pub continuous: ContinuousSpec,
+    /// Optional outputs: `score_grid`.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub outputs: Vec<OptimisationOutput>,
+    /// `score_grid`: values evenly along each continuous axis (ξ, ψ), 2 to 15, besides the
+    /// factor's levels; the order axis takes the order levels. Default 5.
+    #[serde(default = "d_grid_points")]
+    pub score_grid_points: usize,
 }
 
 /// One analysed design.
@@ -215,8 +235,56 @@ pub struct Continuous {
     pub per_order: Vec<Design>,
     /// Whether `design` scores above the best of the runs and the best-level combination.
     pub improves_on_taguchi: bool,
+    /// Whether `design` scores above the best run of the array (`best_run`). The search starts
+    /// from the best of the array's runs, the best-level confirmation and the baseline, and keeps
+    /// its start unless it finds a higher score, so it never ends below them.
+    pub beats_best_run: bool,
     /// Bearing analyses spent by the search.
     pub evaluations: usize,
+}
+
+/// Where the recommended design comes from.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, ToSchema)]
+#[serde(rename_all = "snake_case")]
+pub enum DesignSource {
+    /// The best run of the array (`best_run`).
+    ArrayRun,
+    /// The best-level combination (`best_levels`, its confirmation run).
+    BestLevels,
+    /// The continuous search (`continuous`).
+    Continuous,
+    /// The unprofiled base bearing (`baseline`).
+    Baseline,
+}
+
+/// The design to build: the highest score among the best run, the best-level combination, the
+/// continuous search's design and the baseline (on a tie, the earlier in that list).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, ToSchema)]
+pub struct Recommended {
+    pub source: DesignSource,
+    /// 1-based run number (a count), when the source is `array_run`.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub run: Option<usize>,
+    pub design: Design,
+}
+
+/// The score over two factors, the third held at its best level (seed 002 Figs. 8–10).
+#[derive(Debug, Clone, PartialEq, Serialize, ToSchema)]
+pub struct ScoreGrid {
+    /// Factor along x: `order`, `height` or `length_fraction`.
+    pub x_factor: String,
+    /// Factor along y.
+    pub y_factor: String,
+    /// Values of the x factor (dimensionless: an order, ξ or ψ).
+    pub x: Vec<f64>,
+    /// Values of the y factor (dimensionless: an order, ξ or ψ).
+    pub y: Vec<f64>,
+    /// Score (dimensionless, eq. 19 on the array's normalisation): `score[j][i]` at (`x[i]`, `y[j]`).
+    pub score: Vec<Vec<f64>>,
+    /// The factor held at its best level.
+    pub held_factor: String,
+    /// Its value (dimensionless).
+    pub held_value: f64,
 }
 
 /// Result of a `bearing_optimisation` job.
@@ -233,6 +301,12 @@ pub struct OptimisationResult {
     pub load_dimensionless: f64,
     #[serde(skip_serializing_if = "Option::is_none")]
     pub continuous: Option<Continuous>,
+    /// The better of the best run, the best-level confirmation and the continuous design (and
+    /// the baseline): what to build.
+    pub recommended: Recommended,
+    /// `outputs: ["score_grid"]`: the score maps of Figs. 8–10.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub score_grids: Option<Vec<ScoreGrid>>,
     /// Bearing analyses in total.
     pub evaluations: usize,
     #[schema(value_type = crate::jobs::schemas::ConvergenceDoc)]
@@ -248,17 +322,22 @@ fn planned_evaluations(spec: &OptimisationSpec) -> usize {
         let per_order = spec.continuous.evaluations_per_order.saturating_add(if spec.continuous.coarse_search { 15 } else { 0 });
         n = n.saturating_add(orders.saturating_mul(per_order));
     }
+    if spec.outputs.contains(&OptimisationOutput::ScoreGrid) {
+        let (orders, k) = (spec.factors.order.len(), spec.score_grid_points);
+        let k = k.saturating_add(3); // the levels join the even values
+        n = n.saturating_add(k.saturating_mul(k).saturating_add(2usize.saturating_mul(orders).saturating_mul(k)));
+    }
     n
 }
 
 impl Kind for BearingOptimisation {
     const NAME: &'static str = "bearing_optimisation";
-    const SOLVER_VERSION: &'static str = "bearing_optimisation-11";
+    const SOLVER_VERSION: &'static str = "bearing_optimisation-12";
     const DESCRIPTION: &'static str = "Axial edge profile design of a journal bearing (seed 002): Taguchi \
         L4/L9/L27 array with the weighted-sum score of eq. (19), main effects and S/N ratios, then a \
         continuous Nelder–Mead search over height and length fraction for each profile order.";
     const TABLES: &'static [&'static str] = &["runs", "main_effects"];
-    const KEY_FIGURES: &'static [&'static str] = &["/best_run", "/best_levels/design/score", "/best_levels/design/min_film", "/continuous/design/score", "/continuous/design/min_film", "/baseline/score", "/baseline/min_film"];
+    const KEY_FIGURES: &'static [&'static str] = &["/recommended/design/score", "/recommended/design/min_film", "/best_run", "/best_levels/design/score", "/best_levels/design/min_film", "/continuous/design/score", "/continuous/design/min_film", "/baseline/score", "/baseline/min_film"];
     type Spec = OptimisationSpec;
     type Output = OptimisationResult;
 
@@ -275,6 +354,10 @@ impl Kind for BearingOptimisation {
             "factors": {"order": [1, 2, 3], "height": [0.1, 0.4, 1.0], "length_fraction": [0.01, 0.2, 0.4]},
             "weights": {"film": 0.5, "pressure": 0.25, "friction": 0.25}
         })
+    }
+
+    fn outputs() -> &'static [crate::jobs::kind::OutputInfo] {
+        &[crate::jobs::kind::OutputInfo { name: "score_grid", description: "score maps over (n, ξ), (ξ, ψ), (n, ψ), the third factor at its best level (seed 002 Figs. 8–10)" }]
     }
 
     fn validate(spec: &OptimisationSpec, limits: &Limits, v: &mut Validation) {
@@ -308,6 +391,7 @@ impl Kind for BearingOptimisation {
         if let Some([lo, hi]) = c.length_fraction {
             v.check(lo.is_finite() && hi.is_finite() && 0.0 < lo && lo < hi && hi <= 0.5, "/continuous/length_fraction", "needs 0 < lo < hi <= 0.5");
         }
+        v.count_in_range("/score_grid_points", spec.score_grid_points, 2, 15);
         v.limit("/continuous/evaluations_per_order", planned_evaluations(spec), limits.max_evaluations, "planned bearing analyses");
     }
 
@@ -364,6 +448,7 @@ fn problem(spec: &OptimisationSpec) -> Result<Problem, SolveError> {
             evaluations_per_order: c.evaluations_per_order,
             coarse_search: c.coarse_search,
         }),
+        score_grid_points: spec.outputs.contains(&OptimisationOutput::ScoreGrid).then_some(spec.score_grid_points),
     })
 }
 
@@ -432,7 +517,32 @@ fn result(d: &ProfileDesign) -> OptimisationResult {
             design: design(&c.design),
             per_order: c.per_order.iter().map(design).collect(),
             improves_on_taguchi: c.improves_on_taguchi,
+            beats_best_run: c.beats_best_run,
             evaluations: c.evaluations,
+        }),
+        recommended: Recommended {
+            source: match d.recommended.source {
+                opt::DesignSource::ArrayRun => DesignSource::ArrayRun,
+                opt::DesignSource::BestLevels => DesignSource::BestLevels,
+                opt::DesignSource::Continuous => DesignSource::Continuous,
+                opt::DesignSource::Baseline => DesignSource::Baseline,
+            },
+            run: d.recommended.run,
+            design: design(&d.recommended.design),
+        },
+        score_grids: (!d.score_grids.is_empty()).then(|| {
+            d.score_grids
+                .iter()
+                .map(|g| ScoreGrid {
+                    x_factor: g.x_factor.into(),
+                    y_factor: g.y_factor.into(),
+                    x: g.x.clone(),
+                    y: g.y.clone(),
+                    score: g.score.clone(),
+                    held_factor: g.held_factor.into(),
+                    held_value: g.held_value,
+                })
+                .collect()
         }),
         evaluations: d.evaluations,
         convergence: d.convergence.clone(),

@@ -57,6 +57,15 @@ pub struct PointRoller {
     pub crown: Option<super::cam_cycle::CrownSpec>,
 }
 
+/// Optional outputs of a `cam_point` job.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, ToSchema)]
+#[serde(rename_all = "snake_case")]
+pub enum PointOutput {
+    /// The film and asperity shear stresses along the rolling direction at every roller–pin
+    /// friction value (seed 001 Fig. 8b; `fidelity: accurate`, line model).
+    TractionAlong,
+}
+
 /// Spec of a `cam_point` job (SI units).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize, ToSchema)]
 #[serde(deny_unknown_fields)]
@@ -94,6 +103,9 @@ pub struct CamPointSpec {
     /// Numerical EHL options (`accurate`, `auto`).
     #[serde(default)]
     pub ehl: EhlSpec,
+    /// Optional outputs: `traction_along`.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub outputs: Vec<PointOutput>,
 }
 
 impl LubricatedContact for CamPointSpec {
@@ -209,6 +221,30 @@ pub struct PointSummary {
     pub first_sliding_cam_roller_friction: Option<f64>,
 }
 
+/// The traction along the contact at one roller–pin friction value (seed 001 Fig. 8b): per node
+/// of the numerical film, from the inlet to the outlet.
+#[derive(Debug, Clone, PartialEq, Serialize, ToSchema)]
+pub struct TractionAlongContact {
+    /// Roller–pin friction coefficient μ_rp of the row.
+    pub pin_friction: f64,
+    /// Sliding velocity u_c − u_r of the row, m/s.
+    pub sliding_velocity: f64,
+    /// Position along the rolling direction, m (0 at the contact centre, positive downstream).
+    pub x: Vec<f64>,
+    /// Film thickness, m.
+    pub film: Vec<f64>,
+    /// Fluid pressure, Pa.
+    pub fluid_pressure: Vec<f64>,
+    /// Asperity pressure p_a, Pa.
+    pub asperity_pressure: Vec<f64>,
+    /// Film shear stress on the surfaces, Pa (sign of the sliding; the rolling Poiseuille part included).
+    pub viscous_shear: Vec<f64>,
+    /// Asperity shear stress τ_a, Pa (sign of the sliding).
+    pub asperity_shear: Vec<f64>,
+    /// Its bound μ_b p_a, Pa: a node whose |τ_a| reaches it slides grossly.
+    pub asperity_shear_limit: Vec<f64>,
+}
+
 /// Result of a `cam_point` job.
 #[derive(Debug, Clone, PartialEq, Serialize, ToSchema)]
 pub struct CamPointResult {
@@ -220,6 +256,9 @@ pub struct CamPointResult {
     pub contact_modulus: f64,
     pub rows: Vec<PointRow>,
     pub summary: PointSummary,
+    /// `outputs: ["traction_along"]`: the traction along the contact at each row.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub traction_along: Option<Vec<TractionAlongContact>>,
     #[schema(value_type = crate::jobs::schemas::ConvergenceDoc)]
     pub convergence: Convergence,
 }
@@ -254,8 +293,15 @@ impl Kind for CamPoint {
             "micro_slip_map": {"film": film, "gross_sliding_displacement": [1e-7, 2e-7], "exponent": [3.0, 3.0]}}}))]
     }
 
+    fn outputs() -> &'static [crate::jobs::kind::OutputInfo] {
+        &[crate::jobs::kind::OutputInfo { name: "traction_along", description: "film and asperity shear stresses along the rolling direction at each roller–pin friction value (fidelity accurate, line model)" }]
+    }
+
     fn validate(spec: &CamPointSpec, limits: &Limits, v: &mut Validation) {
         v.quantity("/load", spec.load, Q::FORCE);
+        if spec.outputs.contains(&PointOutput::TractionAlong) {
+            v.check(spec.fidelity == Fidelity::Accurate && spec.ehl.geometry.is_line(), "/outputs", "traction_along needs fidelity accurate with the line model (a solved 1-D film)");
+        }
         v.quantity("/reduced_radius", spec.reduced_radius, Q::RADIUS);
         v.quantity("/cam_surface_velocity", spec.cam_surface_velocity, Q::VELOCITY.from(1e-6));
         v.quantity("/contact_length", spec.contact_length, Q::LENGTH);
@@ -351,12 +397,30 @@ fn solve_point(spec: &CamPointSpec, observer: &dyn Observer) -> Result<CamPointR
         rolling: Some(&rolling),
     };
     let mut rows = Vec::with_capacity(spec.pin_friction.len());
+    let want_along = spec.outputs.contains(&PointOutput::TractionAlong);
+    let mut along = Vec::new();
     let mut first = None;
     for (i, &mu) in spec.pin_friction.iter().enumerate() {
         observer.check()?;
         observer.progress(i as f64 / spec.pin_friction.len() as f64, "torque balance");
         let b = case.balance(mu)?;
         let asperity = b.traction.force - b.traction.viscous;
+        if want_along {
+            if let Some(t) = crate::physics::film::traction_along(&b.film, &input, b.sliding_velocity) {
+                ensure_finite("traction along the contact", t.viscous_shear.iter().chain(&t.asperity_shear).chain(&t.fluid_pressure))?;
+                along.push(TractionAlongContact {
+                    pin_friction: mu,
+                    sliding_velocity: b.sliding_velocity,
+                    x: t.x,
+                    film: t.film,
+                    fluid_pressure: t.fluid_pressure,
+                    asperity_pressure: t.asperity_pressure,
+                    viscous_shear: t.viscous_shear,
+                    asperity_shear: t.asperity_shear,
+                    asperity_shear_limit: t.asperity_shear_limit,
+                });
+            }
+        }
         if first.is_none() && b.slide_roll_ratio > 0.0 {
             first = Some((mu, b.cam_roller_friction));
         }
@@ -403,6 +467,7 @@ fn solve_point(spec: &CamPointSpec, observer: &dyn Observer) -> Result<CamPointR
         contact_modulus: es,
         rows,
         summary,
+        traction_along: (want_along && !along.is_empty()).then_some(along),
         convergence: Convergence::closed_form(),
     })
 }

@@ -47,6 +47,7 @@ pub mod mixed;
 pub mod numerical;
 pub mod thermal;
 pub mod traction_table;
+pub mod traction_along;
 /// Work counters (shared with the EHL solvers; `crate::work`).
 pub use crate::work;
 
@@ -55,6 +56,7 @@ pub use closed_form::{ClosedForm, FilmFormula};
 pub use finite::{AutoFinite, Finite, FiniteFilm};
 pub use numerical::Numerical;
 pub use thermal::{FilmThermal, ThermalFilmSettings, ThermalNumerical};
+pub use traction_along::{traction_along, TractionAlong};
 
 use crate::friction::{
     viscous_traction_local, AsperityContact, AsperityFriction, AsperityNode, Roughness, TractionLaw, TractionNode,

@@ -1,8 +1,13 @@
 //! The continuous search after the array: for each profile order (in parallel), a bounded
-//! Nelder–Mead search over (ξ, ψ) from the best run of that order on the array's score —
-//! on a grid with about half the nodes in each direction and then a short polish on the
-//! problem's grid, or on the problem's grid directly — and the best point analysed on the
-//! problem's grid.
+//! Nelder–Mead search over (ξ, ψ) on the array's score — on a grid with about half the nodes in
+//! each direction and then a short polish on the problem's grid, or on the problem's grid
+//! directly — and the best point analysed on the problem's grid.
+//!
+//! Each order starts from the best already analysed design of that order: its runs, the
+//! confirmation of the best levels when it has that order, and the unprofiled baseline when
+//! ξ = 0 lies inside the bounds (ξ = 0 is the baseline at any order and ψ). The point found is
+//! kept only if it scores above that start on the problem's grid, so the search never ends
+//! below the best of the array, the confirmation and (within the bounds) the baseline.
 
 use super::*;
 use crate::journal::taguchi::nelder_mead;
@@ -12,7 +17,7 @@ use rayon::prelude::*;
 pub(super) fn search(
     ev: &Evaluator,
     search: &ContinuousSearch,
-    designs: &[Design],
+    starts: &[Design],
     score: &(dyn Fn(&Design) -> f64 + Sync),
     observer: &dyn Observer,
 ) -> Result<(Vec<Design>, usize), SolveError> {
@@ -40,12 +45,17 @@ pub(super) fn search(
     let per: Vec<(Design, usize)> = orders
         .par_iter()
         .map(|&n| -> Result<(Design, usize), SolveError> {
-            // start from the best run of this order
-            let start = designs
+            // start from the best analysed design of this order (scored on the problem's grid);
+            // the baseline is ξ = 0 at this order, when the bounds admit it
+            let start_design = starts
                 .iter()
-                .filter(|d| d.order == n)
-                .max_by(|a, b| score(a).total_cmp(&score(b)))
-                .map_or([0.5 * (lo[0] + hi[0]), 0.5 * (lo[1] + hi[1])], |d| [d.height, d.length_fraction]);
+                .filter_map(|d| match d.order {
+                    0 if lo[0] <= 0.0 => Some(Design { order: n, height: 0.0, length_fraction: 0.5 * (lo[1] + hi[1]), ..*d }),
+                    o if o == n => Some(*d),
+                    _ => None,
+                })
+                .max_by(|a, b| score(a).total_cmp(&score(b)));
+            let start = start_design.map_or([0.5 * (lo[0] + hi[0]), 0.5 * (lo[1] + hi[1])], |d| [d.height, d.length_fraction]);
             let mut used = 0;
             let objective = |settings: &Settings, ws: &mut Workspace, x: &[f64], used: &mut usize| -> Result<f64, SolveError> {
                 observer.check()?;
@@ -70,6 +80,13 @@ pub(super) fn search(
             let (mut d, _) = ev.design(base, Some(Profile { order: n, height: x[0], length_fraction: x[1] }), None, observer)?;
             used += 1;
             d.score = score(&d);
+            // never below the start (the coarse grid's optimum can score lower on the fine one)
+            if let Some(mut s) = start_design {
+                s.score = score(&s);
+                if s.score >= d.score {
+                    d = s;
+                }
+            }
             Ok((d, used))
         })
         .collect::<Result<_, _>>()?;

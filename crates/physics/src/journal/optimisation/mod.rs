@@ -15,6 +15,7 @@
 
 mod array;
 mod continuous;
+mod grid;
 
 use super::operating::{resolve_load, LoadDemand};
 use super::taguchi::{level_means, sn_larger_better, Array, Criteria, Reference, Weights};
@@ -66,6 +67,8 @@ pub struct Problem {
     pub friction: FrictionFigure,
     /// The continuous search (none: the array only).
     pub continuous: Option<ContinuousSearch>,
+    /// Points per continuous axis of the score maps over two factors (none: no maps).
+    pub score_grid_points: Option<usize>,
 }
 
 impl Problem {
@@ -150,8 +153,47 @@ pub struct Continuous {
     pub per_order: Vec<Design>,
     /// Whether `design` scores above the best of the runs and the best-level combination.
     pub improves_on_taguchi: bool,
+    /// Whether `design` scores above the best run of the array.
+    pub beats_best_run: bool,
     /// Bearing analyses spent by the search.
     pub evaluations: usize,
+}
+
+/// The score over two factors, the third held at its best level (seed 002 Figs. 8–10).
+#[derive(Debug, Clone, PartialEq)]
+pub struct ScoreGrid {
+    /// `order`, `height` or `length_fraction`.
+    pub x_factor: &'static str,
+    pub y_factor: &'static str,
+    pub x: Vec<f64>,
+    pub y: Vec<f64>,
+    /// `score[j][i]` at (`x[i]`, `y[j]`), eq. (19) on the array's normalisation.
+    pub score: Vec<Vec<f64>>,
+    pub held_factor: &'static str,
+    pub held_value: f64,
+}
+
+/// Where the recommended design comes from.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum DesignSource {
+    /// The best run of the array.
+    ArrayRun,
+    /// The combination of the best levels (the confirmation run).
+    BestLevels,
+    /// The continuous search.
+    Continuous,
+    /// The unprofiled base bearing.
+    Baseline,
+}
+
+/// The design to build: the highest score among the best run, the best-level combination, the
+/// continuous search's design and the baseline (ties go to the earlier in that order).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Recommended {
+    pub source: DesignSource,
+    /// 1-based run number when the source is a run of the array.
+    pub run: Option<usize>,
+    pub design: Design,
 }
 
 /// The outcome of a profile design.
@@ -167,6 +209,10 @@ pub struct ProfileDesign {
     /// Dimensionless load W̄ every design carries.
     pub load_dimensionless: f64,
     pub continuous: Option<Continuous>,
+    /// The best of the candidates (see [`Recommended`]).
+    pub recommended: Recommended,
+    /// Score maps over (n, ξ), (ξ, ψ), (n, ψ) (empty unless asked for).
+    pub score_grids: Vec<ScoreGrid>,
     /// Bearing analyses in total.
     pub evaluations: usize,
     pub convergence: Convergence,
@@ -282,18 +328,38 @@ pub fn optimise(problem: &Problem, observer: &dyn Observer) -> Result<ProfileDes
     };
     let mut best_design = best_combo;
     best_design.score = score(&best_combo);
-    let taguchi_best = best_design.score.max(runs[best_run - 1].score);
+    let best_run_score = runs[best_run - 1].score;
+    let taguchi_best = best_design.score.max(best_run_score);
     baseline.score = score(&baseline);
 
     let continuous = match &problem.continuous {
         Some(c) => {
             observer.progress(0.5, "continuous search");
-            let (per_order, used) = continuous::search(&ev, c, &designs, &score, observer)?;
+            let starts: Vec<Design> = designs.iter().chain([&best_design, &baseline]).copied().collect();
+            let (per_order, used) = continuous::search(&ev, c, &starts, &score, observer)?;
             evaluations += used;
             let design = *per_order.iter().max_by(|a, b| a.score.total_cmp(&b.score)).unwrap();
-            Some(Continuous { design, per_order, improves_on_taguchi: design.score > taguchi_best, evaluations: used })
+            Some(Continuous {
+                design,
+                per_order,
+                improves_on_taguchi: design.score > taguchi_best,
+                beats_best_run: design.score > best_run_score,
+                evaluations: used,
+            })
         }
         None => None,
+    };
+    let mut best_run_design = designs[best_run - 1];
+    best_run_design.score = best_run_score;
+    let recommended = recommend(best_run, best_run_design, best_design, continuous.as_ref().map(|c| c.design), baseline);
+    let score_grids = match problem.score_grid_points {
+        Some(points) => {
+            observer.progress(0.9, "score maps");
+            let (g, used) = grid::score_grids(&ev, best, points, &score, observer)?;
+            evaluations += used;
+            g
+        }
+        None => Vec::new(),
     };
     observer.progress(1.0, "done");
     Ok(ProfileDesign {
@@ -304,9 +370,24 @@ pub fn optimise(problem: &Problem, observer: &dyn Observer) -> Result<ProfileDes
         baseline,
         load_dimensionless: load,
         continuous,
+        recommended,
+        score_grids,
         evaluations,
         convergence: Convergence { iterations: evaluations as u32, residual: 0.0, tolerance: 0.0, termination: Termination::Converged },
     })
+}
+
+/// The candidate with the highest score, the earlier in (run, best levels, continuous,
+/// baseline) on a tie.
+fn recommend(best_run: usize, run: Design, best_levels: Design, continuous: Option<Design>, baseline: Design) -> Recommended {
+    let mut r = Recommended { source: DesignSource::ArrayRun, run: Some(best_run), design: run };
+    let others = [(DesignSource::BestLevels, Some(best_levels)), (DesignSource::Continuous, continuous), (DesignSource::Baseline, Some(baseline))];
+    for (source, d) in others {
+        if let Some(d) = d.filter(|d| d.score > r.design.score) {
+            r = Recommended { source, run: None, design: d };
+        }
+    }
+    r
 }
 
 /// The runs of the array on the array's normalisation.
@@ -354,4 +435,27 @@ fn main_effects(problem: &Problem, rows: &[[usize; 3]], levels: usize, runs: &[R
         }
     }
     main_effects
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn scored(order: u32, score: f64) -> Design {
+        Design { order, height: 0.4, length_fraction: 0.2, max_pressure_dimensionless: 1.0, min_film_dimensionless: 0.1, friction_variable: 2.0, score, eccentricity_ratio: 0.6, max_pressure: None, min_film: None }
+    }
+
+    /// The recommendation is the highest score; a tie goes to the earlier candidate (run, best
+    /// levels, continuous, baseline); without a search the run or the best levels.
+    #[test]
+    fn recommend_takes_the_best_and_ties_to_the_earlier() {
+        let r = recommend(5, scored(2, 0.984), scored(2, 0.809), Some(scored(1, 1.011)), scored(0, 0.434));
+        assert_eq!((r.source, r.run, r.design.score), (DesignSource::Continuous, None, 1.011));
+        let r = recommend(5, scored(2, 0.984), scored(2, 0.809), None, scored(0, 0.434));
+        assert_eq!((r.source, r.run), (DesignSource::ArrayRun, Some(5)));
+        let r = recommend(5, scored(2, 0.984), scored(2, 0.984), Some(scored(2, 0.984)), scored(0, 0.2));
+        assert_eq!(r.source, DesignSource::ArrayRun);
+        let r = recommend(1, scored(2, 0.5), scored(2, 0.7), Some(scored(2, 0.6)), scored(0, 0.9));
+        assert_eq!(r.source, DesignSource::Baseline);
+    }
 }
