@@ -516,9 +516,13 @@ pub struct EhlSpec {
     /// where the minimum film sits (series `edge_pressure_peak`, `edge_pressure_peak_position`,
     /// `min_film_axial_position`). With `auto` the 2-D model runs only where the contact's ends
     /// matter (point contacts; a crowned roller whose loaded length reaches the crown transition;
-    /// `physics::film::finite::ends_matter`), the line-contact `auto` choice elsewhere. Not with
-    /// `thermal`, flat-faced followers or mixed-lubrication load sharing inside the solution (the
-    /// asperity load is evaluated from the smooth film). Cost: BENCHMARKS.md, issue 16.
+    /// `physics::film::finite::ends_matter`), the line-contact `auto` choice elsewhere. With
+    /// `thermal` the thermal 2-D model (`physics::film::thermal_finite`: quasi-steady, row
+    /// energies coupled to the 2-D generalized Reynolds equation; the roller balance's traction
+    /// from the grid's nodes with their viscosity calibrated to the whole-contact thermal traction
+    /// at the solved slip; `carry_tolerance` does not apply). Not with flat-faced followers or
+    /// mixed-lubrication load sharing inside the solution (the asperity load is evaluated from the
+    /// smooth film). Cost: BENCHMARKS.md, issue 16.
     #[serde(default, skip_serializing_if = "EhlGeometry::is_line")]
     pub geometry: EhlGeometry,
     /// `finite`: grid nodes along the rolling direction, 17–513 (odd numbers `2^k + 1` allow the
@@ -697,7 +701,8 @@ impl EhlSpec {
             t.validate(&format!("{path}/thermal"), v);
         }
         if self.geometry == EhlGeometry::Finite {
-            v.check(self.thermal.is_none(), &format!("{path}/geometry"), "the finite-length / point model is isothermal: not with ehl.thermal");
+            let carried = self.thermal.is_some_and(|t| t.carry_tolerance.is_some());
+            v.check(!carried, &format!("{path}/thermal/carry_tolerance"), "key points are a scheme of the thermal line model: not with geometry finite");
             let o = self.grid_options(false);
             if let Some(t) = self.grid_tolerance {
                 v.in_range(&format!("{path}/grid_tolerance"), t, 0.005, 0.5);

@@ -46,6 +46,7 @@ pub use crate::ehl::formulas;
 pub mod mixed;
 pub mod numerical;
 pub mod thermal;
+pub mod thermal_finite;
 pub mod traction_table;
 /// Work counters (shared with the EHL solvers; `crate::work`).
 pub use crate::work;
@@ -55,6 +56,7 @@ pub use closed_form::{ClosedForm, FilmFormula};
 pub use finite::{AutoFinite, Finite, FiniteFilm};
 pub use numerical::Numerical;
 pub use thermal::{FilmThermal, ThermalFilmSettings, ThermalNumerical};
+pub use thermal_finite::ThermalFinite;
 
 use crate::friction::{
     viscous_traction_local, AsperityContact, AsperityFriction, AsperityNode, Roughness, TractionLaw, TractionNode,
@@ -176,6 +178,9 @@ pub enum FilmModelId {
     NumericalMixed,
     /// The finite-length / point 2-D EHL solver (`physics::ehl::twod`, `ehl.geometry: finite`).
     Finite,
+    /// The thermal finite-length / point 2-D EHL model (`physics::ehl::thermal_finite`,
+    /// `ehl.thermal` with `ehl.geometry: finite`).
+    ThermalFinite,
 }
 
 impl FilmModelId {
@@ -195,6 +200,7 @@ impl FilmModelId {
             FilmModelId::HamrockDowsonMixed => "hamrock_dowson_mixed",
             FilmModelId::NumericalMixed => "numerical_mixed",
             FilmModelId::Finite => "finite",
+            FilmModelId::ThermalFinite => "thermal_finite",
         }
     }
 
@@ -413,7 +419,8 @@ pub struct AccurateSettings {
     /// The thermal model (`accurate` only): `None` is isothermal.
     pub thermal: Option<ThermalFilmSettings>,
     /// The finite-length / point 2-D model instead of the line contact (`ehl.geometry: finite`;
-    /// isothermal only): its grid and options, and the roller's crown.
+    /// with `thermal` the thermal 2-D model, [`ThermalFinite`]): its grid and options, and the
+    /// roller's crown.
     pub finite: Option<FiniteSettings>,
 }
 
@@ -433,19 +440,23 @@ pub struct FiniteSettings {
 /// where [`closed_form_error`] is within `settings.auto_tolerance`, the numerical solver elsewhere
 /// ([`Auto`]).
 ///
-/// With `settings.finite` (`ehl.geometry: finite`): `accurate` runs the 2-D model ([`Finite`]) at
-/// every point with entrainment, `auto` where [`finite::ends_matter`] and the 1-D `auto` choice
-/// elsewhere ([`AutoFinite`]).
+/// With `settings.finite` (`ehl.geometry: finite`): `accurate` runs the 2-D model ([`Finite`];
+/// with `settings.thermal` the thermal one, [`ThermalFinite`]) at every point with entrainment,
+/// `auto` where [`finite::ends_matter`] and the 1-D `auto` choice (thermal with
+/// `settings.thermal`) elsewhere ([`AutoFinite`]).
 pub fn model_for(fidelity: Fidelity, fast: ClosedForm, settings: AccurateSettings) -> Box<dyn FilmModel> {
     let numerical = Numerical::new(settings.options, fast).with_extrapolation(settings.extrapolation);
     if let Some(f) = settings.finite {
         let finite = Finite::new(f.options, f.crown, fast).check_first_only().with_squeeze(f.squeeze);
-        match fidelity {
-            Fidelity::Fast => {}
-            Fidelity::Accurate => return Box::new(finite),
-            Fidelity::Auto => {
-                let auto = Auto { fast, numerical, tolerance: settings.auto_tolerance, thermal: None };
-                return Box::new(AutoFinite { auto, finite });
+        let thermal = settings.thermal.map(|t| ThermalFinite::new(f.options, f.crown, t, fast));
+        match (fidelity, thermal) {
+            (Fidelity::Fast, _) => {}
+            (Fidelity::Accurate, Some(t)) => return Box::new(t),
+            (Fidelity::Accurate, None) => return Box::new(finite),
+            (Fidelity::Auto, thermal) => {
+                let line_thermal = settings.thermal.map(|t| ThermalNumerical::new(settings.options, t, fast));
+                let auto = Auto { fast, numerical, tolerance: settings.auto_tolerance, thermal: line_thermal };
+                return Box::new(AutoFinite { auto, finite, thermal });
             }
         }
     }
