@@ -508,7 +508,12 @@ impl FilmModel for AutoFinite {
         }
     }
 
+    /// The isothermal 2-D model's fields; none for a thermal film ([`super::ThermalFinite`]
+    /// keeps no re-entrant state per angle).
     fn fields(&self, film: &FilmSolution, input: &ContactInput) -> Result<Option<Fields2d>, SolveError> {
+        if film.finite.as_deref().is_some_and(|f| f.temperatures.is_some()) {
+            return Ok(None);
+        }
         self.finite.fields(film, input)
     }
 

@@ -190,3 +190,39 @@ impl FilmModel for ThermalFinite {
         super::nodal_traction_local(film, input, sliding, self.stick_limit(film, input))
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::ehl::thermal::{FilmHeat, ThermalBodies, ThermalOptions};
+    use crate::film::{ContactShape, FilmFormula, SmoothContact};
+    use crate::thermal::ThermalSolid;
+
+    /// Seed 000's crowned roller at the nose (954 N, R = 10.37 mm, u_m = 2.77 m/s, SRR 0.05,
+    /// 33×65, Newtonian): the calibrated nodal traction at the solved slip is the whole-contact
+    /// thermal traction (to 1e-6 of it), below the isothermal nodes' (the thermal viscosity
+    /// factor is below 1), and it grows with the slip; the film runs hotter than the inlet.
+    #[test]
+    fn calibrated_traction_is_the_thermal_traction_at_the_solved_slip() {
+        let smooth = SmoothContact::seed000();
+        let mut input = smooth.input(954.0, ContactShape::Line { reduced_radius: 0.01037, length: 0.014 }, 2.77);
+        input.sliding_velocity = 0.05 * 2.77;
+        let options = Ehl2dOptions { nx: 33, ny: 65, tolerance: 1e-6, grid_check: false, grid_tolerance: 0.5, ..Default::default() };
+        let bodies = ThermalBodies { film: FilmHeat { conductivity: 0.14, specific_heat: 1700.0 }, body_1: ThermalSolid::STEEL, body_2: ThermalSolid::STEEL };
+        let settings = ThermalFilmSettings { options: ThermalOptions::default(), bodies, carry_tolerance: None };
+        let fallback = ClosedForm { formula: FilmFormula::PanHamrock, squeeze: false };
+        let model = ThermalFinite::new(options, Some(Crown::SEED000), settings, fallback);
+        let film = model.solve(&input, None).unwrap();
+        let t = film.finite.as_deref().and_then(|f| f.temperatures).unwrap();
+        assert!(t.film_max > input.temperature + 1.0, "{t:?}");
+        // The thermal force again, from a fresh solve of the same problem.
+        let tin = ThermalFiniteInput { ehl: model.finite.problem(&input), sliding_velocity: input.sliding_velocity, rheology: ThermalFinite::rheology(&input), bodies };
+        let th = crate::ehl::thermal_finite::solve(&tin, &Ehl2dOptions { fields: true, ..options }, &settings.options, &crate::Silent).unwrap();
+        let at = model.traction(&film, &input, input.sliding_velocity).viscous;
+        assert!((at / th.traction.force_body_2 - 1.0).abs() < 1e-6, "{at} vs {}", th.traction.force_body_2);
+        let iso = Finite::new(options, Some(Crown::SEED000), fallback).solve(&input, None).unwrap();
+        let iso_force = model.finite.traction(&iso, &input, input.sliding_velocity).viscous;
+        assert!(at < iso_force, "{at} vs isothermal {iso_force}");
+        assert!(model.traction(&film, &input, 2.0 * input.sliding_velocity).viscous > at);
+    }
+}
