@@ -39,6 +39,7 @@
 //! Units: SI. The moduli are passed as `E*` (Johnson); formulas needing `E' = 2E*` convert.
 
 pub mod auto;
+pub mod auto_finite;
 pub mod closed_form;
 pub mod finite;
 /// The closed-form film formulas live with the EHL solvers they are checked against.
@@ -53,7 +54,8 @@ pub use crate::work;
 
 pub use auto::{closed_form_error, Auto, ClosedFormError, ErrorRule};
 pub use closed_form::{ClosedForm, FilmFormula};
-pub use finite::{AutoFinite, Finite, FiniteFilm};
+pub use auto_finite::AutoFinite;
+pub use finite::{Finite, FiniteFilm};
 pub use numerical::Numerical;
 pub use thermal::{FilmThermal, ThermalFilmSettings, ThermalNumerical};
 pub use thermal_finite::ThermalFinite;
