@@ -123,7 +123,14 @@ impl FilmModel for ThermalFinite {
         let tin = ThermalFiniteInput { ehl: self.finite.problem(input), sliding_velocity: input.sliding_velocity, rheology: Self::rheology(input), bodies: self.settings.bodies };
         let thermal = self.settings.options;
         let mut engine = self.engine.lock().unwrap_or_else(|e| e.into_inner());
-        let th = engine.solve(&tin, &options, &thermal, &input.interrupts)?;
+        // A solve that does not converge from the carried state is retried cold (isothermal start).
+        let th = match engine.solve(&tin, &options, &thermal, &input.interrupts) {
+            Err(SolveError::NotConverged { .. }) => {
+                engine.reset();
+                engine.solve(&tin, &options, &thermal, &input.interrupts)?
+            }
+            other => other?,
+        };
         let warm = engine.warm().cloned().ok_or_else(|| SolveError::NonFinite { quantity: "thermal 2-D warm start".into() })?;
         drop(engine);
         let s = &th.ehl;
