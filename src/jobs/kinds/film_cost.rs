@@ -57,9 +57,6 @@ const AUTO_NUMERIC_SHARE: f64 = 1.0;
 /// cycle at 720 angles: 2.7 s with it against 51 s without).
 const KEY_SHARE_AT_005: f64 = 0.05;
 
-/// A thermal finite-line solve along a cycle, warm from the previous angle, against a cold one.
-const THERMAL_2D_WARM_FRACTION: f64 = 0.5;
-
 /// The film model's cost for `fidelity` and `ehl` on a contact of `contact`.
 pub fn film_cost(fidelity: Fidelity, ehl: &EhlSpec, contact: ContactKind) -> FilmCost {
     let closed = FilmCost {
@@ -95,12 +92,15 @@ pub fn film_cost(fidelity: Fidelity, ehl: &EhlSpec, contact: ContactKind) -> Fil
         };
         return match &ehl.thermal {
             // The thermal finite-line model: a cold coupled solve, then each angle warm from the
-            // previous one at about half its passes (the seed 000 example, 12 angles on 33×65:
-            // 5 s of CPU in a dev build, this model 5.4 s).
-            Some(t) => {
-                let coupled = cost::ehl_thermal_2d_seconds(o.nx, o.ny, t.film_points, t.solid_points);
-                FilmCost { cold: finite.cold + coupled, thermal_angle: THERMAL_2D_WARM_FRACTION * coupled, thermal_share: 1.0, what: format!("the thermal 2-D EHL solver on {}×{} nodes", o.nx, o.ny), ..finite }
-            }
+            // previous one, by the angle step as the isothermal 2-D film (the seed 000 example on
+            // 33×65 in a dev build: 12 angles 6.7 s of CPU, this model 7.6 s; 36 angles 8.5 s,
+            // this model 8.7 s).
+            Some(t) => FilmCost {
+                cold: finite.cold + cost::ehl_thermal_2d_seconds(o.nx, o.ny, t.film_points, t.solid_points),
+                per_angle: |f, step| f.cold * cost::ehl_2d_step_fraction(step),
+                what: format!("the thermal 2-D EHL solver on {}×{} nodes", o.nx, o.ny),
+                ..finite
+            },
             None => finite,
         };
     }
