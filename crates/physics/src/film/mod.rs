@@ -26,7 +26,12 @@
 //! * [`Finite`] — fidelity `accurate` with `ehl.geometry: finite`: the 2-D finite-length / point
 //!   EHL solver ([`crate::ehl::twod`]) at every point with entrainment, warm-started
 //!   from the previous point's 2-D solution ([`finite`]); [`AutoFinite`] with `auto`: the 2-D
-//!   model where [`finite::ends_matter`], the line-contact [`Auto`] elsewhere.
+//!   model where [`finite::ends_matter`], the line-contact [`Auto`] elsewhere
+//!   ([`auto_finite`]).
+//! * [`ThermalFinite`] — `ehl.thermal` with `ehl.geometry: finite`: the thermal 2-D model
+//!   ([`crate::ehl::thermal_finite`]) at every point, quasi-steady, warm from the previous
+//!   point; the traction nodes' viscosity calibrated to the whole-contact thermal traction at the
+//!   solved slip ([`thermal_finite`]).
 //! * [`Auto`] — fidelity `auto`: per point, the closed form where [`closed_form_error`] (the one
 //!   place the decision is made; measured rules in [`auto`]) is within the tolerance, else
 //!   [`Numerical`]. After closed-form points the numerical model has no history: its first point
