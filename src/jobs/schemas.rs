@@ -58,7 +58,7 @@ enum_mirror! {
     /// load balance (numerical: of the elastic deflection too), not evaluated afterwards.
     FilmModelIdDoc as FilmModelId for FilmModelId {
         PanHamrock, DowsonHigginson, Seed003, HamrockDowson, Numerical, Thermal, ThermalCarried, PanHamrockMixed,
-        DowsonHigginsonMixed, Seed003Mixed, HamrockDowsonMixed, NumericalMixed, Finite,
+        DowsonHigginsonMixed, Seed003Mixed, HamrockDowsonMixed, NumericalMixed, Finite, ThermalFinite,
     }
 }
 

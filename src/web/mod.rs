@@ -44,6 +44,7 @@ const EXAMPLES: &[(&str, &str)] = examples![
     "seed000_roller_archard",
     "seed000_roller_startup",
     "seed000_roller_steady",
+    "seed000_thermal_finite_cycle",
     "seed000_thermal_finite_nose",
     "seed000_thermal_startup",
     "seed000_thermal_steady",

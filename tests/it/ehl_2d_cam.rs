@@ -118,7 +118,8 @@ fn finite_seed000_short_cycle_converges_beside_the_line_model() {
 }
 
 /// Bad input is refused naming the field: finite on a flat-faced follower, with `fast`, with the
-/// thermal model; a grid outside 17–513; `nx` or `squeeze` without finite.
+/// thermal line model's key points (`carry_tolerance`; the thermal model itself runs, issue 43 b:
+/// `thermal_finite_cam`); a grid outside 17–513; `nx` or `squeeze` without finite.
 #[test]
 fn finite_geometry_bad_input_names_the_field() {
     let flat = with(&example("seed003_cycloidal_flat"), |s| s["fidelity"] = json!("accurate"));
@@ -129,7 +130,7 @@ fn finite_geometry_bad_input_names_the_field() {
         ("cam_point", with(&long_roller("line"), |s| s["ehl"]["ny"] = json!(65)), "/ehl/nx"),
         ("cam_point", with(&long_roller("line"), |s| s["roller"]["crown"] = json!({"middle_length": 0.010, "crown_height": 0.0, "end_radius": 0.05})), "/roller/crown"),
         ("cam_point", with(&long_roller("finite"), |s| s["ehl"]["grid_tolerance"] = json!(0.9)), "/ehl/grid_tolerance"),
-        ("cam_point", with(&long_roller("finite"), |s| s["ehl"]["thermal"] = json!({})), "/ehl/geometry"),
+        ("cam_point", with(&long_roller("finite"), |s| s["ehl"]["thermal"] = json!({"carry_tolerance": 0.05})), "/ehl/thermal/carry_tolerance"),
         ("cam_point", with(&long_roller("line"), |s| s["ehl"]["squeeze"] = json!(true)), "/ehl/squeeze"),
     ];
     for (kind, spec, path) in cases {

@@ -45,6 +45,7 @@ mod seed003_fit;
 mod service_units;
 mod sweep_api;
 mod thermal_ehl;
+mod thermal_finite_cam;
 mod valvetrain_http;
 mod valvetrain_lever;
 mod valvetrain_stability;

@@ -516,9 +516,13 @@ pub struct EhlSpec {
     /// where the minimum film sits (series `edge_pressure_peak`, `edge_pressure_peak_position`,
     /// `min_film_axial_position`). With `auto` the 2-D model runs only where the contact's ends
     /// matter (point contacts; a crowned roller whose loaded length reaches the crown transition;
-    /// `physics::film::finite::ends_matter`), the line-contact `auto` choice elsewhere. Not with
-    /// `thermal`, flat-faced followers or mixed-lubrication load sharing inside the solution (the
-    /// asperity load is evaluated from the smooth film). Cost: BENCHMARKS.md, issue 16.
+    /// `physics::film::finite::ends_matter`), the line-contact `auto` choice elsewhere. With
+    /// `thermal` the thermal 2-D model (`physics::film::thermal_finite`: quasi-steady, row
+    /// energies coupled to the 2-D generalized Reynolds equation; the roller balance's traction
+    /// from the grid's nodes with their viscosity calibrated to the whole-contact thermal traction
+    /// at the solved slip; `carry_tolerance` does not apply). Not with flat-faced followers or
+    /// mixed-lubrication load sharing inside the solution (the asperity load is evaluated from the
+    /// smooth film). Cost: BENCHMARKS.md, issue 16.
     #[serde(default, skip_serializing_if = "EhlGeometry::is_line")]
     pub geometry: EhlGeometry,
     /// `finite`: grid nodes along the rolling direction, 17–513 (odd numbers `2^k + 1` allow the
@@ -586,20 +590,17 @@ pub struct EhlThermalSpec {
     /// conditions jump (by more than this within the film's transit time), the full transient
     /// solve runs at every angle until its film agrees with the carried one to a tenth of this.
     /// The carried traction's closed-form ratio is calibrated between each key and the one
-    /// before it. 0 (the full solve at every angle) or 0.001–0.5. Default 0.05: seed 000 at 720
+    /// before it. 0 (the full solve at every angle) or 0.001–0.5. Default (line geometry) 0.05: seed 000 at 720
     /// angles keeps films and slide-to-roll ratio within 1 % of the every-angle cycle in 1.3–1.6 s
     /// against its 8–10.5 s (release; BENCHMARKS.md, "Thermal EHL").
-    #[serde(default = "default_carry_tolerance")]
-    pub carry_tolerance: f64,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub carry_tolerance: Option<f64>,
 }
 
 /// The thermal cycle's key-point tolerance unless the spec says otherwise (issue 46: the fast
 /// path is the default; films and SRR within 1 % of the every-angle cycle on seed 000).
 pub const DEFAULT_CARRY_TOLERANCE: f64 = 0.05;
 
-fn default_carry_tolerance() -> f64 {
-    DEFAULT_CARRY_TOLERANCE
-}
 
 fn default_oil_conductivity() -> f64 {
     0.14
@@ -620,7 +621,17 @@ impl EhlThermalSpec {
         ThermalFilmSettings {
             options: ThermalOptions { film_points: self.film_points, solid_points: self.solid_points, ..ThermalOptions::default() },
             bodies: ThermalBodies { film: FilmHeat { conductivity: self.oil_conductivity, specific_heat: self.oil_specific_heat }, body_1, body_2 },
-            carry_tolerance: (self.carry_tolerance > 0.0).then_some(self.carry_tolerance),
+            carry_tolerance: self.key_point_tolerance(),
+        }
+    }
+
+    /// The key points' tolerance the line model uses: the spec's, [`DEFAULT_CARRY_TOLERANCE`]
+    /// when absent, none (every angle) at 0.
+    pub fn key_point_tolerance(&self) -> Option<f64> {
+        match self.carry_tolerance {
+            None => Some(DEFAULT_CARRY_TOLERANCE),
+            Some(t) if t == 0.0 => None,
+            Some(t) => Some(t),
         }
     }
 
@@ -629,8 +640,8 @@ impl EhlThermalSpec {
         v.quantity(&format!("{path}/oil_specific_heat"), self.oil_specific_heat, Q::SPECIFIC_HEAT);
         v.count_in_range(&format!("{path}/film_points"), self.film_points, 3, 41);
         v.count_in_range(&format!("{path}/solid_points"), self.solid_points, 4, 81);
-        if self.carry_tolerance != 0.0 {
-            v.in_range(&format!("{path}/carry_tolerance"), self.carry_tolerance, 0.001, 0.5);
+        if let Some(t) = self.carry_tolerance.filter(|t| *t != 0.0) {
+            v.in_range(&format!("{path}/carry_tolerance"), t, 0.001, 0.5);
         }
     }
 }
@@ -705,7 +716,8 @@ impl EhlSpec {
             t.validate(&format!("{path}/thermal"), v);
         }
         if self.geometry == EhlGeometry::Finite {
-            v.check(self.thermal.is_none(), &format!("{path}/geometry"), "the finite-length / point model is isothermal: not with ehl.thermal");
+            let carried = self.thermal.is_some_and(|t| t.carry_tolerance.is_some());
+            v.check(!carried, &format!("{path}/thermal/carry_tolerance"), "key points are a scheme of the thermal line model: not with geometry finite");
             let o = self.grid_options(false);
             if let Some(t) = self.grid_tolerance {
                 v.in_range(&format!("{path}/grid_tolerance"), t, 0.005, 0.5);

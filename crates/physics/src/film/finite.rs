@@ -87,6 +87,17 @@ pub struct FiniteFilm {
     /// change is not settled). The roller march reuses a settled film on a dwell
     /// ([`FilmSolution::settled`]) as it reuses a quasi-steady one.
     pub settled: bool,
+    /// The thermal finite-line / point model ([`super::thermal_finite`]): the largest film
+    /// temperature and the largest surface temperatures of body 1 (cam) and body 2, K.
+    pub temperatures: Option<FiniteTemperatures>,
+}
+
+/// Temperatures of a thermal 2-D film, K.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct FiniteTemperatures {
+    pub film_max: f64,
+    pub surface_max_1: f64,
+    pub surface_max_2: f64,
 }
 
 /// Largest relative step-to-step change of the central and minimum films at which a squeeze
@@ -155,7 +166,7 @@ impl Finite {
     }
 
     /// The 2-D problem of `input` (isothermal at the input's temperature, `E' = 2E*`).
-    fn problem(&self, input: &ContactInput) -> Ehl2dInput {
+    pub(super) fn problem(&self, input: &ContactInput) -> Ehl2dInput {
         Ehl2dInput {
             load: input.load,
             geometry: self.geometry(input),
@@ -250,7 +261,7 @@ impl Finite {
 }
 
 /// Moes' line-contact groups of `input` (line contacts with entrainment), as the 1-D models report.
-fn regime_of(input: &ContactInput) -> Option<Regime> {
+pub(super) fn regime_of(input: &ContactInput) -> Option<Regime> {
     match input.shape {
         ContactShape::Line { reduced_radius, length } => {
             let eta0 = input.lubricant.viscosity_at(0.0, input.temperature);
@@ -314,7 +325,6 @@ impl FilmModel for Finite {
         if let Some(r) = previous.filter(|_| self.rescale_range > 0.0 && !self.squeeze).and_then(|p| self.rescaled(input, p)) {
             return Ok(r);
         }
-        let es = input.contact_modulus;
         let geometry = self.geometry(input);
         let ehl = self.problem(input);
         let previous_finite = previous.and_then(|p| p.finite.as_deref());
@@ -354,37 +364,8 @@ impl FilmModel for Finite {
         super::work::add(&super::work::FINITE_NEWTON_STEPS, s.convergence.iterations as u64);
         let f = s.fields.as_ref().ok_or_else(|| SolveError::NonFinite { quantity: "2-D EHL fields".into() })?;
         let (nx, ny) = (f.x.len(), f.y.len());
-        let dx = (f.x[1] - f.x[0]).abs();
-        let dy = f.y[1] - f.y[0];
-        let cell = dx * dy;
-        // Rough surfaces: Greenwood–Tripp of the local film over the grid, after the smooth solve.
         let sigma = input.roughness.sigma;
-        let w_a = if sigma > 0.0 { (f.film.iter().map(|h| input.roughness.asperity_pressure(*h, es)).sum::<f64>() * cell).min(load) } else { 0.0 };
-        let fluid_share = 1.0 - w_a / load;
-        let t = input.temperature;
-        let law = input.lubricant.viscosity_law(t);
-        let mut nodes = Vec::new();
-        let mut area = 0.0;
-        for j in 1..ny - 1 {
-            for i in 1..nx - 1 {
-                let k = j * nx + i;
-                let p = f.pressure[k];
-                if p <= 0.0 {
-                    continue;
-                }
-                area += cell;
-                // x is signed with the entrainment (positive downstream of positive u_m).
-                let dpdx = fluid_share * (f.pressure[k + 1] - f.pressure[k - 1]) / (f.x[i + 1] - f.x[i - 1]);
-                let film = f.film[k].max(FILM_FLOOR);
-                nodes.push(TractionNode {
-                    area: cell,
-                    pressure: fluid_share * p,
-                    viscosity: law.at(p).min(VISCOSITY_CAP),
-                    film,
-                    poiseuille: -0.5 * film * dpdx,
-                });
-            }
-        }
+        let (nodes, area, w_a) = field_nodes(input, f);
         let centre_row = (ny - 1) / 2;
         let exit_film = (0..nx).map(|i| f.film[centre_row * nx + i]).fold(f64::INFINITY, f64::min);
         let steady = self.fallback.solve(input, None)?.steady_central_film;
@@ -429,9 +410,45 @@ impl FilmModel for Finite {
                 squeeze_step,
                 step_change,
                 settled,
+                temperatures: None,
             })),
         })
     }
+}
+
+/// Traction nodes of a converged 2-D field (module docs): every interior node with positive
+/// pressure (cell area `Δx Δy`, viscosity at the input's temperature, Poiseuille stress
+/// `−(h/2) ∂p/∂x`, seed 001 eq. 24), the loaded area (m²) and the asperity load (N,
+/// Greenwood–Tripp of the local film after the smooth solve, capped at the load); the fluid
+/// nodes carry the remaining share.
+pub(super) fn field_nodes(input: &ContactInput, f: &Fields2d) -> (Vec<TractionNode>, f64, f64) {
+    let load = input.load;
+    let es = input.contact_modulus;
+    let (nx, ny) = (f.x.len(), f.y.len());
+    let dx = (f.x[1] - f.x[0]).abs();
+    let dy = f.y[1] - f.y[0];
+    let cell = dx * dy;
+    let sigma = input.roughness.sigma;
+    let w_a = if sigma > 0.0 { (f.film.iter().map(|h| input.roughness.asperity_pressure(*h, es)).sum::<f64>() * cell).min(load) } else { 0.0 };
+    let fluid_share = 1.0 - w_a / load;
+    let law = input.lubricant.viscosity_law(input.temperature);
+    let mut nodes = Vec::new();
+    let mut area = 0.0;
+    for j in 1..ny - 1 {
+        for i in 1..nx - 1 {
+            let k = j * nx + i;
+            let p = f.pressure[k];
+            if p <= 0.0 {
+                continue;
+            }
+            area += cell;
+            // x is signed with the entrainment (positive downstream of positive u_m).
+            let dpdx = fluid_share * (f.pressure[k + 1] - f.pressure[k - 1]) / (f.x[i + 1] - f.x[i - 1]);
+            let film = f.film[k].max(FILM_FLOOR);
+            nodes.push(TractionNode { area: cell, pressure: fluid_share * p, viscosity: law.at(p).min(VISCOSITY_CAP), film, poiseuille: -0.5 * film * dpdx });
+        }
+    }
+    (nodes, area, w_a)
 }
 
 /// Whether the contact's ends matter at `input` — where `auto` with `ehl.geometry: finite` runs
@@ -463,39 +480,6 @@ pub fn ends_matter(crown: Option<&Crown>, input: &ContactInput, tolerance: f64) 
                 2.0 * b > tolerance * length
             }
         },
-    }
-}
-
-/// `auto` with `ehl.geometry: finite`: the 2-D model where [`ends_matter`], elsewhere the 1-D
-/// `auto` choice (closed form or numerical line contact, [`super::Auto`]).
-pub struct AutoFinite {
-    pub auto: super::Auto,
-    pub finite: Finite,
-}
-
-impl FilmModel for AutoFinite {
-    fn entrainment_tolerance(&self) -> f64 {
-        self.auto.entrainment_tolerance()
-    }
-
-    fn solve(&self, input: &ContactInput, previous: Option<&FilmSolution>) -> Result<FilmSolution, SolveError> {
-        if input.entrainment_velocity != 0.0 && ends_matter(self.finite.crown.as_ref(), input, self.auto.tolerance) {
-            self.finite.solve(input, previous)
-        } else {
-            self.auto.solve(input, previous)
-        }
-    }
-
-    fn fields(&self, film: &FilmSolution, input: &ContactInput) -> Result<Option<Fields2d>, SolveError> {
-        self.finite.fields(film, input)
-    }
-
-    fn traction_local(&self, film: &FilmSolution, input: &ContactInput, sliding: f64) -> (super::Traction, (f64, f64)) {
-        if film.finite.is_some() {
-            self.finite.traction_local(film, input, sliding)
-        } else {
-            self.auto.traction_local(film, input, sliding)
-        }
     }
 }
 

@@ -26,7 +26,12 @@
 //! * [`Finite`] — fidelity `accurate` with `ehl.geometry: finite`: the 2-D finite-length / point
 //!   EHL solver ([`crate::ehl::twod`]) at every point with entrainment, warm-started
 //!   from the previous point's 2-D solution ([`finite`]); [`AutoFinite`] with `auto`: the 2-D
-//!   model where [`finite::ends_matter`], the line-contact [`Auto`] elsewhere.
+//!   model where [`finite::ends_matter`], the line-contact [`Auto`] elsewhere
+//!   ([`auto_finite`]).
+//! * [`ThermalFinite`] — `ehl.thermal` with `ehl.geometry: finite`: the thermal 2-D model
+//!   ([`crate::ehl::thermal_finite`]) at every point, quasi-steady, warm from the previous
+//!   point; the traction nodes' viscosity calibrated to the whole-contact thermal traction at the
+//!   solved slip ([`thermal_finite`]).
 //! * [`Auto`] — fidelity `auto`: per point, the closed form where [`closed_form_error`] (the one
 //!   place the decision is made; measured rules in [`auto`]) is within the tolerance, else
 //!   [`Numerical`]. After closed-form points the numerical model has no history: its first point
@@ -39,6 +44,7 @@
 //! Units: SI. The moduli are passed as `E*` (Johnson); formulas needing `E' = 2E*` convert.
 
 pub mod auto;
+pub mod auto_finite;
 pub mod closed_form;
 pub mod finite;
 /// The closed-form film formulas live with the EHL solvers they are checked against.
@@ -46,6 +52,7 @@ pub use crate::ehl::formulas;
 pub mod mixed;
 pub mod numerical;
 pub mod thermal;
+pub mod thermal_finite;
 pub mod traction_table;
 pub mod traction_along;
 /// Work counters (shared with the EHL solvers; `crate::work`).
@@ -53,10 +60,12 @@ pub use crate::work;
 
 pub use auto::{closed_form_error, Auto, ClosedFormError, ErrorRule};
 pub use closed_form::{ClosedForm, FilmFormula};
-pub use finite::{AutoFinite, Finite, FiniteFilm};
+pub use auto_finite::AutoFinite;
+pub use finite::{Finite, FiniteFilm};
 pub use numerical::Numerical;
 pub use thermal::{FilmThermal, ThermalFilmSettings, ThermalNumerical};
 pub use traction_along::{traction_along, TractionAlong};
+pub use thermal_finite::ThermalFinite;
 
 use crate::friction::{
     viscous_traction_local, AsperityContact, AsperityFriction, AsperityNode, Roughness, TractionLaw, TractionNode,
@@ -178,6 +187,9 @@ pub enum FilmModelId {
     NumericalMixed,
     /// The finite-length / point 2-D EHL solver (`physics::ehl::twod`, `ehl.geometry: finite`).
     Finite,
+    /// The thermal finite-length / point 2-D EHL model (`physics::ehl::thermal_finite`,
+    /// `ehl.thermal` with `ehl.geometry: finite`).
+    ThermalFinite,
 }
 
 impl FilmModelId {
@@ -197,6 +209,7 @@ impl FilmModelId {
             FilmModelId::HamrockDowsonMixed => "hamrock_dowson_mixed",
             FilmModelId::NumericalMixed => "numerical_mixed",
             FilmModelId::Finite => "finite",
+            FilmModelId::ThermalFinite => "thermal_finite",
         }
     }
 
@@ -415,7 +428,8 @@ pub struct AccurateSettings {
     /// The thermal model (`accurate` only): `None` is isothermal.
     pub thermal: Option<ThermalFilmSettings>,
     /// The finite-length / point 2-D model instead of the line contact (`ehl.geometry: finite`;
-    /// isothermal only): its grid and options, and the roller's crown.
+    /// with `thermal` the thermal 2-D model, [`ThermalFinite`]): its grid and options, and the
+    /// roller's crown.
     pub finite: Option<FiniteSettings>,
 }
 
@@ -435,19 +449,23 @@ pub struct FiniteSettings {
 /// where [`closed_form_error`] is within `settings.auto_tolerance`, the numerical solver elsewhere
 /// ([`Auto`]).
 ///
-/// With `settings.finite` (`ehl.geometry: finite`): `accurate` runs the 2-D model ([`Finite`]) at
-/// every point with entrainment, `auto` where [`finite::ends_matter`] and the 1-D `auto` choice
-/// elsewhere ([`AutoFinite`]).
+/// With `settings.finite` (`ehl.geometry: finite`): `accurate` runs the 2-D model ([`Finite`];
+/// with `settings.thermal` the thermal one, [`ThermalFinite`]) at every point with entrainment,
+/// `auto` where [`finite::ends_matter`] and the 1-D `auto` choice (thermal with
+/// `settings.thermal`) elsewhere ([`AutoFinite`]).
 pub fn model_for(fidelity: Fidelity, fast: ClosedForm, settings: AccurateSettings) -> Box<dyn FilmModel> {
     let numerical = Numerical::new(settings.options, fast).with_extrapolation(settings.extrapolation);
     if let Some(f) = settings.finite {
         let finite = Finite::new(f.options, f.crown, fast).check_first_only().with_squeeze(f.squeeze);
-        match fidelity {
-            Fidelity::Fast => {}
-            Fidelity::Accurate => return Box::new(finite),
-            Fidelity::Auto => {
-                let auto = Auto { fast, numerical, tolerance: settings.auto_tolerance, thermal: None };
-                return Box::new(AutoFinite { auto, finite });
+        let thermal = settings.thermal.map(|t| ThermalFinite::new(f.options, f.crown, t, fast));
+        match (fidelity, thermal) {
+            (Fidelity::Fast, _) => {}
+            (Fidelity::Accurate, Some(t)) => return Box::new(t),
+            (Fidelity::Accurate, None) => return Box::new(finite),
+            (Fidelity::Auto, thermal) => {
+                let line_thermal = settings.thermal.map(|t| ThermalNumerical::new(settings.options, t, fast));
+                let auto = Auto { fast, numerical, tolerance: settings.auto_tolerance, thermal: line_thermal };
+                return Box::new(AutoFinite { auto, finite, thermal });
             }
         }
     }

@@ -142,8 +142,8 @@ impl LubricatedContact for CamCycleSpec {
 /// The models the follower and outputs allow (thermal and finite need a line or point contact
 /// they apply to; profiles need a numerical film), and the size of the 2-D fields table.
 fn validate_models(spec: &CamCycleSpec, v: &mut Validation) {
-    if spec.ehl.thermal.is_some() {
-        v.check(!matches!(spec.follower, FollowerSpec::Spherical { .. }), "/ehl/thermal", "the thermal model is a line-contact model: not for a spherical follower");
+    if spec.ehl.thermal.is_some() && spec.ehl.geometry.is_line() {
+        v.check(!matches!(spec.follower, FollowerSpec::Spherical { .. }), "/ehl/thermal", "the thermal line-contact model is not for a spherical follower (ehl.geometry finite: the thermal point contact)");
     }
     if !spec.ehl.geometry.is_line() {
         v.check(!matches!(spec.follower, FollowerSpec::FlatFaced { .. }), "/ehl/geometry", "finite needs a roller (finite line contact) or a spherical follower (point contact): a flat-faced follower is a line contact across the cam width");

@@ -30,14 +30,24 @@ pub(super) fn film_series(spec: &CycleSpec, states: &[PointState], loads: &[Foll
         series.edge_pressure_peak = edge.iter().any(Option::is_some).then_some(edge);
         series.min_film_axial_position = Some(states.iter().map(|s| s.film.finite.as_ref().map(|f| f.min_film_position.1)).collect());
     }
-    if states.iter().any(|s| s.film.thermal.is_some()) {
-        let pick = |f: fn(&crate::ehl::thermal::ThermalSummary) -> f64| -> Vec<f64> {
-            // A closed form (a contact at rest without history) is isothermal at the inlet.
-            states.iter().map(|s| s.film.thermal.as_deref().map_or(spec.temperature, |t| f(&t.summary))).collect()
+    let finite_temperatures = |s: &PointState| s.film.finite.as_deref().and_then(|f| f.temperatures);
+    if states.iter().any(|s| s.film.thermal.is_some() || finite_temperatures(s).is_some()) {
+        // (film max, cam surface max, follower surface max) of the 1-D or 2-D thermal model; a
+        // closed form (a contact at rest without history) or an isothermal film is at the inlet.
+        let temperatures = |s: &PointState| -> [f64; 3] {
+            if let Some(t) = s.film.thermal.as_deref() {
+                let t = &t.summary;
+                [t.film_temperature_max, t.surface_temperature_max_1, t.surface_temperature_max_2]
+            } else if let Some(t) = finite_temperatures(s) {
+                [t.film_max, t.surface_max_1, t.surface_max_2]
+            } else {
+                [spec.temperature; 3]
+            }
         };
-        series.film_temperature_max = Some(pick(|t| t.film_temperature_max));
-        series.surface_temperature_cam = Some(pick(|t| t.surface_temperature_max_1));
-        series.surface_temperature_follower = Some(pick(|t| t.surface_temperature_max_2));
+        let pick = |k: usize| -> Vec<f64> { states.iter().map(|s| temperatures(s)[k]).collect() };
+        series.film_temperature_max = Some(pick(0));
+        series.surface_temperature_cam = Some(pick(1));
+        series.surface_temperature_follower = Some(pick(2));
     }
     if states.iter().any(|s| s.film.iterations.is_some()) {
         series.newton_steps = Some(states.iter().map(|s| s.film.iterations.unwrap_or(0)).collect());

@@ -26,6 +26,11 @@ impl ThermalFiniteEngine {
         Self::default()
     }
 
+    /// The warm start the engine carries (the last solution's pressure in the solver's scales).
+    pub fn warm(&self) -> Option<&Warm2d> {
+        self.warm.as_ref()
+    }
+
     /// Forget the carried solution (the next solve starts isothermal and cold).
     pub fn reset(&mut self) {
         *self = Self::default();
@@ -120,4 +125,11 @@ impl ThermalFiniteEngine {
             convergence: Convergence { iterations, residual, tolerance: thermal.tolerance, termination },
         })
     }
+}
+
+/// The forces over the whole contact of `sol` (a converged solution with its fields) at another
+/// sliding velocity (`input.sliding_velocity`, m/s): one energy pass over the rows at the held
+/// pressure and film, every row from the inlet temperature (seed 000 eq. 7–9).
+pub fn traction_at(input: &ThermalFiniteInput, sol: &Ehl2dSolution, thermal: &ThermalOptions) -> Result<ContactTraction, SolveError> {
+    Ok(energy_pass(input, sol, thermal, &[])?.traction)
 }
