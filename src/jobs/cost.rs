@@ -180,7 +180,7 @@ fn thermal_layers(film_points: usize, solid_points: usize) -> f64 {
 /// `nx × ny` nodes, s: ≈ nodes^1.4 (the seed 000 roller at 65×129: 0.75–0.85 s; the circular
 /// point contact at 129²: 1.65 s; BENCHMARKS.md, "One point solve, run time against error").
 pub fn ehl_2d_seconds(nx: usize, ny: usize) -> f64 {
-    let n = (nx * ny) as f64;
+    let n = nx as f64 * ny as f64;
     0.3 * (n / 4225.0).powf(1.4)
 }
 
@@ -206,7 +206,7 @@ pub fn ehl_2d_step_fraction(step_deg: f64) -> f64 {
 /// per iteration): an upper bound of ≈ 10.4 kB per node (peak resident memory of `tribod run`
 /// above idle: 140 MiB at 129², 610 MiB at 257², 2585 MiB at 513²).
 pub fn ehl_2d_bytes(nx: usize, ny: usize) -> f64 {
-    let n = (nx * ny) as f64;
+    let n = nx as f64 * ny as f64;
     8.0 * n * 1300.0 + 8.0 * MIB
 }
 

@@ -82,6 +82,15 @@ async fn absurd_magnitudes_are_field_errors_with_units() {
         let p = expect_problem(s.post_job(&cam).await, 422, "invalid_spec").await;
         assert!(p.to_string().contains(&format!("/spec{path}")), "{path}: {p}");
     }
+    // Grid sizes whose product overflows (schemathesis found a rough_contact table of
+    // 9948166445796346 × 222217139 points ending in a 500 "multiply with overflow").
+    let table = json!({"kind": "rough_contact", "spec": {"surface": {"type": "table", "nx": 9948166445796346u64, "ny": 222217139u64, "spacing": 1e-6, "heights": vec![0.0; 256]}}});
+    let p = expect_problem(s.post_job(&table).await, 422, "invalid_spec").await;
+    assert!(p.to_string().contains("/spec/surface/nx"), "{p}");
+    let mut point = json!({"kind": "ehl_point", "spec": kind_example("ehl_point")});
+    point["spec"]["geometry"] = json!({"type": "finite", "nx": 9948166445796346u64, "ny": 222217139u64});
+    let status = s.post_job(&point).await.status().as_u16();
+    assert!(status == 422 || status == 400, "ehl_point with an overflowing grid: {status}");
     s.stop().await;
 }
 

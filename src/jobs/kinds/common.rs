@@ -724,7 +724,7 @@ impl EhlSpec {
             }
             v.count_in_range(&format!("{path}/nx"), o.nx, 17, 513);
             v.count_in_range(&format!("{path}/ny"), o.ny, 17, 513);
-            v.limit(&format!("{path}/nx"), o.nx * o.ny, limits.max_grid_nodes, "the number of 2-D grid nodes (nx·ny)");
+            v.limit(&format!("{path}/nx"), o.nx.saturating_mul(o.ny), limits.max_grid_nodes, "the number of 2-D grid nodes (nx·ny)");
         } else {
             v.check(self.nx.is_none() && self.ny.is_none() && self.grid_tolerance.is_none(), &format!("{path}/nx"), "nx, ny and grid_tolerance set the grid of geometry finite");
             v.check(self.squeeze.is_none(), &format!("{path}/squeeze"), "squeeze is an option of geometry finite (the line model always carries the squeeze term along a cycle)");

@@ -482,7 +482,7 @@ impl Kind for EhlPoint {
         let two_d = |nx: usize, ny: usize, v: &mut Validation| {
             v.count_in_range("/geometry/nx", nx, 17, 1025);
             v.count_in_range("/geometry/ny", ny, 17, 1025);
-            v.limit("/geometry/nx", nx * ny, limits.max_grid_nodes, "the number of grid nodes (nx·ny)");
+            v.limit("/geometry/nx", nx.saturating_mul(ny), limits.max_grid_nodes, "the number of grid nodes (nx·ny)");
         };
         match spec.geometry {
             EhlGeometrySpec::Line => {}

@@ -78,7 +78,7 @@ pub fn film_cost(fidelity: Fidelity, ehl: &EhlSpec, contact: ContactKind) -> Fil
     };
     if ehl.geometry == EhlGeometry::Finite {
         let o = ehl.grid_options(contact == ContactKind::Point);
-        let n = (o.nx * o.ny) as f64;
+        let n = o.nx as f64 * o.ny as f64;
         let finite = FilmCost {
             cold: cost::ehl_2d_seconds(o.nx, o.ny),
             isothermal: cost::ehl_2d_seconds(o.nx, o.ny),

@@ -199,7 +199,7 @@ impl Kind for RoughContact {
                 v.positive("/surface/spacing", *spacing);
                 v.check((16..=512).contains(nx) && (16..=512).contains(ny), "/surface/nx", "nx and ny must be 16 to 512");
                 v.items("/surface/heights", heights.len(), 16 * 16, Some(512 * 512));
-                v.check(heights.len() == nx * ny, "/surface/heights", "needs nx·ny heights");
+                v.check(heights.len() == nx.saturating_mul(*ny), "/surface/heights", "needs nx·ny heights");
                 v.check(heights.iter().all(|h| h.is_finite()), "/surface/heights", "must be finite");
             }
         }
@@ -219,7 +219,7 @@ impl Kind for RoughContact {
             v.check(f.iter().all(|h| h.is_finite() && *h > 0.0) && f.windows(2).all(|w| w[1] > w[0]), "/films", "must be positive and strictly ascending");
         }
         let (nx, ny) = grid(spec);
-        v.limit("/surface", nx * ny, limits.max_grid_nodes, "the number of surface points");
+        v.limit("/surface", nx.saturating_mul(ny), limits.max_grid_nodes, "the number of surface points");
     }
 
     fn cost(spec: &RoughContactSpec) -> Cost {
@@ -229,7 +229,7 @@ impl Kind for RoughContact {
         // measured before the CG kept its previous iterate and that iterate's K x: issue 40).
         let films = spec.films.as_ref().map_or(12, |f| f.len());
         let (nx, ny) = grid(spec);
-        let n = (nx * ny) as f64;
+        let n = nx as f64 * ny as f64;
         let per_film = if spec.friction_limit.is_some() { 3.0 } else { 1.0 };
         let seconds = per_film * films as f64 * 2.5 * (n / (512.0 * 512.0)).powf(1.7);
         Cost::new(seconds, 18.0 * 8.0 * n)

@@ -150,7 +150,7 @@ fn validate_models(spec: &CamCycleSpec, v: &mut Validation) {
         if spec.outputs.contains(&CamOutput::Profiles) {
             // The 2-D fields table: one row per node and angle (bounds the result's size).
             let o = spec.ehl.grid_options(matches!(spec.follower, FollowerSpec::Spherical { .. }));
-            let rows = spec.profile_angles_deg.len() * o.nx * o.ny;
+            let rows = spec.profile_angles_deg.len().saturating_mul(o.nx).saturating_mul(o.ny);
             v.check(rows <= MAX_FIELD_ROWS, "/profile_angles_deg", format!("the 2-D fields of {} angles on {}×{} nodes are {rows} rows: at most {MAX_FIELD_ROWS} (fewer angles or a coarser ehl.nx/ny)", spec.profile_angles_deg.len(), o.nx, o.ny));
         }
     }
