@@ -11,6 +11,7 @@ pub mod film_cost;
 pub mod hertz;
 pub mod rough_contact;
 pub mod sweep;
+pub mod thermal_spec;
 pub mod wear;
 #[cfg(feature = "test-kinds")]
 pub mod test_sleep;
