@@ -73,8 +73,8 @@ impl Default for Seed003Setup {
     /// `R = 20 mm`, steel on steel (`E' = 230.8 GPa`: E = 210 GPa, ν = 0.3), `η0 = 0.04 Pa·s`,
     /// `L = 4 mm` (`L/b` 53–215 over Table 3's W*), 129 × 257 nodes (x × along the contact) on
     /// an inlet of 40 and an outlet of 12 Hertz half-widths (Table 3's films are thick, M 0.1–1:
-    /// the pressure builds far upstream; the solver's default inlet of ≤ 12 half-widths starves
-    /// the base run by 18 %), `Δt = 1000 a/u`, fixed point to 1e-4 in at most 8 solves.
+    /// the pressure builds far upstream; the solver's default inlet of ≤ 12 half-widths thins
+    /// the base run by 16 % on L = 1 mm), `Δt = 1000 a/u`, fixed point to 1e-4 in at most 8 solves.
     fn default() -> Self {
         let options = Ehl2dOptions { nx: 129, ny: 257, inlet: Some(40.0), outlet: Some(12.0), grid_tolerance: 1.0, grid_check: false, ..Ehl2dOptions::default() };
         Seed003Setup { reduced_radius: 0.02, effective_modulus: 2.308e11, viscosity: 0.04, length: 4e-3, options, passages: 1e3, tolerance: 1e-4, max_iterations: 8 }
