@@ -22,6 +22,12 @@
 //! * `h0*` is the film at the contact centre (point A, eq. 11), `h_sc*` the smallest film (point C,
 //!   the side constriction at the rear exit, §3.4).
 //!
+//! # What the runs give (tests in `tests.rs`, docs/seeds.md)
+//! Fully flooded (the default setup) the films fall with W* and hardly feel G* — Table 3's
+//! groups put the contact at Moes M 0.07–1.1, thick and nearly rigid–isoviscous. With the inlet
+//! boundary a fixed 7 half-widths upstream (a starved inlet growing with the load) the refit has
+//! eq. 17's W* and U* exponents; its G* exponent stays ≈ 0.2.
+//!
 //! # Prescribed squeeze
 //! The 2-D solver takes squeeze as history ([`super::Squeeze2d`]: a previous level and `Δt`). A
 //! uniform approach velocity `v = −w_s* u` is the fixed point `ρ̄h_prev = ρ̄h + vΔt` (the previous
