@@ -144,8 +144,9 @@ fn ehl2d_transient_long_roller_follows_the_line_solution() {
     assert!(worst < 0.015, "largest difference {worst}");
 }
 
-/// Seed 003 Figs. 4–6 (issue 42 item 2), a probe: a prescribed approach (squeeze) velocity on the
-/// long straight roller (finite line, ends relieved over 2 a; 129², the shared steady solve). The
+/// Seed 003 Figs. 4–6 (issue 42 item 2), a probe (the CI runs the same on 49×65: *lib*
+/// `seed003_figs_4_6_squeeze_thickens_the_film_and_raises_the_edge_spike`): a prescribed
+/// approach (squeeze) velocity on the long straight roller (finite line, ends relieved over 2 a; 129², the shared steady solve). The
 /// 2-D solver takes squeeze only as history (`Squeeze2d`: a previous state and a time step); a
 /// prescribed uniform approach `v` is the fixed point `ρ̄h_prev = ρ̄h + v Δt` (the previous
 /// level's `Warm2d.mass` set from the new solution's), so the backward-Euler term is `−v` at

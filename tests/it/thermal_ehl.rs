@@ -377,10 +377,9 @@ mod seed000_cycle {
         assert!(s10 > 1.1 * st10 && s10 < 1.5 * st10, "10°: startup {s10} steady {st10}");
         // Paper (Fig. 16): over 34–54° the startup SRR is slightly below steady (< 5 %). Model:
         // above it, ×1.35 at 40° and ×1.43 at 50° (×1.27 at 30°), the gap still growing towards
-        // the opening ramp — the startup SRR never dips below steady before 60°. Not traced; the
-        // candidates are the roller's inertia torque under the cam's constant acceleration (a
-        // solid steel ring, not in Table 1 — the same inertia that lifts the 100° rise) and the
-        // slower cam's thinner, colder film (docs/seeds.md).
+        // the opening ramp — the startup SRR never dips below steady before 60°. Traced in
+        // `startup_below_steady_is_the_slow_cam_plus_the_roller_inertia`: the slower cam alone
+        // puts it below steady (×0.81 at 40°), the steel ring's inertia torque lifts it above.
         for deg in [30.0, 40.0, 50.0] {
             let (s_start, s_steady) = (at(&sa, &ss, deg), at(&a, &srr, deg));
             println!("{deg}°: startup/steady {:.4}", s_start / s_steady);
@@ -539,5 +538,65 @@ mod seed000_cycle {
         // retried closer to rolling; the cycle converges and continues the trend at 0° and 100°.
         assert_eq!(outs[4]["convergence"]["termination"], "converged");
         assert!(at(&a, heavier, 0.0) < at(&a, loaded, 0.0) && at(&a, heavier, 100.0) < at(&a, loaded, 100.0), "w1 800: {} {}", at(&a, heavier, 0.0), at(&a, heavier, 100.0));
+    }
+
+    /// The solid steel ring's moment of inertia, the roller's default (R1 25.5 mm, R2 16 mm,
+    /// L 14 mm, 7850 kg/m³): 6.17e-5 kg·m².
+    fn steel_ring() -> f64 {
+        7850.0 * std::f64::consts::PI * (0.0255f64.powi(2) - 0.016f64.powi(2)) * 0.014 * (0.0255f64.powi(2) + 0.016f64.powi(2)) / 2.0
+    }
+
+    /// The thermal startup example's SRR with the roller's moment of inertia `inertia` (kg·m²).
+    fn startup_srr(inertia: f64) -> Vec<f64> {
+        let mut s = every_angle("seed000_thermal_startup");
+        s["follower"]["inertia"] = inertia.into();
+        series(&run("cam_cycle", &s).unwrap(), "slide_roll_ratio")
+    }
+
+    /// Seed 000 Fig. 16, 34–54° "slightly (< 5 %) below steady", traced (issue 42 item 3). The
+    /// startup SRR on the base circle is the sum of two parts. (1) The slower cam: with the
+    /// roller's inertia ≈ 0 the startup is quasi-steady at the cam's instantaneous speed (at 40°,
+    /// 950·sqrt(40/180) = 447.8 rpm: 0.03816 against the steady run at that speed, 0.03812) and
+    /// lies *below* the rated steady SRR — ×0.742, ×0.809, ×0.860 at 30, 40, 50° (the base
+    /// circle's SRR falls with the speed). (2) The roller's inertia torque under the cam's constant
+    /// acceleration adds slip in proportion to the inertia (release CLI, 36 angles, at 40°:
+    /// ×0.809, 1.076, 1.350, 1.923 for 0, ½, 1, 2 × the solid steel ring's 6.17e-5 kg·m²; Table 1
+    /// gives none): the default ring makes the sum ×1.35 (asserted in
+    /// [`slide_to_roll_features_steady_and_startup`]). Asserted here: (1) to 0.5 % at 40° and the
+    /// ratios within 0.02 (three thermal cycles, 11 s dev).
+    #[test]
+    fn startup_below_steady_is_the_slow_cam_plus_the_roller_inertia() {
+        let steady = run("cam_cycle", &every_angle("seed000_thermal_steady")).unwrap();
+        let (a, srr) = (series(&steady, "angle_deg"), series(&steady, "slide_roll_ratio"));
+        let mut slow = every_angle("seed000_thermal_steady");
+        slow["operation"]["speed_rpm"] = (950.0 * (40.0f64 / 180.0).sqrt()).into();
+        let slow = series(&run("cam_cycle", &slow).unwrap(), "slide_roll_ratio");
+        let light = startup_srr(1e-6 * steel_ring());
+        let ratio = |v: &[f64], deg: f64| at(&a, v, deg) / at(&a, &srr, deg);
+        println!("at 40°: inertia-free startup {:.5} vs steady at 447.8 rpm {:.5}", at(&a, &light, 40.0), at(&a, &slow, 40.0));
+        assert!((at(&a, &light, 40.0) / at(&a, &slow, 40.0) - 1.0).abs() < 5e-3);
+        for (deg, zero) in [(30.0, 0.742), (40.0, 0.809), (50.0, 0.860)] {
+            println!("{deg}°: startup/steady with inertia ≈ 0: {:.4}", ratio(&light, deg));
+            assert!((ratio(&light, deg) - zero).abs() < 0.02, "{deg}°");
+        }
+    }
+
+    /// Fig. 16's "slightly below steady" with a lighter roller: 0.3 × the steel ring gives
+    /// ×0.895, 0.967, 1.028 at 30, 40, 50° — the paper's statement near 40° — and no single inertia
+    /// keeps all of 34–54° within 5 % below, because the slow-cam part climbs by 0.12 across it
+    /// (0.2 × the ring: 0.871 at 34°, 0.989 at 54°; 0.4: 0.974, 1.105; 180 angles). Asserted: the
+    /// 36-angle ratios within 0.02. Run:
+    /// `cargo test --release --test it -- lighter_roller_startup --include-ignored --nocapture`.
+    #[test]
+    #[ignore = "two thermal cycles beyond the startup trace (8 s dev): the inertia that meets Fig. 16 near 40°"]
+    fn lighter_roller_startup_is_slightly_below_steady_near_40_degrees() {
+        let steady = run("cam_cycle", &every_angle("seed000_thermal_steady")).unwrap();
+        let (a, srr) = (series(&steady, "angle_deg"), series(&steady, "slide_roll_ratio"));
+        let third = startup_srr(0.3 * steel_ring());
+        for (deg, want) in [(30.0, 0.895), (40.0, 0.967), (50.0, 1.028)] {
+            let r = at(&a, &third, deg) / at(&a, &srr, deg);
+            println!("{deg}°: startup/steady with 0.3 × the ring {r:.4}");
+            assert!((r - want).abs() < 0.02, "{deg}°");
+        }
     }
 }

@@ -87,6 +87,7 @@
 pub mod dry;
 pub mod elastic;
 mod geometry;
+pub mod seed003;
 pub mod solver;
 
 pub use dry::{solve_dry, DryOptions, DrySolution};
