@@ -57,6 +57,9 @@ pub enum ProfileSpec {
         base_angle_deg: f64,
         flanks: Vec<ArcSpec>,
     },
+    /// A lift law synthesised from lift, event duration, ramps (`height` m, `velocity` m/rad),
+    /// law and dwell (`physics::cam::synthesis`); fields in `SynthesisedSpec`.
+    Synthesised(super::synthesis::SynthesisedSpec),
     /// A measured follower lift table, interpolated by a periodic cubic spline.
     Table {
         /// Base circle radius, m.
