@@ -74,7 +74,7 @@ fn ramp_free_polynomials_have_the_textbook_coefficients() {
     // C_j 52.5. Rise angle (duration − dwell)/2 = 110°.
     let (h, beta) = (0.01, 110f64.to_radians());
     for (law, cv, ca, cj) in [("polynomial_345", 15.0 / 8.0, 10.0 / 3f64.sqrt(), 60.0), ("polynomial_4567", 35.0 / 16.0, 7.513_2, 52.5)] {
-        let spec = kinematics_spec(json!({"type": "synthesised", "base_radius": 0.02, "lift": h, "duration_deg": 250.0, "top_dwell_deg": 30.0, "law": law}));
+        let spec = kinematics_spec(json!({"type": "synthesised", "base_radius": 0.02, "lift": h, "duration_deg": 250.0, "dwell_deg": 30.0, "law": law}));
         let r = run("cam_cycle", &spec).unwrap();
         let s = &r["synthesis"];
         let got = |k: &str| s[k].as_f64().unwrap();
@@ -92,7 +92,7 @@ fn ramp_free_polynomials_have_the_textbook_coefficients() {
 #[test]
 fn synthesised_without_ramps_is_the_rise_return_program() {
     // 3-4-5 rise of 100°, 20° dwell, centred on 180°: the rise starts at 70°.
-    let synth = kinematics_spec(json!({"type": "synthesised", "base_radius": 0.02, "lift": 0.009, "duration_deg": 220.0, "top_dwell_deg": 20.0, "law": "polynomial_345"}));
+    let synth = kinematics_spec(json!({"type": "synthesised", "base_radius": 0.02, "lift": 0.009, "duration_deg": 220.0, "dwell_deg": 20.0, "law": "polynomial_345"}));
     let program = kinematics_spec(json!({"type": "rise_return", "base_radius": 0.02, "lift": 0.009, "rise_start_deg": 70.0, "rise_deg": 100.0, "top_dwell_deg": 20.0, "return_deg": 100.0, "law": "polynomial_345"}));
     let (a, b) = (run("cam_cycle", &synth).unwrap(), run("cam_cycle", &program).unwrap());
     for col in ["lift", "velocity", "acceleration", "cam_curvature"] {
@@ -165,7 +165,7 @@ fn impossible_laws_are_refused_naming_the_field() {
         p.as_object_mut().unwrap().extend(patch.as_object().unwrap().clone());
         p
     };
-    assert!(refused(with(json!({"top_dwell_deg": 20.0}))).starts_with("/cam/profile/top_dwell_deg: the polydyne"));
+    assert!(refused(with(json!({"dwell_deg": 20.0}))).starts_with("/cam/profile/dwell_deg: the polydyne"));
     // Ramps of 4·0.002/(3·0.0005) rad = 306° each.
     assert!(refused(with(json!({"ramp": {"height": 0.002, "velocity": 5e-4}}))).starts_with("/cam/profile/ramp/velocity: each ramp spans"));
     assert!(refused(with(json!({"ramp": {"height": 0.009, "velocity": 5e-4}}))).starts_with("/cam/profile/ramp/height"));

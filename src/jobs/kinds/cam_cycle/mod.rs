@@ -15,10 +15,12 @@ mod result;
 mod solve;
 mod spec;
 mod synthesis;
+mod synthesis_spec;
 
 pub use result::*;
 pub use spec::*;
 pub use synthesis::*;
+pub use synthesis_spec::*;
 use solve::*;
 pub use cost::{cycle_cost, cycle_cost_with};
 
@@ -199,9 +201,9 @@ fn validate_cam(spec: &CamCycleSpec, limits: &Limits, v: &mut Validation) -> Opt
             }
             Some(*base_radius)
         }
-        ProfileSpec::Synthesised(s) => {
-            s.validate(v);
-            Some(s.base_radius)
+        p @ ProfileSpec::Synthesised { base_radius, .. } => {
+            synthesised(p).inspect(|s| s.validate(v));
+            Some(*base_radius)
         }
         ProfileSpec::Table { base_radius, angle_deg, lift } => {
             v.check(angle_deg.len() == lift.len(), "/cam/profile/lift", "must have as many entries as angle_deg");
