@@ -178,3 +178,40 @@ fn impossible_laws_are_refused_naming_the_field() {
     let s = &r["synthesis"];
     assert!(s["acceleration_margin"].as_f64().unwrap() < 0.0 && s["warnings"][0].as_str().unwrap().contains("peak acceleration"), "{s}");
 }
+
+proptest::proptest! {
+    #![proptest_config(proptest::prelude::ProptestConfig::with_cases(48))]
+    /// Through the kind, any lift, duration, ramp, law and follower: the contract (max_lift to
+    /// 0.1 %, finite jerk, a finite contour) or a typed refusal — invalid_spec naming a field
+    /// under /cam/profile, or cam_undercut.
+    #[test]
+    fn any_synthesised_cam_meets_the_contract_or_is_refused(
+        lift in 1e-3f64..0.02, duration in 90.0f64..360.0, law in 0usize..4, dwell in 0.0f64..0.3,
+        ramp in proptest::option::of((0.01f64..0.2, 1e-4f64..0.02)), roller in proptest::bool::ANY,
+    ) {
+        let law = ["polydyne", "polynomial_345", "polynomial_4567", "cycloidal"][law];
+        let dwell = if law == "polydyne" { 0.0 } else { dwell * duration };
+        let mut profile = json!({"type": "synthesised", "base_radius": 0.02, "lift": lift, "duration_deg": duration, "law": law, "dwell_deg": dwell});
+        if let Some((f, v)) = ramp {
+            profile["ramp"] = json!({"height": f * lift, "velocity": v});
+        }
+        let mut spec = kinematics_spec(profile);
+        spec["angles"] = json!(360);
+        if roller {
+            spec["follower"] = json!({"type": "roller", "radius": 0.012, "length": 0.012, "pin_radius": 0.005, "pin": {"model": "coefficient", "coefficient": 0.05}});
+        }
+        match run("cam_cycle", &spec) {
+            Ok(r) => {
+                let max_lift = r["summary"]["max_lift"].as_f64().unwrap();
+                proptest::prop_assert!((max_lift / lift - 1.0).abs() < 1e-3, "max_lift {} of {}", max_lift, lift);
+                proptest::prop_assert!(numbers(&r["series"]["jerk"]).iter().all(|j| j.is_finite()));
+                for col in ["x", "y", "curvature", "lift_jerk"] {
+                    proptest::prop_assert!(numbers(&r["contour"][col]).iter().all(|v| v.is_finite()), "{}", col);
+                }
+            }
+            Err(Failure::Spec(p)) => proptest::prop_assert!(p.errors.iter().all(|e| e.path.starts_with("/cam/profile")), "{:?}", p.errors),
+            Err(Failure::Solve(SolveError::Physical { code, .. })) => proptest::prop_assert_eq!(code, tribod::physics::PhysicalFailure::CamUndercut),
+            Err(other) => proptest::prop_assert!(false, "{:?}", other),
+        }
+    }
+}
