@@ -9,7 +9,7 @@
 use super::spec::{CamCycleSpec, Direction, FollowerSpec, ProfileSpec};
 use super::synthesis_spec::SynthesisedSpec;
 use crate::physics::cam::contour::{contour, ContourPoint};
-use crate::physics::cam::synthesis::LawLimits;
+use crate::physics::cam::synthesis::{shortest_duration, LawLimits};
 use crate::physics::cam::{CamProfile, FollowerShape};
 use serde::Serialize;
 use utoipa::ToSchema;
@@ -47,6 +47,10 @@ pub struct SynthesisReport {
     /// Relative margin 1 − peak/limit of |jerk| (negative: exceeded).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub jerk_margin: Option<f64>,
+    /// With `limits`: the shortest event duration whose law meets them (same lift, ramps, law
+    /// and dwell), degrees, to 1e-4°; absent when none up to 360° does.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub shortest_duration_deg: Option<f64>,
     /// Smallest convex radius of curvature of the cam surface, m.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub min_radius_of_curvature: Option<f64>,
@@ -127,10 +131,8 @@ pub(super) fn synthesis_of(spec: &CamCycleSpec, profile: &CamProfile, shape: Fol
     let mirror = if cw { -1.0 } else { 1.0 };
     let c = contour(profile, shape, spec.angles);
     let p = law.peaks();
-    let (acc, jerk) = law.check(LawLimits {
-        max_acceleration: s.limits.and_then(|l| l.max_acceleration),
-        max_jerk: s.limits.and_then(|l| l.max_jerk),
-    });
+    let limits = LawLimits { max_acceleration: s.limits.and_then(|l| l.max_acceleration), max_jerk: s.limits.and_then(|l| l.max_jerk) };
+    let (acc, jerk) = law.check(limits);
     let mut warnings = Vec::new();
     for (what, unit, check) in [("acceleration", "m/rad²", acc), ("jerk", "m/rad³", jerk)] {
         if let Some(k) = check.filter(|k| k.margin < 0.0) {
@@ -167,6 +169,7 @@ pub(super) fn synthesis_of(spec: &CamCycleSpec, profile: &CamProfile, shape: Fol
         acceleration_margin: acc.map(|k| k.margin),
         jerk_limit: jerk.map(|k| k.limit),
         jerk_margin: jerk.map(|k| k.margin),
+        shortest_duration_deg: shortest_duration(law.spec, limits, 64, 1e-6, 60).ok().flatten().map(|(d, _)| deg(d)),
         min_radius_of_curvature: c.min_convex_radius,
         min_concave_radius_of_curvature: c.min_concave_radius,
         min_pitch_radius_of_curvature: rf.and(c.min_pitch_radius),

@@ -31,7 +31,7 @@
 pub mod laws;
 
 use super::jet::Jet;
-use crate::SolveError;
+use crate::{Convergence, SolveError, Termination};
 pub use laws::RiseLaw;
 use std::f64::consts::TAU;
 
@@ -297,6 +297,55 @@ impl SynthesisedLift {
             (a, self.lift(a).v)
         }).unzip()
     }
+}
+
+/// The shortest event duration whose law meets `limits` (the rest of `spec` kept), found on
+/// `grid` uniform durations from the shortest that leaves a main rise up to 2π, then by bisection
+/// to `tolerance` (rad) within `max_iterations`. `Ok(None)` without limits or when no duration
+/// up to 2π meets them (e.g. a ramp whose blend alone exceeds the acceleration limit:
+/// `2.81 V²/H`). For one law without ramps the answer is the closed form
+/// `2 max(√(C_a h/A), ∛(C_j h/J)) + dwell`.
+pub fn shortest_duration(
+    spec: LiftSpec,
+    limits: LawLimits,
+    grid: usize,
+    tolerance: f64,
+    max_iterations: u32,
+) -> Result<Option<(f64, Convergence)>, SolveError> {
+    if limits.max_acceleration.is_none() && limits.max_jerk.is_none() {
+        return Ok(None);
+    }
+    let meets = |duration: f64| -> bool {
+        match SynthesisedLift::new(LiftSpec { duration, ..spec }) {
+            Ok(l) => {
+                let (a, j) = l.check(limits);
+                a.is_none_or(|c| c.margin >= 0.0) && j.is_none_or(|c| c.margin >= 0.0)
+            }
+            Err(_) => false,
+        }
+    };
+    let ramp = spec.ramp.map_or(0.0, |r| 8.0 * r.height / (3.0 * r.velocity));
+    let lo = (ramp + spec.top_dwell).min(TAU);
+    let grid = grid.max(2);
+    let at = |k: usize| lo + (TAU - lo) * k as f64 / grid as f64;
+    let Some(first) = (1..=grid).find(|&k| meets(at(k))) else { return Ok(None) };
+    let (mut a, mut b) = (at(first - 1), at(first));
+    let mut iterations = 0;
+    while b - a > tolerance {
+        if iterations >= max_iterations {
+            return Err(SolveError::NotConverged {
+                solver: "shortest_duration",
+                iterations,
+                residual: b - a,
+                tolerance,
+                history: Vec::new(),
+            });
+        }
+        let m = 0.5 * (a + b);
+        if meets(m) { b = m } else { a = m }
+        iterations += 1;
+    }
+    Ok(Some((b, Convergence { iterations, residual: b - a, tolerance, termination: Termination::Converged })))
 }
 
 /// Largest value of `f` on `[a, b]`: a uniform scan, then golden section around the best node.

@@ -153,6 +153,31 @@ fn limits_report_margins() {
 }
 
 #[test]
+fn shortest_duration_is_the_closed_form_without_ramps() {
+    // 4-5-6-7, h = 10 mm, A = 0.05 m/rad², J = 0.3 m/rad³, dwell 20°:
+    // β_a = √(7.5132 h/A), β_j = ∛(52.5 h/J); D = 2 max + dwell.
+    let c_a = {
+        let u: f64 = (5.0 - 5f64.sqrt()) / 10.0;
+        420.0 * u.powi(2) - 1680.0 * u.powi(3) + 2100.0 * u.powi(4) - 840.0 * u.powi(5)
+    };
+    let s = spec(RiseLaw::Polynomial4567, None, 20.0);
+    for (a, j) in [(0.05, 0.3), (0.2, 0.3), (0.05, 1e3)] {
+        let limits = LawLimits { max_acceleration: Some(a), max_jerk: Some(j) };
+        let (d, conv) = shortest_duration(s, limits, 64, 1e-10, 100).unwrap().unwrap();
+        let beta = (c_a * 0.01 / a).sqrt().max((52.5 * 0.01 / j).cbrt());
+        let expect = 2.0 * beta + 20f64.to_radians();
+        assert!((d - expect).abs() < 1e-8, "A {a} J {j}: {} vs {}", d.to_degrees(), expect.to_degrees());
+        assert!(conv.residual <= 1e-10 && conv.iterations < 100);
+    }
+    // A ramp whose blend alone exceeds the limit: 2.81 V²/H = 0.6 m/rad² > 0.5.
+    let ramped = spec(RiseLaw::Polydyne, Some(Ramp { height: 3e-4, velocity: 8e-3 }), 0.0);
+    assert_eq!(shortest_duration(ramped, LawLimits { max_acceleration: Some(0.5), max_jerk: None }, 64, 1e-10, 100).unwrap(), None);
+    // An iteration cap too small is a typed error.
+    let limits = LawLimits { max_acceleration: Some(0.05), max_jerk: None };
+    assert!(matches!(shortest_duration(s, limits, 64, 1e-12, 3), Err(SolveError::NotConverged { .. })));
+}
+
+#[test]
 fn exported_table_reproduces_the_law() {
     let l = SynthesisedLift::new(spec(RiseLaw::Polydyne, Some(Ramp { height: 2e-4, velocity: 8e-4 }), 0.0)).unwrap();
     let (a, s) = l.table(720);
