@@ -137,7 +137,10 @@ impl SynthesisedLift {
                     return Err(SolveError::invalid("LiftSpec.ramp.velocity", "the ramp velocity must be a finite number > 0 (m/rad)"));
                 }
                 if !(r.height.is_finite() && r.height > 0.0 && r.height < spec.lift) {
-                    return Err(SolveError::invalid("LiftSpec.ramp.height", "the ramp height must be > 0 and below the total lift"));
+                    return Err(SolveError::invalid(
+                        "LiftSpec.ramp.height",
+                        format!("the ramp height ({:e} m) must be > 0 m and below the total lift ({:e} m)", r.height, spec.lift),
+                    ));
                 }
                 let blend = 2.0 * r.height / (3.0 * r.velocity);
                 (blend, 2.0 * blend)
