@@ -224,3 +224,14 @@ proptest::proptest! {
         }
     }
 }
+
+#[test]
+fn wear_runs_on_a_synthesised_cam() {
+    // Seed 003's Archard wear run with the synthesised cam in place of the cycloidal one.
+    let mut spec = example("seed003_flat_archard");
+    spec["cycle"]["cam"]["profile"] = example("seed003_synthesised")["cam"]["profile"].clone();
+    let r = run("wear", &spec).unwrap();
+    let lift = numbers(&r["series"]["initial_lift"]);
+    assert!((lift.iter().fold(0.0f64, |m, v| m.max(*v)) / 0.013998 - 1.0).abs() < 1e-3);
+    assert!(r["summary"]["max_wear_depth"].as_f64().unwrap() > 0.0);
+}
