@@ -147,11 +147,11 @@ impl SynthesisedLift {
             }
         };
         let rise = 0.5 * (spec.duration - spec.top_dwell) - ramp;
-        if !(rise > 1e-6 * spec.duration) {
+        if !(rise > 1e-3 * spec.duration) {
             return Err(SolveError::invalid(
                 "LiftSpec.ramp.velocity",
                 format!(
-                    "each ramp spans 4H/(3V) = {:.3}°, which leaves no main rise in the event of {:.3}° (top dwell {:.3}°): \
+                    "each ramp spans 4H/(3V) = {:.3}°, which leaves no main rise (at least 0.1 % of the event) in the event of {:.3}° (top dwell {:.3}°): \
                      raise the ramp velocity, lower the ramp height or lengthen the event",
                     ramp.to_degrees(),
                     spec.duration.to_degrees(),

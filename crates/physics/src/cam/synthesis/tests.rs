@@ -8,11 +8,14 @@ fn spec(law: RiseLaw, ramp: Option<Ramp>, top_dwell_deg: f64) -> LiftSpec {
 
 /// Continuity of s, s', s'' (and of s''' where `jerk`) across `theta` by one-sided limits.
 fn continuous_at(l: &SynthesisedLift, theta: f64, jerk: bool) -> Result<(), String> {
-    let (a, b) = (l.lift(theta - 1e-10), l.lift(theta + 1e-10));
+    // One-sided limits a small fraction of the shortest piece away.
+    let pieces = [l.blend_angle, l.rise_angle, l.spec.top_dwell, 1.0];
+    let delta = 1e-9 * pieces.iter().copied().filter(|p| *p > 0.0).fold(1.0, f64::min);
+    let (a, b) = (l.lift(theta - delta), l.lift(theta + delta));
     let scale = l.spec.lift;
     let tol = |k: i32| 1e-6 * scale / l.rise_angle.powi(k);
     let mut bad = Vec::new();
-    if (a.v - b.v).abs() > 1e-9 * scale + 4e-10 * a.d1.abs() {
+    if (a.v - b.v).abs() > 1e-9 * scale + 4.0 * delta * a.d1.abs() {
         bad.push(format!("lift {} vs {}", a.v, b.v));
     }
     if (a.d1 - b.d1).abs() > tol(1) {
