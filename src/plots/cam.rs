@@ -1,6 +1,6 @@
 //! Plots of the cam kinds: the cycle, wear and the single contact point.
 
-use super::{col, column, line_plots, Chart, Column, LineDef, Plot, Series};
+use super::{col, column, line_plots, number, Chart, Column, LineDef, Plot, Series};
 use serde_json::Value;
 
 const ANGLE: Column = col("angle_deg", "cam angle, °", 1.0);
@@ -22,6 +22,7 @@ static CAM_CYCLE: &[LineDef] = &[
 /// with the 2-D `fields` table, the pressure and film maps at each of its angles.
 pub(super) fn cam_cycle(result: &Value) -> Vec<Plot> {
     let mut plots = line_plots(result, CAM_CYCLE);
+    plots.extend(synthesis_plots(result));
     if let Some(t) = result.get("fields") {
         plots.extend(field_maps(t));
     }
@@ -57,6 +58,61 @@ fn field_maps(table: &Value) -> Vec<Plot> {
             });
         }
         start = end;
+    }
+    plots
+}
+
+/// A synthesised profile (`contour` table): the law per cam angle — lift, velocity,
+/// acceleration and jerk, the last two with their limits (`synthesis.*_limit`) drawn at ± the
+/// limit — and the cam contour (surface and, for a roller, the pitch curve) in the cam frame.
+fn synthesis_plots(result: &Value) -> Vec<Plot> {
+    let Some(table) = result.get("contour") else { return Vec::new() };
+    let Some(angle) = column(table, "angle_deg", 1.0) else { return Vec::new() };
+    let (Some(&first), Some(&last)) = (angle.first(), angle.last()) else { return Vec::new() };
+    let laws = [
+        ("lift_law", "Synthesised lift", "lift, mm", "lift", None),
+        ("lift_law_velocity", "Synthesised velocity per cam angle", "ds/dθ, mm/rad", "lift_velocity", None),
+        ("lift_law_acceleration", "Synthesised acceleration per cam angle", "d²s/dθ², mm/rad²", "lift_acceleration", Some("/synthesis/acceleration_limit")),
+        ("lift_law_jerk", "Synthesised jerk per cam angle", "d³s/dθ³, mm/rad³", "lift_jerk", Some("/synthesis/jerk_limit")),
+    ];
+    let mut plots = Vec::new();
+    for (name, title, y_label, field, limit) in laws {
+        let Some(y) = column(table, field, 1e3) else { continue };
+        let mut series = vec![Series { label: field.replace('_', " "), points: angle.iter().copied().zip(y).collect() }];
+        if let Some(l) = limit.and_then(|p| number(result, p, 1e3)) {
+            series.push(Series { label: "limit".into(), points: vec![(first, l), (last, l)] });
+            series.push(Series { label: "−limit".into(), points: vec![(first, -l), (last, -l)] });
+        }
+        plots.push(Plot {
+            name: name.into(),
+            title: title.into(),
+            x_label: ANGLE.label.into(),
+            y_label: y_label.into(),
+            chart: Chart::Lines { series, marks: Vec::new(), markers: false },
+        });
+    }
+    let closed = |x: Vec<f64>, y: Vec<f64>| -> Vec<(f64, f64)> {
+        let mut p: Vec<(f64, f64)> = x.into_iter().zip(y).collect();
+        if let Some(&q) = p.first() {
+            p.push(q);
+        }
+        p
+    };
+    let mut series = Vec::new();
+    if let (Some(x), Some(y)) = (column(table, "x", 1e3), column(table, "y", 1e3)) {
+        series.push(Series { label: "cam surface".into(), points: closed(x, y) });
+    }
+    if let (Some(x), Some(y)) = (column(table, "pitch_x", 1e3), column(table, "pitch_y", 1e3)) {
+        series.push(Series { label: "pitch curve".into(), points: closed(x, y) });
+    }
+    if !series.is_empty() {
+        plots.push(Plot {
+            name: "cam_contour".into(),
+            title: "Cam contour".into(),
+            x_label: "x, mm".into(),
+            y_label: "y, mm".into(),
+            chart: Chart::Lines { series, marks: Vec::new(), markers: false },
+        });
     }
     plots
 }

@@ -63,6 +63,7 @@ const EXAMPLES: &[(&str, &str)] = examples![
     "seed003_dynamic",
     "seed003_flat_archard",
     "seed003_flat_archard_accurate",
+    "seed003_synthesised",
     "seed004_irgashev",
     "seed004_multiarc",
     "sweep_hertz_load",

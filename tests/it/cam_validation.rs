@@ -840,9 +840,9 @@ fn kinds_publish_their_schemas_and_tables() {
         k.schemas(&mut schemas);
         assert!(schemas.len() > 5, "{kind}");
         // The first table is the default CSV; cam_cycle's `run_up` is there only with a run-up,
-        // its `fields` only with the 2-D fields.
+        // its `fields` only with the 2-D fields, its `contour` only with a synthesised profile.
         assert_eq!(k.tables()[0], table);
-        assert_eq!(k.tables().len(), if kind == "cam_cycle" { 3 } else { 1 });
+        assert_eq!(k.tables().len(), if kind == "cam_cycle" { 4 } else { 1 });
         let out = run(kind, &k.example()).unwrap();
         let t = &out[table];
         match t {

@@ -13,6 +13,7 @@ const EXAMPLES: &[(&str, &[&str])] = &[
     ("hertz_roller_on_cam", &["subsurface_stress"]),
     ("seed000_roller_steady", &["lift", "velocity", "acceleration", "contact_load", "hertz_pressure", "film", "lambda", "friction", "slide_roll_ratio"]),
     ("seed003_flat_archard", &["wear_depth", "lift", "hertz_pressure"]),
+    ("seed003_synthesised", &["lift", "lift_law", "lift_law_velocity", "lift_law_acceleration", "lift_law_jerk", "cam_contour"]),
     ("ehl_point_seed001_nose", &["pressure", "film"]),
     ("seed001_nose_point", &["slide_roll_ratio", "traction"]),
     ("seed002_taguchi_l9", &["main_effects", "run_scores"]),

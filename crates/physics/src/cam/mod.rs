@@ -4,6 +4,7 @@
 //! Everything here is pure and per-angle; the cycle (film, friction, roller slip over a
 //! revolution) lives in [`cycle`].
 
+pub mod contour;
 pub mod cycle;
 pub mod jet;
 pub mod kinematics;
@@ -14,6 +15,7 @@ pub mod seed003_fit;
 pub mod seed004;
 pub mod spline;
 pub mod summary;
+pub mod synthesis;
 
 pub use jet::Jet;
 pub use kinematics::{kinematics, CamSpeed, FollowerGeometry, KinematicState, SpeedSchedule};
@@ -21,3 +23,4 @@ pub use lift::{LiftLaw, LiftProgram};
 pub use loads::{FollowerLoad, LoadModel, PeriodicTable};
 pub use profile::{Arc, CamProfile, FollowerShape, MultiArc};
 pub use spline::PeriodicSpline;
+pub use synthesis::{LiftSpec, SynthesisedLift};

@@ -8,6 +8,8 @@
 //! `γ = 0` pointing at the follower at `θ = 0`.
 //!
 //! * [`CamProfile::Program`] ([`LiftProgram`]): a rise–dwell–return–dwell law defines the follower lift directly.
+//! * [`CamProfile::Synthesised`]: a lift law synthesised from lift, duration, ramps and dwell
+//!   ([`super::synthesis`]).
 //! * [`CamProfile::Tabulated`]: a measured follower lift table, interpolated by a periodic cubic spline.
 //! * [`MultiArc`]: a cam built of tangent circular arcs (seed 004 Tables 1–2); the lift follows
 //!   from the geometry and depends on the follower (flat face: support function; roller or
@@ -16,6 +18,7 @@
 use super::jet::Jet;
 use super::lift::LiftProgram;
 use super::spline::PeriodicSpline;
+use super::synthesis::SynthesisedLift;
 use crate::SolveError;
 use std::f64::consts::TAU;
 #[cfg(test)]
@@ -224,6 +227,9 @@ impl MultiArc {
 pub enum CamProfile {
     /// A lift program on a base circle of `base_radius` (m).
     Program { base_radius: f64, program: LiftProgram },
+    /// A synthesised lift law ([`SynthesisedLift`]: ramps, main rise, dwell, return) on a base
+    /// circle of `base_radius` (m).
+    Synthesised { base_radius: f64, law: SynthesisedLift },
     /// A measured lift table on a base circle of `base_radius` (m).
     Tabulated { base_radius: f64, spline: PeriodicSpline },
     /// Circular arcs.
@@ -238,7 +244,9 @@ pub enum CamProfile {
 impl CamProfile {
     pub fn base_radius(&self) -> f64 {
         match self {
-            CamProfile::Program { base_radius, .. } | CamProfile::Tabulated { base_radius, .. } => *base_radius,
+            CamProfile::Program { base_radius, .. }
+            | CamProfile::Synthesised { base_radius, .. }
+            | CamProfile::Tabulated { base_radius, .. } => *base_radius,
             CamProfile::MultiArc(m) => m.base_radius(),
             CamProfile::Worn { original, .. } => original.base_radius(),
         }
@@ -248,6 +256,7 @@ impl CamProfile {
     pub fn lift(&self, theta: f64, follower: FollowerShape) -> Jet {
         match self {
             CamProfile::Program { program, .. } => program.lift(theta),
+            CamProfile::Synthesised { law, .. } => law.lift(theta),
             CamProfile::Tabulated { spline, .. } => spline.eval(theta),
             CamProfile::MultiArc(m) => match follower {
                 FollowerShape::Flat => m.flat_lift(theta),

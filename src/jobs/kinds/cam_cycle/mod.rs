@@ -14,9 +14,13 @@ mod output;
 mod result;
 mod solve;
 mod spec;
+mod synthesis;
+mod synthesis_spec;
 
 pub use result::*;
 pub use spec::*;
+pub use synthesis::*;
+pub use synthesis_spec::*;
 use solve::*;
 pub use cost::{cycle_cost, cycle_cost_with};
 
@@ -41,7 +45,7 @@ impl Kind for CamCycle {
         lubricant film, friction and power loss, roller slip (steady or startup) and flash temperature \
         (fidelity fast: closed forms; accurate: numerical line-contact EHL with squeeze at every angle; auto: \
         closed forms where their estimated error is within tolerance).";
-    const TABLES: &'static [&'static str] = &["series", "run_up", "fields"];
+    const TABLES: &'static [&'static str] = &["series", "run_up", "fields", "contour"];
     const KEY_FIGURES: &'static [&'static str] = &["/summary/min_film", "/summary/min_lambda", "/summary/max_hertz_pressure", "/summary/max_subsurface_shear", "/summary/max_abs_slide_roll_ratio", "/summary/mean_power_loss", "/summary/max_flash_temperature", "/summary/separation_duration", "/summary/seating_velocity"];
     type Spec = CamCycleSpec;
     type Output = CamCycleResult;
@@ -76,6 +80,8 @@ impl Kind for CamCycle {
                 {"radius": 0.0315, "angle_deg": 1.25}, {"radius": 0.1533, "angle_deg": 62.75}, {"radius": 0.0215, "angle_deg": 116.0}]})),
             with(json!({"type": "symmetric_arcs", "base_radius": 0.0215, "base_angle_deg": 232.0, "flanks": [{"radius": 0.1533, "angle_deg": 7.2}]})),
             with(json!({"type": "table", "base_radius": 0.018, "angle_deg": [0.0, 90.0, 180.0, 270.0], "lift": [0.0, 0.004, 0.008, 0.004]})),
+            with(json!({"type": "synthesised", "base_radius": 0.018, "lift": 0.008, "duration_deg": 240.0, "ramp": {"height": 2e-4, "velocity": 8e-4},
+                "law": "polydyne", "limits": {"max_acceleration": 0.05, "max_jerk": 0.5}})),
             crate::jobs::kind::example_with::<Self>(json!({"load": {"external": {"angle_deg": [0.0, 180.0], "force": [0.0, 100.0]}}})),
             // The finite-length EHL of a roller (seed 000's finite cycle, coarser).
             crate::jobs::kind::example_with::<Self>(json!({"follower": {"type": "roller", "radius": 0.0255, "length": 0.012, "pin_radius": 0.016, "pin": {"model": "hydrodynamic"}},
@@ -193,6 +199,10 @@ fn validate_cam(spec: &CamCycleSpec, limits: &Limits, v: &mut Validation) -> Opt
                 v.quantity(&format!("/cam/profile/flanks/{i}/radius"), a.radius, Q::RADIUS);
                 v.in_range(&format!("/cam/profile/flanks/{i}/angle_deg"), a.angle_deg, 1e-9, 360.0);
             }
+            Some(*base_radius)
+        }
+        p @ ProfileSpec::Synthesised { base_radius, .. } => {
+            synthesised(p).inspect(|s| s.validate(v));
             Some(*base_radius)
         }
         ProfileSpec::Table { base_radius, angle_deg, lift } => {

@@ -431,6 +431,14 @@ pub struct CamCycleResult {
     /// `?table=run_up`; its separation intervals are `events.run_up_separation_deg`).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub run_up: Option<RunUpTable>,
+    /// Profile `synthesised`: the law's peaks per cam angle against its limits, radii of
+    /// curvature, undercut.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub synthesis: Option<super::synthesis::SynthesisReport>,
+    /// Profile `synthesised`: the law per cam angle and the cam contour at the cycle's angles (a
+    /// table: CSV with `?table=contour`; `angle_deg` and `lift` are a `table` profile's input).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub contour: Option<super::synthesis::ContourTable>,
 }
 
 /// The valve train over a run-up, at uniform cam angles (columns of equal length).

@@ -76,6 +76,10 @@ impl CamCycleSpec {
                 let f: Vec<(f64, f64)> = flanks.iter().map(|a| (a.radius, deg(a.angle_deg))).collect();
                 CamProfile::MultiArc(MultiArc::symmetric(*base_radius, deg(*base_angle_deg), &f)?)
             }
+            p @ ProfileSpec::Synthesised { base_radius, .. } => match super::synthesis::synthesised(p) {
+                Some(s) => CamProfile::Synthesised { base_radius: *base_radius, law: s.law()? },
+                None => unreachable!("a synthesised profile"),
+            },
             ProfileSpec::Table { base_radius, angle_deg, lift } => {
                 let x: Vec<f64> = angle_deg.iter().map(|a| deg(*a)).collect();
                 let spline = PeriodicSpline::new(&x, lift).map_err(|e| match e {
@@ -407,7 +411,13 @@ pub(super) fn solve_spec(spec: &CamCycleSpec, observer: &dyn Observer) -> Result
         convergence: out.convergence.clone(),
         dynamics_convergence: None,
         run_up: None,
+        synthesis: None,
+        contour: None,
     };
+    if let Some((synthesis, contour)) = super::synthesis::synthesis_of(spec, &cycle.profile, cycle.geometry.shape) {
+        result.synthesis = Some(synthesis);
+        result.contour = Some(contour);
+    }
     result.summary.fidelity_used = film_model_counts(&out.series);
     if spec.outputs.contains(&CamOutput::Profiles) {
         result.profiles = Some(profiles_of(&out));

@@ -4,6 +4,7 @@
 use crate::jobs::kinds::common::{AsperitySpec, Material, EhlSpec, FilmSpec, LubricantSpec, ThermalSpec, TractionSpec};
 use crate::physics::cam::LiftLaw;
 use crate::physics::film::Fidelity;
+use super::synthesis_spec::{LawLimitsSpec, RampSpec, SynthesisLaw};
 use serde::{Deserialize, Serialize};
 use utoipa::ToSchema;
 
@@ -56,6 +57,35 @@ pub enum ProfileSpec {
         /// Angle of the base circle arc, degrees.
         base_angle_deg: f64,
         flanks: Vec<ArcSpec>,
+    },
+    /// A lift law synthesised from its specification (`physics::cam::synthesis`): opening ramp
+    /// (velocity blend, then constant velocity), main rise of `law`, dwell at full lift, and the
+    /// mirrored return and closing ramp, centred on `nose_deg`. Lift, velocity and acceleration
+    /// are continuous, the jerk finite (continuous with `polydyne` and `polynomial_4567`). The
+    /// result adds `synthesis` and the `contour` table.
+    Synthesised {
+        /// Base circle radius, m.
+        base_radius: f64,
+        /// Total lift from the base circle to the nose (ramp included), m.
+        lift: f64,
+        /// Event duration from the start of the opening ramp to the end of the closing ramp,
+        /// degrees.
+        duration_deg: f64,
+        /// Opening and closing ramp. Absent: none (the rise starts from the base circle).
+        #[serde(default, skip_serializing_if = "Option::is_none")]
+        ramp: Option<RampSpec>,
+        /// Law of the main rise. Default `polydyne`.
+        #[serde(default)]
+        law: SynthesisLaw,
+        /// Dwell at full lift, degrees. Default 0 (none with the polydyne).
+        #[serde(default)]
+        dwell_deg: f64,
+        /// Cam angle of the nose (middle of the event), degrees. Default 180.
+        #[serde(default = "super::synthesis_spec::default_nose")]
+        nose_deg: f64,
+        /// Peak limits. Absent: none.
+        #[serde(default, skip_serializing_if = "Option::is_none")]
+        limits: Option<LawLimitsSpec>,
     },
     /// A measured follower lift table, interpolated by a periodic cubic spline.
     Table {
