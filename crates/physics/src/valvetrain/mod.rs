@@ -24,6 +24,8 @@ pub mod integrator;
 pub mod model;
 pub mod periodic;
 pub mod spring;
+#[cfg(test)]
+mod lash_tests;
 
 pub use model::{damping_from_ratio, line_contact_stiffness, HelicalSpring, Lever, Link, Pushrod, Seat, SpringChain, ValveTrain};
 pub use periodic::{periodic_response, run_up, transient, RunUpResponse, Drive, DynamicsOptions, PeriodicResponse, Probe};

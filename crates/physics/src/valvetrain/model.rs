@@ -180,6 +180,14 @@ pub struct ValveTrain {
     /// `train` (the lever–valve link: arm bending, valve stem), `spring`, `preload` and `seat`
     /// are valve-side quantities.
     pub lever: Option<Lever>,
+    /// Mechanical lash: a clearance (m, cam side; a valve-side clearance `c_v` is `c_v/r` here)
+    /// between the cam and the follower with the cam on its base circle. `None` (or 0): none,
+    /// the cam carries the preload on the base circle. With a lash the valve rests on its seat
+    /// (required; `gap` taken as 0), which carries the spring preload; the contact and the
+    /// train's links carry no load until the cam's lift closes the gap on the opening ramp
+    /// (Norton, *Cam Design and Manufacturing Handbook*, ch. 10: the ramps take up the lash at a
+    /// constant velocity), and the contact opens again on the closing ramp.
+    pub lash: Option<f64>,
 }
 
 impl ValveTrain {
@@ -251,9 +259,14 @@ pub struct Assembly {
     spring_moving: usize,
     spring_fixed: usize,
     contact: Link,
-    preload: f64,
     /// The seat in cam-side coordinates.
     seat: Option<Seat>,
+    /// Cam-side lash, m (0: none).
+    pub lash: f64,
+    /// Preload of the contact (the spring preload; 0 with a lash) and of the seat (the spring
+    /// preload with a lash, else 0), cam side.
+    contact_preload: f64,
+    seat_preload: f64,
     /// Lever ratio r: valve-side displacement per cam-side coordinate (1: direct-acting).
     pub ratio: f64,
 }
@@ -265,6 +278,9 @@ impl ValveTrain {
         let r = self.ratio();
         let r2 = r * r;
         let preload = r * self.preload;
+        let lash = self.lash.filter(|c| *c > 0.0).unwrap_or(0.0);
+        // With a lash only the spring (and the seat) carry the preload on the base circle.
+        let link_preload = if lash > 0.0 { 0.0 } else { preload };
         let mut masses = vec![self.follower_mass];
         let mut elements = Vec::new();
         let follower = 0;
@@ -278,7 +294,7 @@ impl ValveTrain {
                     masses[0] += 0.5 * p.mass;
                     masses.push(l.cam_side_mass() + 0.5 * p.mass);
                     lever_node = 1;
-                    elements.push(Element { b: Some(0), a: Some(1), k: p.link.stiffness, c: p.link.damping, preload });
+                    elements.push(Element { b: Some(0), a: Some(1), k: p.link.stiffness, c: p.link.damping, preload: link_preload });
                 }
             }
         }
@@ -290,7 +306,7 @@ impl ValveTrain {
             Some(link) => {
                 masses.push(r2 * self.valve_mass);
                 let v = masses.len() - 1;
-                elements.push(Element { b: Some(lever_node), a: Some(v), k: r2 * link.stiffness, c: r2 * link.damping, preload });
+                elements.push(Element { b: Some(lever_node), a: Some(v), k: r2 * link.stiffness, c: r2 * link.damping, preload: link_preload });
                 v
             }
         };
@@ -321,8 +337,10 @@ impl ValveTrain {
             }
             spring_fixed = elements.len() - 1;
         }
-        let seat = self.seat.map(|st| Seat { link: Link { stiffness: r2 * st.link.stiffness, damping: r2 * st.link.damping }, gap: st.gap / r });
-        Assembly { masses, elements, follower, valve, spring_moving, spring_fixed, contact: self.contact, preload, seat, ratio: r }
+        let gap = |g: f64| if lash > 0.0 { 0.0 } else { g / r };
+        let seat = self.seat.map(|st| Seat { link: Link { stiffness: r2 * st.link.stiffness, damping: r2 * st.link.damping }, gap: gap(st.gap) });
+        let (contact_preload, seat_preload) = if lash > 0.0 { (0.0, preload) } else { (preload, 0.0) };
+        Assembly { masses, elements, follower, valve, spring_moving, spring_fixed, contact: self.contact, seat, ratio: r, lash, contact_preload, seat_preload }
     }
 }
 
@@ -357,18 +375,27 @@ impl Assembly {
         self.seat.is_some()
     }
 
+    /// Where the valve (cam side) first touches its seat, m above the closed position: the
+    /// preloaded seat's compression with a lash, 0 otherwise.
+    pub fn seat_touch_height(&self) -> f64 {
+        match self.seat {
+            Some(st) if self.seat_preload > 0.0 => self.seat_preload / st.link.stiffness,
+            _ => 0.0,
+        }
+    }
+
     /// Contact and seat forces at the state `(x, v)` with cam lift `s` and lift rate `sd` (cam-side
     /// coordinates: the seat force on the valve is `seat / ratio`).
     pub fn unilateral(&self, x: &[f64], v: &[f64], s: f64, sd: f64) -> Unilateral {
         let (kc, cc) = (self.contact.stiffness, self.contact.damping);
-        let pen = self.preload + kc * (s - x[self.follower]);
+        let pen = self.contact_preload + kc * (s - self.lash - x[self.follower]);
         let raw = pen + cc * (sd - v[self.follower]);
         let contact_gap = pen.min(raw);
         let contact_closed = contact_gap > 0.0;
         let (mut seat, mut seat_closed, mut seat_gap) = (0.0, false, -1.0);
         if let Some(st) = self.seat {
             let (k, c) = (st.link.stiffness, st.link.damping);
-            let pen = k * (-st.gap - x[self.valve]);
+            let pen = self.seat_preload + k * (-st.gap - x[self.valve]);
             let raw = pen - c * v[self.valve];
             seat_gap = pen.min(raw);
             seat_closed = seat_gap > 0.0;
@@ -477,10 +504,10 @@ impl Assembly {
             }
         }
         let kc = self.contact.stiffness;
-        let q = (self.preload + kc * (s - x[self.follower])).max(0.0);
+        let q = (self.contact_preload + kc * (s - self.lash - x[self.follower])).max(0.0);
         e += q * q / (2.0 * kc);
         if let Some(st) = self.seat {
-            let q = (st.link.stiffness * (-st.gap - x[self.valve])).max(0.0);
+            let q = (self.seat_preload + st.link.stiffness * (-st.gap - x[self.valve])).max(0.0);
             e += q * q / (2.0 * st.link.stiffness);
         }
         e

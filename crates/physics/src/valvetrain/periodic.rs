@@ -85,7 +85,9 @@ impl<'a> TrainSystem<'a> {
         // The cam work row (Ẇ = F_c ṡ) is left out of the Jacobian: W does not feed back, and its
         // stage values follow from the stage equation exactly enough for a quadrature checked
         // against the energy.
-        let seating_height = 1e-6 * h;
+        // Just above where the valve touches its seat (with a lash the preloaded seat is
+        // compressed by P/k_seat at the closed position).
+        let seating_height = asm.seat_touch_height() + 1e-6 * h;
         TrainSystem { asm, drive, scale, kx, cv, jacobians, seating_height, ramp: None }
     }
 
@@ -132,6 +134,8 @@ impl<'a> TrainSystem<'a> {
     pub fn initial_state(&self, theta: f64) -> Vec<f64> {
         let n = self.asm.dofs();
         let (s, ds) = (self.drive.lift)(theta);
+        // With a lash the train moves only with the lift beyond it.
+        let (s, ds) = if s > self.asm.lash { (s - self.asm.lash, ds) } else { (0.0, 0.0) };
         let mut y = vec![0.0; 2 * n + 1];
         let first = self.asm.valve.max(self.asm.follower) + 1;
         let chain = n - first;
@@ -252,6 +256,13 @@ pub struct PeriodicResponse {
     /// The rigid train's jump speed, rad/s ([`super::ValveTrain::rigid_jump_speed`]; filled by
     /// callers that have the lift's second derivative).
     pub rigid_jump_speed: Option<f64>,
+    /// Relative velocity of cam and follower (`ṡ − ẋ_f`, cam side, m/s) when the contact first
+    /// closes while the cam lifts (with a lash: the impact on the opening ramp; ≈ ramp velocity ×
+    /// ω when the follower rests); `None` when it never closes that way.
+    pub opening_impact_velocity: Option<f64>,
+    /// Lift loss, m: the largest cam lift times the lever ratio less the largest valve lift, over
+    /// the sampled angles (the lash and the train's deflection under load).
+    pub lift_loss: f64,
 }
 
 
@@ -381,6 +392,15 @@ fn assemble_response(
     let after = |t: f64| (t - t_max).rem_euclid(period);
     let first = seatings.iter().min_by(|a, b| after(a.time).total_cmp(&after(b.time)));
     let seating_velocity = first.map(|e| (-sys.asm.ratio * e.state[n + sys.asm.valve]).max(0.0));
+    // Opening impact: the first closing of the contact with the cam lifting.
+    let opening_impact_velocity = events
+        .iter()
+        .filter(|e| e.index == EVENT_CONTACT && e.rising)
+        .map(|e| (e.time, sys.cam(e.time).1 - e.state[n + sys.asm.follower]))
+        .find(|(t, _)| sys.cam(*t).1 > 0.0)
+        .map(|(_, v)| v);
+    let max_cam = probes.iter().map(|p| p.cam_lift).fold(f64::NEG_INFINITY, f64::max);
+    let lift_loss = sys.asm.ratio * max_cam - lifts.iter().copied().fold(f64::NEG_INFINITY, f64::max);
     let seating_angle = first.map(|e| (e.time * omega).rem_euclid(TAU));
     let (bounces, max_bounce_height) = if sys.asm.has_seat() {
         let impacts: Vec<&Event> = events.iter().filter(|e| e.index == EVENT_SEAT && e.rising).collect();
@@ -429,6 +449,8 @@ fn assemble_response(
         stats,
         start: y_start.to_vec(),
         rigid_jump_speed: None,
+        opening_impact_velocity,
+        lift_loss,
     }
 }
 
@@ -614,6 +636,17 @@ fn validate(train: &ValveTrain, drive: &Drive) -> Result<(), SolveError> {
     if let Some(s) = train.seat {
         if !pos(s.link.stiffness) || !nonneg(s.link.damping) || !nonneg(s.gap) {
             return Err(SolveError::invalid("ValveTrain.seat", "stiffness > 0, damping ≥ 0, gap ≥ 0"));
+        }
+    }
+    if let Some(c) = train.lash {
+        if !nonneg(c) {
+            return Err(SolveError::invalid("ValveTrain.lash", "must be ≥ 0"));
+        }
+        if c > 0.0 && train.seat.is_none() {
+            return Err(SolveError::invalid("ValveTrain.lash", "a lash needs the valve seat, which carries the spring preload while the gap is open"));
+        }
+        if c > 0.0 && !(drive.max_lift > c) {
+            return Err(SolveError::invalid("ValveTrain.lash", "must be below the cam's lift"));
         }
     }
     if !pos(drive.omega) {
