@@ -57,7 +57,6 @@ fn ramp_takes_up_the_lash_at_ramp_velocity_times_speed() {
     assert!((opening - V * omega).abs() < 1e-3 * V * omega, "opening impact {opening} vs {}", V * omega);
     let seating = r.seating_velocity.expect("the valve seats");
     assert!((seating - V * omega).abs() < 1e-3 * V * omega, "seating {seating} vs {}", V * omega);
-    eprintln!("lash 0.2 mm, V ω = {} m/s: opening impact {opening} m/s, seating {seating} m/s, lift loss {} m", V * omega, r.lift_loss);
     // Lift loss: the lash plus the contact's deflection under its load at full lift.
     let top = r.valve_lift.iter().enumerate().fold((0, f64::MIN), |b, (i, &v)| if v > b.1 { (i, v) } else { b }).0;
     let expected = lash + r.contact_force[top] / 1e9;

@@ -16,11 +16,12 @@ mod solve;
 mod spec;
 mod springs;
 mod lash;
+mod train_spec;
 
 pub use result::*;
 pub use spec::*;
 pub use springs::*;
-pub use lash::LashSpec;
+pub use train_spec::*;
 use solve::*;
 pub use cost::{cycle_cost, cycle_cost_with};
 

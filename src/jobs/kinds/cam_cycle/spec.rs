@@ -396,7 +396,7 @@ pub struct ValveSpringSpec {
     /// Design data (lengths, coils, wire): the installed preload and the spring checks.
     /// Absent: `spring_preload` is required and the spring is not checked.
     #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub design: Option<super::springs::SpringDesignSpec>,
+    pub design: Option<super::train_spec::SpringDesignSpec>,
 }
 
 /// The valve seat: a unilateral spring–damper stop.
@@ -512,10 +512,10 @@ pub struct DynamicLoadSpec {
     /// Criteria of the valve-spring checks (speed range for the surge orders, curvature factor,
     /// required safety factors). The checks run whenever `spring.design` is given.
     #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub spring_checks: Option<super::springs::SpringChecksSpec>,
+    pub spring_checks: Option<super::train_spec::SpringChecksSpec>,
     /// Mechanical valve lash (clearance) taken up by the lift law's ramps. Absent: none.
     #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub lash: Option<super::lash::LashSpec>,
+    pub lash: Option<super::train_spec::LashSpec>,
     /// Arrangement of the train. Absent: `direct`.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub arrangement: Option<ArrangementSpec>,
