@@ -5,14 +5,15 @@
 //! and add their rates; implausible coils draw warnings. The Shigley worked example (Example
 //! 10-4) is the physics crate's `valvetrain::spring` test. A mechanical lash taken up by
 //! constant-velocity ramps (`examples/seed003_dynamic_lash.json`) meets the cam at ramp velocity
-//! × ω and loses the lash (plus the contact's deflection) from the valve's lift.
+//! × ω and loses the lash (plus the contact's deflection) from the valve's lift. A hydraulic lash
+//! adjuster leaves the cam its base force `P_h + A p_s` on the base circle.
 
 use crate::common::*;
 use serde_json::{json, Value};
 use std::f64::consts::PI;
 use std::time::Duration;
 
-on_both_backends!(spring_checks_over_http, lash_over_http);
+on_both_backends!(spring_checks_over_http, lash_over_http, hydraulic_adjuster_over_http);
 
 fn springs_job() -> Value {
     let text = std::fs::read_to_string("examples/seed003_dynamic_springs.json").unwrap();
@@ -146,4 +147,21 @@ async fn lash_over_http() {
     job["spec"]["load"].as_object_mut().unwrap().remove("seat");
     let p = expect_problem(s.post_job(&job).await, 422, "invalid_spec").await;
     assert_eq!(p["errors"][0]["path"], "/spec/load/seat", "{p}");
+}
+
+async fn hydraulic_adjuster_over_http() {
+    let s = start().await;
+    let text = std::fs::read_to_string("examples/seed003_dynamic_hla.json").unwrap();
+    let mut job = serde_json::from_str::<Value>(&text).unwrap();
+    let r = run(&s, &job).await;
+    // Plunger 8 mm, supply 0.3 MPa, plunger spring 20 N: 20 + 3e5 π 0.008²/4 = 35.08 N.
+    let base = 20.0 + 3e5 * PI * 0.008f64.powi(2) / 4.0;
+    close(&r["series"]["contact_load"][0], base, 2e-3, "base-circle load = the adjuster's base force");
+    close(&r["series"]["seat_force"][0], 300.0 - base, 0.02, "the seat carries the rest");
+    let loss = r["summary"]["lift_loss"].as_f64().unwrap();
+    assert!(loss > 0.0 && loss < 2e-4, "lift loss {loss}: oil column and leak-down");
+    // With a mechanical lash as well: refused.
+    job["spec"]["load"]["lash"] = json!({"clearance": 2e-4});
+    let p = expect_problem(s.post_job(&job).await, 422, "invalid_spec").await;
+    assert_eq!(p["errors"][0]["path"], "/spec/load/lash", "{p}");
 }

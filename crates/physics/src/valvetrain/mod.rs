@@ -27,5 +27,5 @@ pub mod spring;
 #[cfg(test)]
 mod lash_tests;
 
-pub use model::{damping_from_ratio, line_contact_stiffness, HelicalSpring, Lever, Link, Pushrod, Seat, SpringChain, ValveTrain};
+pub use model::{damping_from_ratio, line_contact_stiffness, HelicalSpring, HydraulicLashAdjuster, Lash, Lever, Link, Pushrod, Seat, SpringChain, ValveTrain};
 pub use periodic::{periodic_response, run_up, transient, RunUpResponse, Drive, DynamicsOptions, PeriodicResponse, Probe};

@@ -14,7 +14,7 @@ use crate::physics::roller::pin_finite::roller_cooled_area;
 use crate::physics::geometry::Crown;
 use crate::physics::roller::{FinitePin, PinFriction, PinTable, PinThermal, RollerParams};
 use crate::physics::valvetrain::{
-    damping_from_ratio, line_contact_stiffness, periodic_response, run_up, Drive, DynamicsOptions, Lever, Link,
+    damping_from_ratio, line_contact_stiffness, periodic_response, run_up, Drive, DynamicsOptions, Lash, Lever, Link,
     PeriodicResponse, Pushrod, RunUpResponse, Seat, SpringChain, ValveTrain,
 };
 use crate::physics::{Observer, SolveError};
@@ -254,7 +254,7 @@ pub fn valve_train(d: &DynamicLoadSpec, cycle: &CycleSpec) -> ValveTrain {
         // Direct-acting.
         let follower_side = if rigid { d.follower_mass + d.valve_mass } else { d.follower_mass };
         return ValveTrain {
-            lash: d.lash.map(|l| l.clearance),
+            lash: d.lash.map(|l| Lash::Mechanical(l.clearance)).or_else(|| d.hydraulic_lash_adjuster.map(|h| Lash::Hydraulic(super::lash::adjuster(&h, d.valve_mass)))),
             follower_mass: d.follower_mass,
             valve_mass: d.valve_mass,
             train: d.train_stiffness.map(|k| Link { stiffness: k, damping: damping_from_ratio(d.train_damping_ratio, k, reduced(d.follower_mass, d.valve_mass)) }),
@@ -283,7 +283,7 @@ pub fn valve_train(d: &DynamicLoadSpec, cycle: &CycleSpec) -> ValveTrain {
         None => lever_body + valve_cam_side,
     };
     ValveTrain {
-        lash: d.lash.map(|l| l.clearance / ratio),
+        lash: d.lash.map(|l| Lash::Mechanical(l.clearance / ratio)),
         follower_mass: d.follower_mass,
         valve_mass: d.valve_mass,
         // Valve side: the lever's body reduced to the valve side against the valve.

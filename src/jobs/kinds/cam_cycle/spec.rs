@@ -516,6 +516,10 @@ pub struct DynamicLoadSpec {
     /// Mechanical valve lash (clearance) taken up by the lift law's ramps. Absent: none.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub lash: Option<super::train_spec::LashSpec>,
+    /// Hydraulic lash adjuster (direct-acting; instead of `lash` and `train_stiffness`). Absent:
+    /// none.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub hydraulic_lash_adjuster: Option<super::train_spec::HydraulicAdjusterSpec>,
     /// Arrangement of the train. Absent: `direct`.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub arrangement: Option<ArrangementSpec>,

@@ -147,3 +147,60 @@ pub struct LashSpec {
     /// follower).
     pub clearance: f64,
 }
+
+fn default_hla_viscosity() -> f64 {
+    0.01
+}
+fn default_bulk_modulus() -> f64 {
+    1.5e9
+}
+fn default_supply_pressure() -> f64 {
+    3e5
+}
+fn default_plunger_spring() -> f64 {
+    20.0
+}
+fn default_check_conductance() -> f64 {
+    1e-11
+}
+fn default_hla_damping() -> f64 {
+    0.3
+}
+
+/// A hydraulic lash adjuster between a direct-acting bucket and the valve (instead of a `lash`
+/// and of `train_stiffness`; needs the seat): the high-pressure chamber as an oil column of
+/// stiffness `β A²/V`, laminar leak-down through the plunger's clearance `π D c³/(12 μ L)`, and a
+/// check valve refilling the chamber from the supply while its pressure is below it (the
+/// standard lumped model; `physics::valvetrain::HydraulicLashAdjuster` cites it). On the base
+/// circle the cam carries `plunger_spring + supply_pressure × A`; over the lift the adjuster
+/// leaks down (`summary.lift_loss`).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, ToSchema)]
+#[serde(deny_unknown_fields)]
+pub struct HydraulicAdjusterSpec {
+    /// Plunger diameter, m.
+    pub plunger_diameter: f64,
+    /// Radial clearance between plunger and body, m.
+    pub clearance: f64,
+    /// Leak length along the plunger, m.
+    pub leak_length: f64,
+    /// High-pressure chamber volume, m³.
+    pub chamber_volume: f64,
+    /// Oil viscosity in the clearance, Pa·s. Default 0.01.
+    #[serde(default = "default_hla_viscosity")]
+    pub viscosity: f64,
+    /// Oil bulk modulus (lower with aeration), Pa. Default 1.5e9.
+    #[serde(default = "default_bulk_modulus")]
+    pub bulk_modulus: f64,
+    /// Oil supply pressure (gauge), Pa. Default 3e5.
+    #[serde(default = "default_supply_pressure")]
+    pub supply_pressure: f64,
+    /// Plunger spring preload, N. Default 20.
+    #[serde(default = "default_plunger_spring")]
+    pub plunger_spring: f64,
+    /// Check-valve conductance, m³/(s·Pa). Default 1e-11.
+    #[serde(default = "default_check_conductance")]
+    pub check_conductance: f64,
+    /// Damping ratio of the oil column on the valve mass. Default 0.3.
+    #[serde(default = "default_hla_damping")]
+    pub damping_ratio: f64,
+}
