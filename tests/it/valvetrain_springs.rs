@@ -160,6 +160,12 @@ async fn hydraulic_adjuster_over_http() {
     close(&r["series"]["seat_force"][0], 300.0 - base, 0.02, "the seat carries the rest");
     let loss = r["summary"]["lift_loss"].as_f64().unwrap();
     assert!(loss > 0.0 && loss < 2e-4, "lift loss {loss}: oil column and leak-down");
+    // A legal but unusual plunger clearance (50 µm): accepted with a warning.
+    let mut loose = job.clone();
+    loose["spec"]["load"]["hydraulic_lash_adjuster"]["clearance"] = json!(5e-5);
+    let body: Value = s.post_job(&loose).await.json().await.unwrap();
+    let warned: Vec<&str> = body["warnings"].as_array().map(|w| w.iter().filter_map(|x| x["path"].as_str()).collect()).unwrap_or_default();
+    assert!(warned.contains(&"/spec/load/hydraulic_lash_adjuster/clearance"), "{body}");
     // With a mechanical lash as well: refused.
     job["spec"]["load"]["lash"] = json!({"clearance": 2e-4});
     let p = expect_problem(s.post_job(&job).await, 422, "invalid_spec").await;

@@ -29,6 +29,10 @@ fn validate_adjuster(d: &DynamicLoadSpec, v: &mut Validation) {
     v.in_range(&format!("{p}/plunger_spring"), h.plunger_spring, 0.0, 1e4);
     v.in_range(&format!("{p}/check_conductance"), h.check_conductance, 1e-16, 1e-6);
     v.in_range(&format!("{p}/damping_ratio"), h.damping_ratio, 0.0, 10.0);
+    v.warn(
+        &format!("{p}/clearance"),
+        (!(1e-6..=2e-5).contains(&h.clearance)).then(|| format!("a radial plunger clearance of {:.1} µm is unusual for a lash adjuster (typically 2 to 10 µm)", h.clearance * 1e6)),
+    );
     v.check(d.lash.is_none(), "/load/lash", "give either a mechanical lash or a hydraulic_lash_adjuster, not both");
     v.check(d.seat.is_some(), "/load/seat", "is required with a hydraulic lash adjuster: the seat carries the spring preload on the base circle");
     v.check(d.train_stiffness.is_none(), "/load/train_stiffness", "the hydraulic lash adjuster is the follower–valve link: leave train_stiffness out");
