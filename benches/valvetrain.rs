@@ -21,6 +21,7 @@ fn seed003() -> ValveTrain {
     let kc = line_contact_stiffness(300.0, 0.012, 0.018, es);
     let m = 0.045 + 0.157;
     ValveTrain {
+        lash: None,
         follower_mass: 0.045,
         valve_mass: 0.157,
         train: None,
@@ -157,6 +158,7 @@ fn rocker(reps: usize) {
     let (tappet, lever) = (mf + 0.5 * mp, inertia / (lc * lc) + 0.5 * mp);
     let reduced = |a: f64, b: f64| a * b / (a + b);
     let train = ValveTrain {
+        lash: None,
         follower_mass: mf,
         valve_mass: mv,
         train: Some(Link { stiffness: 3e7, damping: damping_from_ratio(0.05, 3e7, reduced(lever / (r * r), mv)) }),

@@ -49,6 +49,7 @@ mod thermal_ehl;
 mod thermal_finite_cam;
 mod valvetrain_http;
 mod valvetrain_lever;
+mod valvetrain_springs;
 mod valvetrain_stability;
 mod valvetrain_validation;
 mod wear_stability;

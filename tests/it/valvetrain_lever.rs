@@ -19,6 +19,7 @@ fn program(law: LiftLaw, lift: f64, rise_deg: f64) -> LiftProgram {
 /// A lever train with a rigid valve side and a massless spring (Rayleigh's third on the valve).
 fn rigid_lever_train(lever: Lever, contact_stiffness: f64, contact_damping: f64) -> ValveTrain {
     ValveTrain {
+        lash: None,
         follower_mass: 0.055,
         valve_mass: 0.095,
         train: None,
@@ -112,6 +113,7 @@ fn rocker_with_pushrod_conserves_energy_without_damping() {
         (j.v, j.d1)
     };
     let train = ValveTrain {
+        lash: None,
         follower_mass: 0.055,
         valve_mass: 0.095,
         train: Some(Link { stiffness: 3e7, damping: 0.0 }),
@@ -148,6 +150,7 @@ fn rocker_natural_frequency_matches_the_closed_form() {
     let (mf, mv, ms, inertia) = (0.055, 0.095, 0.047, 3e-5);
     let lever = Lever { cam_arm: lc, valve_arm: r * lc, inertia, pushrod: None };
     let train = ValveTrain {
+        lash: None,
         follower_mass: mf,
         valve_mass: mv,
         train: None,

@@ -36,6 +36,7 @@ proptest! {
         let valve_mass = if elastic_train { valve_mass.max(1e-3) } else { valve_mass };
         let m_side = if elastic_train { follower_mass } else { follower_mass + valve_mass };
         let train = ValveTrain {
+            lash: None,
             follower_mass,
             valve_mass,
             train: elastic_train.then(|| Link { stiffness: train_stiffness, damping: damping_from_ratio(0.05, train_stiffness, follower_mass.min(valve_mass)) }),
@@ -99,6 +100,7 @@ proptest! {
         let r = ratio;
         let cam_side = follower_mass + inertia / (cam_arm * cam_arm) + r * r * valve_mass;
         let train = ValveTrain {
+            lash: None,
             follower_mass,
             valve_mass,
             train: elastic_train.then(|| Link { stiffness: train_stiffness, damping: damping_from_ratio(0.05, train_stiffness, valve_mass) }),

@@ -28,6 +28,7 @@ fn program(rise_start_deg: f64, rise_deg: f64, top_dwell_deg: f64, law: LiftLaw,
 /// A single mass `m` on a contact spring `k_c` against a massless return spring `k_s`.
 fn sdof(m: f64, kc: f64, ks: f64, preload: f64, contact_damping: f64) -> ValveTrain {
     ValveTrain {
+        lash: None,
         follower_mass: m,
         valve_mass: 0.0,
         train: None,
@@ -96,6 +97,7 @@ fn rigid_train_and_stiff_contact_give_the_quasi_static_load() {
     };
     let (preload, rate, spring_mass, mf, mv) = (300.0, 38e3, 0.06, 0.045, 0.157);
     let train = ValveTrain {
+        lash: None,
         follower_mass: mf,
         valve_mass: mv,
         train: None,
@@ -133,6 +135,7 @@ fn energy_balance_without_damping_over_twenty_revolutions() {
         (j.v, j.d1)
     };
     let train = ValveTrain {
+        lash: None,
         follower_mass: 0.05,
         valve_mass: 0.15,
         train: Some(Link { stiffness: 2e7, damping: 0.0 }),
@@ -166,6 +169,7 @@ fn spring_surge_frequency_matches_the_helical_spring_formula() {
     let mut errors = Vec::new();
     for n in [4, 16] {
         let train = ValveTrain {
+            lash: None,
             follower_mass: 0.05,
             valve_mass: 0.15,
             train: None,
@@ -280,6 +284,7 @@ fn seat_impact_and_bounce_at_overspeed() {
     };
     let mv = 0.202;
     let train = ValveTrain {
+        lash: None,
         follower_mass: 0.045,
         valve_mass: 0.157,
         train: None,

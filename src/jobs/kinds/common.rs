@@ -682,6 +682,7 @@ pub fn cam_spec_path(field: &str) -> Option<String> {
         "ValveTrain.seat" => "/load/seat",
         "ValveTrain.lever" => "/load/arrangement",
         "ValveTrain.lever.pushrod" => "/load/arrangement/pushrod",
+        "ValveTrain.lash" => "/load/lash/clearance",
         _ => return None,
     };
     Some(path.to_string())

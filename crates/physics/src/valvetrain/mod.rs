@@ -15,11 +15,17 @@
 //! Not modelled: gravity, guide friction, the film's own stiffness and squeeze damping (the
 //! contact's damping stands for them), the lever's changing ratio with its angle (first order in
 //! the angle, error bound in [`Lever`]).
+//! * [`spring`]: valve-spring design checks (rate, stresses, Goodman fatigue, coil clash, surge;
+//!   Shigley ch. 10).
+//!
 //! A run-up over a speed ramp is [`periodic::run_up`].
 
 pub mod integrator;
 pub mod model;
 pub mod periodic;
+pub mod spring;
+#[cfg(test)]
+mod lash_tests;
 
-pub use model::{damping_from_ratio, line_contact_stiffness, HelicalSpring, Lever, Link, Pushrod, Seat, SpringChain, ValveTrain};
+pub use model::{damping_from_ratio, line_contact_stiffness, HelicalSpring, HydraulicLashAdjuster, Lash, Lever, Link, Pushrod, Seat, SpringChain, ValveTrain};
 pub use periodic::{periodic_response, run_up, transient, RunUpResponse, Drive, DynamicsOptions, PeriodicResponse, Probe};

@@ -180,6 +180,128 @@ pub struct ValveTrain {
     /// `train` (the lever–valve link: arm bending, valve stem), `spring`, `preload` and `seat`
     /// are valve-side quantities.
     pub lever: Option<Lever>,
+    /// Lash: `None`: none, the cam carries the preload on the base circle. See [`Lash`].
+    pub lash: Option<Lash>,
+}
+
+/// Lash in the train.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Lash {
+    /// Mechanical lash: a clearance (m, cam side; a valve-side clearance `c_v` is `c_v/r` here)
+    /// between the cam and the follower with the cam on its base circle (0: none). The valve
+    /// rests on its seat (required; `gap` taken as 0), which carries the spring preload; the
+    /// contact and the train's links carry no load until the cam's lift closes the gap on the
+    /// opening ramp (Norton, *Cam Design and Manufacturing Handbook*, ch. 10: the ramps take up
+    /// the lash at a constant velocity), and the contact opens again on the closing ramp.
+    Mechanical(f64),
+    /// A hydraulic lash adjuster between the follower and the valve (direct-acting bucket;
+    /// takes the place of the `train` link).
+    Hydraulic(HydraulicLashAdjuster),
+}
+
+/// A hydraulic lash adjuster, the standard lumped model (the plunger's high-pressure chamber as
+/// a compressible oil column, laminar leak-down through the plunger clearance, a check valve
+/// that refills the chamber from the supply; e.g. Hanachi & Freudenstein, J. Mech. Trans.
+/// Autom. Des. 108 (1986) 506–515, and "Modeling, simulation, and modal analysis of a hydraulic
+/// valve lifter with oil compressibility effects", J. Mech. Des. 113 (1991) 46):
+///
+/// * chamber pressure `p = p_s + k_h (δ − z)/A` (gauge), `δ` the approach of follower and valve,
+///   `z` the plunger's leak-down (net oil volume lost over the plunger area `A = π D²/4`), oil
+///   column stiffness `k_h = β A²/V` (bulk modulus β, chamber volume V);
+/// * force `F = P_h + A p + c_h δ̇` (plunger spring preload `P_h`; on the base circle the cam
+///   carries `P_h + A p_s`, the seat the rest of the valve-spring preload);
+/// * `A ż = G_L p − G_C max(0, p_s − p)`: leak-down through the annular clearance, laminar,
+///   `G_L = π D c³/(12 μ L)` (radial clearance c, leak length L, viscosity μ; narrow concentric
+///   annulus), and refill through the check valve, open while `p < p_s`, conductance `G_C`.
+///
+/// Not modelled: aeration (lower β), the check valve's own dynamics and cracking pressure,
+/// cavitation (the force is not cut at zero pressure).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct HydraulicLashAdjuster {
+    /// Plunger diameter D, m.
+    pub plunger_diameter: f64,
+    /// Radial clearance of the plunger c, m.
+    pub clearance: f64,
+    /// Leak length L, m.
+    pub leak_length: f64,
+    /// Oil viscosity μ, Pa·s.
+    pub viscosity: f64,
+    /// Oil bulk modulus β, Pa.
+    pub bulk_modulus: f64,
+    /// High-pressure chamber volume V, m³.
+    pub chamber_volume: f64,
+    /// Oil supply pressure p_s (gauge), Pa.
+    pub supply_pressure: f64,
+    /// Plunger spring preload P_h, N.
+    pub spring_preload: f64,
+    /// Check-valve conductance G_C, m³/(s·Pa).
+    pub check_conductance: f64,
+    /// Damping of the plunger's motion c_h, N·s/m.
+    pub damping: f64,
+}
+
+impl HydraulicLashAdjuster {
+    pub fn area(&self) -> f64 {
+        PI * self.plunger_diameter * self.plunger_diameter / 4.0
+    }
+    /// Oil column stiffness `β A²/V`, N/m.
+    pub fn stiffness(&self) -> f64 {
+        self.bulk_modulus * self.area().powi(2) / self.chamber_volume
+    }
+    /// Leak conductance `π D c³/(12 μ L)`, m³/(s·Pa).
+    pub fn leak_conductance(&self) -> f64 {
+        PI * self.plunger_diameter * self.clearance.powi(3) / (12.0 * self.viscosity * self.leak_length)
+    }
+    /// Force on the base circle with the chamber at supply pressure, N.
+    pub fn base_force(&self) -> f64 {
+        self.spring_preload + self.area() * self.supply_pressure
+    }
+    /// Leak-down velocity under the force `f` with the check valve shut, m/s (the leak-down
+    /// test: `G_L (F − P_h)/A²`).
+    pub fn leak_down_velocity(&self, f: f64) -> f64 {
+        self.leak_conductance() * (f - self.spring_preload) / self.area().powi(2)
+    }
+}
+
+/// The adjuster in the assembly: between nodes `b` (follower) and `a` (valve).
+#[derive(Debug, Clone, Copy)]
+pub struct HlaElement {
+    pub b: usize,
+    pub a: usize,
+    pub hla: HydraulicLashAdjuster,
+    k: f64,
+    leak: f64,
+}
+
+impl HlaElement {
+    /// Chamber pressure (gauge), Pa, at displacements `x` and leak-down `z`.
+    pub fn pressure(&self, x: &[f64], z: f64) -> f64 {
+        self.hla.supply_pressure + self.k * (x[self.b] - x[self.a] - z) / self.hla.area()
+    }
+    /// Force between follower and valve (compression), N.
+    pub fn force(&self, x: &[f64], v: &[f64], z: f64) -> f64 {
+        self.hla.spring_preload + self.hla.area() * self.pressure(x, z) + self.hla.damping * (v[self.b] - v[self.a])
+    }
+    /// Whether the check valve is open.
+    pub fn open(&self, x: &[f64], z: f64) -> bool {
+        self.pressure(x, z) < self.hla.supply_pressure
+    }
+    /// `ż`, m/s.
+    pub fn rate(&self, x: &[f64], z: f64) -> f64 {
+        let p = self.pressure(x, z);
+        let refill = if p < self.hla.supply_pressure { self.hla.check_conductance * (self.hla.supply_pressure - p) } else { 0.0 };
+        (self.leak * p - refill) / self.hla.area()
+    }
+    /// `(∂ż/∂x_b, ∂ż/∂x_a, ∂ż/∂z)` with the check valve open or shut.
+    pub fn rate_jacobian(&self, open: bool) -> (f64, f64, f64) {
+        let g = self.leak + if open { self.hla.check_conductance } else { 0.0 };
+        let d = g * self.k / self.hla.area().powi(2);
+        (d, -d, -d)
+    }
+    /// Oil column stiffness, N/m.
+    pub fn stiffness(&self) -> f64 {
+        self.k
+    }
 }
 
 impl ValveTrain {
@@ -251,9 +373,16 @@ pub struct Assembly {
     spring_moving: usize,
     spring_fixed: usize,
     contact: Link,
-    preload: f64,
     /// The seat in cam-side coordinates.
     seat: Option<Seat>,
+    /// Cam-side lash, m (0: none).
+    pub lash: f64,
+    /// The hydraulic lash adjuster (its leak-down `z` is a state of the system).
+    pub hla: Option<HlaElement>,
+    /// Preload of the contact (the spring preload; 0 with a lash) and of the seat (the spring
+    /// preload with a lash, else 0), cam side.
+    contact_preload: f64,
+    seat_preload: f64,
     /// Lever ratio r: valve-side displacement per cam-side coordinate (1: direct-acting).
     pub ratio: f64,
 }
@@ -265,6 +394,21 @@ impl ValveTrain {
         let r = self.ratio();
         let r2 = r * r;
         let preload = r * self.preload;
+        let lash = match self.lash {
+            Some(Lash::Mechanical(c)) if c > 0.0 => c,
+            _ => 0.0,
+        };
+        let hla = match self.lash {
+            Some(Lash::Hydraulic(h)) => Some(h),
+            _ => None,
+        };
+        // With a lash only the spring (and the seat) carry the preload on the base circle; with
+        // an adjuster the train carries its base force.
+        let link_preload = match hla {
+            Some(h) => h.base_force(),
+            None if lash > 0.0 => 0.0,
+            None => preload,
+        };
         let mut masses = vec![self.follower_mass];
         let mut elements = Vec::new();
         let follower = 0;
@@ -278,11 +422,19 @@ impl ValveTrain {
                     masses[0] += 0.5 * p.mass;
                     masses.push(l.cam_side_mass() + 0.5 * p.mass);
                     lever_node = 1;
-                    elements.push(Element { b: Some(0), a: Some(1), k: p.link.stiffness, c: p.link.damping, preload });
+                    elements.push(Element { b: Some(0), a: Some(1), k: p.link.stiffness, c: p.link.damping, preload: link_preload });
                 }
             }
         }
+        let mut hla_element = None;
         let valve = match self.train {
+            None if hla.is_some() => {
+                masses.push(r2 * self.valve_mass);
+                let v = masses.len() - 1;
+                let h = hla.expect("checked");
+                hla_element = Some(HlaElement { b: lever_node, a: v, hla: h, k: h.stiffness(), leak: h.leak_conductance() });
+                v
+            }
             None => {
                 masses[lever_node] += r2 * self.valve_mass;
                 lever_node
@@ -290,7 +442,7 @@ impl ValveTrain {
             Some(link) => {
                 masses.push(r2 * self.valve_mass);
                 let v = masses.len() - 1;
-                elements.push(Element { b: Some(lever_node), a: Some(v), k: r2 * link.stiffness, c: r2 * link.damping, preload });
+                elements.push(Element { b: Some(lever_node), a: Some(v), k: r2 * link.stiffness, c: r2 * link.damping, preload: link_preload });
                 v
             }
         };
@@ -321,8 +473,16 @@ impl ValveTrain {
             }
             spring_fixed = elements.len() - 1;
         }
-        let seat = self.seat.map(|st| Seat { link: Link { stiffness: r2 * st.link.stiffness, damping: r2 * st.link.damping }, gap: st.gap / r });
-        Assembly { masses, elements, follower, valve, spring_moving, spring_fixed, contact: self.contact, preload, seat, ratio: r }
+        let gap = |g: f64| if lash > 0.0 { 0.0 } else { g / r };
+        let seat = self.seat.map(|st| Seat { link: Link { stiffness: r2 * st.link.stiffness, damping: r2 * st.link.damping }, gap: gap(st.gap) });
+        let (contact_preload, seat_preload) = match hla {
+            Some(h) => (h.base_force(), preload - h.base_force()),
+            None if lash > 0.0 => (0.0, preload),
+            None => (preload, 0.0),
+        };
+        let gap = |st: Seat| if hla.is_some() { 0.0 } else { st.gap };
+        let seat = seat.map(|st| Seat { gap: gap(st), ..st });
+        Assembly { masses, elements, follower, valve, spring_moving, spring_fixed, contact: self.contact, seat, ratio: r, lash, contact_preload, seat_preload, hla: hla_element }
     }
 }
 
@@ -357,18 +517,27 @@ impl Assembly {
         self.seat.is_some()
     }
 
+    /// Where the valve (cam side) first touches its seat, m above the closed position: the
+    /// preloaded seat's compression with a lash, 0 otherwise.
+    pub fn seat_touch_height(&self) -> f64 {
+        match self.seat {
+            Some(st) if self.seat_preload > 0.0 => self.seat_preload / st.link.stiffness,
+            _ => 0.0,
+        }
+    }
+
     /// Contact and seat forces at the state `(x, v)` with cam lift `s` and lift rate `sd` (cam-side
     /// coordinates: the seat force on the valve is `seat / ratio`).
     pub fn unilateral(&self, x: &[f64], v: &[f64], s: f64, sd: f64) -> Unilateral {
         let (kc, cc) = (self.contact.stiffness, self.contact.damping);
-        let pen = self.preload + kc * (s - x[self.follower]);
+        let pen = self.contact_preload + kc * (s - self.lash - x[self.follower]);
         let raw = pen + cc * (sd - v[self.follower]);
         let contact_gap = pen.min(raw);
         let contact_closed = contact_gap > 0.0;
         let (mut seat, mut seat_closed, mut seat_gap) = (0.0, false, -1.0);
         if let Some(st) = self.seat {
             let (k, c) = (st.link.stiffness, st.link.damping);
-            let pen = k * (-st.gap - x[self.valve]);
+            let pen = self.seat_preload + k * (-st.gap - x[self.valve]);
             let raw = pen - c * v[self.valve];
             seat_gap = pen.min(raw);
             seat_closed = seat_gap > 0.0;
@@ -477,10 +646,10 @@ impl Assembly {
             }
         }
         let kc = self.contact.stiffness;
-        let q = (self.preload + kc * (s - x[self.follower])).max(0.0);
+        let q = (self.contact_preload + kc * (s - self.lash - x[self.follower])).max(0.0);
         e += q * q / (2.0 * kc);
         if let Some(st) = self.seat {
-            let q = (st.link.stiffness * (-st.gap - x[self.valve])).max(0.0);
+            let q = (self.seat_preload + st.link.stiffness * (-st.gap - x[self.valve])).max(0.0);
             e += q * q / (2.0 * st.link.stiffness);
         }
         e

@@ -2,7 +2,7 @@
 //! the periodic steady state sampled at uniform cam angles.
 
 use super::integrator::{integrate, Event, StepControl, Stats, System};
-use super::model::{Assembly, ValveTrain};
+use super::model::{Assembly, HydraulicLashAdjuster, Lash, ValveTrain};
 use crate::{ensure_finite, Convergence, Observer, SolveError, Termination};
 use std::f64::consts::TAU;
 
@@ -47,7 +47,8 @@ pub struct TrainSystem<'a> {
     scale: Vec<f64>,
     kx: Vec<f64>,
     cv: Vec<f64>,
-    jacobians: [Vec<f64>; 4],
+    /// Per regime (bit 0 contact, bit 1 seat, bit 2 the adjuster's check valve open).
+    jacobians: Vec<Vec<f64>>,
     /// Seating reference height above the closed position, m.
     seating_height: f64,
     /// Speed ramp `(ω₀, α)`: cam angle `ω₀ t + α t²/2` instead of `ω t` (run-up).
@@ -67,11 +68,23 @@ impl<'a> TrainSystem<'a> {
         let mut scale = vec![h; n];
         scale.extend(std::iter::repeat_n(h * drive.omega, n));
         scale.push((train.ratio() * train.preload).abs().max(1.0) * h);
+        if asm.hla.is_some() {
+            scale.push(h);
+        }
         let (mut kx, mut cv) = (vec![0.0; n * n], vec![0.0; n * n]);
-        let dim = 2 * n + 1;
-        let mut jacobians: [Vec<f64>; 4] = Default::default();
+        let dim = 2 * n + 1 + asm.hla.is_some() as usize;
+        let regimes = if asm.hla.is_some() { 8 } else { 4 };
+        let mut jacobians = vec![Vec::new(); regimes];
         for (r, jac) in jacobians.iter_mut().enumerate() {
             asm.force_jacobian(r & 1 != 0, r & 2 != 0, &mut kx, &mut cv);
+            if let Some(e) = &asm.hla {
+                // The adjuster: F = … + k (x_b − x_a − z) + c (v_b − v_a), on b by −F, a by +F.
+                let (k, c) = (e.stiffness(), e.hla.damping);
+                for (i, j, sign) in [(e.b, e.b, -1.0), (e.b, e.a, 1.0), (e.a, e.a, -1.0), (e.a, e.b, 1.0)] {
+                    kx[i * n + j] += sign * k;
+                    cv[i * n + j] += sign * c;
+                }
+            }
             let mut j = vec![0.0; dim * dim];
             for i in 0..n {
                 j[i * dim + n + i] = 1.0;
@@ -80,12 +93,24 @@ impl<'a> TrainSystem<'a> {
                     j[(n + i) * dim + n + k] = cv[i * n + k] / asm.masses[i];
                 }
             }
+            if let Some(e) = &asm.hla {
+                let iz = 2 * n + 1;
+                let k = e.stiffness();
+                j[(n + e.b) * dim + iz] = k / asm.masses[e.b];
+                j[(n + e.a) * dim + iz] = -k / asm.masses[e.a];
+                let (db, da, dz) = e.rate_jacobian(r & 4 != 0);
+                j[iz * dim + e.b] = db;
+                j[iz * dim + e.a] = da;
+                j[iz * dim + iz] = dz;
+            }
             *jac = j;
         }
         // The cam work row (Ẇ = F_c ṡ) is left out of the Jacobian: W does not feed back, and its
         // stage values follow from the stage equation exactly enough for a quadrature checked
         // against the energy.
-        let seating_height = 1e-6 * h;
+        // Just above where the valve touches its seat (with a lash the preloaded seat is
+        // compressed by P/k_seat at the closed position).
+        let seating_height = asm.seat_touch_height() + 1e-6 * h;
         TrainSystem { asm, drive, scale, kx, cv, jacobians, seating_height, ramp: None }
     }
 
@@ -111,6 +136,7 @@ impl<'a> TrainSystem<'a> {
         let u = self.asm.unilateral(x, v, s, sd);
         let (moving, fixed) = self.asm.spring_forces(x, v);
         let iv = self.asm.valve;
+        let hla_on_valve = self.asm.hla.as_ref().map_or(0.0, |e| e.force(x, v, y[2 * n + 1]));
         // Valve-side figures from the cam-side coordinates (lever ratio r; 1 direct-acting).
         let r = self.asm.ratio;
         Probe {
@@ -120,7 +146,7 @@ impl<'a> TrainSystem<'a> {
             follower: x[self.asm.follower],
             valve_lift: r * x[iv],
             valve_velocity: r * v[iv],
-            valve_acceleration: r * self.asm.force_on(iv, x, v, &u) / self.asm.masses[iv],
+            valve_acceleration: r * (self.asm.force_on(iv, x, v, &u) + hla_on_valve) / self.asm.masses[iv],
             spring_moving: moving,
             spring_fixed: fixed,
             energy: self.asm.energy(x, v, s),
@@ -132,7 +158,9 @@ impl<'a> TrainSystem<'a> {
     pub fn initial_state(&self, theta: f64) -> Vec<f64> {
         let n = self.asm.dofs();
         let (s, ds) = (self.drive.lift)(theta);
-        let mut y = vec![0.0; 2 * n + 1];
+        // With a lash the train moves only with the lift beyond it.
+        let (s, ds) = if s > self.asm.lash { (s - self.asm.lash, ds) } else { (0.0, 0.0) };
+        let mut y = vec![0.0; self.dim()];
         let first = self.asm.valve.max(self.asm.follower) + 1;
         let chain = n - first;
         for i in 0..n {
@@ -168,13 +196,20 @@ pub struct Probe {
 
 impl System for TrainSystem<'_> {
     fn dim(&self) -> usize {
-        2 * self.asm.dofs() + 1
+        2 * self.asm.dofs() + 1 + self.asm.hla.is_some() as usize
     }
     fn rhs(&self, t: f64, y: &[f64], f: &mut [f64]) {
         let n = self.asm.dofs();
         let (s, sd) = self.cam(t);
         f[..n].copy_from_slice(&y[n..2 * n]);
         let u = self.asm.forces(&y[..n], &y[n..2 * n], s, sd, &mut f[n..2 * n]);
+        if let Some(e) = &self.asm.hla {
+            let (x, v, z) = (&y[..n], &y[n..2 * n], y[2 * n + 1]);
+            let q = e.force(x, v, z);
+            f[n + e.b] -= q;
+            f[n + e.a] += q;
+            f[2 * n + 1] = e.rate(x, z);
+        }
         for i in 0..n {
             f[n + i] /= self.asm.masses[i];
         }
@@ -184,11 +219,12 @@ impl System for TrainSystem<'_> {
         let n = self.asm.dofs();
         let (s, sd) = self.cam(t);
         let u = self.asm.unilateral(&y[..n], &y[n..2 * n], s, sd);
-        (u.contact_closed as u32) | ((u.seat_closed as u32) << 1)
+        let open = self.asm.hla.as_ref().is_some_and(|e| e.open(&y[..n], y[2 * n + 1]));
+        (u.contact_closed as u32) | ((u.seat_closed as u32) << 1) | ((open as u32) << 2)
     }
     fn jacobian(&self, regime: u32, j: &mut [f64]) {
         let _ = (&self.kx, &self.cv);
-        j.copy_from_slice(&self.jacobians[(regime & 3) as usize]);
+        j.copy_from_slice(&self.jacobians[regime as usize % self.jacobians.len()]);
     }
     fn events(&self) -> usize {
         if self.asm.has_seat() { 3 } else { 2 }
@@ -210,7 +246,8 @@ impl System for TrainSystem<'_> {
         &self.scale
     }
     fn controlled(&self, i: usize) -> bool {
-        i < 2 * self.asm.dofs()
+        let n = self.asm.dofs();
+        i < 2 * n || (i == 2 * n + 1 && self.asm.hla.is_some())
     }
 }
 
@@ -252,6 +289,13 @@ pub struct PeriodicResponse {
     /// The rigid train's jump speed, rad/s ([`super::ValveTrain::rigid_jump_speed`]; filled by
     /// callers that have the lift's second derivative).
     pub rigid_jump_speed: Option<f64>,
+    /// Relative velocity of cam and follower (`ṡ − ẋ_f`, cam side, m/s) when the contact first
+    /// closes while the cam lifts (with a lash: the impact on the opening ramp; ≈ ramp velocity ×
+    /// ω when the follower rests); `None` when it never closes that way.
+    pub opening_impact_velocity: Option<f64>,
+    /// Lift loss, m: the largest cam lift times the lever ratio less the largest valve lift, over
+    /// the sampled angles (the lash and the train's deflection under load).
+    pub lift_loss: f64,
 }
 
 
@@ -299,7 +343,7 @@ pub fn periodic_response(
         ensure_finite("valve-train state", &y1)?;
         ensure_finite("valve-train samples", probes.iter().flatten().flat_map(|p| [&p.contact, &p.valve_lift, &p.valve_acceleration, &p.spring_fixed]))?;
         control.first_step = stats.last_step.max(period * 1e-7);
-        let residual = (0..2 * n).map(|i| (y1[i] - y0[i]).abs() / scale[i]).fold(0.0, f64::max);
+        let residual = (0..sys.dim()).filter(|&i| sys.controlled(i)).map(|i| (y1[i] - y0[i]).abs() / scale[i]).fold(0.0, f64::max);
         history.push(residual);
         y0 = y1;
         // With contact loss the return map is not smooth and the integration's own error
@@ -381,6 +425,15 @@ fn assemble_response(
     let after = |t: f64| (t - t_max).rem_euclid(period);
     let first = seatings.iter().min_by(|a, b| after(a.time).total_cmp(&after(b.time)));
     let seating_velocity = first.map(|e| (-sys.asm.ratio * e.state[n + sys.asm.valve]).max(0.0));
+    // Opening impact: the first closing of the contact with the cam lifting.
+    let opening_impact_velocity = events
+        .iter()
+        .filter(|e| e.index == EVENT_CONTACT && e.rising)
+        .map(|e| (e.time, sys.cam(e.time).1 - e.state[n + sys.asm.follower]))
+        .find(|(t, _)| sys.cam(*t).1 > 0.0)
+        .map(|(_, v)| v);
+    let max_cam = probes.iter().map(|p| p.cam_lift).fold(f64::NEG_INFINITY, f64::max);
+    let lift_loss = sys.asm.ratio * max_cam - lifts.iter().copied().fold(f64::NEG_INFINITY, f64::max);
     let seating_angle = first.map(|e| (e.time * omega).rem_euclid(TAU));
     let (bounces, max_bounce_height) = if sys.asm.has_seat() {
         let impacts: Vec<&Event> = events.iter().filter(|e| e.index == EVENT_SEAT && e.rising).collect();
@@ -429,6 +482,8 @@ fn assemble_response(
         stats,
         start: y_start.to_vec(),
         rigid_jump_speed: None,
+        opening_impact_velocity,
+        lift_loss,
     }
 }
 
@@ -571,6 +626,25 @@ pub fn run_up(
     })
 }
 
+/// A hydraulic lash adjuster's inputs and where it can sit.
+fn validate_hla(train: &ValveTrain, h: &HydraulicLashAdjuster) -> Result<(), SolveError> {
+    let pos = |v: f64| v.is_finite() && v > 0.0;
+    let nonneg = |v: f64| v.is_finite() && v >= 0.0;
+    let field = "ValveTrain.lash";
+    if ![h.plunger_diameter, h.clearance, h.leak_length, h.viscosity, h.bulk_modulus, h.chamber_volume, h.check_conductance].into_iter().all(pos)
+        || ![h.supply_pressure, h.spring_preload, h.damping].into_iter().all(nonneg)
+    {
+        return Err(SolveError::invalid(field, "the adjuster's dimensions, viscosity, bulk modulus, volume and check-valve conductance must be > 0; supply pressure, plunger spring and damping ≥ 0"));
+    }
+    if train.lever.is_some() || train.train.is_some() || train.seat.is_none() || !pos(train.valve_mass) {
+        return Err(SolveError::invalid(field, "a hydraulic lash adjuster sits between a direct-acting follower and the valve (no lever, no train link) with a seat and a valve mass > 0"));
+    }
+    if !(train.preload > h.base_force()) {
+        return Err(SolveError::invalid(field, "the valve spring's preload must exceed the adjuster's base force (plunger spring + supply pressure × plunger area)"));
+    }
+    Ok(())
+}
+
 /// Inputs the integration cannot use.
 fn validate(train: &ValveTrain, drive: &Drive) -> Result<(), SolveError> {
     let pos = |v: f64| v.is_finite() && v > 0.0;
@@ -615,6 +689,21 @@ fn validate(train: &ValveTrain, drive: &Drive) -> Result<(), SolveError> {
         if !pos(s.link.stiffness) || !nonneg(s.link.damping) || !nonneg(s.gap) {
             return Err(SolveError::invalid("ValveTrain.seat", "stiffness > 0, damping ≥ 0, gap ≥ 0"));
         }
+    }
+    match train.lash {
+        Some(Lash::Mechanical(c)) => {
+            if !nonneg(c) {
+                return Err(SolveError::invalid("ValveTrain.lash", "must be ≥ 0"));
+            }
+            if c > 0.0 && train.seat.is_none() {
+                return Err(SolveError::invalid("ValveTrain.lash", "a lash needs the valve seat, which carries the spring preload while the gap is open"));
+            }
+            if c > 0.0 && !(drive.max_lift > c) {
+                return Err(SolveError::invalid("ValveTrain.lash", "must be below the cam's lift"));
+            }
+        }
+        Some(Lash::Hydraulic(h)) => validate_hla(train, &h)?,
+        None => {}
     }
     if !pos(drive.omega) {
         return Err(SolveError::invalid("Drive.omega", "must be > 0"));

@@ -16,11 +16,16 @@ mod solve;
 mod spec;
 mod synthesis;
 mod synthesis_spec;
+mod springs;
+mod lash;
+mod train_spec;
 
 pub use result::*;
 pub use spec::*;
 pub use synthesis::*;
 pub use synthesis_spec::*;
+pub use springs::*;
+pub use train_spec::*;
 use solve::*;
 pub use cost::{cycle_cost, cycle_cost_with};
 
@@ -46,7 +51,7 @@ impl Kind for CamCycle {
         (fidelity fast: closed forms; accurate: numerical line-contact EHL with squeeze at every angle; auto: \
         closed forms where their estimated error is within tolerance).";
     const TABLES: &'static [&'static str] = &["series", "run_up", "fields", "contour"];
-    const KEY_FIGURES: &'static [&'static str] = &["/summary/min_film", "/summary/min_lambda", "/summary/max_hertz_pressure", "/summary/max_subsurface_shear", "/summary/max_abs_slide_roll_ratio", "/summary/mean_power_loss", "/summary/max_flash_temperature", "/summary/separation_duration", "/summary/seating_velocity"];
+    const KEY_FIGURES: &'static [&'static str] = &["/summary/min_film", "/summary/min_lambda", "/summary/max_hertz_pressure", "/summary/max_subsurface_shear", "/summary/max_abs_slide_roll_ratio", "/summary/mean_power_loss", "/summary/max_flash_temperature", "/summary/separation_duration", "/summary/seating_velocity", "/summary/min_spring_fatigue_safety_factor", "/summary/min_coil_clash_margin"];
     type Spec = CamCycleSpec;
     type Output = CamCycleResult;
 
@@ -350,16 +355,9 @@ fn validate_dynamic(spec: &CamCycleSpec, d: &DynamicLoadSpec, limits: &Limits, v
         "a dynamic load models a flat or roller follower (seed 003; on a rocker or finger: its pad or roller)",
     );
     v.check(spec.operation.startup.is_none(), "/operation/startup", "a dynamic load needs steady running");
-    v.in_range("/load/spring_preload", d.spring_preload, 1e-3, 1e7);
-    let sp = &d.spring;
-    v.in_range("/load/spring/wire_diameter", sp.wire_diameter, 1e-5, 0.1);
-    v.in_range("/load/spring/mean_diameter", sp.mean_diameter, 1e-4, 1.0);
-    v.check(sp.mean_diameter > sp.wire_diameter, "/load/spring/mean_diameter", "must exceed the wire diameter");
-    v.in_range("/load/spring/active_coils", sp.active_coils, 0.5, 1000.0);
-    v.in_range("/load/spring/shear_modulus", sp.shear_modulus, 1e6, 1e12);
-    v.in_range("/load/spring/density", sp.density, 1.0, 1e5);
-    v.count_in_range("/load/spring/elements", sp.elements, 0, 64);
-    v.in_range("/load/spring/damping_ratio", sp.damping_ratio, 0.0, 10.0);
+    springs::validate_coils(v, "/load/spring", &d.spring);
+    springs::validate_springs(d, v);
+    lash::validate_lash(d, v);
     let lever = match d.arrangement {
         None | Some(ArrangementSpec::Direct) => None,
         Some(ArrangementSpec::Rocker { cam_arm, valve_arm, inertia, pushrod }) => {

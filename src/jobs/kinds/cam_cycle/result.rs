@@ -344,6 +344,26 @@ pub struct CamSummary {
     /// `dynamic` load with a rocker or finger: the lever ratio `valve_arm/cam_arm`.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub lever_ratio: Option<f64>,
+    /// `dynamic` load with `spring.design`: every valve-spring check passed (`spring_checks`).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub spring_checks_pass: Option<bool>,
+    /// `dynamic` load with `spring.design`: the least Goodman fatigue safety factor of the
+    /// springs.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub min_spring_fatigue_safety_factor: Option<f64>,
+    /// `dynamic` load with `spring.design`: the least clearance to solid length at full lift
+    /// (coil-clash margin) of the springs, m.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub min_coil_clash_margin: Option<f64>,
+    /// `dynamic` load with a `lash`: relative velocity of cam and follower, reduced to the
+    /// valve, when the clearance closes on the opening ramp (≈ ramp velocity × cam speed when the
+    /// train rests), m/s.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub opening_impact_velocity: Option<f64>,
+    /// `dynamic` load with a `lash`: the largest cam lift times the lever ratio less the largest
+    /// valve lift (the lash and the train's deflection), m.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub lift_loss: Option<f64>,
 }
 
 /// Events of the cycle.
@@ -439,6 +459,10 @@ pub struct CamCycleResult {
     /// table: CSV with `?table=contour`; `angle_deg` and `lift` are a `table` profile's input).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub contour: Option<super::synthesis::ContourTable>,
+    /// `dynamic` load with `spring.design`: the valve-spring checks, one entry per spring
+    /// (Shigley ch. 10; criteria from `load.spring_checks`).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub spring_checks: Option<Vec<super::springs::SpringCheckResult>>,
 }
 
 /// The valve train over a run-up, at uniform cam angles (columns of equal length).

@@ -14,7 +14,7 @@ use crate::physics::roller::pin_finite::roller_cooled_area;
 use crate::physics::geometry::Crown;
 use crate::physics::roller::{FinitePin, PinFriction, PinTable, PinThermal, RollerParams};
 use crate::physics::valvetrain::{
-    damping_from_ratio, line_contact_stiffness, periodic_response, run_up, Drive, DynamicsOptions, HelicalSpring, Lever, Link,
+    damping_from_ratio, line_contact_stiffness, periodic_response, run_up, Drive, DynamicsOptions, Lash, Lever, Link,
     PeriodicResponse, Pushrod, RunUpResponse, Seat, SpringChain, ValveTrain,
 };
 use crate::physics::{Observer, SolveError};
@@ -231,13 +231,7 @@ fn table(angles_deg: &[f64], values: &[f64], path: &str) -> Result<PeriodicTable
 /// coefficients, the contact stiffness defaulted from seed 003 eq. 6 at the preload on the base
 /// circle).
 pub fn valve_train(d: &DynamicLoadSpec, cycle: &CycleSpec) -> ValveTrain {
-    let coil = HelicalSpring {
-        wire_diameter: d.spring.wire_diameter,
-        mean_diameter: d.spring.mean_diameter,
-        active_coils: d.spring.active_coils,
-        shear_modulus: d.spring.shear_modulus,
-        density: d.spring.density,
-    };
+    let preload = d.preload();
     // The contact on the base circle: a flat face against the base radius, a roller against it
     // with the reduced radius of the two cylinders.
     let base = cycle.profile.base_radius();
@@ -253,20 +247,23 @@ pub fn valve_train(d: &DynamicLoadSpec, cycle: &CycleSpec) -> ValveTrain {
     };
     let ratio = lever.map_or(1.0, |(lc, lv, _, _)| lv / lc);
     let kc = d.contact_stiffness.unwrap_or_else(|| {
-        line_contact_stiffness(ratio * d.spring_preload, length, radius, cycle.contact_modulus)
+        line_contact_stiffness(ratio * preload, length, radius, cycle.contact_modulus)
     });
     let rigid = d.train_stiffness.is_none();
     let reduced = |a: f64, b: f64| if a + b > 0.0 { a * b / (a + b) } else { 0.0 };
-    let spring = SpringChain { rate: coil.rate(), mass: coil.active_mass(), elements: d.spring.elements, damping_ratio: d.spring.damping_ratio };
+    // Nested springs: one chain with the summed rate and mass.
+    let (rate, mass) = d.springs().map(|(_, s)| super::springs::coil_of(s)).fold((0.0, 0.0), |(k, m), c| (k + c.rate(), m + c.active_mass()));
+    let spring = SpringChain { rate, mass, elements: d.spring.elements, damping_ratio: d.spring.damping_ratio };
     let Some((cam_arm, valve_arm, inertia, pushrod)) = lever else {
         // Direct-acting.
         let follower_side = if rigid { d.follower_mass + d.valve_mass } else { d.follower_mass };
         return ValveTrain {
+            lash: d.lash.map(|l| Lash::Mechanical(l.clearance)).or_else(|| d.hydraulic_lash_adjuster.map(|h| Lash::Hydraulic(super::lash::adjuster(&h, d.valve_mass)))),
             follower_mass: d.follower_mass,
             valve_mass: d.valve_mass,
             train: d.train_stiffness.map(|k| Link { stiffness: k, damping: damping_from_ratio(d.train_damping_ratio, k, reduced(d.follower_mass, d.valve_mass)) }),
             spring,
-            preload: d.spring_preload,
+            preload,
             contact: Link { stiffness: kc, damping: damping_from_ratio(d.contact_damping_ratio, kc, follower_side) },
             seat: d.seat.map(|st| Seat {
                 link: Link { stiffness: st.stiffness, damping: damping_from_ratio(st.damping_ratio, st.stiffness, d.valve_mass.max(follower_side)) },
@@ -290,12 +287,13 @@ pub fn valve_train(d: &DynamicLoadSpec, cycle: &CycleSpec) -> ValveTrain {
         None => lever_body + valve_cam_side,
     };
     ValveTrain {
+        lash: d.lash.map(|l| Lash::Mechanical(l.clearance / ratio)),
         follower_mass: d.follower_mass,
         valve_mass: d.valve_mass,
         // Valve side: the lever's body reduced to the valve side against the valve.
         train: d.train_stiffness.map(|k| Link { stiffness: k, damping: damping_from_ratio(d.train_damping_ratio, k, reduced(lever_body / r2, d.valve_mass)) }),
         spring,
-        preload: d.spring_preload,
+        preload,
         contact: Link { stiffness: kc, damping: damping_from_ratio(d.contact_damping_ratio, kc, contact_mass) },
         seat: d.seat.map(|st| Seat {
             link: Link {
@@ -413,6 +411,7 @@ pub(super) fn solve_spec(spec: &CamCycleSpec, observer: &dyn Observer) -> Result
         run_up: None,
         synthesis: None,
         contour: None,
+        spring_checks: None,
     };
     if let Some((synthesis, contour)) = super::synthesis::synthesis_of(spec, &cycle.profile, cycle.geometry.shape) {
         result.synthesis = Some(synthesis);
@@ -429,6 +428,11 @@ pub(super) fn solve_spec(spec: &CamCycleSpec, observer: &dyn Observer) -> Result
         if let Some(u) = ramp {
             add_run_up(&mut result, u);
         }
+    }
+    if let Some(LoadSpec::Dynamic(d)) = &spec.load {
+        let shape = cycle.geometry.shape;
+        let max_lift = (0..3600).map(|k| cycle.profile.lift(std::f64::consts::TAU * k as f64 / 3600.0, shape).v).fold(0.0, f64::max);
+        super::springs::add_spring_checks(&mut result, d, max_lift, spec.operation.speed_rpm)?;
     }
     Ok(result)
 }
@@ -459,6 +463,11 @@ fn add_dynamics(result: &mut CamCycleResult, train: &ValveTrain, r: PeriodicResp
     summary.rigid_jump_speed_rpm = r.rigid_jump_speed.map(|w| w * 30.0 / std::f64::consts::PI).filter(|w| w.is_finite());
     summary.equivalent_mass = Some(train.quasi_static_equivalent().2);
     summary.lever_ratio = train.lever.map(|l| l.ratio());
+    if train.lash.is_some() {
+        // Valve side (the model's cam-side velocity times the lever ratio).
+        summary.opening_impact_velocity = r.opening_impact_velocity.map(|v| v * train.ratio());
+        summary.lift_loss = Some(r.lift_loss);
+    }
     result.dynamics_convergence = Some(r.convergence);
 }
 

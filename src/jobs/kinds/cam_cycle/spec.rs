@@ -423,6 +423,10 @@ pub struct ValveSpringSpec {
     /// Default 0.02.
     #[serde(default = "default_surge_damping")]
     pub damping_ratio: f64,
+    /// Design data (lengths, coils, wire): the installed preload and the spring checks.
+    /// Absent: `spring_preload` is required and the spring is not checked.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub design: Option<super::train_spec::SpringDesignSpec>,
 }
 
 /// The valve seat: a unilateral spring–damper stop.
@@ -525,9 +529,27 @@ pub enum ArrangementSpec {
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize, ToSchema)]
 #[serde(deny_unknown_fields)]
 pub struct DynamicLoadSpec {
-    /// Spring force at zero lift, N (> 0).
-    pub spring_preload: f64,
+    /// Spring force at zero lift, N (> 0). Absent: from `spring.design` (rate × (free −
+    /// installed length), with `inner_spring` the sum); give one of the two.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub spring_preload: Option<f64>,
     pub spring: ValveSpringSpec,
+    /// A nested inner spring in parallel with `spring` (both with a `design`): the checks are
+    /// per spring; the dynamics take one spring chain with the summed rate and mass (the
+    /// surge of the pair between the two springs' own surges).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub inner_spring: Option<ValveSpringSpec>,
+    /// Criteria of the valve-spring checks (speed range for the surge orders, curvature factor,
+    /// required safety factors). The checks run whenever `spring.design` is given.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub spring_checks: Option<super::train_spec::SpringChecksSpec>,
+    /// Mechanical valve lash (clearance) taken up by the lift law's ramps. Absent: none.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub lash: Option<super::train_spec::LashSpec>,
+    /// Hydraulic lash adjuster (direct-acting; instead of `lash` and `train_stiffness`). Absent:
+    /// none.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub hydraulic_lash_adjuster: Option<super::train_spec::HydraulicAdjusterSpec>,
     /// Arrangement of the train. Absent: `direct`.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub arrangement: Option<ArrangementSpec>,
