@@ -201,9 +201,11 @@ pub enum Lash {
 
 /// A hydraulic lash adjuster, the standard lumped model (the plunger's high-pressure chamber as
 /// a compressible oil column, laminar leak-down through the plunger clearance, a check valve
-/// that refills the chamber from the supply; e.g. Hanachi & Freudenstein, J. Mech. Trans.
-/// Autom. Des. 108 (1986) 506–515, and "Modeling, simulation, and modal analysis of a hydraulic
-/// valve lifter with oil compressibility effects", J. Mech. Des. 113 (1991) 46):
+/// that refills the chamber from the supply — the form used throughout the valve-train dynamics
+/// literature; its parts are textbook: the oil column's stiffness from the bulk modulus, and
+/// leak-down as pressure-driven laminar flow through a narrow concentric annulus, i.e. between
+/// parallel plates of width πD (e.g. White, *Viscous Fluid Flow*, Poiseuille flow in an
+/// annulus of small gap):
 ///
 /// * chamber pressure `p = p_s + k_h (δ − z)/A` (gauge), `δ` the approach of follower and valve,
 ///   `z` the plunger's leak-down (net oil volume lost over the plunger area `A = π D²/4`), oil
