@@ -324,7 +324,8 @@ mod tests {
 
     /// Shigley (9th ed.) Example 10-4: music wire d = 0.092 in, OD 9/16 in, 21 active coils,
     /// squared and ground, unpeened, preload 5 lbf, maximum 35 lbf; G = 11.75 Mpsi, γ = 0.284
-    /// lbf/in³, S_ut = 201/d^0.145 = 284.1 kpsi. The book: C = 5.11, K_B = 1.287,
+    /// lbf/in³, S_ut = 201/d^0.145 = 284.1 kpsi. Its results (as recalled — no copy of the book
+    /// here — and each recomputed by hand from these inputs): C = 5.11, K_B = 1.287,
     /// τ_a = 29.7 kpsi, τ_m = 39.6 kpsi, S_su = 190.3 kpsi, Goodman n_f = 1.23 (part c),
     /// k = 48.1 lbf/in and f_n = 281 Hz (part d).
     #[test]
