@@ -45,8 +45,10 @@ proptest! {
                 let f = solve_normal(&s, &m, p_lim, NormalControl::MeanGap(c.mean_gap.max(1e-12)), &RoughOptions::default(), None, &Silent);
                 if let Ok(f) = f {
                     prop_assert!(f.mean_pressure.is_finite());
-                    if c.mean_gap > 0.0 {
-                        prop_assert!((f.mean_pressure / p - 1.0).abs() < 1e-3, "{} vs {p}", f.mean_pressure);
+                    // At complete contact the mean gap is zero up to rounding (1e-15 m at 3.7 GPa
+                    // on rq 20 nm) and no longer determines the load: more load only compresses.
+                    if c.mean_gap > 0.0 && c.contact_fraction < 1.0 {
+                        prop_assert!((f.mean_pressure / p - 1.0).abs() < 1e-3, "{} vs {p}: mean gap {:e}, contact fraction {} / {}, {:?}", f.mean_pressure, c.mean_gap, c.contact_fraction, f.contact_fraction, f.convergence);
                     }
                 }
             }
