@@ -26,7 +26,7 @@ pub const CHANNEL: &str = "tribod_events";
 #[derive(Clone, Debug)]
 pub struct PgStore {
     /// Durable writes (submissions, finishes, cancels) and reads.
-    pool: PgPool,
+    pub(super) pool: PgPool,
     /// Writes that may be lost in a database crash without losing a job (claims, lease renewals,
     /// progress): committed with `synchronous_commit = off`, so they do not wait for a WAL flush.
     /// A lost claim or renewal leaves the job queued or its lease expiring: it runs again.
@@ -385,7 +385,7 @@ impl PgStore {
             sqlx::query(
                 "WITH u AS (SELECT * FROM UNNEST($1::text[], $2::text[], $3::text[], $4::text[], $5::bigint[], $6::bytea[]) \
                             AS u(id, status, error, encoding, size, body)), \
-                 done AS (UPDATE jobs SET status = u.status, finished_at = $7, lease_owner = NULL, error = u.error, \
+                 done AS (UPDATE jobs SET status = u.status, finished_at = $7, solved_by = jobs.lease_owner, lease_owner = NULL, error = u.error, \
                           progress = CASE WHEN u.status = 'succeeded' THEN 1 ELSE jobs.progress END, \
                           stage = CASE WHEN u.status = 'succeeded' THEN NULL ELSE jobs.stage END \
                           FROM u WHERE jobs.id = ANY($1) AND jobs.id = u.id AND jobs.status = 'running' AND jobs.lease_owner = $8 \

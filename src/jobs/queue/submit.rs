@@ -103,6 +103,10 @@ impl Queue {
                 return Err(storage_problem(e));
             }
         };
+        // A fanned-out job passes `fresh` on to its cases (`jobs::queue::fanout`).
+        if fresh && self.inner.store.is_shared() && job.kind == "sweep" {
+            self.inner.store.set_fresh(job.id).await.map_err(storage_problem)?;
+        }
         self.inner.metrics.queue_depth.set(depth + 1);
         self.inner.metrics.submitted.get_or_create(&KindLabel { kind: job.kind.clone() }).inc();
         self.inner.wake.notify_one();
