@@ -113,13 +113,6 @@ impl Queue {
     }
 }
 
-/// What a worker does with a claimed job.
-pub(super) enum Work {
-    Solve,
-    /// A fanned-out job whose children have all finished: its result from theirs.
-    Assemble(Vec<crate::store::ChildOutcome>),
-}
-
 fn prepare(kind: &str, spec: &str, limits: &Limits) -> Result<crate::jobs::kind::Prepared, Problem> {
     let k = registry::find(kind).ok_or_else(|| {
         Problem::new(ErrorCode::UnknownKind, format!("this server no longer knows the kind '{kind}'"))

@@ -16,7 +16,6 @@
 //! * **Fairness.** The cases inherit the sweep's virtual deadline: they keep the sweep's place in
 //!   the fair order, so a tiny job submitted meanwhile is claimed before the remaining cases.
 
-use super::dispatch::Work;
 use super::*;
 use crate::jobs::kinds::sweep::{self, SweepSpec};
 use crate::store::{Child, ChildOutcome, ClaimedJob};

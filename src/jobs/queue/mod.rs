@@ -161,6 +161,13 @@ const FLAG_NONE: u8 = 0;
 const FLAG_CANCEL: u8 = 1;
 const FLAG_SHUTDOWN: u8 = 2;
 
+/// What a worker does with a claimed job.
+pub(super) enum Work {
+    Solve,
+    /// A fanned-out job whose children have all finished: its result from theirs.
+    Assemble(Vec<crate::store::ChildOutcome>),
+}
+
 enum Event {
     /// `modelled`: the work model's CPU seconds of the job (0 when it did not run).
     Finished { id: Uuid, kind: String, finish: Finish, status: JobStatus, wall: f64, modelled: f64 },
