@@ -114,6 +114,14 @@ async fn a_sweep_fans_out_over_three_instances_and_equals_the_single_instance_re
         tokio::time::sleep(Duration::from_millis(20)).await;
     };
     assert!(running["children"]["succeeded"].as_i64().unwrap() < 40, "{running}");
+    // The event stream carries the counts too.
+    let mut events = client.get(format!("{}/v1/jobs/{id}/events", b.base)).send().await.unwrap();
+    let mut seen = String::new();
+    while !seen.contains("\"children\":{\"total\":40") {
+        let chunk = tokio::time::timeout(Duration::from_secs(5), events.chunk()).await.expect("an event").unwrap().expect("open stream");
+        seen.push_str(&String::from_utf8_lossy(&chunk));
+    }
+    drop(events);
     // Fairness: a tiny job submitted now waits for at most one case per worker, not the sweep.
     let asked = Instant::now();
     let tiny = post(&client, &b.base, &hertz_job(777.0), "").await["id"].as_str().unwrap().to_string();
