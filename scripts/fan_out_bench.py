@@ -109,12 +109,11 @@ def scenario(name, job, instances, threshold):
 
 
 def main():
-    with open("examples/ehl_point_seed001_nose.json") as f:
+    # The seed 000 finite-line nose point (33 × 65 grid): ≈ 0.5 s of one core in release.
+    with open("examples/seed000_finite_nose.json") as f:
         case = json.load(f)
     heavy = {"kind": "sweep", "spec": {"kind": case["kind"], "base": case["spec"],
-             "parameters": [{"path": "/lubricant/viscosity", "linspace": {"start": 0.008, "stop": 0.012, "num": 40}}]}}
-    if len(sys.argv) > 1:
-        heavy["spec"]["parameters"][0]["path"] = sys.argv[1]
+             "parameters": [{"path": "/lubricant/viscosity", "linspace": {"start": 0.12, "stop": 0.18, "num": 40}}]}}
     tiny = {"kind": "sweep", "spec": {"kind": "hertz",
             "base": {"contact": "line", "load": 5000.0, "length": 0.014,
                      "body_1": {"shape": "cylinder", "radius": 0.0255}, "body_2": {"shape": "cylinder", "radius": 0.02}},
@@ -124,8 +123,20 @@ def main():
     t_pg, _ = scenario("tiny, in-process (PostgreSQL, 1 instance)", tiny, 1, "inf")
     t_fan, _ = scenario("tiny, fanned out (PostgreSQL, 1 instance)", tiny, 1, "0")
     print(f"fan-out overhead per case: {1000 * (t_fan - t_pg) / 40:.1f} ms wall")
+    if "--crossover" in sys.argv:
+        # Sleeping cases (test builds: `test_sleep`) take no CPU, so the machine's load does not
+        # blur the coordination cost: in-process on one instance against fanned out on two.
+        print("# crossover: 40 sleeping cases of c seconds, 1 worker per instance")
+        for c in (0.005, 0.02, 0.05, 0.1):
+            job = {"kind": "sweep", "spec": {"kind": "test_sleep", "base": {"seconds": c},
+                   "parameters": [{"path": "/nonce", "values": list(range(40))}], "quantities": ["/slept_seconds"]}}
+            one, _ = scenario(f"c = {c} s, in-process (PostgreSQL, 1 instance)", job, 1, "inf")
+            two, _ = scenario(f"c = {c} s, fanned out on 2 instances", job, 2, "0")
+            print(f"    fanned out / in-process: {two / one:.2f}")
+        return
     print("# 40 heavy cases")
     base, _ = scenario("heavy, in-process (SQLite, 1 worker)", heavy, 0, "inf")
+    scenario("heavy, in-process (PostgreSQL, 1 instance)", heavy, 1, "inf")
     for n in (1, 2, 3):
         w, _ = scenario(f"heavy, fanned out on {n} instance(s)", heavy, n, "0")
         print(f"    speed-up against in-process: {base / w:.2f} (ceiling: {min(n, os.cpu_count())} cores)")
