@@ -16,7 +16,9 @@ CREATE INDEX job_children_by_job ON job_children (job_id);
 ALTER TABLE jobs ADD COLUMN solved_by TEXT;
 
 -- Submission options a fanned-out job passes on to its cases (`?fresh=true`: no case reused).
+-- Written before the job is inserted (so no instance can claim the job before its options are
+-- there): no foreign key; a row whose insert then failed is an orphan of a few bytes.
 CREATE TABLE job_options (
-    job_id TEXT    PRIMARY KEY REFERENCES jobs (id) ON DELETE CASCADE,
+    job_id TEXT    PRIMARY KEY,
     fresh  BOOLEAN NOT NULL
 );

@@ -244,7 +244,8 @@ impl Store {
         Ok(queued + running)
     }
 
-    /// Remember that `id` was submitted with `?fresh=true` (its cases reuse nothing).
+    /// Remember that `id` is submitted with `?fresh=true` (its cases reuse nothing); written
+    /// before the job itself.
     pub async fn set_fresh(&self, id: Uuid) -> StoreResult<()> {
         let Store::Postgres(s) = self else { return Ok(()) };
         sqlx::query("INSERT INTO job_options (job_id, fresh) VALUES ($1, TRUE) ON CONFLICT (job_id) DO UPDATE SET fresh = TRUE")

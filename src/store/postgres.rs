@@ -312,8 +312,11 @@ impl PgStore {
             return Ok(Vec::new());
         }
         let rows = sqlx::query(
-            "UPDATE jobs SET status = 'running', started_at = $1, attempts = attempts + 1, progress = 0, \
-             stage = NULL, lease_owner = $2, lease_until = $3 \
+            // A fanned-out job claimed to be assembled keeps its start and progress (a queued
+            // job has neither: never started, or reset when it was handed back).
+            "UPDATE jobs SET status = 'running', started_at = COALESCE(started_at, $1), attempts = attempts + 1, \
+             progress = CASE WHEN started_at IS NULL THEN 0 ELSE progress END, \
+             stage = CASE WHEN started_at IS NULL THEN NULL ELSE stage END, lease_owner = $2, lease_until = $3 \
              WHERE seq = ANY(ARRAY(SELECT seq FROM jobs WHERE status = 'queued' ORDER BY due_at, seq LIMIT $4 \
                                    FOR UPDATE SKIP LOCKED)) \
              RETURNING id, kind, spec, attempts, due_at, seq",

@@ -135,6 +135,8 @@ async fn a_sweep_fans_out_over_three_instances_and_equals_the_single_instance_re
     let done = finished(&client, &a.base, &id, Duration::from_secs(60)).await;
     assert_eq!(done["status"], "succeeded", "{done}");
     assert_eq!(done["children"]["succeeded"], 40, "{done}");
+    assert_eq!(done["started_at"], running["started_at"], "assembled elsewhere, started when first claimed");
+    assert_eq!(done["attempts"], 1, "{done}");
     let fanned = result(&client, &b.base, &id).await;
     let rows = fanned["cases"].as_array().unwrap();
     assert_eq!(rows.len(), 40);
