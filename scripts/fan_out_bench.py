@@ -93,7 +93,7 @@ def scenario(name, job, instances, threshold):
         wall, used, r = run_sweep(base, job, [p.pid for p in procs])
         n = len(r["cases"])
         who = sorted({c.get("instance") for c in r["cases"] if c.get("instance")})
-        print(f"{name:<44} wall {wall:7.2f} s   CPU {used:7.2f} s = {1000 * used / n:7.1f} ms/case   instances that solved: {len(who)}")
+        print(f"{name:<44} wall {wall:7.2f} s   CPU {used:7.2f} s = {1000 * used / n:7.1f} ms/case   cores used {used / wall:4.2f}   instances that solved: {len(who)}")
         sys.stdout.flush()
         return wall, used
     finally:
