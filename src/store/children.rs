@@ -127,7 +127,8 @@ impl Store {
                         due_at = CASE WHEN n.done = n.total THEN 0 ELSE jobs.due_at END, \
                         attempts = CASE WHEN n.done = n.total THEN GREATEST(jobs.attempts - 1, 0) ELSE jobs.attempts END \
                     FROM n WHERE jobs.id = n.parent_id AND jobs.status = 'running' AND jobs.lease_owner IS NULL \
-                    AND jobs.lease_until = $1 RETURNING jobs.status) \
+                    AND jobs.lease_until = $1 \
+                    AND (n.done = n.total OR jobs.progress <> n.done::float8 / n.total) RETURNING jobs.status) \
              SELECT count(*) FILTER (WHERE status = 'queued') FROM up",
         )
         .bind(WAITING_UNTIL)

@@ -313,3 +313,31 @@ async fn a_sweep_rerun_with_one_more_value_solves_one_case() {
     assert_eq!(solved, 14);
     let _ = db.close().await;
 }
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn a_failed_case_is_a_failed_row_with_its_error() {
+    if !postgres_available("a_failed_case_is_a_failed_row_with_its_error") {
+        return;
+    }
+    let url = fresh_postgres_database().await;
+    let a = Instance::serve(&url, OPTS);
+    let client = reqwest::Client::new();
+    let job = json!({"kind": "sweep", "spec": {
+        "kind": "test_sleep", "base": {"seconds": 0.1, "nonce": 400},
+        "parameters": [{"path": "/panic", "values": [false, true, false]}, {"path": "/nonce", "values": [400]}],
+        "quantities": ["/table/step/3"]
+    }});
+    let id = post(&client, &a.base, &job, "").await["id"].as_str().unwrap().to_string();
+    let done = finished(&client, &a.base, &id, Duration::from_secs(30)).await;
+    assert_eq!(done["status"], "succeeded", "a failed case does not fail the sweep: {done}");
+    assert_eq!(done["children"]["failed"], 1, "{done}");
+    let r = result(&client, &a.base, &id).await;
+    assert_eq!((r["succeeded"].as_i64(), r["failed"].as_i64()), (Some(2), Some(1)), "{r}");
+    let row = &r["cases"][1];
+    assert_eq!(row["status"], "failed");
+    assert_eq!(row["error_code"], "internal_error");
+    assert!(row["error"].as_str().unwrap().contains("panicked"), "{row}");
+    assert!(r["columns"].as_array().unwrap().contains(&json!("error")));
+    // Cases 1 and 3 are the same spec: solved once.
+    assert_eq!(r["cases"][0]["table.step.3"], r["cases"][2]["table.step.3"]);
+}
