@@ -64,6 +64,11 @@ struct QueueArgs {
     /// twice a second); after that any instance re-queues the job.
     #[arg(long, env = "TRIBOD_LEASE_SECONDS", default_value_t = 30.0)]
     lease_seconds: f64,
+    /// With a PostgreSQL store: a sweep whose cases the work model estimates at this many CPU
+    /// seconds or more (on average) spreads its cases over every instance as jobs of their own;
+    /// cheaper sweeps run in-process. `inf`: never.
+    #[arg(long, env = "TRIBOD_FAN_OUT_MIN_CASE_SECONDS", default_value_t = tribod::jobs::queue::DEFAULT_FAN_OUT_MIN_CASE_SECONDS)]
+    fan_out_min_case_seconds: f64,
     #[command(flatten)]
     limits: LimitArgs,
 }
@@ -77,6 +82,7 @@ impl QueueArgs {
             max_attempts: self.max_attempts.max(1),
             limits: self.limits.limits(),
             lease: Duration::from_secs_f64(self.lease_seconds.max(1.0)),
+            fan_out_min_case_seconds: self.fan_out_min_case_seconds.is_finite().then_some(self.fan_out_min_case_seconds.max(0.0)),
             ..QueueConfig::default()
         }
     }

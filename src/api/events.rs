@@ -82,7 +82,9 @@ impl Follow {
                             "progress"
                         };
                         self.last = Some(now);
-                        let data = serde_json::to_string(&JobView::from_row(row, false)).unwrap_or_default();
+                        let mut view = JobView::from_row(row, false);
+                        view.children = super::jobs::children_of(&self.queue, &view).await.unwrap_or_default();
+                        let data = serde_json::to_string(&view).unwrap_or_default();
                         return Some(Event::default().event(name).data(data));
                     }
                 }

@@ -91,6 +91,10 @@ pub struct JobView {
     /// dashboard can say "about 40 s"). Absent for jobs stored before the models existed.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub estimate: Option<Estimate>,
+    /// A job whose cases run as jobs of their own on every instance (a big sweep on a shared
+    /// PostgreSQL store): its cases counted by status. `progress.fraction` is the share finished.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub children: Option<crate::store::ChildCounts>,
     pub links: JobLinks,
 }
 
@@ -132,6 +136,7 @@ impl JobView {
                 (Some(cpu_seconds), Some(memory_bytes)) => Some(Estimate { cpu_seconds, memory_bytes }),
                 _ => None,
             },
+            children: None,
             links: JobLinks { self_: format!("/v1/jobs/{id}"), result: format!("/v1/jobs/{id}/result") },
         }
     }
@@ -374,7 +379,17 @@ pub(super) fn not_found(id: Uuid) -> ApiError {
     ))]
 pub async fn get_job(State(state): State<AppState>, JobIdPath(id): JobIdPath) -> ApiResult<Json<JobView>> {
     let row = state.queue.store().get(id).await.map_err(store_error)?.ok_or_else(|| not_found(id))?;
-    Ok(Json(JobView::from_row(row, false)))
+    let mut view = JobView::from_row(row, false);
+    view.children = children_of(&state.queue, &view).await?;
+    Ok(Json(view))
+}
+
+/// The cases of a fanned-out job counted by status (only sweeps on a shared store have any).
+pub async fn children_of(queue: &crate::jobs::queue::Queue, view: &JobView) -> ApiResult<Option<crate::store::ChildCounts>> {
+    if view.kind != "sweep" || !queue.store().is_shared() {
+        return Ok(None);
+    }
+    queue.store().child_counts(view.id).await.map_err(store_error)
 }
 
 /// A job's stored result (JSON text) with its row; 404 for no job, 409 while it runs or when it

@@ -28,6 +28,7 @@ pub const POSTGRES: &[MigrationFile] = &[
     ("0002_idempotency_keys.sql", include_str!("../../migrations/postgres/0002_idempotency_keys.sql")),
     ("0003_estimates.sql", include_str!("../../migrations/postgres/0003_estimates.sql")),
     ("0004_hot_updates.sql", include_str!("../../migrations/postgres/0004_hot_updates.sql")),
+    ("0005_children.sql", include_str!("../../migrations/postgres/0005_children.sql")),
 ];
 
 /// The migrator of one backend's files.

@@ -11,11 +11,13 @@
 //! through other instances); finishing is conditional on still holding the lease, so a job whose
 //! lease expired and was re-run elsewhere is never finished twice.
 
+pub mod children;
 pub mod codec;
 pub mod migrations;
 pub mod postgres;
 pub mod sqlite;
 
+pub use children::{Child, ChildCounts, ChildOutcome};
 pub use codec::{decode_result, encode_result, Encoded};
 
 use serde::{Deserialize, Serialize};

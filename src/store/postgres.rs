@@ -26,7 +26,7 @@ pub const CHANNEL: &str = "tribod_events";
 #[derive(Clone, Debug)]
 pub struct PgStore {
     /// Durable writes (submissions, finishes, cancels) and reads.
-    pool: PgPool,
+    pub(super) pool: PgPool,
     /// Writes that may be lost in a database crash without losing a job (claims, lease renewals,
     /// progress): committed with `synchronous_commit = off`, so they do not wait for a WAL flush.
     /// A lost claim or renewal leaves the job queued or its lease expiring: it runs again.
@@ -312,8 +312,11 @@ impl PgStore {
             return Ok(Vec::new());
         }
         let rows = sqlx::query(
-            "UPDATE jobs SET status = 'running', started_at = $1, attempts = attempts + 1, progress = 0, \
-             stage = NULL, lease_owner = $2, lease_until = $3 \
+            // A fanned-out job claimed to be assembled keeps its start and progress (a queued
+            // job has neither: never started, or reset when it was handed back).
+            "UPDATE jobs SET status = 'running', started_at = COALESCE(started_at, $1), attempts = attempts + 1, \
+             progress = CASE WHEN started_at IS NULL THEN 0 ELSE progress END, \
+             stage = CASE WHEN started_at IS NULL THEN NULL ELSE stage END, lease_owner = $2, lease_until = $3 \
              WHERE seq = ANY(ARRAY(SELECT seq FROM jobs WHERE status = 'queued' ORDER BY due_at, seq LIMIT $4 \
                                    FOR UPDATE SKIP LOCKED)) \
              RETURNING id, kind, spec, attempts, due_at, seq",
@@ -385,7 +388,7 @@ impl PgStore {
             sqlx::query(
                 "WITH u AS (SELECT * FROM UNNEST($1::text[], $2::text[], $3::text[], $4::text[], $5::bigint[], $6::bytea[]) \
                             AS u(id, status, error, encoding, size, body)), \
-                 done AS (UPDATE jobs SET status = u.status, finished_at = $7, lease_owner = NULL, error = u.error, \
+                 done AS (UPDATE jobs SET status = u.status, finished_at = $7, solved_by = jobs.lease_owner, lease_owner = NULL, error = u.error, \
                           progress = CASE WHEN u.status = 'succeeded' THEN 1 ELSE jobs.progress END, \
                           stage = CASE WHEN u.status = 'succeeded' THEN NULL ELSE jobs.stage END \
                           FROM u WHERE jobs.id = ANY($1) AND jobs.id = u.id AND jobs.status = 'running' AND jobs.lease_owner = $8 \

@@ -20,6 +20,7 @@ mod ehl_2d_dry;
 mod ehl_2d_fields;
 mod ehl_2d_transient;
 mod examples_run;
+mod fan_out;
 mod house;
 mod house_plan;
 mod http_api;

@@ -15,10 +15,10 @@ use std::sync::Arc;
 use std::time::{Duration, Instant};
 
 /// A `tribod` child process, killed (SIGKILL) when dropped.
-struct Instance {
-    child: Child,
+pub(crate) struct Instance {
+    pub(crate) child: Child,
     /// `http://addr` of a `serve` instance; empty for a `worker`.
-    base: String,
+    pub(crate) base: String,
 }
 
 impl Drop for Instance {
@@ -30,7 +30,7 @@ impl Drop for Instance {
 
 impl Instance {
     /// `tribod serve` on `url`; returns once it listens (its migrations have run).
-    fn serve(url: &str, extra: &[&str]) -> Instance {
+    pub(crate) fn serve(url: &str, extra: &[&str]) -> Instance {
         let mut child = Command::new(env!("CARGO_BIN_EXE_tribod"))
             .args(["serve", "--addr", "127.0.0.1:0", "--database-url", url])
             .args(extra)
@@ -46,7 +46,7 @@ impl Instance {
     }
 
     /// `tribod worker` on `url`; returns once its queue runs.
-    fn worker(url: &str, extra: &[&str]) -> Instance {
+    pub(crate) fn worker(url: &str, extra: &[&str]) -> Instance {
         let mut child = Command::new(env!("CARGO_BIN_EXE_tribod"))
             .args(["worker", "--database-url", url, "--log-format", "json"])
             .args(extra)

@@ -84,7 +84,10 @@ pub struct SweepResult {
     /// and result units (`GET /v1/kinds`).
     pub units: std::collections::BTreeMap<String, String>,
     /// One row per case: the parameter values, `status` (`succeeded` / `failed`), the
-    /// quantities (absent when the case failed or the result lacks them) and `error_code`.
+    /// quantities (absent when the case failed or the result lacks them) and `error_code`. A
+    /// sweep whose cases ran as jobs of their own on every instance (PostgreSQL, cases above
+    /// `--fan-out-min-case-seconds`) adds to each row `instance` (the instance that solved the
+    /// case) and `reused` (an identical case solved before was reused).
     #[schema(value_type = Vec<Object>)]
     pub cases: Vec<Map<String, Value>>,
     pub succeeded: usize,
@@ -382,57 +385,69 @@ impl Kind for Sweep {
             .collect();
         // A cancel or shutdown stops the sweep as a whole.
         observer.check()?;
-        // Quantities: explicit, or every number of the first successful result's summary.
-        let quantities: Vec<String> = if !spec.quantities.is_empty() {
-            spec.quantities.clone()
-        } else {
-            outcomes
-                .iter()
-                .find_map(|o| o.as_ref().ok())
-                .map(|r| match r.get("summary").and_then(Value::as_object) {
-                    Some(summary) => summary.iter().filter(|(_, v)| v.is_number()).map(|(k, _)| format!("/summary/{k}")).collect(),
-                    None => r.as_object().map(|o| o.iter().filter(|(_, v)| v.is_number()).map(|(k, _)| format!("/{k}")).collect()).unwrap_or_default(),
-                })
-                .unwrap_or_default()
-        };
-        let first = outcomes.iter().find_map(|o| o.as_ref().ok());
-        let names: Vec<String> = quantities.iter().map(|q| quantity_column(q, first)).collect();
-        let mut columns = vec!["case".to_string()];
-        columns.extend(spec.parameters.iter().map(|p| column(&p.path)));
-        columns.push("status".into());
-        columns.push("error_code".into());
-        columns.extend(names.iter().cloned());
-        let units = column_units(k, spec, &quantities, &names);
-        let mut rows = Vec::with_capacity(total);
-        let (mut succeeded, mut failed) = (0, 0);
-        for (i, (values, outcome)) in all.iter().zip(&outcomes).enumerate() {
-            let mut row = Map::new();
-            row.insert("case".into(), json!(i + 1));
-            for (p, v) in spec.parameters.iter().zip(values) {
-                row.insert(column(&p.path), v.clone());
-            }
-            match outcome {
-                Ok(result) => {
-                    succeeded += 1;
-                    row.insert("status".into(), json!("succeeded"));
-                    for (q, name) in quantities.iter().zip(&names) {
-                        if let Some(x) = result.pointer(q).filter(|x| !x.is_null()) {
-                            row.insert(name.clone(), x.clone());
-                        }
+        Ok(assemble(spec, k, &all, &outcomes))
+    }
+}
+
+/// The case specs of a sweep (the base with each case's values set), in case order.
+pub fn case_specs(spec: &SweepSpec) -> Result<Vec<Value>, String> {
+    cases(spec).iter().map(|values| case_spec(spec, values).map_err(|(_, e)| e)).collect()
+}
+
+/// The sweep's table from its cases' outcomes (results or problems, in case order): shared by the
+/// in-process solve and the assembly of a fanned-out sweep, so that both give the same result.
+pub fn assemble(spec: &SweepSpec, k: &dyn crate::jobs::kind::DynKind, all: &[Vec<Value>], outcomes: &[Result<Value, Problem>]) -> SweepResult {
+    let total = all.len();
+    // Quantities: explicit, or every number of the first successful result's summary.
+    let quantities: Vec<String> = if !spec.quantities.is_empty() {
+        spec.quantities.clone()
+    } else {
+        outcomes
+            .iter()
+            .find_map(|o| o.as_ref().ok())
+            .map(|r| match r.get("summary").and_then(Value::as_object) {
+                Some(summary) => summary.iter().filter(|(_, v)| v.is_number()).map(|(k, _)| format!("/summary/{k}")).collect(),
+                None => r.as_object().map(|o| o.iter().filter(|(_, v)| v.is_number()).map(|(k, _)| format!("/{k}")).collect()).unwrap_or_default(),
+            })
+            .unwrap_or_default()
+    };
+    let first = outcomes.iter().find_map(|o| o.as_ref().ok());
+    let names: Vec<String> = quantities.iter().map(|q| quantity_column(q, first)).collect();
+    let mut columns = vec!["case".to_string()];
+    columns.extend(spec.parameters.iter().map(|p| column(&p.path)));
+    columns.push("status".into());
+    columns.push("error_code".into());
+    columns.extend(names.iter().cloned());
+    let units = column_units(k, spec, &quantities, &names);
+    let mut rows = Vec::with_capacity(total);
+    let (mut succeeded, mut failed) = (0, 0);
+    for (i, (values, outcome)) in all.iter().zip(outcomes).enumerate() {
+        let mut row = Map::new();
+        row.insert("case".into(), json!(i + 1));
+        for (p, v) in spec.parameters.iter().zip(values) {
+            row.insert(column(&p.path), v.clone());
+        }
+        match outcome {
+            Ok(result) => {
+                succeeded += 1;
+                row.insert("status".into(), json!("succeeded"));
+                for (q, name) in quantities.iter().zip(&names) {
+                    if let Some(x) = result.pointer(q).filter(|x| !x.is_null()) {
+                        row.insert(name.clone(), x.clone());
                     }
                 }
-                Err(problem) => {
-                    failed += 1;
-                    row.insert("status".into(), json!("failed"));
-                    row.insert("error_code".into(), json!(problem.code));
-                    row.insert("error".into(), json!(problem.detail));
-                }
             }
-            rows.push(row);
+            Err(problem) => {
+                failed += 1;
+                row.insert("status".into(), json!("failed"));
+                row.insert("error_code".into(), json!(problem.code));
+                row.insert("error".into(), json!(problem.detail));
+            }
         }
-        if failed > 0 && !columns.contains(&"error".to_string()) {
-            columns.push("error".into());
-        }
-        Ok(SweepResult { kind: spec.kind.clone(), columns, units, cases: rows, succeeded, failed })
+        rows.push(row);
     }
+    if failed > 0 && !columns.contains(&"error".to_string()) {
+        columns.push("error".into());
+    }
+    SweepResult { kind: spec.kind.clone(), columns, units, cases: rows, succeeded, failed }
 }

@@ -52,6 +52,16 @@ impl Queue {
             .entry(job.id)
             .or_insert_with(|| Arc::new(AtomicU8::new(FLAG_NONE)))
             .clone();
+        if self.fans_out(&job) {
+            tokio::spawn(self.clone().fan_out(job, flag));
+            return;
+        }
+        self.run(job, flag, Work::Solve);
+    }
+
+    /// Run `job` on the pool: solve it, or assemble it from its children's outcomes.
+    pub(super) fn run(&self, job: crate::store::ClaimedJob, flag: Arc<AtomicU8>, work: Work) {
+        let inner = &self.inner;
         let events = inner.events.clone();
         let limits = inner.config.limits;
         let timeout = inner.config.job_timeout;
@@ -72,10 +82,13 @@ impl Queue {
             let mut modelled = 0.0;
             let (outcome, wall) = match (observer.check(), prepare(&job.kind, &job.spec, &limits)) {
                 (Err(interrupt), _) => (Outcome::Interrupted(interrupt), 0.0),
-                (Ok(()), Ok(prepared)) => {
-                    modelled = prepared.cost.cpu_seconds();
-                    runner::run(prepared, &observer)
-                }
+                (Ok(()), Ok(prepared)) => match work {
+                    Work::Solve => {
+                        modelled = prepared.cost.cpu_seconds();
+                        runner::run(prepared, &observer)
+                    }
+                    Work::Assemble(children) => super::fanout::assemble(prepared, &children),
+                },
                 (Ok(()), Err(problem)) => (Outcome::Failed(problem), 0.0),
             };
             let (finish, status) = match outcome {

@@ -58,6 +58,11 @@ impl Queue {
                     }
                     Err(e) => warn!(error = %e, "scanning for expired leases failed"),
                 }
+                // Fan-out's safety net: parents whose last case finished on an instance that died
+                // (or failed at the attempt cap here) before it moved them on.
+                if let Err(e) = inner.store.release_parents(None, None).await {
+                    warn!(error = %e, "scanning for parents whose cases finished failed");
+                }
             }
         }
     }

@@ -27,6 +27,7 @@
 
 mod control;
 mod dispatch;
+mod fanout;
 mod leases;
 mod submit;
 mod writer;
@@ -70,6 +71,11 @@ pub struct QueueConfig {
     /// every [`RENEW_EVERY`]; when an instance dies, others re-queue its jobs this long after
     /// its last renewal.
     pub lease: Duration,
+    /// Fan-out (issue 44): on a shared store (PostgreSQL), a sweep whose cases the work model
+    /// estimates at this many CPU seconds or more (on average) runs its cases as child jobs that
+    /// every instance claims; cheaper sweeps, and every sweep on SQLite, run in-process. `None`:
+    /// never fan out.
+    pub fan_out_min_case_seconds: Option<f64>,
 }
 
 impl Default for QueueConfig {
@@ -83,6 +89,7 @@ impl Default for QueueConfig {
             limits: Limits::default(),
             validators: 2,
             lease: Duration::from_secs(30),
+            fan_out_min_case_seconds: Some(DEFAULT_FAN_OUT_MIN_CASE_SECONDS),
         }
     }
 }
@@ -110,6 +117,10 @@ pub enum Cancellation {
     /// It was finished and is deleted (or did not exist: deleting is idempotent).
     Deleted,
 }
+
+/// The default crossover of fan-out, estimated CPU seconds per case (BENCHMARKS.md: the
+/// fan-out's own cost per case is 4–9 ms of wall time; at 0.5 s it is 1–2 % of a case).
+pub const DEFAULT_FAN_OUT_MIN_CASE_SECONDS: f64 = 0.5;
 
 /// Virtual-deadline weight of the estimated solve time (fair scheduling, see the module docs).
 pub const AGING: f64 = 100.0;
@@ -149,6 +160,13 @@ pub const MAX_IDEMPOTENCY_KEY: usize = 255;
 const FLAG_NONE: u8 = 0;
 const FLAG_CANCEL: u8 = 1;
 const FLAG_SHUTDOWN: u8 = 2;
+
+/// What a worker does with a claimed job.
+pub(super) enum Work {
+    Solve,
+    /// A fanned-out job whose children have all finished: its result from theirs.
+    Assemble(Vec<crate::store::ChildOutcome>),
+}
 
 enum Event {
     /// `modelled`: the work model's CPU seconds of the job (0 when it did not run).

@@ -84,6 +84,14 @@ impl Queue {
             estimate_cpu_seconds: estimate.cpu_seconds,
             estimate_memory_bytes: estimate.memory_bytes,
         };
+        // A fanned-out job passes `fresh` on to its cases (`jobs::queue::fanout`): recorded
+        // before the insert, so that no instance claims the job before it is there.
+        if fresh && self.inner.store.is_shared() && job.kind == "sweep" {
+            if let Err(e) = self.inner.store.set_fresh(job.id).await {
+                self.inner.backlog.fetch_sub(1, Ordering::Relaxed);
+                return Err(storage_problem(e));
+            }
+        }
         let row = match self.inner.store.insert(&job).await {
             Ok(row) => row,
             Err(e) => {

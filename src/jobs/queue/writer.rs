@@ -39,6 +39,17 @@ impl Queue {
                 tokio::time::sleep(delay).await;
                 delay = (delay * 2).min(Duration::from_secs(5));
             }
+            // Fan-out: the parents of finished cases move on (the last case re-queues its parent).
+            // Beside the next claim, not before it.
+            if inner.store.is_shared() {
+                let finished: Vec<Uuid> = done.iter().filter(|d| d.2 != JobStatus::Queued).map(|d| d.0).collect();
+                let store = inner.store.clone();
+                tokio::spawn(async move {
+                    if let Err(e) = store.release_parents(None, Some(&finished)).await {
+                        warn!(error = %e, "moving the parents of finished cases failed (the expiry scan retries)");
+                    }
+                });
+            }
             for (id, kind, status, wall, modelled) in done {
                 inner.running.lock().unwrap_or_else(|e| e.into_inner()).remove(&id);
                 if status == JobStatus::Queued {

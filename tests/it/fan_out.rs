@@ -1,0 +1,343 @@
+//! One big job on many machines (issue 44): a sweep's cases as jobs of their own that every
+//! instance on one PostgreSQL database claims; the parent assembled into the result one instance
+//! gives; kill -9 of an instance re-runs only its cases; a cancel reaches the cases on every
+//! instance; the case cache (a re-run with one more value solves one case); a tiny job's latency
+//! during a fan-out. The instances are real `tribod serve` / `tribod worker` processes.
+//!
+//! The PostgreSQL tests need `TRIBOD_TEST_POSTGRES_URL` (they say SKIPPED without it); the SQLite
+//! test checks that a store of one instance keeps today's in-process sweep.
+
+use crate::common::*;
+use crate::multi_instance::Instance;
+use serde_json::{json, Value};
+use sqlx::{Connection, Row};
+use std::collections::BTreeSet;
+use std::time::{Duration, Instant};
+
+/// Instance options of these tests: 1 worker each, short leases, fan-out from 0.05 s per case.
+const OPTS: &[&str] = &["--workers", "1", "--lease-seconds", "2", "--fan-out-min-case-seconds", "0.05"];
+
+/// A sweep of `n` `test_sleep` cases of `seconds` each (nonces `first..first + n`).
+fn sleep_sweep(n: u64, seconds: f64, first: u64) -> Value {
+    let nonces: Vec<u64> = (first..first + n).collect();
+    json!({"kind": "sweep", "spec": {
+        "kind": "test_sleep",
+        "base": {"seconds": seconds},
+        "parameters": [{"path": "/nonce", "values": nonces}],
+        "quantities": ["/table/step/3"]
+    }})
+}
+
+/// A sweep of 40 line contacts (real numbers to compare bit for bit).
+fn hertz_sweep() -> Value {
+    let mut job = hertz_job(1000.0);
+    json!({"kind": "sweep", "spec": {
+        "kind": "hertz",
+        "base": job["spec"].take(),
+        "parameters": [{"path": "/load", "linspace": {"start": 100.0, "stop": 20000.0, "num": 40}}]
+    }})
+}
+
+async fn post(client: &reqwest::Client, base: &str, job: &Value, query: &str) -> Value {
+    let res = client.post(format!("{base}/v1/jobs{query}")).json(job).send().await.unwrap();
+    assert!(res.status().is_success(), "{}", res.status());
+    res.json().await.unwrap()
+}
+
+async fn get(client: &reqwest::Client, base: &str, id: &str) -> Value {
+    client.get(format!("{base}/v1/jobs/{id}")).send().await.unwrap().json().await.unwrap()
+}
+
+async fn result(client: &reqwest::Client, base: &str, id: &str) -> Value {
+    client.get(format!("{base}/v1/jobs/{id}/result")).send().await.unwrap().json().await.unwrap()
+}
+
+/// Poll until the job is finished; the job.
+async fn finished(client: &reqwest::Client, base: &str, id: &str, timeout: Duration) -> Value {
+    let deadline = Instant::now() + timeout;
+    loop {
+        let job = get(client, base, id).await;
+        if matches!(job["status"].as_str(), Some("succeeded" | "failed" | "canceled")) {
+            return job;
+        }
+        assert!(Instant::now() < deadline, "job {id} not finished in {timeout:?}: {job}");
+        tokio::time::sleep(Duration::from_millis(50)).await;
+    }
+}
+
+/// A sweep result without what only a fan-out adds (`instance`, `reused`) and without `meta`.
+fn comparable(mut r: Value) -> Value {
+    r.as_object_mut().unwrap().remove("meta");
+    for row in r["cases"].as_array_mut().unwrap() {
+        let row = row.as_object_mut().unwrap();
+        row.remove("instance");
+        row.remove("reused");
+    }
+    let cols: Vec<Value> = r["columns"].as_array().unwrap().iter().filter(|c| *c != "instance" && *c != "reused").cloned().collect();
+    r["columns"] = Value::Array(cols);
+    r
+}
+
+/// The result of `job` from one in-process instance on a SQLite file.
+async fn single_instance_result(client: &reqwest::Client, job: &Value) -> Value {
+    let dir = tempfile::tempdir().unwrap();
+    let db = dir.path().join("ref.db");
+    let one = Instance::serve(db.to_str().unwrap(), &["--workers", "2"]);
+    let id = post(client, &one.base, job, "").await["id"].as_str().unwrap().to_string();
+    let done = finished(client, &one.base, &id, Duration::from_secs(60)).await;
+    assert_eq!(done["status"], "succeeded", "{done}");
+    assert!(done.get("children").is_none(), "SQLite: in-process, no children: {done}");
+    result(client, &one.base, &id).await
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn a_sweep_fans_out_over_three_instances_and_equals_the_single_instance_result() {
+    if !postgres_available("a_sweep_fans_out_over_three_instances_and_equals_the_single_instance_result") {
+        return;
+    }
+    let url = fresh_postgres_database().await;
+    let a = Instance::serve(&url, OPTS);
+    let b = Instance::serve(&url, OPTS);
+    let _c = Instance::worker(&url, OPTS);
+    let client = reqwest::Client::new();
+
+    let job = sleep_sweep(40, 0.2, 1);
+    let id = post(&client, &a.base, &job, "").await["id"].as_str().unwrap().to_string();
+    // While it runs, GET (on the other instance) shows its cases.
+    let deadline = Instant::now() + Duration::from_secs(10);
+    let running = loop {
+        let j = get(&client, &b.base, &id).await;
+        if j["children"]["total"] == 40 && j["status"] == "running" {
+            break j;
+        }
+        assert!(Instant::now() < deadline, "no children seen: {j}");
+        tokio::time::sleep(Duration::from_millis(20)).await;
+    };
+    assert!(running["children"]["succeeded"].as_i64().unwrap() < 40, "{running}");
+    // The event stream carries the counts too.
+    let mut events = client.get(format!("{}/v1/jobs/{id}/events", b.base)).send().await.unwrap();
+    let mut seen = String::new();
+    while !seen.contains("\"children\":{\"total\":40") {
+        let chunk = tokio::time::timeout(Duration::from_secs(5), events.chunk()).await.expect("an event").unwrap().expect("open stream");
+        seen.push_str(&String::from_utf8_lossy(&chunk));
+    }
+    drop(events);
+    // Fairness: a tiny job submitted now waits for at most one case per worker, not the sweep.
+    let asked = Instant::now();
+    let tiny = post(&client, &b.base, &hertz_job(777.0), "").await["id"].as_str().unwrap().to_string();
+    let tiny_done = finished(&client, &b.base, &tiny, Duration::from_secs(20)).await;
+    let tiny_latency = asked.elapsed();
+    let sweep_state = get(&client, &a.base, &id).await;
+    eprintln!("tiny job latency during the fan-out: {tiny_latency:?} (sweep then: {})", sweep_state["children"]);
+    assert_eq!(tiny_done["status"], "succeeded");
+    assert!(tiny_latency < Duration::from_secs(2), "tiny job waited {tiny_latency:?}");
+
+    let done = finished(&client, &a.base, &id, Duration::from_secs(60)).await;
+    assert_eq!(done["status"], "succeeded", "{done}");
+    assert_eq!(done["children"]["succeeded"], 40, "{done}");
+    assert_eq!(done["started_at"], running["started_at"], "assembled elsewhere, started when first claimed");
+    assert_eq!(done["attempts"], 1, "{done}");
+    let fanned = result(&client, &b.base, &id).await;
+    let rows = fanned["cases"].as_array().unwrap();
+    assert_eq!(rows.len(), 40);
+    let instances: BTreeSet<&str> = rows.iter().map(|r| r["instance"].as_str().expect("instance")).collect();
+    assert!(rows.iter().all(|r| r["reused"] == false), "nothing to reuse in a fresh database");
+    assert_eq!(instances.len(), 3, "every instance solved cases: {instances:?}");
+    assert_eq!(fanned["meta"]["fan_out"]["cases"], 40);
+
+    // The same table as one instance gives, and a physics sweep bit for bit.
+    let reference = single_instance_result(&client, &job).await;
+    assert_eq!(comparable(fanned), comparable(reference));
+    let physics = hertz_sweep();
+    let hid = post(&client, &a.base, &physics, "").await["id"].as_str().unwrap().to_string();
+    let hdone = finished(&client, &a.base, &hid, Duration::from_secs(30)).await;
+    assert_eq!(hdone["status"], "succeeded");
+    // Line contacts are microseconds: below the crossover they stay in-process.
+    assert!(hdone.get("children").is_none(), "{hdone}");
+    assert_eq!(result(&client, &a.base, &hid).await["meta"].get("fan_out"), None);
+    drop((a, b));
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn a_fanned_out_physics_sweep_is_bit_identical_to_the_in_process_one() {
+    if !postgres_available("a_fanned_out_physics_sweep_is_bit_identical_to_the_in_process_one") {
+        return;
+    }
+    let url = fresh_postgres_database().await;
+    // Every sweep fans out.
+    let opts = ["--workers", "1", "--lease-seconds", "2", "--fan-out-min-case-seconds", "0"];
+    let a = Instance::serve(&url, &opts);
+    let _w = Instance::worker(&url, &opts);
+    let client = reqwest::Client::new();
+    let job = hertz_sweep();
+    let id = post(&client, &a.base, &job, "").await["id"].as_str().unwrap().to_string();
+    let done = finished(&client, &a.base, &id, Duration::from_secs(30)).await;
+    assert_eq!(done["status"], "succeeded", "{done}");
+    assert_eq!(done["children"]["total"], 40, "{done}");
+    let fanned = result(&client, &a.base, &id).await;
+    let reference = single_instance_result(&client, &job).await;
+    assert_eq!(comparable(fanned), comparable(reference));
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn kill_9_of_an_instance_mid_sweep_reruns_only_its_cases() {
+    if !postgres_available("kill_9_of_an_instance_mid_sweep_reruns_only_its_cases") {
+        return;
+    }
+    let url = fresh_postgres_database().await;
+    let a = Instance::serve(&url, OPTS);
+    let mut b = Instance::serve(&url, OPTS);
+    let _c = Instance::worker(&url, OPTS);
+    let client = reqwest::Client::new();
+    let id = post(&client, &a.base, &sleep_sweep(40, 0.3, 100), "").await["id"].as_str().unwrap().to_string();
+
+    // Kill B (SIGKILL) while it solves a case of the sweep.
+    let mut db = sqlx::PgConnection::connect(&url).await.unwrap();
+    let owner = format!("%/{}/%", b.child.id());
+    let deadline = Instant::now() + Duration::from_secs(20);
+    loop {
+        let held: i64 = sqlx::query(
+            "SELECT count(*) FROM jobs j JOIN job_children c ON c.job_id = j.id \
+             WHERE c.parent_id = $1 AND j.status = 'running' AND j.lease_owner LIKE $2",
+        )
+        .bind(&id)
+        .bind(&owner)
+        .fetch_one(&mut db)
+        .await
+        .unwrap()
+        .get(0);
+        let succeeded = get(&client, &a.base, &id).await["children"]["succeeded"].as_i64().unwrap_or(0);
+        if held > 0 && succeeded >= 3 {
+            break;
+        }
+        assert!(Instant::now() < deadline, "B never solved a case");
+        tokio::time::sleep(Duration::from_millis(10)).await;
+    }
+    b.child.kill().unwrap();
+    b.child.wait().unwrap();
+
+    let done = finished(&client, &a.base, &id, Duration::from_secs(60)).await;
+    assert_eq!(done["status"], "succeeded", "{done}");
+    let r = result(&client, &a.base, &id).await;
+    assert_eq!(r["succeeded"], 40, "no case lost");
+    // Only B's claimed case ran twice (1 worker: at most one case held at the kill).
+    let rerun: i64 = sqlx::query(
+        "SELECT count(*) FROM jobs j JOIN job_children c ON c.job_id = j.id WHERE c.parent_id = $1 AND j.attempts > 1",
+    )
+    .bind(&id)
+    .fetch_one(&mut db)
+    .await
+    .unwrap()
+    .get(0);
+    assert_eq!(rerun, 1, "only the killed instance's case ran again");
+    let _ = db.close().await;
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn a_cancel_of_a_fanned_out_sweep_stops_its_cases_on_every_instance() {
+    if !postgres_available("a_cancel_of_a_fanned_out_sweep_stops_its_cases_on_every_instance") {
+        return;
+    }
+    let url = fresh_postgres_database().await;
+    let a = Instance::serve(&url, OPTS);
+    let _w = Instance::worker(&url, OPTS);
+    let client = reqwest::Client::new();
+    let id = post(&client, &a.base, &sleep_sweep(40, 1.0, 200), "").await["id"].as_str().unwrap().to_string();
+    let deadline = Instant::now() + Duration::from_secs(10);
+    loop {
+        let j = get(&client, &a.base, &id).await;
+        if j["children"]["running"].as_i64().unwrap_or(0) == 2 {
+            break;
+        }
+        assert!(Instant::now() < deadline, "cases never ran on both instances: {j}");
+        tokio::time::sleep(Duration::from_millis(20)).await;
+    }
+    let asked = Instant::now();
+    let res = client.delete(format!("{}/v1/jobs/{id}", a.base)).send().await.unwrap();
+    assert!(res.status().is_success(), "{}", res.status());
+    let mut db = sqlx::PgConnection::connect(&url).await.unwrap();
+    loop {
+        let open: i64 = sqlx::query(
+            "SELECT count(*) FROM jobs j JOIN job_children c ON c.job_id = j.id \
+             WHERE c.parent_id = $1 AND j.status IN ('queued', 'running')",
+        )
+        .bind(&id)
+        .fetch_one(&mut db)
+        .await
+        .unwrap()
+        .get(0);
+        if open == 0 {
+            break;
+        }
+        assert!(asked.elapsed() < Duration::from_secs(3), "{open} cases still open");
+        tokio::time::sleep(Duration::from_millis(10)).await;
+    }
+    let took = asked.elapsed();
+    eprintln!("cancel of the sweep reached its cases in {took:?}");
+    assert!(took < Duration::from_millis(1500), "cancel took {took:?}");
+    let job = get(&client, &a.base, &id).await;
+    assert_eq!(job["status"], "canceled", "{job}");
+    assert_eq!(job["children"]["failed"], 40, "{job}");
+    let _ = db.close().await;
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn a_sweep_rerun_with_one_more_value_solves_one_case() {
+    if !postgres_available("a_sweep_rerun_with_one_more_value_solves_one_case") {
+        return;
+    }
+    let url = fresh_postgres_database().await;
+    let a = Instance::serve(&url, OPTS);
+    let client = reqwest::Client::new();
+    let first = post(&client, &a.base, &sleep_sweep(10, 0.1, 300), "").await["id"].as_str().unwrap().to_string();
+    assert_eq!(finished(&client, &a.base, &first, Duration::from_secs(30)).await["status"], "succeeded");
+
+    let second = post(&client, &a.base, &sleep_sweep(11, 0.1, 300), "").await["id"].as_str().unwrap().to_string();
+    let done = finished(&client, &a.base, &second, Duration::from_secs(30)).await;
+    assert_eq!(done["status"], "succeeded", "{done}");
+    assert_eq!(done["children"]["reused"], 10, "{done}");
+    let r = result(&client, &a.base, &second).await;
+    let reused: Vec<bool> = r["cases"].as_array().unwrap().iter().map(|c| c["reused"].as_bool().unwrap()).collect();
+    assert_eq!(reused, [vec![true; 10], vec![false]].concat());
+    assert!(r["cases"].as_array().unwrap().iter().all(|c| c["instance"].is_string()), "a reused case names who solved it");
+    let mut db = sqlx::PgConnection::connect(&url).await.unwrap();
+    let solved: i64 = sqlx::query("SELECT count(*) FROM jobs WHERE kind = 'test_sleep'").fetch_one(&mut db).await.unwrap().get(0);
+    assert_eq!(solved, 11, "eleven cases solved for 21 rows");
+
+    // `?fresh=true` reuses nothing.
+    let third = post(&client, &a.base, &sleep_sweep(3, 0.1, 300), "?fresh=true").await["id"].as_str().unwrap().to_string();
+    assert_eq!(finished(&client, &a.base, &third, Duration::from_secs(30)).await["status"], "succeeded");
+    let r = result(&client, &a.base, &third).await;
+    assert!(r["cases"].as_array().unwrap().iter().all(|c| c["reused"] == false), "{r}");
+    let solved: i64 = sqlx::query("SELECT count(*) FROM jobs WHERE kind = 'test_sleep'").fetch_one(&mut db).await.unwrap().get(0);
+    assert_eq!(solved, 14);
+    let _ = db.close().await;
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn a_failed_case_is_a_failed_row_with_its_error() {
+    if !postgres_available("a_failed_case_is_a_failed_row_with_its_error") {
+        return;
+    }
+    let url = fresh_postgres_database().await;
+    let a = Instance::serve(&url, OPTS);
+    let client = reqwest::Client::new();
+    let job = json!({"kind": "sweep", "spec": {
+        "kind": "test_sleep", "base": {"seconds": 0.1, "nonce": 400},
+        "parameters": [{"path": "/panic", "values": [false, true, false]}, {"path": "/nonce", "values": [400]}],
+        "quantities": ["/table/step/3"]
+    }});
+    let id = post(&client, &a.base, &job, "").await["id"].as_str().unwrap().to_string();
+    let done = finished(&client, &a.base, &id, Duration::from_secs(30)).await;
+    assert_eq!(done["status"], "succeeded", "a failed case does not fail the sweep: {done}");
+    assert_eq!(done["children"]["failed"], 1, "{done}");
+    let r = result(&client, &a.base, &id).await;
+    assert_eq!((r["succeeded"].as_i64(), r["failed"].as_i64()), (Some(2), Some(1)), "{r}");
+    let row = &r["cases"][1];
+    assert_eq!(row["status"], "failed");
+    assert_eq!(row["error_code"], "internal_error");
+    assert!(row["error"].as_str().unwrap().contains("panicked"), "{row}");
+    assert!(r["columns"].as_array().unwrap().contains(&json!("error")));
+    // Cases 1 and 3 are the same spec: solved once.
+    assert_eq!(r["cases"][0]["table.step.3"], r["cases"][2]["table.step.3"]);
+}
