@@ -40,7 +40,7 @@ fn report(spec: &CamOptimisationSpec, i: usize, r: &Record, j: &Judged, limits: 
                 pointer,
                 value: *value,
                 limit: *limit,
-                sense: *sense,
+                bound: if *sense > 0.0 { "min".into() } else { "max".into() },
                 margin: *margin,
                 satisfied: *ok,
             }

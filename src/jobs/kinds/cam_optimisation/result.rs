@@ -21,8 +21,8 @@ pub struct ConstraintOutcome {
     pub value: Option<f64>,
     /// The limit (a `relative` constraint's factor times the baseline's value), in the row's `unit`.
     pub limit: f64,
-    /// `+1` for a lower limit (`min`), `-1` for an upper limit (`max`): a sign, a pure number.
-    pub sense: f64,
+    /// Which limit `limit` is: `min` (a lower limit) or `max` (an upper one; with both, the nearer).
+    pub bound: String,
     /// Distance to the limit on the allowed side (negative: violated), in the row's `unit`.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub margin: Option<f64>,
