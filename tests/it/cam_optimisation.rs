@@ -155,3 +155,40 @@ async fn canceling_an_optimisation_stops_it() {
     assert!(t0.elapsed().as_secs_f64() < 3.0, "took {:?}", t0.elapsed());
     s.stop().await;
 }
+
+/// A dynamic train (seed 003's, `seed003_dynamic.json`): `no_separation` at 3300 rpm reads the
+/// integrated train's contact, so feasibility is monotone in the spring preload — every design
+/// below some preload separates, every one above keeps contact — and the cheapest feasible
+/// design (least friction) is the lightest spring that keeps contact.
+#[test]
+fn no_separation_of_a_dynamic_train_is_monotone_in_the_preload() {
+    let mut base = crate::in_process::example("seed003_dynamic");
+    base["angles"] = json!(180);
+    base["fidelity"] = json!("fast");
+    let spec = json!({
+        "base": base,
+        "variables": [{"path": "/load/spring_preload", "min": 100.0, "max": 400.0}],
+        "objectives": [{"quantity": "friction_power"}],
+        "constraints": [{"quantity": "no_separation", "at_rpm": 3300.0}],
+        "search": {"samples": 8, "iterations": 0}
+    });
+    let r = crate::in_process::run("cam_optimisation", &spec).unwrap();
+    let mut rows: Vec<(f64, bool, f64)> = r["designs"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|d| (d["load.spring_preload"].as_f64().unwrap(), d["feasible"] == true, d["friction_power"].as_f64().unwrap_or(f64::NAN)))
+        .collect();
+    rows.sort_by(|a, b| a.0.total_cmp(&b.0));
+    eprintln!("(preload N, feasible, friction W): {rows:?}");
+    let first = rows.iter().position(|r| r.1).expect("a feasible design");
+    assert!(first > 0, "the lightest springs separate at 3300 rpm: {rows:?}");
+    assert!(rows[first..].iter().all(|r| r.1), "{rows:?}");
+    // Friction grows with the preload, so the best is the lightest feasible spring. The lightest
+    // springs lose contact even at the base speed: their cycles fail (`follower_separation`),
+    // rows without a friction power.
+    let ran: Vec<f64> = rows.iter().map(|r| r.2).filter(|f| f.is_finite()).collect();
+    assert!(ran.len() >= rows.len() - first && ran.windows(2).all(|w| w[1] > w[0]), "{rows:?}");
+    assert_eq!(r["best"]["variables"]["/load/spring_preload"].as_f64().unwrap(), rows[first].0);
+    assert!(r["best"]["friction_power"].as_f64().unwrap() <= r["baseline"]["friction_power"].as_f64().unwrap());
+}
