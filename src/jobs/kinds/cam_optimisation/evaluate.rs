@@ -299,7 +299,7 @@ pub fn judge(spec: &CamOptimisationSpec, m: &Measured, baseline: &Measured, limi
         let margin = v.map(|x| match (l.min, l.max) {
             (Some(lo), Some(hi)) => (x - lo).min(hi - x),
             _ => sense * (x - limit),
-        });
+        } + 0.0); // −0.0 (at the limit) reads as 0
         let ok = margin.is_some_and(|g| g >= 0.0) && !apart;
         if !ok {
             feasible = false;

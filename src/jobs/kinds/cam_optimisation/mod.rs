@@ -152,7 +152,8 @@ fn check_quantity(v: &mut Validation, at: &str, q: &str, constraint: bool) {
         .result_units()
         .keys()
         .filter_map(|k| k.strip_prefix("/summary/").map(str::to_string))
-        .filter(|k| !k.contains('/'))
+        // Scalars only (`separation` is a list of intervals).
+        .filter(|k| !k.contains('/') && *k != "separation")
         .collect();
     v.check(
         known || NAMED.contains(&q),
