@@ -192,3 +192,35 @@ fn no_separation_of_a_dynamic_train_is_monotone_in_the_preload() {
     assert_eq!(r["best"]["variables"]["/load/spring_preload"].as_f64().unwrap(), rows[first].0);
     assert!(r["best"]["friction_power"].as_f64().unwrap() <= r["baseline"]["friction_power"].as_f64().unwrap());
 }
+
+/// A wear objective (`wear_depth`, seed 003's Archard example over 100 h): every design also runs
+/// the `wear` job on its cycle; the best design's wear depth is the wear job of its own spec, and
+/// a wear quantity without the wear fields is refused naming `/wear`.
+#[test]
+fn a_wear_objective_runs_the_wear_job_of_each_design() {
+    let mut wear = crate::in_process::example("seed003_flat_archard");
+    let mut base = wear.as_object_mut().unwrap().remove("cycle").unwrap();
+    base["angles"] = json!(180);
+    wear["hours"] = json!(100.0);
+    wear["update_interval_hours"] = json!(50.0);
+    let spec = json!({
+        "base": base, "wear": wear,
+        "variables": [{"path": "/load/spring_preload", "min": 300.0, "max": 400.0}, {"path": "/cam/width", "min": 0.01, "max": 0.02}],
+        "objectives": [{"quantity": "wear_depth"}],
+        "constraints": [{"quantity": "wear:hours_to_limit_extrapolated", "min": 1000.0}],
+        "search": {"samples": 4, "iterations": 4, "starts": 1}
+    });
+    let r = crate::in_process::run("cam_optimisation", &spec).unwrap();
+    let depth = |x: &Value| x["objectives"]["wear_depth"].as_f64().unwrap();
+    assert!(depth(&r["best"]) <= depth(&r["baseline"]), "{} {}", r["best"], r["baseline"]);
+    assert_eq!(r["units"]["wear_depth"], "m");
+    assert_eq!(r["best"]["constraints"][0]["unit"], "h");
+    let mut again = wear.clone();
+    again["cycle"] = r["best"]["spec"].clone();
+    let w = crate::in_process::run("wear", &again).unwrap();
+    assert!((w["summary"]["max_wear_depth"].as_f64().unwrap() / depth(&r["best"]) - 1.0).abs() < 1e-12);
+    let mut bad = spec.clone();
+    bad.as_object_mut().unwrap().remove("wear");
+    let Err(crate::in_process::Failure::Spec(p)) = crate::in_process::run("cam_optimisation", &bad) else { panic!("accepted without `wear`") };
+    assert_eq!(p.errors[0].path, "/wear", "{p:?}");
+}

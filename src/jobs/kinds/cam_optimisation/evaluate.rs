@@ -5,6 +5,7 @@
 use super::spec::{CamOptimisationSpec, Constraint, Goal};
 use crate::jobs::kind::{DynKind, Limits, Registered};
 use crate::jobs::kinds::cam_cycle::CamCycle;
+use crate::jobs::kinds::wear::Wear;
 use crate::jobs::kinds::sweep::set_pointer;
 use crate::physics::{Interrupt, Observer, SolveError};
 use serde_json::{json, Value};
@@ -16,9 +17,53 @@ pub fn cycle_kind() -> &'static dyn DynKind {
     &CYCLE
 }
 
-/// The pointer into the `cam_cycle` result of a named quantity or a pointer.
+pub static WEAR: Registered<Wear> = Registered::new();
+
+/// The wear kind a design's wear quantities come from.
+pub fn wear_kind() -> &'static dyn DynKind {
+    &WEAR
+}
+
+/// Whether a quantity is read from the design's `wear` run (`wear_depth`, `wear:<name>`,
+/// `wear:<pointer>`) rather than its cycle.
+pub fn is_wear(quantity: &str) -> bool {
+    quantity == "wear_depth" || quantity.starts_with("wear:")
+}
+
+/// Whether any objective or constraint needs the wear run.
+pub fn needs_wear(spec: &CamOptimisationSpec) -> bool {
+    spec.objectives.iter().any(|o| is_wear(&o.quantity)) || spec.constraints.iter().any(|c| is_wear(&c.quantity))
+}
+
+/// The result units a quantity is read against (the wear kind's or the cycle's).
+pub fn units_of(quantity: &str) -> &'static std::collections::BTreeMap<String, String> {
+    if is_wear(quantity) { wear_kind().result_units() } else { cycle_kind().result_units() }
+}
+
+/// The `wear` spec of a design: the spec's `wear` fields with the design's cycle (less what a
+/// wear cycle leaves out).
+pub fn wear_spec(spec: &CamOptimisationSpec, design: &Value) -> Value {
+    let mut w = spec.wear.clone().unwrap_or_else(|| json!({}));
+    let mut cycle = design.clone();
+    if let Some(o) = cycle.as_object_mut() {
+        o.remove("outputs");
+        o.remove("profile_angles_deg");
+    }
+    if let Some(o) = w.as_object_mut() {
+        o.insert("cycle".into(), cycle);
+    }
+    w
+}
+
+/// The pointer into the `cam_cycle` (or, for a wear quantity, the `wear`) result of a named
+/// quantity or a pointer.
 pub fn pointer_of(quantity: &str) -> String {
     match quantity {
+        "wear_depth" => "/summary/max_wear_depth".into(),
+        q if q.starts_with("wear:") => match &q[5..] {
+            r if r.starts_with('/') => r.to_string(),
+            name => format!("/summary/{name}"),
+        },
         q if q.starts_with('/') => q.to_string(),
         "friction_power" => "/summary/mean_power_loss".into(),
         "no_separation" => "/summary/min_axial_load".into(),
@@ -131,8 +176,13 @@ pub fn speeds(spec: &CamOptimisationSpec) -> Vec<f64> {
 
 /// Run one cycle; a failure is data, an interrupt stops the job.
 fn cycle(s: &Value, observer: &dyn Observer) -> Result<Result<Value, crate::problem::Problem>, SolveError> {
+    run_kind(cycle_kind(), s, observer)
+}
+
+/// Run one job of `kind` (a cycle or a wear run); a failure is data, an interrupt stops the job.
+fn run_kind(kind: &'static dyn DynKind, s: &Value, observer: &dyn Observer) -> Result<Result<Value, crate::problem::Problem>, SolveError> {
     observer.check()?;
-    let prepared = match cycle_kind().prepare(s, &Limits::UNLIMITED) {
+    let prepared = match kind.prepare(s, &Limits::UNLIMITED) {
         Ok(p) => p,
         Err(p) => return Ok(Err(p)),
     };
@@ -194,7 +244,11 @@ fn evaluate_values(spec: &CamOptimisationSpec, values: Vec<Value>, place: bool, 
         }
         at_speed.push((rpm, cycle(&t, observer)?.ok()));
     }
-    let get = |r: &Value, q: &str| r.pointer(&pointer_of(q)).and_then(Value::as_f64);
+    let wear = if needs_wear(spec) { run_kind(wear_kind(), &wear_spec(spec, &s), observer)?.ok() } else { None };
+    let get = |r: &Value, q: &str| {
+        let r = if is_wear(q) { wear.as_ref()? } else { r };
+        r.pointer(&pointer_of(q)).and_then(Value::as_f64)
+    };
     let objectives = spec.objectives.iter().map(|o| get(&main, &o.quantity)).collect();
     let mut constraints = Vec::new();
     let mut separated = Vec::new();

@@ -24,7 +24,10 @@ use serde_json::{json, Value};
 
 pub struct CamOptimisation;
 
-const NAMED: &[&str] = &["friction_power", "no_separation", "no_undercut"];
+/// Named quantities beside the cycle's summary numbers.
+const NAMED: &[&str] = &["friction_power", "wear_depth", "no_separation", "no_undercut"];
+/// Named constraints (not objectives).
+const SPECIAL: &[&str] = &["no_separation", "no_undercut"];
 
 impl Kind for CamOptimisation {
     const NAME: &'static str = "cam_optimisation";
@@ -41,7 +44,7 @@ impl Kind for CamOptimisation {
 
     fn solver_version() -> &'static str {
         static V: std::sync::LazyLock<String> =
-            std::sync::LazyLock::new(|| format!("{}({})", CamOptimisation::SOLVER_VERSION, evaluate::cycle_kind().solver_version()));
+            std::sync::LazyLock::new(|| format!("{}({},{})", CamOptimisation::SOLVER_VERSION, evaluate::cycle_kind().solver_version(), evaluate::wear_kind().solver_version()));
         V.as_str()
     }
 
@@ -76,8 +79,15 @@ impl Kind for CamOptimisation {
         };
         let n = search::planned(spec);
         let cycles = n.saturating_mul(1 + evaluate::speeds(spec).len());
+        let wear = match &spec.wear {
+            Some(_) if evaluate::needs_wear(spec) => evaluate::wear_kind()
+                .prepare(&evaluate::wear_spec(spec, &spec.base), &Limits::UNLIMITED)
+                .map_or(Cost::new(0.0, 0.0), |p| p.cost),
+            _ => Cost::new(0.0, 0.0),
+        };
         let workers = std::thread::available_parallelism().map_or(1, |p| p.get()).min(n.max(1)) as f64;
-        Cost::new(crate::jobs::cost::JOB_OVERHEAD_S + cycles as f64 * one.cpu_seconds(), workers * one.memory_bytes())
+        let seconds = cycles as f64 * one.cpu_seconds() + n as f64 * wear.cpu_seconds();
+        Cost::new(crate::jobs::cost::JOB_OVERHEAD_S + seconds, workers * one.memory_bytes().max(wear.memory_bytes()))
             .work_at("/search", format!("{n} designs, {cycles} cam cycles"))
             .memory_at("/base", format!("{workers} cam cycles at once"))
     }
@@ -134,20 +144,43 @@ fn validate_spec(spec: &CamOptimisationSpec, limits: &Limits, v: &mut Validation
     v.count_in_range("/search/iterations", s.iterations, 0, 1000);
     v.count_in_range("/search/starts", s.starts, 1, 8);
     v.limit("/search", search::planned(spec), limits.max_evaluations, "the number of designs");
+    validate_wear(spec, limits, v);
     if v.is_ok() {
         validate_designs(spec, limits, v);
     }
 }
 
+/// A wear quantity needs `wear`; the base's wear run must be a valid `wear` spec.
+fn validate_wear(spec: &CamOptimisationSpec, limits: &Limits, v: &mut Validation) {
+    let needed = evaluate::needs_wear(spec);
+    match (&spec.wear, needed) {
+        (None, true) => {
+            v.error("/wear", "a wear quantity needs the wear run's fields (hours, wear_coefficient, …)");
+        }
+        (Some(w), _) => {
+            v.check(w.is_object() && w.get("cycle").is_none(), "/wear", "must be a wear spec without `cycle` (the design's cycle is put there)");
+            if v.is_ok() {
+                if let Err(p) = evaluate::wear_kind().prepare(&evaluate::wear_spec(spec, &spec.base), limits) {
+                    v.absorb(&p, |path| match path.strip_prefix("/cycle") {
+                        Some(rest) => format!("/base{rest}"),
+                        None => format!("/wear{path}"),
+                    });
+                }
+            }
+        }
+        (None, false) => {}
+    }
+}
+
 /// A quantity must be a named one or a documented number of the `cam_cycle` result.
 fn check_quantity(v: &mut Validation, at: &str, q: &str, constraint: bool) {
-    let special = NAMED[1..].contains(&q);
+    let special = SPECIAL.contains(&q);
     if special && !constraint {
         v.error(at, format!("`{q}` is a constraint, not an objective"));
         return;
     }
     let pointer = evaluate::pointer_of(q);
-    let known = crate::jobs::units::unit_at(evaluate::cycle_kind().result_units(), &pointer).is_some();
+    let known = crate::jobs::units::unit_at(evaluate::units_of(q), &pointer).is_some();
     let summary: Vec<String> = evaluate::cycle_kind()
         .result_units()
         .keys()
@@ -159,7 +192,7 @@ fn check_quantity(v: &mut Validation, at: &str, q: &str, constraint: bool) {
         known || NAMED.contains(&q),
         at,
         format!(
-            "unknown quantity `{q}` (read as {pointer}): give a JSON pointer to a number of the cam_cycle result, or one of {}, {}",
+            "unknown quantity `{q}` (read as {pointer}): give a JSON pointer to a number of the cam_cycle result, `wear:` and a number of the wear result, or one of {}, {}",
             NAMED.join(", "),
             summary.join(", ")
         ),
@@ -169,7 +202,7 @@ fn check_quantity(v: &mut Validation, at: &str, q: &str, constraint: bool) {
 fn validate_constraint(v: &mut Validation, i: usize, c: &Constraint) {
     let at = format!("/constraints/{i}");
     check_quantity(v, &format!("{at}/quantity"), &c.quantity, true);
-    let special = NAMED[1..].contains(&c.quantity.as_str());
+    let special = SPECIAL.contains(&c.quantity.as_str());
     v.check(special || c.min.is_some() || c.max.is_some(), &at, "needs `min` or `max` (or both)");
     for (name, x) in [("min", c.min), ("max", c.max)] {
         if let Some(x) = x {
@@ -182,6 +215,7 @@ fn validate_constraint(v: &mut Validation, i: usize, c: &Constraint) {
     if let Some(r) = c.at_rpm {
         v.quantity(&format!("{at}/at_rpm"), r, crate::jobs::quantity::SPEED_RPM);
     }
+    v.check(!(evaluate::is_wear(&c.quantity) && c.at_rpm.is_some()), &format!("{at}/at_rpm"), "a wear quantity runs at the base speed");
     v.check(c.quantity != "no_separation" || c.at_rpm.is_some(), &format!("{at}/at_rpm"), "no_separation needs the speed to check it at (rpm): the speed limit times a margin");
 }
 

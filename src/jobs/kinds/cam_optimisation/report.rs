@@ -13,7 +13,6 @@ use std::collections::BTreeMap;
 /// The report of record `i`.
 fn report(spec: &CamOptimisationSpec, i: usize, r: &Record, j: &Judged, limits: &[ev::Limit]) -> Report {
     let Outcome::Measured(m) = &r.outcome else { unreachable!("only measured designs are judged") };
-    let units = ev::cycle_kind().result_units();
     let mut variables = Map::new();
     for (v, x) in spec.variables.iter().zip(&m.values) {
         if !x.is_null() {
@@ -36,7 +35,7 @@ fn report(spec: &CamOptimisationSpec, i: usize, r: &Record, j: &Judged, limits: 
             let pointer = ev::pointer_of(&c.quantity);
             ConstraintOutcome {
                 name: constraint_label(c),
-                unit: unit_at(units, &pointer).unwrap_or("1").to_string(),
+                unit: unit_at(ev::units_of(&c.quantity), &pointer).unwrap_or("1").to_string(),
                 pointer,
                 value: *value,
                 limit: *limit,
@@ -62,7 +61,6 @@ fn report(spec: &CamOptimisationSpec, i: usize, r: &Record, j: &Judged, limits: 
 /// The designs table's columns and their units.
 fn columns(spec: &CamOptimisationSpec) -> (Vec<String>, BTreeMap<String, String>) {
     let spec_units = ev::cycle_kind().spec_units();
-    let units = ev::cycle_kind().result_units();
     let mut cols: Vec<String> = ["design", "phase", "status", "feasible", "score"].map(String::from).to_vec();
     let mut out = BTreeMap::new();
     out.insert("score".to_string(), "1".to_string());
@@ -75,7 +73,7 @@ fn columns(spec: &CamOptimisationSpec) -> (Vec<String>, BTreeMap<String, String>
     }
     for o in &spec.objectives {
         let name = label_of(&o.quantity);
-        if let Some(u) = unit_at(units, &ev::pointer_of(&o.quantity)) {
+        if let Some(u) = unit_at(ev::units_of(&o.quantity), &ev::pointer_of(&o.quantity)) {
             out.insert(name.clone(), u.to_string());
         }
         if !cols.contains(&name) {
@@ -84,7 +82,7 @@ fn columns(spec: &CamOptimisationSpec) -> (Vec<String>, BTreeMap<String, String>
     }
     for c in &spec.constraints {
         let name = constraint_label(c);
-        if let Some(u) = unit_at(units, &ev::pointer_of(&c.quantity)) {
+        if let Some(u) = unit_at(ev::units_of(&c.quantity), &ev::pointer_of(&c.quantity)) {
             out.insert(name.clone(), u.to_string());
             out.insert(format!("{name}.margin"), u.to_string());
         }

@@ -67,8 +67,10 @@ pub enum Goal {
 
 /// One objective: a named quantity of the cycle (`friction_power`: the cycle-mean power loss,
 /// W; `min_film`, `min_lambda`, `max_hertz_pressure`, `max_subsurface_shear`,
-/// `max_flash_temperature`, `mean_friction_torque`, … any number of the cycle's `summary`) or a
-/// JSON pointer into the `cam_cycle` result (`/summary/min_film`).
+/// `max_flash_temperature`, `mean_friction_torque`, … any number of the cycle's `summary`), a
+/// JSON pointer into the `cam_cycle` result (`/summary/min_film`), or a wear quantity
+/// (`wear_depth`: the cam's largest wear depth, m; `wear:<name or pointer>` of the `wear`
+/// result; needs `wear`).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize, ToSchema)]
 #[serde(deny_unknown_fields)]
 pub struct Objective {
@@ -147,4 +149,11 @@ pub struct CamOptimisationSpec {
     pub constraints: Vec<Constraint>,
     #[serde(default)]
     pub search: SearchSpec,
+    /// A `wear` spec without its `cycle` (e.g. `{"hours": 1000, "wear_coefficient": {…}}`): each
+    /// design also runs this wear job on its cycle when a quantity is `wear_depth` (the cam's
+    /// largest wear depth after the running time, m) or `wear:<summary name or pointer>` of the
+    /// `wear` result.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    #[schema(value_type = Option<Object>)]
+    pub wear: Option<Value>,
 }
