@@ -112,7 +112,11 @@ async fn a_small_optimisation_beats_its_baseline_within_its_constraints() {
 }
 
 async fn bad_variables_and_quantities_are_named() {
-    let s = start_with(|c| c.queue.limits.max_evaluations = 100).await;
+    let s = start_with(|c| {
+        c.queue.limits.max_evaluations = 100;
+        c.queue.limits.max_job_seconds = 3.0;
+    })
+    .await;
     let cases: Vec<(Value, &str, &str)> = vec![
         (json!({"variables": [{"path": "load/spring_preload", "min": 250.0, "max": 600.0}]}), "/spec/variables/0/path", "JSON pointer"),
         (json!({"variables": [{"path": "/load/spring_preload", "min": 600.0, "max": 250.0}]}), "/spec/variables/0/max", "min < max"),
@@ -135,6 +139,13 @@ async fn bad_variables_and_quantities_are_named() {
     spec["search"] = json!({"samples": 90, "iterations": 10, "starts": 2});
     let p = expect_problem(s.post_job(&json!({"kind": "cam_optimisation", "spec": spec})).await, 422, "limit_exceeded").await;
     assert_eq!(p["errors"][0]["path"], "/spec/search", "{p}");
+    // Within the design count but over the work limit: designs × 2 cycles × the cycle's estimate.
+    let mut spec = small_spec();
+    spec["base"]["angles"] = json!(720);
+    spec["search"] = json!({"samples": 90, "iterations": 0});
+    let p = expect_problem(s.post_job(&json!({"kind": "cam_optimisation", "spec": spec})).await, 422, "limit_exceeded").await;
+    assert_eq!(p["errors"][0]["path"], "/spec/search", "{p}");
+    assert!(p["errors"][0]["message"].as_str().unwrap().contains("91 designs, 182 cam cycles"), "{p}");
     s.stop().await;
 }
 
