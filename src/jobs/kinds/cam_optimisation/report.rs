@@ -1,7 +1,7 @@
 //! The result document of a search: the baseline and best reports, the designs table with its
 //! columns and units, and the Pareto front.
 
-use super::evaluate::{self as ev, constraint_label, label_of, Judged, Outcome};
+use super::evaluate::{self as ev, constraint_label, label_of, Judged, Measured, Outcome};
 use super::result::{CamOptimisationResult, ConstraintOutcome, Pareto, Report};
 use super::search::{judge_all, rank, Record, Searched};
 use super::spec::{CamOptimisationSpec, Goal};
@@ -10,9 +10,8 @@ use crate::physics::SolveError;
 use serde_json::{json, Map, Value};
 use std::collections::BTreeMap;
 
-/// The report of record `i`.
-fn report(spec: &CamOptimisationSpec, i: usize, r: &Record, j: &Judged, limits: &[ev::Limit]) -> Report {
-    let Outcome::Measured(m) = &r.outcome else { unreachable!("only measured designs are judged") };
+/// The report of design `i` (0-based), measured as `m` and judged `j`.
+fn report(spec: &CamOptimisationSpec, i: usize, m: &Measured, j: &Judged) -> Report {
     let mut variables = Map::new();
     for (v, x) in spec.variables.iter().zip(&m.values) {
         if !x.is_null() {
@@ -30,8 +29,7 @@ fn report(spec: &CamOptimisationSpec, i: usize, r: &Record, j: &Judged, limits: 
         .iter()
         .zip(&m.constraints)
         .zip(&j.margins)
-        .zip(limits)
-        .map(|(((c, value), (limit, sense, margin, ok)), _)| {
+        .map(|((c, value), (limit, sense, margin, ok))| {
             let pointer = ev::pointer_of(&c.quantity);
             ConstraintOutcome {
                 name: constraint_label(c),
@@ -178,13 +176,17 @@ pub fn result(spec: &CamOptimisationSpec, searched: Searched) -> Result<CamOptim
         return Err(SolveError::invalid("/base", "the baseline design failed"));
     };
     let judged = judge_all(spec, &records, base, &limits);
-    let order = rank(&judged);
-    let best_i = order[0];
-    let base_j = judged[0].as_ref().ok_or_else(|| SolveError::invalid("/base", "the baseline design failed"))?;
-    let best_j = judged[best_i].as_ref().unwrap_or(base_j);
-    let best_i = if judged[best_i].is_some() { best_i } else { 0 };
-    let baseline = report(spec, 0, &records[0], base_j, &limits);
-    let best = report(spec, best_i, &records[best_i], best_j, &limits);
+    let measured = |i: usize| match &records[i].outcome {
+        Outcome::Measured(m) => Some(m.as_ref()),
+        Outcome::Failed { .. } => None,
+    };
+    let failed = || SolveError::invalid("/base", "the baseline design failed");
+    let base_j = judged[0].as_ref().ok_or_else(failed)?;
+    // The first of the ranking; a failed design is never first unless every design failed.
+    let best_i = rank(&judged).into_iter().next().filter(|&i| judged[i].is_some()).unwrap_or(0);
+    let best_j = judged[best_i].as_ref().ok_or_else(failed)?;
+    let baseline = report(spec, 0, base, base_j);
+    let best = report(spec, best_i, measured(best_i).ok_or_else(failed)?, best_j);
     let friction_power_change = match (best.friction_power, baseline.friction_power) {
         (Some(b), Some(a)) if a != 0.0 => Some((b - a) / a),
         _ => None,
