@@ -65,10 +65,8 @@ pub struct Pareto {
     /// Design numbers (1-based index into `designs`), ordered by the first objective.
     pub designs: Vec<usize>,
     /// The first objective's values along the front, in `units[objectives[0]]`.
-    #[schema(value_type = Vec<Object>)]
     pub first: Vec<Value>,
     /// The second objective's values along the front, in `units[objectives[1]]`.
-    #[schema(value_type = Vec<Object>)]
     pub second: Vec<Value>,
 }
 

@@ -43,7 +43,6 @@ pub struct Variable {
     pub max: Option<f64>,
     /// The choices of a categorical variable (1–32). Exactly one of `values` and `min`+`max`.
     #[serde(default, skip_serializing_if = "Option::is_none")]
-    #[schema(value_type = Option<Vec<Object>>)]
     pub values: Option<Vec<Value>>,
     /// Fields that follow a continuous variable linearly (at most 4).
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
