@@ -35,10 +35,17 @@ const DIMENSIONLESS_NAMES: &[&str] = &[
     "ratio", "tolerance", "residual", "_level", "evaluations", "nodes", "score", "normalised", "bounces", "moes_", "_error", "axial", "circumferential",
 ];
 
+/// The unit of a field whose unit varies by row and is given by the row's `unit` field (a
+/// constraint of an optimisation: N for one, Pa for the next).
+pub const ROW_UNIT: &str = "the row's `unit`";
+
 /// The unit of a numeric field from its name and description; `None` when neither tells.
 pub fn unit_of(name: &str, description: &str) -> Option<&'static str> {
     if name == "hours" {
         return Some("h");
+    }
+    if description.contains(ROW_UNIT) {
+        return Some(ROW_UNIT);
     }
     if let Some((_, u)) = NAME_UNITS.iter().find(|(end, _)| name.ends_with(end)) {
         return Some(u);

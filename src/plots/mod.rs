@@ -7,6 +7,7 @@ mod bearing;
 mod cam;
 mod contact;
 pub mod draw;
+mod optimisation;
 pub mod scale;
 mod sweep;
 
@@ -80,6 +81,7 @@ pub fn available(kind: &str, result: &Value) -> Vec<Plot> {
         "ehl_point" => contact::ehl_point(result),
         "bearing" => bearing::bearing(result),
         "bearing_optimisation" => bearing::optimisation(result),
+        "cam_optimisation" => optimisation::cam_optimisation(result),
         "sweep" => sweep::sweep(result),
         _ => Vec::new(),
     }

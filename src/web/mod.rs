@@ -58,6 +58,7 @@ const EXAMPLES: &[(&str, &str)] = examples![
     "seed002_misaligned",
     "seed002_optimised",
     "seed002_taguchi_l9",
+    "seed003_cam_optimisation",
     "seed003_cycloidal_auto",
     "seed003_cycloidal_flat",
     "seed003_dynamic",

@@ -109,7 +109,7 @@ fn no_accepted_spec_ends_in_internal_error() {
     }
     let (mut refused, mut solved, mut failed) = (0, 0, 0);
     let mut internal = Vec::new();
-    for kind in registry::KINDS.iter().filter(|k| !["sweep", "bearing_optimisation", "test_sleep"].contains(&k.name())) {
+    for kind in registry::KINDS.iter().filter(|k| !["sweep", "bearing_optimisation", "cam_optimisation", "test_sleep"].contains(&k.name())) {
         let example = kind.example();
         let mut pointers = Vec::new();
         numeric_pointers(&example, String::new(), &mut pointers);

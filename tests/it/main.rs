@@ -10,6 +10,7 @@ mod common;
 mod in_process;
 
 mod cam_stability;
+mod cam_optimisation;
 mod cam_synthesis;
 mod cam_validation;
 mod ehl_stability;

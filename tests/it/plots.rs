@@ -17,6 +17,7 @@ const EXAMPLES: &[(&str, &[&str])] = &[
     ("ehl_point_seed001_nose", &["pressure", "film"]),
     ("seed001_nose_point", &["slide_roll_ratio", "traction"]),
     ("seed002_taguchi_l9", &["main_effects", "run_scores"]),
+    ("seed003_cam_optimisation", &["pareto", "best_score"]),
     ("sweep_hertz_load", &["max_pressure", "half_width", "max_shear.value", "max_shear.depth"]),
 ];
 

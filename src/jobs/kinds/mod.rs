@@ -5,6 +5,7 @@ pub mod bearing_optimisation;
 pub mod common;
 pub mod contact;
 pub mod cam_cycle;
+pub mod cam_optimisation;
 pub mod cam_point;
 pub mod ehl_point;
 pub mod film_cost;
@@ -25,6 +26,7 @@ pub static CASE_KINDS: &[&dyn DynKind] = &[
     &Registered::<bearing::BearingKind>::new(),
     &Registered::<bearing_optimisation::BearingOptimisation>::new(),
     &Registered::<cam_cycle::CamCycle>::new(),
+    &Registered::<cam_optimisation::CamOptimisation>::new(),
     &Registered::<cam_point::CamPoint>::new(),
     &Registered::<ehl_point::EhlPoint>::new(),
     &Registered::<wear::Wear>::new(),
