@@ -52,6 +52,70 @@ struct Past {
     time_step: Option<f64>,
 }
 
+/// Linear extrapolation of the last two steps `past` (on the grid of `layout`) to the next one, in
+/// Hertzian-scaled pressure (the pressure shape follows the contact width) and centre film.
+fn predict(past: &[Past], layout: Layout, time_step: Option<f64>) -> Option<(Vec<f64>, f64)> {
+    let [a, b] = past else { return None };
+    if a.layout != layout || b.layout != layout {
+        return None;
+    }
+    // Step ratio: Δt_next/Δt_last for squeeze steps, 1 for a steady continuation.
+    let s = match (time_step, b.time_step) {
+        (Some(t), Some(tb)) => t / tb,
+        (None, None) => 1.0,
+        _ => return None,
+    };
+    let p = a.pressure.iter().zip(&b.pressure).map(|(pa, pb)| pb + s * (pb - pa)).collect();
+    let hc = b.centre_film + s * (b.centre_film - a.centre_film);
+    Some((p, if hc > 0.0 { hc } else { b.centre_film }))
+}
+
+/// The last two steps one grid of a [`ReusableSolver`] solved, and the pressure of the last
+/// state it returned: a call whose previous state is that one continues the march, and starts
+/// from the extrapolation of the two ([`predict`]).
+#[derive(Default)]
+struct History {
+    past: Vec<Past>,
+    last: Vec<f64>,
+}
+
+impl History {
+    /// The prediction for `input` on `layout` when `input`'s previous state is the last one
+    /// returned (else `None`: the solve starts from the previous state itself).
+    fn predict(&self, input: &EhlInput, layout: Layout) -> Option<(Vec<f64>, f64)> {
+        let previous = input.transient.map(|t| t.previous).or(input.warm_start)?;
+        if self.last.is_empty() || previous.pressure != self.last {
+            return None;
+        }
+        predict(&self.past, layout, input.transient.map(|t| t.time_step))
+    }
+
+    /// Record the solution `s` of `input` on `layout`.
+    fn record(&mut self, input: &EhlInput, layout: Layout, s: &EhlSolution) {
+        let continues = self.predict_ok(input);
+        if !continues {
+            self.past.clear();
+        }
+        if self.past.len() == 2 {
+            self.past.remove(0);
+        }
+        let ph = s.hertz_pressure;
+        self.past.push(Past {
+            layout,
+            pressure: s.state.pressure.iter().map(|p| p / ph).collect(),
+            centre_film: s.central_film,
+            time_step: input.transient.map(|t| t.time_step),
+        });
+        self.last.clone_from(&s.state.pressure);
+    }
+
+    /// Whether `input` starts from the last state returned.
+    fn predict_ok(&self, input: &EhlInput) -> bool {
+        let previous = input.transient.map(|t| t.previous).or(input.warm_start);
+        matches!(previous, Some(p) if !self.last.is_empty() && p.pressure == self.last)
+    }
+}
+
 /// One grid's march through the sequence.
 struct Track {
     engine: Engine,
@@ -71,22 +135,9 @@ impl Track {
         self.past.clear();
     }
 
-    /// Linear extrapolation of the last two steps (on the grid of `layout`) to the next one, in
-    /// Hertzian-scaled pressure (the pressure shape follows the contact width) and centre film.
+    /// Linear extrapolation of the last two steps to the next one ([`predict`]).
     fn predict(&self, layout: Layout, time_step: Option<f64>) -> Option<(Vec<f64>, f64)> {
-        let [a, b] = self.past.as_slice() else { return None };
-        if a.layout != layout || b.layout != layout {
-            return None;
-        }
-        // Step ratio: Δt_next/Δt_last for squeeze steps, 1 for a steady continuation.
-        let s = match (time_step, b.time_step) {
-            (Some(t), Some(tb)) => t / tb,
-            (None, None) => 1.0,
-            _ => return None,
-        };
-        let p = a.pressure.iter().zip(&b.pressure).map(|(pa, pb)| pb + s * (pb - pa)).collect();
-        let hc = b.centre_film + s * (b.centre_film - a.centre_film);
-        Some((p, if hc > 0.0 { hc } else { b.centre_film }))
+        predict(&self.past, layout, time_step)
     }
 
     fn step(&mut self, input: &EhlInput, time_step: Option<f64>, layout: Layout, observer: &dyn Observer) -> Result<EhlSolution, SolveError> {
@@ -305,14 +356,19 @@ pub fn lattice_layout(input: &EhlInput, options: &EhlOptions) -> Layout {
 /// caller may re-solve a step or skip angles). The grid is graded for the film estimate rounded
 /// to a geometric lattice of ratio [`LAYOUT_BAND`]² ([`lattice_layout`]): within a factor
 /// [`LAYOUT_BAND`] of the estimate, the same grid for neighbouring angles, and — unlike the
-/// transient solver's band around the last design — independent of earlier calls, so the same
-/// input always gives the same result. Results agree with [`super::solve`] to the discretisation
-/// error of the grid. [`solve_richardson`](Self::solve_richardson) marches a second, coarse grid
+/// transient solver's band around the last design — independent of earlier calls. When a call's
+/// previous state is the state the last call returned (the caller marches on), Newton starts from
+/// the linear extrapolation of the last two solutions (as [`TransientSolver`] does), else from the
+/// previous state: the start, and so the result to within the Newton tolerance, may depend on the
+/// calls before (the same sequence of calls always gives the same results). Results agree with
+/// [`super::solve`] to the discretisation error of the grid. [`solve_richardson`](Self::solve_richardson) marches a second, coarse grid
 /// whose state the caller carries too.
 #[derive(Default)]
 pub struct ReusableSolver {
     fine: Option<Engine>,
     coarse: Option<Engine>,
+    fine_history: History,
+    coarse_history: History,
     layout: Option<Layout>,
     layout_changes: u64,
 }
@@ -338,7 +394,11 @@ impl ReusableSolver {
     /// [`super::solve`], with the caches of earlier calls.
     pub fn solve(&mut self, input: &EhlInput, options: &EhlOptions, observer: &dyn Observer) -> Result<EhlSolution, SolveError> {
         let layout = self.layout_for(input, options);
-        self.fine.get_or_insert_with(Engine::new).solve(input, options, Some(layout), None, observer)
+        let predicted = self.fine_history.predict(input, layout);
+        let prediction = predicted.as_ref().map(|(p, hc)| Prediction { pressure: p, centre_film: *hc });
+        let s = self.fine.get_or_insert_with(Engine::new).solve(input, options, Some(layout), prediction, observer)?;
+        self.fine_history.record(input, layout, &s);
+        Ok(s)
     }
 
     /// Solve `input` on `options.nodes` and `(options.nodes − 1)/2 + 1` nodes of one layout (two
@@ -365,15 +425,23 @@ impl ReusableSolver {
                 None => coarse_input.warm_start = Some(prev),
             }
         }
+        let fine_predicted = self.fine_history.predict(input, layout);
+        let coarse_predicted = self.coarse_history.predict(&coarse_input, layout);
+        fn as_prediction(g: &Option<(Vec<f64>, f64)>) -> Option<Prediction<'_>> {
+            g.as_ref().map(|(p, hc)| Prediction { pressure: p, centre_film: *hc })
+        }
+        let (fine_prediction, coarse_prediction) = (as_prediction(&fine_predicted), as_prediction(&coarse_predicted));
         let fine = self.fine.get_or_insert_with(Engine::new);
         let coarse = self.coarse.get_or_insert_with(Engine::new);
         let (f, c) = rayon::join(
-            || fine.solve(input, options, Some(layout), None, observer),
-            || coarse.solve(&coarse_input, &coarse_options, Some(layout), None, observer),
+            || fine.solve(input, options, Some(layout), fine_prediction, observer),
+            || coarse.solve(&coarse_input, &coarse_options, Some(layout), coarse_prediction, observer),
         );
         let mut f = f?;
+        self.fine_history.record(input, layout, &f);
         let coarse_state = match c {
             Ok(c) => {
+                self.coarse_history.record(&coarse_input, layout, &c);
                 extrapolate(&mut f, &c);
                 Some(c.state)
             }

@@ -85,7 +85,7 @@ pub(super) fn newton(
         }
         ws.sys.rhs[m] = -ws.v.load;
         ws.stats.newton_steps += 1;
-        if !linear_solve(ws, &grid) {
+        if !linear_solve(ws, &grid, res, tol) {
             return Ok(Run { iterations: iter + 1, residual: res, history, converged: false });
         }
         let dh0 = ws.sol[m];

@@ -15,14 +15,15 @@
 //! angle to the next. Each step first solves `J δ = −φ` by GMRES, right-preconditioned with the LU
 //! factors of the last Jacobian factorised *on the same grid* (possibly several steps or angles
 //! old), with a matrix-free product (`K v` plus banded terms, `O(n²)`); only when GMRES does not
-//! reach its tolerance in [`GMRES_MAX`] iterations is the current Jacobian assembled and factorised
-//! (`O(n³)`), and the step solved with the fresh factors. An inexact Newton step (relative linear
-//! residual ≤ [`GMRES_TOL`]) keeps the Newton convergence; [`Engine`] keeps the factors, the
-//! workspace and the grids across solves.
+//! reach its tolerance in [`GMRES_MAX`] iterations (or needed more than [`GMRES_REFRESH`] in the
+//! step before) is the current Jacobian assembled and factorised (`O(n³)`), and the step solved
+//! with the fresh factors. An inexact Newton step (relative linear residual ≤ [`forcing`], loose
+//! far from the solution, Eisenstat–Walker) keeps the Newton convergence; [`Engine`] keeps the
+//! factors, the workspace and the grids across solves.
 
 use super::formulas::{moes_central, Groups};
 use super::grid::{Grid, GridCache, Layout};
-use super::linear::{assemble, gmres, Factor, Krylov, System, GMRES_MAX, GMRES_TOL};
+use super::linear::{assemble, forcing, gmres, Factor, Krylov, System, GMRES_MAX, GMRES_REFRESH};
 use super::rheology::PressureRheology;
 use super::traction::traction;
 use super::{EhlInput, EhlOptions, EhlSolution, EhlState, PressureSpike, Profiles, Upwind};
