@@ -182,7 +182,7 @@ fn seed000_fig5_skidding_at_the_nose() {
 /// 129×257 with the grid check opened (`grid_tolerance` 1): central and minimum film, largest and edge-peak pressure,
 /// largest film temperature, each against the finest (table in BENCHMARKS.md, "Thermal
 /// finite-line grid convergence"). The central film and the temperature converge; the minimum
-/// film, at the crown transitions' pressure peaks, does not yet at 65×129.
+/// film, at the crown transitions' pressure spikes, does not (measured: 1.055, 1.093, 0.884 µm).
 /// `cargo test -p tribod-physics --release seed000_nose_grid_convergence -- --ignored --nocapture`
 #[test]
 #[ignore = "129×257: ≈ 30 s release; cargo test -p tribod-physics --release seed000_nose_grid_convergence -- --ignored --nocapture"]
