@@ -252,7 +252,9 @@ mod tests {
     ///   the peak load per length, here over 6.6 mm): a uniform high pressure where the crowned
     ///   contact's pressure falls off axially, so about twice the sliding traction of the whole
     ///   crowned contact, and half its rolling (Poiseuille) resistance, which the finite
-    ///   contact's longer loaded length carries. The roller's torque balance needs ≈ 6.7 N (the
+    ///   contact's longer loaded length carries. The line model summed over the finite contact's
+    ///   row loads has 0.63 of the equivalent line's sliding traction: most of the gap is the
+    ///   axial load distribution, the rest (0.88) the 2-D pressure under it. The roller's torque balance needs ≈ 6.7 N (the
     ///   pin): the equivalent line reaches it at a few percent of slip, the crowned contact only
     ///   near SRR 0.2 (docs/seeds.md, seed 000, "Roller slip: finite against line").
     #[test]
@@ -318,12 +320,17 @@ mod tests {
         let hand_row: f64 = (0..nx).filter(|&i| f.pressure[jm * nx + i] > 0.0).map(|i| w(&f.x, i) * couette(f.pressure[jm * nx + i], f.film[jm * nx + i])).sum();
         let slide_row = 0.5 * (mid.traction.force_body_2 - mid.traction.force_body_1);
         let (slide_mid_line, _, hand_mid_line, _) = line(w_row);
+        // The line summed over the rows (every 8th, trapezoidal along y, rows above 2 % of the
+        // peak row's load): the finite contact's axial load distribution on the line model.
+        let row_load = |j: usize| -> f64 { (1..nx).map(|i| 0.5 * (f.pressure[j * nx + i].max(0.0) + f.pressure[j * nx + i - 1].max(0.0)) * (f.x[i] - f.x[i - 1]).abs()).sum() };
+        let sampled: Vec<(f64, f64)> = (0..ny).step_by(8).map(|j| (f.y[j], row_load(j))).map(|(y, wj)| (y, if wj > 0.02 * w_row { line(wj).0 } else { 0.0 })).collect();
+        let slide_slices: f64 = sampled.windows(2).map(|p| 0.5 * (p[0].1 + p[1].1) * (p[1].0 - p[0].0).abs()).sum();
         // The cycle's equivalent line: the load at the crown's peak load per length.
         let cc = Crown::SEED000.distribute(600.0, r, input.contact_modulus);
         let (slide_eq, roll_eq, hand_eq, h_eq) = line(cc.peak_load_per_length);
         let le = cc.equivalent_length;
         let msg = format!(
-            "row w' {w_row:.0} N/m: sliding {slide_row:.1} N/m (hand {hand_row:.1}), line {slide_mid_line:.1} (hand {hand_mid_line:.1}); \
+            "slices {slide_slices:.3} N; row w' {w_row:.0} N/m: sliding {slide_row:.1} N/m (hand {hand_row:.1}), line {slide_mid_line:.1} (hand {hand_mid_line:.1}); \
              finite: sliding {slide_fin:.3} N rolling {roll_fin:.3} N (hand {hand_fin:.3}) h_c {:.4e}; equivalent line {:.0} N/m over {le:.5} m: \
              sliding {:.3} N rolling {:.3} N (hand {:.3}) h_c {h_eq:.4e}",
             th.ehl.central_film,
@@ -332,6 +339,7 @@ mod tests {
             roll_eq * le,
             hand_eq * le
         );
+        eprintln!("{msg}");
         // Equal films (measured 1.946 against 1.923 µm).
         assert!((th.ehl.central_film / h_eq - 1.0).abs() < 0.03, "{msg}");
         // Each model's sliding traction is its Newtonian hand estimate times the thermal reduction
@@ -348,5 +356,9 @@ mod tests {
         // 2.00 times its rolling resistance.
         assert!((slide_fin / (slide_eq * le) - 0.552).abs() < 0.04, "{msg}");
         assert!((roll_fin / (roll_eq * le) - 2.0).abs() < 0.15, "{msg}");
+        // Of the factor 0.552, the axial load distribution is 0.627 (the line summed over the
+        // finite contact's row loads, 2.90 N) and the 2-D pressure under it 0.881.
+        assert!((slide_slices / (slide_eq * le) - 0.627).abs() < 0.04, "{msg}");
+        assert!((slide_fin / slide_slices - 0.881).abs() < 0.04, "{msg}");
     }
 }
