@@ -180,7 +180,10 @@ fn seed000_figs_10_to_14_with_the_thermal_line_model() {
 /// changes each by (measured, finite/line): minimum film +6.6 %, +5.5 %, −7.5 % over η0 and
 /// +5.5 %, +5.8 %, +5.9 % over w1; largest film temperature +9.4, +10.2, +19.7 K over η0; mean
 /// friction coefficient −4 % to −8 % over η0, within 1.5 % over w1; the roller's slip two to four times the 1-D model's
-/// (SRR(0°) 0.165 against 0.047 at η0 0.152 — docs/seeds.md, seed 000, the base-circle SRR).
+/// (SRR(0°) 0.165 against 0.047 at η0 0.152 — docs/seeds.md, seed 000, "roller slip: finite
+/// against line": the line model runs the crown's equivalent line, all the load at the peak load
+/// per length, with 1.8× the crowned contact's sliding traction and half its rolling resistance;
+/// pinned by *lib* `film::thermal_finite::tests::base_circle_traction_finite_against_the_equivalent_line`).
 /// Asserted: the trends, the films within 10 % of each other, the finite model's slip at 0°
 /// above the 1-D model's. Release, about 100 s on two cores: `cargo test --release --test it --
 /// seed000_figs_10_to_14_finite_against_line --include-ignored --nocapture`.
