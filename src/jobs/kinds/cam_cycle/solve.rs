@@ -5,6 +5,7 @@ use super::output::{events_of, fields_of, film_model_counts, profiles_of, series
 use super::result::*;
 use super::spec::*;
 use crate::jobs::kinds::common::{composite_sigma, LubricantSpec};
+use crate::physics::cam::contour::undercut_margin;
 use crate::physics::cam::summary::{check_contact_on_face, summarise, CycleSummary, FlatFace};
 use crate::physics::cam::cycle::{run_cycle, CycleSpec, FollowerKind, Needs, SlipMode};
 use crate::physics::cam::{CamProfile, FollowerGeometry, FollowerShape, LiftProgram, LoadModel, MultiArc, PeriodicSpline, PeriodicTable, SpeedSchedule};
@@ -95,6 +96,19 @@ impl CamCycleSpec {
     /// [`solve_spec`]'s dynamics run).
     pub fn cycle_spec(&self) -> Result<CycleSpec, SolveError> {
         self.cycle_spec_inner(false)
+    }
+
+    /// The cam's signed margin against undercut, m ([`undercut_margin`]: the smallest convex
+    /// radius of curvature of the surface, zero or negative where the cam undercuts), from the
+    /// profile alone — what `cam_optimisation` reports for a design the cycle refuses with
+    /// `cam_undercut`. `None` when the spec does not describe a cam.
+    pub fn undercut_margin(&self) -> Option<f64> {
+        let c = self.cycle_spec_inner(true).ok()?;
+        let shape = match c.geometry.shape {
+            FollowerShape::Curved { radius, offset } if c.geometry.clockwise => FollowerShape::Curved { radius, offset: -offset },
+            s => s,
+        };
+        Some(undercut_margin(&c.profile, shape, self.angles.max(720)))
     }
 
     fn cycle_spec_inner(&self, dynamic_allowed: bool) -> Result<CycleSpec, SolveError> {
