@@ -288,3 +288,37 @@ fn undercut_designs_are_infeasible_with_a_margin() {
         other => panic!("{other:?}"),
     }
 }
+
+/// Issue 45: the spring checks are constraints when the base's `dynamic` load has a
+/// `spring.design` (`seed003_dynamic_springs.json` on the synthesised cam of seed 003's lift and
+/// duration): `min_spring_fatigue_safety_factor` and `min_coil_clash_margin` are read from each
+/// design's cycle, with their units and margins.
+#[test]
+fn spring_checks_are_constraints_of_a_dynamic_base() {
+    let mut base = crate::in_process::example("seed003_dynamic_springs");
+    base["cam"]["profile"] = crate::in_process::example("seed003_synthesised")["cam"]["profile"].clone();
+    base["operation"]["speed_rpm"] = json!(2672.0);
+    base["angles"] = json!(180);
+    base["fidelity"] = json!("fast");
+    let spec = json!({
+        "base": base,
+        "variables": [{"path": "/load/spring/design/installed_length", "min": 0.034, "max": 0.038}],
+        "objectives": [{"quantity": "friction_power"}],
+        "constraints": [
+            {"quantity": "min_spring_fatigue_safety_factor", "min": 1.1},
+            {"quantity": "min_coil_clash_margin", "min": 0.0}
+        ],
+        "search": {"samples": 3, "iterations": 0, "seed": 1}
+    });
+    let r = crate::in_process::run("cam_optimisation", &spec).unwrap();
+    let best = &r["best"];
+    eprintln!("spring checks: {}", best["constraints"]);
+    assert_eq!(best["constraints"][0]["unit"], "1");
+    assert_eq!(best["constraints"][1]["unit"], "m");
+    for d in r["designs"].as_array().unwrap() {
+        let (sf, clash) = (d["min_spring_fatigue_safety_factor"].as_f64().unwrap(), d["min_coil_clash_margin"].as_f64().unwrap());
+        assert!((d["min_spring_fatigue_safety_factor.margin"].as_f64().unwrap() - (sf - 1.1)).abs() < 1e-12, "{d}");
+        assert!((d["min_coil_clash_margin.margin"].as_f64().unwrap() - clash).abs() < 1e-15, "{d}");
+        assert_eq!(d["feasible"], sf >= 1.1 && clash >= 0.0, "{d}");
+    }
+}
