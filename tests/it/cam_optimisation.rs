@@ -284,6 +284,10 @@ fn undercut_designs_are_infeasible_with_a_margin() {
         Err(crate::in_process::Failure::Solve(e)) => {
             let text = format!("{e:?}");
             assert!(text.contains("CamUndercut") && text.contains("r_b + s + s''") && text.contains("base radius"), "{text}");
+            // The field and the cycle's margin, the same number as the optimisation's row.
+            let m = rows.iter().map(|d| d["no_undercut"].as_f64().unwrap()).fold(f64::INFINITY, f64::min);
+            assert!(text.contains("field /cam/profile/base_radius") && text.contains("must be > 0 mm"), "{text}");
+            eprintln!("{text} (smallest margin in the rows {:.4} mm)", m * 1e3);
         }
         other => panic!("{other:?}"),
     }
