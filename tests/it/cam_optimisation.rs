@@ -235,3 +235,94 @@ fn a_wear_objective_runs_the_wear_job_of_each_design() {
     let Err(crate::in_process::Failure::Spec(p)) = crate::in_process::run("cam_optimisation", &bad) else { panic!("accepted without `wear`") };
     assert_eq!(p.errors[0].path, "/wear", "{p:?}");
 }
+
+/// Issue 45: the synthesised cam optimised (examples/seed003_cam_optimisation_synthesised.json,
+/// a smaller search): seed 003's lift and event duration, the law, ramp, base radius and spring
+/// as variables. The best design is feasible and no worse than the baseline (the example's
+/// full search: friction power 107.6 W → 62.3 W, −42 %, docs/kinds/cam_optimisation.md).
+#[test]
+fn the_synthesised_cam_optimises_within_its_constraints() {
+    let mut spec = crate::in_process::example("seed003_cam_optimisation_synthesised");
+    spec["search"] = json!({"samples": 8, "iterations": 6, "starts": 1, "seed": 1});
+    let r = crate::in_process::run("cam_optimisation", &spec).unwrap();
+    let (base, best) = (&r["baseline"], &r["best"]);
+    let power = |x: &Value| x["friction_power"].as_f64().unwrap();
+    eprintln!("synthesised: {} W → {} W, {}", power(base), power(best), best["variables"]);
+    assert_eq!(base["feasible"], true, "{base}");
+    assert_eq!(best["feasible"], true, "{best}");
+    assert!(best["score"].as_f64().unwrap() <= base["score"].as_f64().unwrap());
+    assert!(power(best) <= power(base));
+    for c in best["constraints"].as_array().unwrap() {
+        assert!(c["margin"].as_f64().unwrap() >= 0.0, "{c}");
+    }
+    // Same lift and event duration as seed 003's cam in every design.
+    assert_eq!(best["spec"]["cam"]["profile"]["lift"], json!(0.013998));
+    assert_eq!(best["spec"]["cam"]["profile"]["duration_deg"], json!(268.55));
+}
+
+/// Issue 45: a design whose cam undercuts is infeasible with a named `no_undercut` margin (the
+/// signed undercut margin, `r_b + s + s''` for the flat face: negative), not a lost evaluation;
+/// the plain cycle of the same design still refuses with `cam_undercut`, saying why.
+#[test]
+fn undercut_designs_are_infeasible_with_a_margin() {
+    let mut spec = crate::in_process::example("seed003_cam_optimisation_synthesised");
+    spec["variables"] = json!([{"path": "/cam/profile/base_radius", "min": 0.002, "max": 0.005}]);
+    spec["search"] = json!({"samples": 3, "iterations": 0, "seed": 1});
+    let r = crate::in_process::run("cam_optimisation", &spec).unwrap();
+    let rows: Vec<&Value> = r["designs"].as_array().unwrap().iter().filter(|d| d["phase"] != "baseline").collect();
+    assert_eq!(rows.len(), 3);
+    for d in &rows {
+        let (value, margin) = (d["no_undercut"].as_f64().unwrap(), d["no_undercut.margin"].as_f64().unwrap());
+        assert_eq!(d["feasible"], false, "{d}");
+        assert!(value < 0.0 && (margin - (value - 0.002)).abs() < 1e-15, "{d}");
+        assert!(d.get("friction_power").is_none_or(Value::is_null), "{d}");
+    }
+    // The cycle of the smallest cam: refused, naming the rule and the radius.
+    let mut cycle = spec["base"].clone();
+    cycle["cam"]["profile"]["base_radius"] = json!(0.002);
+    match crate::in_process::run("cam_cycle", &cycle) {
+        Err(crate::in_process::Failure::Solve(e)) => {
+            let text = format!("{e:?}");
+            assert!(text.contains("CamUndercut") && text.contains("r_b + s + s''") && text.contains("base radius"), "{text}");
+            // The field and the cycle's margin, the same number as the optimisation's row.
+            let m = rows.iter().map(|d| d["no_undercut"].as_f64().unwrap()).fold(f64::INFINITY, f64::min);
+            assert!(text.contains("field /cam/profile/base_radius") && text.contains("must be > 0 mm"), "{text}");
+            eprintln!("{text} (smallest margin in the rows {:.4} mm)", m * 1e3);
+        }
+        other => panic!("{other:?}"),
+    }
+}
+
+/// Issue 45: the spring checks are constraints when the base's `dynamic` load has a
+/// `spring.design` (`seed003_dynamic_springs.json` on the synthesised cam of seed 003's lift and
+/// duration): `min_spring_fatigue_safety_factor` and `min_coil_clash_margin` are read from each
+/// design's cycle, with their units and margins.
+#[test]
+fn spring_checks_are_constraints_of_a_dynamic_base() {
+    let mut base = crate::in_process::example("seed003_dynamic_springs");
+    base["cam"]["profile"] = crate::in_process::example("seed003_synthesised")["cam"]["profile"].clone();
+    base["operation"]["speed_rpm"] = json!(2672.0);
+    base["angles"] = json!(180);
+    base["fidelity"] = json!("fast");
+    let spec = json!({
+        "base": base,
+        "variables": [{"path": "/load/spring/design/installed_length", "min": 0.034, "max": 0.038}],
+        "objectives": [{"quantity": "friction_power"}],
+        "constraints": [
+            {"quantity": "min_spring_fatigue_safety_factor", "min": 1.1},
+            {"quantity": "min_coil_clash_margin", "min": 0.0}
+        ],
+        "search": {"samples": 3, "iterations": 0, "seed": 1}
+    });
+    let r = crate::in_process::run("cam_optimisation", &spec).unwrap();
+    let best = &r["best"];
+    eprintln!("spring checks: {}", best["constraints"]);
+    assert_eq!(best["constraints"][0]["unit"], "1");
+    assert_eq!(best["constraints"][1]["unit"], "m");
+    for d in r["designs"].as_array().unwrap() {
+        let (sf, clash) = (d["min_spring_fatigue_safety_factor"].as_f64().unwrap(), d["min_coil_clash_margin"].as_f64().unwrap());
+        assert!((d["min_spring_fatigue_safety_factor.margin"].as_f64().unwrap() - (sf - 1.1)).abs() < 1e-12, "{d}");
+        assert!((d["min_coil_clash_margin.margin"].as_f64().unwrap() - clash).abs() < 1e-15, "{d}");
+        assert_eq!(d["feasible"], sf >= 1.1 && clash >= 0.0, "{d}");
+    }
+}

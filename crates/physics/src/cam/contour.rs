@@ -126,6 +126,26 @@ pub fn contour(profile: &CamProfile, shape: FollowerShape, n: usize) -> Contour 
     }
 }
 
+/// The signed margin against undercut at `n` uniform cam angles, m: the smallest
+/// `r_b + s + s''` (flat face) or `ρ_p − R_f` over the convex pitch points (curved face of
+/// radius `R_f`). Where the cam does not undercut it is the smallest convex radius of curvature
+/// of the cam surface (`ρ_c = ρ_p − R_f`); at an undercut it is zero or negative, and how
+/// negative says how far the design is from a manufacturable cam (the same relations as
+/// [`contour_point`]). Infinite when no point is convex (not reached by a closed cam).
+pub fn undercut_margin(profile: &CamProfile, shape: FollowerShape, n: usize) -> f64 {
+    let n = n.max(4);
+    (0..n)
+        .map(|i| {
+            let p = contour_point(profile, shape, TAU * i as f64 / n as f64);
+            match (shape, p.pitch_curvature) {
+                (FollowerShape::Curved { radius, .. }, Some(k)) if k > 0.0 => 1.0 / k - radius,
+                (FollowerShape::Curved { .. }, _) => f64::INFINITY,
+                (FollowerShape::Flat, _) => profile.base_radius() + p.lift.v + p.lift.d2,
+            }
+        })
+        .fold(f64::INFINITY, f64::min)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -201,5 +221,23 @@ mod tests {
         let small = cam_of(0.004, 160.0);
         let r = contour(&small, FollowerShape::Curved { radius: 0.02, offset: 0.0 }, 720);
         assert!(r.undercut && r.min_pitch_radius.unwrap() < 0.02, "{:?}", r.min_pitch_radius);
+    }
+
+    #[test]
+    fn undercut_margin_is_the_radius_of_curvature_or_negative() {
+        // Not undercut: the margin is the smallest convex radius of the surface (to the
+        // sampling: both from the same 720 points).
+        let c = cam(0.016);
+        for shape in [FollowerShape::Flat, FollowerShape::Curved { radius: 0.01, offset: 0.0 }] {
+            let m = undercut_margin(&c, shape, 720);
+            let r = contour(&c, shape, 720).min_convex_radius.unwrap();
+            assert!((m / r - 1.0).abs() < 1e-9, "{m} vs {r}");
+        }
+        // Undercut (the case above): negative, ρ_p − R_f.
+        let small = cam_of(0.004, 160.0);
+        let shape = FollowerShape::Curved { radius: 0.02, offset: 0.0 };
+        let m = undercut_margin(&small, shape, 720);
+        let r = contour(&small, shape, 720);
+        assert!(m < 0.0 && (m - (r.min_pitch_radius.unwrap() - 0.02)).abs() < 1e-12, "{m}");
     }
 }

@@ -5,6 +5,7 @@ use super::output::{events_of, fields_of, film_model_counts, profiles_of, series
 use super::result::*;
 use super::spec::*;
 use crate::jobs::kinds::common::{composite_sigma, LubricantSpec};
+use crate::physics::cam::contour::undercut_margin;
 use crate::physics::cam::summary::{check_contact_on_face, summarise, CycleSummary, FlatFace};
 use crate::physics::cam::cycle::{run_cycle, CycleSpec, FollowerKind, Needs, SlipMode};
 use crate::physics::cam::{CamProfile, FollowerGeometry, FollowerShape, LiftProgram, LoadModel, MultiArc, PeriodicSpline, PeriodicTable, SpeedSchedule};
@@ -95,6 +96,19 @@ impl CamCycleSpec {
     /// [`solve_spec`]'s dynamics run).
     pub fn cycle_spec(&self) -> Result<CycleSpec, SolveError> {
         self.cycle_spec_inner(false)
+    }
+
+    /// The cam's signed margin against undercut, m ([`undercut_margin`]: the smallest convex
+    /// radius of curvature of the surface, zero or negative where the cam undercuts), from the
+    /// profile alone — what `cam_optimisation` reports for a design the cycle refuses with
+    /// `cam_undercut`. `None` when the spec does not describe a cam.
+    pub fn undercut_margin(&self) -> Option<f64> {
+        let c = self.cycle_spec_inner(true).ok()?;
+        let shape = match c.geometry.shape {
+            FollowerShape::Curved { radius, offset } if c.geometry.clockwise => FollowerShape::Curved { radius, offset: -offset },
+            s => s,
+        };
+        Some(undercut_margin(&c.profile, shape, self.angles.max(720)))
     }
 
     fn cycle_spec_inner(&self, dynamic_allowed: bool) -> Result<CycleSpec, SolveError> {
@@ -353,6 +367,22 @@ fn dynamic_response(
     Ok((train, response, ramp))
 }
 
+/// A `cam_undercut` refusal with the fields it concerns and the cam's signed undercut margin
+/// over the whole cycle ([`CamCycleSpec::undercut_margin`]); other errors unchanged.
+fn undercut_named(spec: &CamCycleSpec, e: SolveError) -> SolveError {
+    let SolveError::Physical { code: crate::physics::PhysicalFailure::CamUndercut, message } = e else { return e };
+    let margin = spec.undercut_margin().map_or(String::new(), |m| format!("{:.4} mm", m * 1e3));
+    let rule = match &spec.follower {
+        FollowerSpec::Roller { radius, .. } | FollowerSpec::Spherical { radius, .. } => format!(
+            "fields /cam/profile/base_radius and /follower/radius ({:.3} mm): the pitch curve's smallest convex radius of \
+             curvature minus the follower radius is {margin} over the cycle (must be > 0 mm)",
+            radius * 1e3
+        ),
+        _ => format!("field /cam/profile/base_radius: the smallest r_b + s + s'' over the cycle is {margin} (must be > 0 mm)"),
+    };
+    SolveError::physical(crate::physics::PhysicalFailure::CamUndercut, format!("{message}; {rule}"))
+}
+
 pub(super) fn solve_spec(spec: &CamCycleSpec, observer: &dyn Observer) -> Result<CamCycleResult, SolveError> {
     let mut cycle = spec.cycle_spec_inner(true)?;
     let needs = spec.needs();
@@ -387,7 +417,7 @@ pub(super) fn solve_spec(spec: &CamCycleSpec, observer: &dyn Observer) -> Result
     }
     let model = needs.film.then(|| spec.film_model(settings));
     let fast = crate::physics::film::ClosedForm { formula: spec.film.formula, squeeze: spec.film.squeeze };
-    let out = run_cycle(&cycle, needs, model.as_deref().unwrap_or(&fast), observer)?;
+    let out = run_cycle(&cycle, needs, model.as_deref().unwrap_or(&fast), observer).map_err(|e| undercut_named(spec, e))?;
     let figures = summarise(&out, spec.operation.startup.is_none());
     // Contact must stay on a flat face of finite radius (centred on the follower axis).
     if let FollowerSpec::FlatFaced { face_radius: Some(radius), offset, .. } = spec.follower {

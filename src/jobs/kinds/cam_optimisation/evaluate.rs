@@ -232,6 +232,10 @@ fn evaluate_values(spec: &CamOptimisationSpec, values: Vec<Value>, place: bool, 
     };
     let main = match cycle(&s, observer)? {
         Ok(r) => r,
+        Err(p) if p.code == "cam_undercut" => {
+            let kept = values.clone();
+            return Ok(undercut_design(spec, s, values).unwrap_or(Outcome::Failed { code: p.code, detail: p.detail, values: kept }));
+        }
         Err(p) => return failed(&p.code, p.detail, values),
     };
     let mut at_speed: Vec<(f64, Option<Value>)> = Vec::new();
@@ -265,6 +269,29 @@ fn evaluate_values(spec: &CamOptimisationSpec, values: Vec<Value>, place: bool, 
     let friction_power = main.pointer("/summary/mean_power_loss").and_then(Value::as_f64);
     let summary = main.get("summary").cloned().unwrap_or(json!({}));
     Ok(Outcome::Measured(Box::new(Measured { spec: s, values, summary, friction_power, objectives, constraints, separated })))
+}
+
+/// A design whose cam undercuts (the cycle refuses it with `cam_undercut`): measured from its
+/// profile alone, with the `no_undercut` constraints at the signed undercut margin (zero or
+/// negative: how far the cam is from manufacturable, m) and every other quantity missing, so
+/// that the design is infeasible with a named margin rather than a lost evaluation. `None`
+/// without a `no_undercut` constraint (the design then stays a failure).
+fn undercut_design(spec: &CamOptimisationSpec, s: Value, values: Vec<Value>) -> Option<Outcome> {
+    if !spec.constraints.iter().any(|c| c.quantity == "no_undercut") {
+        return None;
+    }
+    let cam: crate::jobs::kinds::cam_cycle::CamCycleSpec = serde_json::from_value(s.clone()).ok()?;
+    let margin = cam.undercut_margin()?;
+    let constraints = spec.constraints.iter().map(|c| (c.quantity == "no_undercut").then_some(margin)).collect();
+    Some(Outcome::Measured(Box::new(Measured {
+        spec: s,
+        values,
+        summary: json!({"min_cam_radius_of_curvature": margin, "undercut": true}),
+        friction_power: None,
+        objectives: vec![None; spec.objectives.len()],
+        constraints,
+        separated: vec![false; spec.constraints.len()],
+    })))
 }
 
 /// A constraint's limits made absolute (`relative` ones on the baseline's value) and its sense.

@@ -109,7 +109,12 @@ fn row(spec: &CamOptimisationSpec, i: usize, r: &Record, j: Option<&Judged>) -> 
     }
     match (&r.outcome, j) {
         (Outcome::Measured(m), Some(j)) => {
-            row.insert("status".into(), json!("succeeded"));
+            // A cam that undercuts: its cycle refused, the design measured from its profile.
+            let undercut = m.summary["undercut"] == true;
+            row.insert("status".into(), json!(if undercut { "undercut" } else { "succeeded" }));
+            if undercut {
+                row.insert("error_code".into(), json!("cam_undercut"));
+            }
             row.insert("feasible".into(), json!(j.feasible));
             row.insert("score".into(), json!(j.score));
             for (o, x) in spec.objectives.iter().zip(&m.objectives) {

@@ -87,8 +87,9 @@ pub struct CamOptimisationResult {
     /// With two or more objectives.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub pareto: Option<Pareto>,
-    /// Column names of `designs`: `design`, `phase` (`baseline`, `sample`, `search`), `status`,
-    /// `feasible`, `score`, the variables (pointer with `/` → `.`), the objectives, each
+    /// Column names of `designs`: `design`, `phase` (`baseline`, `sample`, `search`), `status`
+    /// (`succeeded`, `failed`, `undercut`: the cam undercuts, its `no_undercut` constraints at
+    /// the signed undercut margin), `feasible`, `score`, the variables (pointer with `/` → `.`), the objectives, each
     /// constraint's value and `<name>.margin`, `error_code`.
     pub columns: Vec<String>,
     /// The unit of every dimensional column (`1` for pure numbers).

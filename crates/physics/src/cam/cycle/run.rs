@@ -39,7 +39,7 @@ pub fn run_cycle(spec: &CycleSpec, needs: Needs, model: &dyn FilmModel, observer
         return Ok(output_without_film(series, events, duration));
     }
     if let Some(&(a, b)) = events.separation.first() {
-        return Err(separation_error(&kin, &loads, (a, b), events.separation.len()));
+        return Err(separation_error(&spec.load, &kin, &loads, (a, b), events.separation.len()));
     }
 
     // Hertz contact per angle.
@@ -130,19 +130,36 @@ fn cycle_loads(spec: &CycleSpec, kin: &[KinematicState], series: &mut CycleSerie
 }
 
 /// The follower leaves the cam between `a` and `b` (the first of `ranges` ranges): what to do.
-fn separation_error(kin: &[KinematicState], loads: &[FollowerLoad], (a, b): (f64, f64), ranges: usize) -> SolveError {
+///
+/// With a kinematic valve-train load the missing force is the deficit of the contact load
+/// (preload + k·y + m·ÿ, Norton, "Cam Design and Manufacturing Handbook", the follower-jump
+/// condition of the spring–mass follower), so the message gives the preload increase that
+/// closes it. With the dynamic load (the train's periodic response) the contact force is
+/// zero while the follower is off the cam: no preload figure follows from it, and the message
+/// says that the train's dynamics (jump or bounce), not the static spring force, lift it off.
+fn separation_error(load: &LoadModel, kin: &[KinematicState], loads: &[FollowerLoad], (a, b): (f64, f64), ranges: usize) -> SolveError {
     let worst = loads.iter().map(|l| l.contact).fold(f64::INFINITY, f64::min);
-    SolveError::physical(
-        crate::PhysicalFailure::FollowerSeparation,
-        format!(
-            "the follower leaves the cam between {:.1}° and {:.1}° ({} range(s); the contact load \
-             falls to {:.1} N): raise the spring preload by at least {:.1} N, stiffen the spring or \
-             lower the speed. Request only `kinematics` and `loads` outputs to see the loads.",
-            a.to_degrees(),
-            b.to_degrees(),
-            ranges,
-            worst,
-            -worst.min(0.0) / kin.iter().map(|k| k.axial_cosine).fold(1.0, f64::min).max(1e-9)
+    let at = format!("the follower leaves the cam between {:.1}° and {:.1}° ({} range(s)", a.to_degrees(), b.to_degrees(), ranges);
+    let what = match load {
+        LoadModel::Dynamic { .. } => format!(
+            "{at}; the dynamic contact force is zero there): the valve train's dynamic response (follower \
+             jump or valve bounce of the elastic train), not a shortfall of the static spring force, lifts it \
+             off, so no preload increase follows from the loads. Stiffen the spring or raise its preload, \
+             lighten the moving parts, stiffen the train or lower the speed; request only `kinematics`, \
+             `loads` and `dynamics` outputs to see the response."
         ),
-    )
+        _ => {
+            let cosine = kin.iter().map(|k| k.axial_cosine).fold(1.0, f64::min).max(1e-9);
+            let needed = -worst.min(0.0) / cosine;
+            let force = if needed >= 0.05 { format!("{needed:.1} N") } else { format!("{needed:.2e} N") };
+            let verb = if needed > 0.0 { "at least" } else { "more than" };
+            format!(
+                "{at}; the contact load falls to {:.1} N): raise the spring preload by {verb} {force}, \
+                 stiffen the spring or lower the speed. Request only `kinematics` and `loads` outputs to \
+                 see the loads.",
+                worst + 0.0
+            )
+        }
+    };
+    SolveError::physical(crate::PhysicalFailure::FollowerSeparation, what)
 }
