@@ -92,7 +92,9 @@ impl Store {
     pub async fn wait_for_children(&self, parent: Uuid, owner: &str) -> StoreResult<bool> {
         let Store::Postgres(s) = self else { return Ok(false) };
         let r = sqlx::query(
-            "UPDATE jobs SET lease_owner = NULL, lease_until = $1, stage = $2 \
+            // Fanning out was not an interrupted attempt: the claim that assembles is counted
+            // alone against --max-attempts (an assembler's death is one interruption, not two).
+            "UPDATE jobs SET lease_owner = NULL, lease_until = $1, stage = $2, attempts = GREATEST(attempts - 1, 0) \
              WHERE id = $3 AND status = 'running' AND lease_owner = $4",
         )
         .bind(WAITING_UNTIL)

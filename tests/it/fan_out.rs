@@ -479,3 +479,43 @@ async fn a_case_shared_by_two_sweeps_is_canceled_only_when_both_are() {
     assert_eq!(finished(&client, &a.base, &second, Duration::from_secs(3)).await["status"], "canceled");
     let _ = db.close().await;
 }
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn a_sweep_whose_assembler_died_is_reassembled_elsewhere_with_the_same_result() {
+    if !postgres_available("a_sweep_whose_assembler_died_is_reassembled_elsewhere_with_the_same_result") {
+        return;
+    }
+    let url = fresh_postgres_database().await;
+    let client = reqwest::Client::new();
+    let a = Instance::serve(&url, OPTS);
+    let id = post(&client, &a.base, &sleep_sweep(4, 0.1, 1000), "").await["id"].as_str().unwrap().to_string();
+    let done = finished(&client, &a.base, &id, Duration::from_secs(10)).await;
+    assert_eq!(done["status"], "succeeded", "{done}");
+    let mut before = result(&client, &a.base, &id).await;
+    before.as_object_mut().unwrap().remove("meta");
+    drop(a);
+    let mut db = sqlx::PgConnection::connect(&url).await.unwrap();
+    let attempts: i64 = sqlx::query("SELECT attempts FROM jobs WHERE id = $1").bind(&id).fetch_one(&mut db).await.unwrap().get(0);
+    assert_eq!(attempts, 1, "fanning out is not counted as an attempt, assembling is");
+    // The row as an instance leaves it when it is killed (-9) while assembling: its cases all
+    // finished, the parent claimed again (running, leased by the dead instance), no result. The
+    // exact instant of a real kill inside an assembly of milliseconds cannot be hit from outside.
+    sqlx::query(
+        "UPDATE jobs SET status = 'running', finished_at = NULL, solved_by = NULL, lease_owner = 'killed-9', \
+         lease_until = 1, attempts = attempts + 1 WHERE id = $1",
+    )
+    .bind(&id)
+    .execute(&mut db)
+    .await
+    .unwrap();
+    sqlx::query("DELETE FROM job_results WHERE job_id = $1").bind(&id).execute(&mut db).await.unwrap();
+    let b = Instance::serve(&url, OPTS);
+    let again = finished(&client, &b.base, &id, Duration::from_secs(10)).await;
+    assert_eq!(again["status"], "succeeded", "{again}");
+    let mut after = result(&client, &b.base, &id).await;
+    after.as_object_mut().unwrap().remove("meta");
+    assert_eq!(after, before, "reassembled: the same table, the same instance per case");
+    let solved: i64 = sqlx::query("SELECT count(*) FROM jobs WHERE kind = 'test_sleep'").fetch_one(&mut db).await.unwrap().get(0);
+    assert_eq!(solved, 4, "no case solved again");
+    let _ = db.close().await;
+}
