@@ -519,3 +519,41 @@ async fn a_sweep_whose_assembler_died_is_reassembled_elsewhere_with_the_same_res
     assert_eq!(solved, 4, "no case solved again");
     let _ = db.close().await;
 }
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn a_cancel_reaches_the_cases_a_dead_fan_out_made_before_its_retry() {
+    if !postgres_available("a_cancel_reaches_the_cases_a_dead_fan_out_made_before_its_retry") {
+        return;
+    }
+    let url = fresh_postgres_database().await;
+    let client = reqwest::Client::new();
+    let a = Instance::serve(&url, OPTS);
+    let id = post(&client, &a.base, &sleep_sweep(6, 1.0, 1100), "").await["id"].as_str().unwrap().to_string();
+    fanned_out(&client, &a.base, &id, 6).await;
+    // As an instance leaves it when killed after inserting the cases, before recording them (one
+    // statement, at the end): the cases queued or running, no children, the parent leased by the
+    // dead instance. The retry joins the cases; they are still the sweep's own.
+    let mut db = sqlx::PgConnection::connect(&url).await.unwrap();
+    sqlx::query("DELETE FROM job_children WHERE parent_id = $1").bind(&id).execute(&mut db).await.unwrap();
+    sqlx::query("UPDATE jobs SET lease_owner = 'killed-9', lease_until = 1, stage = NULL WHERE id = $1")
+        .bind(&id)
+        .execute(&mut db)
+        .await
+        .unwrap();
+    fanned_out(&client, &a.base, &id, 6).await;
+    let made: i64 = sqlx::query("SELECT count(*) FROM jobs WHERE kind = 'test_sleep'").fetch_one(&mut db).await.unwrap().get(0);
+    assert_eq!(made, 6, "the retry made no case twice");
+    let res = client.delete(format!("{}/v1/jobs/{id}", a.base)).send().await.unwrap();
+    assert!(res.status().is_success());
+    let asked = Instant::now();
+    loop {
+        let states = case_states(&mut db, &id).await;
+        if states.iter().all(|(st, _)| st != "queued" && st != "running") {
+            break;
+        }
+        assert!(asked.elapsed() < Duration::from_secs(3), "cases still open: {states:?}");
+        tokio::time::sleep(Duration::from_millis(20)).await;
+    }
+    assert_eq!(finished(&client, &a.base, &id, Duration::from_secs(3)).await["status"], "canceled");
+    let _ = db.close().await;
+}
