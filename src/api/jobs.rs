@@ -276,6 +276,13 @@ pub struct ListQuery {
     /// Page size, 1–500 (default 50).
     #[param(minimum = 1, maximum = 500)]
     pub limit: Option<u32>,
+    /// Also list the case jobs of fanned-out sweeps (default `false`: hidden, so a 500-case sweep
+    /// does not flood the list; its progress is the sweep's `children` counts). Jobs a sweep
+    /// joined or reused but that were submitted on their own are always listed.
+    pub cases: Option<bool>,
+    /// Only the case jobs of this fanned-out job (the ones it created, joined or reused; implies
+    /// `cases=true`). Empty on SQLite, where sweeps do not fan out.
+    pub parent: Option<Uuid>,
     /// Cursor: the `next` of the previous page (jobs older than this id). If that job was deleted
     /// meanwhile, the page resumes where it stood: at the creation instant its id (a UUIDv7)
     /// carries, jobs of that millisecond included (a job may appear on two pages, none is
@@ -333,6 +340,8 @@ pub async fn list_jobs(State(state): State<AppState>, ApiQuery(q): ApiQuery<List
         }
     }
     filter.kind = q.kind.clone();
+    filter.cases = q.cases.unwrap_or(false);
+    filter.parent = q.parent;
     filter.created_after = q.created_after.as_deref().map(|s| parse_time("created_after", s)).transpose()?;
     filter.created_before = q.created_before.as_deref().map(|s| parse_time("created_before", s)).transpose()?;
     if let Some(after) = q.after {

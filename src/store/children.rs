@@ -10,7 +10,7 @@
 //! instance claims it assembles the result from the children's results.
 
 use super::*;
-use sqlx::Row;
+use sqlx::{AssertSqlSafe, Row};
 
 /// The lease of a parent waiting for its children: far in the future, no owner.
 pub const WAITING_UNTIL: i64 = 4_000_000_000_000_000;
@@ -92,7 +92,9 @@ impl Store {
     pub async fn wait_for_children(&self, parent: Uuid, owner: &str) -> StoreResult<bool> {
         let Store::Postgres(s) = self else { return Ok(false) };
         let r = sqlx::query(
-            "UPDATE jobs SET lease_owner = NULL, lease_until = $1, stage = $2 \
+            // Fanning out was not an interrupted attempt: the claim that assembles is counted
+            // alone against --max-attempts (an assembler's death is one interruption, not two).
+            "UPDATE jobs SET lease_owner = NULL, lease_until = $1, stage = $2, attempts = GREATEST(attempts - 1, 0) \
              WHERE id = $3 AND status = 'running' AND lease_owner = $4",
         )
         .bind(WAITING_UNTIL)
@@ -203,29 +205,40 @@ impl Store {
         }))
     }
 
-    /// Cancel the children `parent` created: queued ones at once, running ones through their
-    /// cancel flag (their workers see it at the next lease renewal, ≤ 0.5 s); a parent waiting
-    /// for them is canceled at once. The children canceled or asked to stop.
+    /// Cancel the children of `parent` that are case jobs (created for a fan-out: by this parent
+    /// or by another one it joined) and that no other live parent needs (reference-counted
+    /// joins: a case shared with a sweep neither finished nor asked to stop keeps running; the
+    /// last parent's cancel stops it). Jobs submitted on their own and joined are never
+    /// canceled. Queued ones at once, running ones through their cancel flag (their workers see
+    /// it at the next lease renewal, ≤ 0.5 s); a parent waiting for them is canceled at once.
+    /// The children canceled or asked to stop.
     pub async fn cancel_children(&self, parent: Uuid, now: i64) -> StoreResult<u64> {
         let Store::Postgres(s) = self else { return Ok(0) };
+        // A case job (some parent created it) that no parent other than `parent` still needs:
+        // every other parent linking it is finished or asked to stop. A constant: no request text.
+        const UNNEEDED: &str = "EXISTS (SELECT 1 FROM job_children o WHERE o.job_id = jobs.id AND o.owned) \
+             AND NOT EXISTS (SELECT 1 FROM job_children o JOIN jobs pj ON pj.id = o.parent_id \
+                             WHERE o.job_id = jobs.id AND o.parent_id <> $P \
+                               AND pj.status IN ('queued', 'running') AND NOT pj.cancel_requested)";
+        let (unneeded_1, unneeded_2) = (UNNEEDED.replace("$P", "$1"), UNNEEDED.replace("$P", "$2"));
         let mut tx = s.pool.begin().await?;
         let p = parent.to_string();
-        let queued = sqlx::query(
+        let queued = sqlx::query(AssertSqlSafe(format!(
             "WITH up AS (UPDATE jobs SET status = 'canceled', finished_at = $1, cancel_requested = TRUE \
-                         WHERE status = 'queued' AND id IN (SELECT job_id FROM job_children WHERE parent_id = $2 AND owned) \
+                         WHERE status = 'queued' AND id IN (SELECT job_id FROM job_children WHERE parent_id = $2) AND {unneeded_2} \
                          RETURNING id) \
-             SELECT pg_notify($3, 'finished:' || id)::text FROM up",
-        )
+             SELECT pg_notify($3, 'finished:' || id)::text FROM up"
+        )))
         .bind(now)
         .bind(&p)
         .bind(postgres::CHANNEL)
         .fetch_all(&mut *tx)
         .await?
         .len() as u64;
-        let running = sqlx::query(
+        let running = sqlx::query(AssertSqlSafe(format!(
             "UPDATE jobs SET cancel_requested = TRUE \
-             WHERE status = 'running' AND id IN (SELECT job_id FROM job_children WHERE parent_id = $1 AND owned)",
-        )
+             WHERE status = 'running' AND id IN (SELECT job_id FROM job_children WHERE parent_id = $1) AND {unneeded_1}"
+        )))
         .bind(&p)
         .execute(&mut *tx)
         .await?

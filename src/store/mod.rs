@@ -179,6 +179,11 @@ pub struct ListFilter {
     pub created_before: Option<i64>,
     /// Keyset cursor: only jobs older (smaller `seq`) than this one.
     pub before_seq: Option<i64>,
+    /// Also the case jobs of fanned-out jobs (hidden by default: a big sweep's cases would flood
+    /// the list). Jobs joined or reused by a sweep but created on their own are always listed.
+    pub cases: bool,
+    /// Only the case jobs of this fanned-out job (created, joined or reused by it).
+    pub parent: Option<Uuid>,
     pub limit: u32,
 }
 

@@ -283,6 +283,11 @@ impl PgStore {
         if f.kind.is_some() {
             sql.push_str(&format!(" AND kind = {}", next()));
         }
+        if f.parent.is_some() {
+            sql.push_str(&format!(" AND id IN (SELECT job_id FROM job_children WHERE parent_id = {})", next()));
+        } else if !f.cases {
+            sql.push_str(" AND NOT EXISTS (SELECT 1 FROM job_children c WHERE c.job_id = jobs.id AND c.owned)");
+        }
         if f.created_after.is_some() {
             sql.push_str(&format!(" AND created_at > {}", next()));
         }
@@ -296,6 +301,9 @@ impl PgStore {
         let mut q = sqlx::query(AssertSqlSafe(sql));
         if let Some(k) = &f.kind {
             q = q.bind(k.clone());
+        }
+        if let Some(p) = f.parent {
+            q = q.bind(p.to_string());
         }
         for t in [f.created_after, f.created_before, f.before_seq].into_iter().flatten() {
             q = q.bind(t);
@@ -552,7 +560,13 @@ impl PgStore {
     }
 
     pub async fn queued_count(&self) -> StoreResult<i64> {
-        Ok(sqlx::query_scalar::<_, i64>("SELECT COUNT(*) FROM jobs WHERE status = 'queued'").fetch_one(&self.pool).await?)
+        // A fanned-out job's cases are its work, admitted with it: not counted again.
+        Ok(sqlx::query_scalar::<_, i64>(
+            "SELECT COUNT(*) FROM jobs WHERE status = 'queued' \
+             AND NOT EXISTS (SELECT 1 FROM job_children c WHERE c.job_id = jobs.id AND c.owned)",
+        )
+        .fetch_one(&self.pool)
+        .await?)
     }
 
     pub async fn result(&self, id: Uuid) -> StoreResult<Option<String>> {

@@ -273,6 +273,10 @@ impl SqliteStore {
         if f.kind.is_some() {
             sql.push_str(" AND kind = ?");
         }
+        if f.parent.is_some() {
+            // No fan-out on SQLite: no job has case jobs.
+            sql.push_str(" AND 1 = 0");
+        }
         if f.created_after.is_some() {
             sql.push_str(" AND created_at > ?");
         }

@@ -341,3 +341,238 @@ async fn a_failed_case_is_a_failed_row_with_its_error() {
     // Cases 1 and 3 are the same spec: solved once.
     assert_eq!(r["cases"][0]["table.step.3"], r["cases"][2]["table.step.3"]);
 }
+
+/// The ids of `GET /v1/jobs{query}` (one page of 500).
+async fn listed(client: &reqwest::Client, base: &str, query: &str) -> BTreeSet<String> {
+    let sep = if query.is_empty() { "?" } else { "&" };
+    let res = client.get(format!("{base}/v1/jobs{query}{sep}limit=500")).send().await.unwrap();
+    assert!(res.status().is_success(), "{query}: {}", res.status());
+    let page: Value = res.json().await.unwrap();
+    page["jobs"].as_array().unwrap().iter().map(|j| j["id"].as_str().unwrap().to_string()).collect()
+}
+
+/// Poll until `id` has `n` children recorded.
+async fn fanned_out(client: &reqwest::Client, base: &str, id: &str, n: i64) {
+    let deadline = Instant::now() + Duration::from_secs(10);
+    loop {
+        let j = get(client, base, id).await;
+        if j["children"]["total"] == n {
+            return;
+        }
+        assert!(Instant::now() < deadline, "{id} not fanned out: {j}");
+        tokio::time::sleep(Duration::from_millis(20)).await;
+    }
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn case_jobs_are_hidden_from_the_list_and_not_counted_against_max_queue() {
+    if !postgres_available("case_jobs_are_hidden_from_the_list_and_not_counted_against_max_queue") {
+        return;
+    }
+    let url = fresh_postgres_database().await;
+    let a = Instance::serve(&url, &["--workers", "1", "--lease-seconds", "2", "--fan-out-min-case-seconds", "0.05", "--max-queue", "3"]);
+    let client = reqwest::Client::new();
+    let sweep = post(&client, &a.base, &sleep_sweep(8, 1.0, 600), "").await["id"].as_str().unwrap().to_string();
+    fanned_out(&client, &a.base, &sweep, 8).await;
+    // Past a recount of the shared queue (every 100 ms): ≥ 6 cases are queued, none counts.
+    tokio::time::sleep(Duration::from_millis(250)).await;
+    let mut small = BTreeSet::new();
+    for nonce in 0..3 {
+        let job = json!({"kind": "test_sleep", "spec": {"seconds": 0.05, "nonce": 700 + nonce}});
+        small.insert(post(&client, &a.base, &job, "").await["id"].as_str().unwrap().to_string());
+    }
+    let job = json!({"kind": "test_sleep", "spec": {"seconds": 0.05, "nonce": 710}});
+    let res = client.post(format!("{}/v1/jobs", a.base)).json(&job).send().await.unwrap();
+    assert_eq!(res.status(), 503, "the fourth job over --max-queue 3 (the sweep's cases not counted)");
+
+    let default = listed(&client, &a.base, "").await;
+    let expected: BTreeSet<String> = small.iter().cloned().chain([sweep.clone()]).collect();
+    assert_eq!(default, expected, "the default list hides the cases");
+    let cases = listed(&client, &a.base, &format!("?parent={sweep}")).await;
+    assert_eq!(cases.len(), 8);
+    assert!(cases.is_disjoint(&expected));
+    let all = listed(&client, &a.base, "?cases=true").await;
+    assert_eq!(all, expected.union(&cases).cloned().collect::<BTreeSet<_>>());
+    let kind = listed(&client, &a.base, "?kind=test_sleep").await;
+    assert_eq!(kind, small, "filters combine: the cases stay hidden");
+    // An unknown parent: an empty list.
+    assert!(listed(&client, &a.base, &format!("?parent={}", small.first().unwrap())).await.is_empty());
+    let res = client.delete(format!("{}/v1/jobs/{sweep}", a.base)).send().await.unwrap();
+    assert!(res.status().is_success());
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn sqlite_lists_every_job_and_no_job_has_cases() {
+    let dir = tempfile::tempdir().unwrap();
+    let db = dir.path().join("list.db");
+    let one = Instance::serve(db.to_str().unwrap(), &["--workers", "1"]);
+    let client = reqwest::Client::new();
+    let id = post(&client, &one.base, &sleep_sweep(2, 0.01, 800), "").await["id"].as_str().unwrap().to_string();
+    assert_eq!(listed(&client, &one.base, "").await, BTreeSet::from([id.clone()]));
+    assert_eq!(listed(&client, &one.base, "?cases=true").await, BTreeSet::from([id.clone()]));
+    assert!(listed(&client, &one.base, &format!("?parent={id}")).await.is_empty());
+    let res = client.get(format!("{}/v1/jobs?cases=maybe", one.base)).send().await.unwrap();
+    assert_eq!(res.status(), 400);
+}
+
+/// The status and cancel flag of each case job of `parent`.
+async fn case_states(db: &mut sqlx::PgConnection, parent: &str) -> Vec<(String, bool)> {
+    sqlx::query("SELECT j.status, j.cancel_requested FROM jobs j JOIN job_children c ON c.job_id = j.id WHERE c.parent_id = $1 ORDER BY c.idx")
+        .bind(parent)
+        .fetch_all(db)
+        .await
+        .unwrap()
+        .iter()
+        .map(|r| (r.get(0), r.get(1)))
+        .collect()
+}
+
+/// The status and cancel flag of each case job linked to both `a` and `b`.
+async fn shared_states(db: &mut sqlx::PgConnection, a: &str, b: &str) -> Vec<(String, bool)> {
+    sqlx::query(
+        "SELECT j.status, j.cancel_requested FROM jobs j JOIN job_children x ON x.job_id = j.id \
+         JOIN job_children y ON y.job_id = j.id WHERE x.parent_id = $1 AND y.parent_id = $2 ORDER BY x.idx",
+    )
+    .bind(a)
+    .bind(b)
+    .fetch_all(db)
+    .await
+    .unwrap()
+    .iter()
+    .map(|r| (r.get(0), r.get(1)))
+    .collect()
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn a_case_shared_by_two_sweeps_is_canceled_only_when_both_are() {
+    if !postgres_available("a_case_shared_by_two_sweeps_is_canceled_only_when_both_are") {
+        return;
+    }
+    let url = fresh_postgres_database().await;
+    let opts = ["--lease-seconds", "2", "--fan-out-min-case-seconds", "0.05"];
+    let a = Instance::serve(&url, &[&["--workers", "0"][..], &opts].concat());
+    let client = reqwest::Client::new();
+    // The same eight cases and two more (not the same sweep: that would be the first one,
+    // joined), queued on an instance without workers, then claimed together by a worker of two
+    // threads, so that both fan out before the cases run (one after the other, the second would
+    // wait behind the first's cases: they keep its earlier place in the fair order). Whichever
+    // creates a case, the other joins it.
+    let first = post(&client, &a.base, &sleep_sweep(8, 2.0, 900), "").await["id"].as_str().unwrap().to_string();
+    let second = post(&client, &a.base, &sleep_sweep(10, 2.0, 900), "").await["id"].as_str().unwrap().to_string();
+    assert_ne!(first, second);
+    let _w = Instance::worker(&url, &[&["--workers", "2"][..], &opts].concat());
+    fanned_out(&client, &a.base, &first, 8).await;
+    fanned_out(&client, &a.base, &second, 10).await;
+    let mut db = sqlx::PgConnection::connect(&url).await.unwrap();
+    // Cancel first the sweep that created more of the shared cases (the other joined them).
+    let owned = |p: &str| {
+        sqlx::query("SELECT count(*) FROM job_children a JOIN job_children b ON a.job_id = b.job_id WHERE a.parent_id = $1 AND a.owned AND b.parent_id <> $1")
+            .bind(p.to_string())
+    };
+    let first_owns: i64 = owned(&first).fetch_one(&mut db).await.unwrap().get(0);
+    let second_owns: i64 = owned(&second).fetch_one(&mut db).await.unwrap().get(0);
+    assert_eq!(first_owns + second_owns, 8, "eight shared cases, each created once");
+    let (first, second) = if first_owns >= second_owns { (first, second) } else { (second, first) };
+    let open = |s: &[(String, bool)]| s.iter().filter(|(st, _)| st == "queued" || st == "running").count();
+    assert!(open(&shared_states(&mut db, &first, &second).await) >= 4);
+
+    let res = client.delete(format!("{}/v1/jobs/{first}", a.base)).send().await.unwrap();
+    assert!(res.status().is_success());
+    assert_eq!(finished(&client, &a.base, &first, Duration::from_secs(3)).await["status"], "canceled");
+    let after = shared_states(&mut db, &first, &second).await;
+    assert!(after.iter().all(|(st, flag)| st != "canceled" && !flag), "the second sweep still needs them: {after:?}");
+    assert!(open(&after) >= 3, "{after:?}");
+
+    // The last parent's cancel reaches the shared cases (it created none of them).
+    let asked = Instant::now();
+    let res = client.delete(format!("{}/v1/jobs/{second}", a.base)).send().await.unwrap();
+    assert!(res.status().is_success());
+    loop {
+        let now = shared_states(&mut db, &first, &second).await;
+        if open(&now) == 0 && open(&case_states(&mut db, &second).await) == 0 {
+            break;
+        }
+        assert!(asked.elapsed() < Duration::from_secs(3), "cases still open: {now:?}");
+        tokio::time::sleep(Duration::from_millis(20)).await;
+    }
+    assert_eq!(finished(&client, &a.base, &second, Duration::from_secs(3)).await["status"], "canceled");
+    let _ = db.close().await;
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn a_sweep_whose_assembler_died_is_reassembled_elsewhere_with_the_same_result() {
+    if !postgres_available("a_sweep_whose_assembler_died_is_reassembled_elsewhere_with_the_same_result") {
+        return;
+    }
+    let url = fresh_postgres_database().await;
+    let client = reqwest::Client::new();
+    let a = Instance::serve(&url, OPTS);
+    let id = post(&client, &a.base, &sleep_sweep(4, 0.1, 1000), "").await["id"].as_str().unwrap().to_string();
+    let done = finished(&client, &a.base, &id, Duration::from_secs(10)).await;
+    assert_eq!(done["status"], "succeeded", "{done}");
+    let mut before = result(&client, &a.base, &id).await;
+    before.as_object_mut().unwrap().remove("meta");
+    drop(a);
+    let mut db = sqlx::PgConnection::connect(&url).await.unwrap();
+    let attempts: i64 = sqlx::query("SELECT attempts FROM jobs WHERE id = $1").bind(&id).fetch_one(&mut db).await.unwrap().get(0);
+    assert_eq!(attempts, 1, "fanning out is not counted as an attempt, assembling is");
+    // The row as an instance leaves it when it is killed (-9) while assembling: its cases all
+    // finished, the parent claimed again (running, leased by the dead instance), no result. The
+    // exact instant of a real kill inside an assembly of milliseconds cannot be hit from outside.
+    sqlx::query(
+        "UPDATE jobs SET status = 'running', finished_at = NULL, solved_by = NULL, lease_owner = 'killed-9', \
+         lease_until = 1, attempts = attempts + 1 WHERE id = $1",
+    )
+    .bind(&id)
+    .execute(&mut db)
+    .await
+    .unwrap();
+    sqlx::query("DELETE FROM job_results WHERE job_id = $1").bind(&id).execute(&mut db).await.unwrap();
+    let b = Instance::serve(&url, OPTS);
+    let again = finished(&client, &b.base, &id, Duration::from_secs(10)).await;
+    assert_eq!(again["status"], "succeeded", "{again}");
+    let mut after = result(&client, &b.base, &id).await;
+    after.as_object_mut().unwrap().remove("meta");
+    assert_eq!(after, before, "reassembled: the same table, the same instance per case");
+    let solved: i64 = sqlx::query("SELECT count(*) FROM jobs WHERE kind = 'test_sleep'").fetch_one(&mut db).await.unwrap().get(0);
+    assert_eq!(solved, 4, "no case solved again");
+    let _ = db.close().await;
+}
+
+#[tokio::test(flavor = "multi_thread", worker_threads = 2)]
+async fn a_cancel_reaches_the_cases_a_dead_fan_out_made_before_its_retry() {
+    if !postgres_available("a_cancel_reaches_the_cases_a_dead_fan_out_made_before_its_retry") {
+        return;
+    }
+    let url = fresh_postgres_database().await;
+    let client = reqwest::Client::new();
+    let a = Instance::serve(&url, OPTS);
+    let id = post(&client, &a.base, &sleep_sweep(6, 1.0, 1100), "").await["id"].as_str().unwrap().to_string();
+    fanned_out(&client, &a.base, &id, 6).await;
+    // As an instance leaves it when killed after inserting the cases, before recording them (one
+    // statement, at the end): the cases queued or running, no children, the parent leased by the
+    // dead instance. The retry joins the cases; they are still the sweep's own.
+    let mut db = sqlx::PgConnection::connect(&url).await.unwrap();
+    sqlx::query("DELETE FROM job_children WHERE parent_id = $1").bind(&id).execute(&mut db).await.unwrap();
+    sqlx::query("UPDATE jobs SET lease_owner = 'killed-9', lease_until = 1, stage = NULL WHERE id = $1")
+        .bind(&id)
+        .execute(&mut db)
+        .await
+        .unwrap();
+    fanned_out(&client, &a.base, &id, 6).await;
+    let made: i64 = sqlx::query("SELECT count(*) FROM jobs WHERE kind = 'test_sleep'").fetch_one(&mut db).await.unwrap().get(0);
+    assert_eq!(made, 6, "the retry made no case twice");
+    let res = client.delete(format!("{}/v1/jobs/{id}", a.base)).send().await.unwrap();
+    assert!(res.status().is_success());
+    let asked = Instant::now();
+    loop {
+        let states = case_states(&mut db, &id).await;
+        if states.iter().all(|(st, _)| st != "queued" && st != "running") {
+            break;
+        }
+        assert!(asked.elapsed() < Duration::from_secs(3), "cases still open: {states:?}");
+        tokio::time::sleep(Duration::from_millis(20)).await;
+    }
+    assert_eq!(finished(&client, &a.base, &id, Duration::from_secs(3)).await["status"], "canceled");
+    let _ = db.close().await;
+}

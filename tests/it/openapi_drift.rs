@@ -239,3 +239,15 @@ fn no_two_different_schemas_share_a_name() {
     }
     assert!(seen.len() > 20, "{} schemas", seen.len());
 }
+
+/// A sweep's `values` accept any JSON value (numbers, strings, objects), and so does the
+/// document: a generated client can send `values: [0.1, 0.2]` and `["cycloidal", "polynomial_345"]`
+/// (an array of objects, as it once said, refuses both).
+#[test]
+fn sweep_values_are_any_json_in_the_document() {
+    let doc = serde_json::to_value(tribod::api::openapi()).unwrap();
+    for name in ["Parameter", "Variable"] {
+        let values = &doc["components"]["schemas"][name]["properties"]["values"];
+        assert_eq!(values["items"], serde_json::json!({}), "{name}.values: {values}");
+    }
+}

@@ -34,8 +34,8 @@ pub struct Parameter {
     #[schema(example = "/lubricant/viscosity")]
     pub path: String,
     /// The values (any JSON: numbers, strings, objects). Exactly one of `values`, `linspace`.
+    /// Items are any JSON value (the schema `{}`): `[0.1, 0.2]`, `["cycloidal", "polynomial_345"]`.
     #[serde(default, skip_serializing_if = "Option::is_none")]
-    #[schema(value_type = Option<Vec<Object>>)]
     pub values: Option<Vec<Value>>,
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub linspace: Option<Linspace>,

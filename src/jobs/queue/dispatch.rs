@@ -24,6 +24,11 @@ impl Queue {
                         let n = jobs.len() as i64;
                         if n > 0 {
                             let depth = inner.backlog.fetch_sub(n, Ordering::Relaxed) - n;
+                            if depth < 0 {
+                                // Claimed case jobs of a fan-out, which the backlog does not
+                                // count (their sweep was counted): not a credit for more jobs.
+                                inner.backlog.fetch_max(0, Ordering::Relaxed);
+                            }
                             inner.metrics.queue_depth.set(depth.max(0));
                         }
                         for job in jobs {

@@ -104,15 +104,19 @@ impl Queue {
     async fn child(&self, parent: Uuid, case: &Case, fresh: bool, due_at: i64) -> Result<Child, StoreError> {
         let store = &self.inner.store;
         let version = case.kind.solver_version();
+        let label = format!("case {} of {parent}", case.index + 1);
         for _ in 0..3 {
             if let Some(row) = store.find_same(&case.hash, version, !fresh).await? {
                 let reused = row.status == JobStatus::Succeeded;
-                return Ok(Child { index: case.index, job_id: row.id, reused, owned: false });
+                // A case job an earlier attempt at this parent created (its instance died before
+                // recording the children) is this parent's own: a cancel reaches it.
+                let owned = !reused && row.label.as_deref() == Some(label.as_str());
+                return Ok(Child { index: case.index, job_id: row.id, reused, owned });
             }
             let new = NewJob {
                 id: Uuid::now_v7(),
                 kind: case.kind.name().to_string(),
-                label: Some(format!("case {} of {parent}", case.index + 1)),
+                label: Some(label.clone()),
                 spec: case.spec.clone(),
                 spec_hash: case.hash.clone(),
                 solver_version: version.to_string(),
