@@ -160,8 +160,11 @@ fn seed001_micro_slip_map_example_and_the_map_along_the_contact() {
     println!("| μ_rp | SRR semi-elliptic, constants | SRR solved p_a, constants | SRR solved p_a, map | map/constants |");
     for i in 0..pins.len() {
         println!("| {} | {:.3e} ({}) | {:.3e} ({}) | {:.3e} ({}) | {:.3} |", pins[i], semi[i].0, semi[i].1, flat[i].0, flat[i].1, with_map[i].0, with_map[i].1, with_map[i].0 / flat[i].0);
-        // The job is this computation.
-        assert!((with_map[i].0 / srr[i] - 1.0).abs() < 1e-9, "{} vs {}", with_map[i].0, srr[i]);
+        // The job is this computation — to the Newton tolerance: the accurate film's solver
+        // starts from a prediction of its own last two solutions (`ehl::transient`), so a model
+        // that solved something else first (`film` above) converges from another start (1.6e-8 to
+        // 1.3e-6 apart here; each run is repeatable).
+        assert!((with_map[i].0 / srr[i] - 1.0).abs() < 1e-5, "{} vs {}", with_map[i].0, srr[i]);
     }
 }
 

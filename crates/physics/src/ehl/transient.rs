@@ -52,6 +52,16 @@ struct Past {
     time_step: Option<f64>,
 }
 
+/// Keep the solution `s` on `layout` (reached with `time_step`) as the newest of the last two
+/// steps `past`.
+fn push_past(past: &mut Vec<Past>, layout: Layout, s: &EhlSolution, time_step: Option<f64>) {
+    if past.len() == 2 {
+        past.remove(0);
+    }
+    let ph = s.hertz_pressure;
+    past.push(Past { layout, pressure: s.state.pressure.iter().map(|p| p / ph).collect(), centre_film: s.central_film, time_step });
+}
+
 /// Linear extrapolation of the last two steps `past` (on the grid of `layout`) to the next one, in
 /// Hertzian-scaled pressure (the pressure shape follows the contact width) and centre film.
 fn predict(past: &[Past], layout: Layout, time_step: Option<f64>) -> Option<(Vec<f64>, f64)> {
@@ -96,16 +106,7 @@ impl History {
         if !continues {
             self.past.clear();
         }
-        if self.past.len() == 2 {
-            self.past.remove(0);
-        }
-        let ph = s.hertz_pressure;
-        self.past.push(Past {
-            layout,
-            pressure: s.state.pressure.iter().map(|p| p / ph).collect(),
-            centre_film: s.central_film,
-            time_step: input.transient.map(|t| t.time_step),
-        });
+        push_past(&mut self.past, layout, s, input.transient.map(|t| t.time_step));
         self.last.clone_from(&s.state.pressure);
     }
 
@@ -154,16 +155,7 @@ impl Track {
         let prediction = predicted.as_ref().map(|(p, hc)| Prediction { pressure: p, centre_film: *hc });
         let s = self.engine.solve(&inp, &self.options, Some(layout), prediction, observer)?;
         self.state = Some(s.state.clone());
-        if self.past.len() == 2 {
-            self.past.remove(0);
-        }
-        let ph = s.hertz_pressure;
-        self.past.push(Past {
-            layout,
-            pressure: s.state.pressure.iter().map(|p| p / ph).collect(),
-            centre_film: s.central_film,
-            time_step: if self.state.is_some() { time_step } else { None },
-        });
+        push_past(&mut self.past, layout, &s, time_step);
         Ok(s)
     }
 }
