@@ -22,7 +22,7 @@ use tribod::physics::Silent;
 /// The whole `cam_cycle` job: result and run time, s.
 fn cycle_job(spec: &Value) -> (Value, f64) {
     let k = registry::find("cam_cycle").unwrap();
-    let prepared = k.prepare(spec, &Limits::default()).unwrap();
+    let prepared = k.prepare(spec, &Limits { max_job_seconds: 3600.0, ..Limits::default() }).unwrap();
     let t = Instant::now();
     let out = prepared.run(&Silent).unwrap();
     (out, t.elapsed().as_secs_f64())
@@ -133,8 +133,66 @@ fn trends() {
     }
 }
 
+/// `-- finite-cycle [angles=N] [nx=N] [ny=N] [dump=FILE] [ref=FILE] [set=json-pointer=value,...]`:
+/// the thermal finite-line cycle (`examples/seed000_thermal_finite_cycle.json`) as a whole job:
+/// run time, the work counters per angle, and (with `ref=`, a result dumped by an earlier run)
+/// the worst film, film temperature and SRR differences against it.
+fn finite_cycle(args: &[String]) {
+    let arg = |name: &str| args.iter().find_map(|a| a.strip_prefix(&format!("{name}=")).map(str::to_string));
+    let text = std::fs::read_to_string("examples/seed000_thermal_finite_cycle.json").unwrap();
+    let mut spec = serde_json::from_str::<Value>(&text).unwrap()["spec"].clone();
+    let angles: u64 = arg("angles").and_then(|a| a.parse().ok()).unwrap_or(360);
+    spec["angles"] = angles.into();
+    if let Some(nx) = arg("nx").and_then(|a| a.parse::<u64>().ok()) {
+        spec["ehl"]["nx"] = nx.into();
+    }
+    if let Some(ny) = arg("ny").and_then(|a| a.parse::<u64>().ok()) {
+        spec["ehl"]["ny"] = ny.into();
+    }
+    for set in arg("set").iter().flat_map(|s| s.split(',').map(str::to_string).collect::<Vec<_>>()) {
+        let (ptr, value) = set.split_once('=').expect("set=pointer=value");
+        let value: Value = serde_json::from_str(value).unwrap_or(Value::String(value.into()));
+        let parts: Vec<&str> = ptr.trim_start_matches('/').split('/').collect();
+        let mut at = &mut spec;
+        for p in &parts[..parts.len() - 1] {
+            at = &mut at[*p];
+        }
+        at[parts[parts.len() - 1]] = value;
+    }
+    tribod::physics::film::work::reset();
+    let (out, t) = cycle_job(&spec);
+    let counters = tribod::physics::film::work::snapshot();
+    println!("thermal finite cycle, {angles} angles, ehl {}: {t:.2} s, convergence {}", spec["ehl"], out["convergence"]);
+    println!("  work counters: {}", counters.iter().filter(|(_, v)| *v > 0).map(|(k, v)| format!("{} {v}", k.to_lowercase())).collect::<Vec<_>>().join(", "));
+    if let Some(file) = arg("dump") {
+        std::fs::write(&file, out.to_string()).unwrap();
+    }
+    if let Some(file) = arg("ref") {
+        let reference: Value = serde_json::from_str(&std::fs::read_to_string(&file).unwrap()).unwrap();
+        let angle = series(&reference, "angle_deg");
+        for name in ["film_central", "film_min", "film_temperature_max", "slide_roll_ratio"] {
+            let (a, b) = (series(&reference, name), series(&out, name));
+            let scale = if name == "slide_roll_ratio" { a.iter().fold(0.0f64, |m, v| m.max(v.abs())) } else if name == "film_temperature_max" { f64::NAN } else { 0.0 };
+            let (mut worst, mut at, mut sum) = (0.0f64, 0.0, 0.0);
+            for i in 0..a.len() {
+                let d = if scale.is_nan() { (b[i] - a[i]).abs() } else if scale > 0.0 { (b[i] - a[i]).abs() / scale } else { (b[i] - a[i]).abs() / a[i].abs() };
+                sum += d;
+                if d > worst {
+                    (worst, at) = (d, angle[i]);
+                }
+            }
+            let unit = if scale.is_nan() { "K" } else { "(relative)" };
+            println!("  {name}: worst {worst:.4} {unit} at {at:.1}°, mean {:.4}", sum / a.len() as f64);
+        }
+    }
+}
+
 fn main() {
     let args: Vec<String> = std::env::args().skip(1).filter(|a| !a.starts_with('-')).collect();
+    if args.iter().any(|a| a == "finite-cycle") {
+        finite_cycle(&args);
+        return;
+    }
     if args.iter().any(|a| a == "cycle") {
         cycle_table();
         return;

@@ -48,6 +48,13 @@ counters! {
     /// Roller march: steps (angles marched, over all cycles) and slip solves.
     MARCH_STEPS,
     MARCH_SLIP_SOLVES,
+    /// Thermal finite-line model ([`crate::ehl::thermal_finite`]): energy passes over the rows
+    /// (coupling, final and traction probes), the rows' energy solves in them and their sweeps.
+    THERMAL_2D_PASSES,
+    THERMAL_2D_ROW_SOLVES,
+    THERMAL_2D_SWEEPS,
+    /// Of the passes: the traction probes at another slip ([`crate::film::ThermalFinite`]).
+    THERMAL_2D_PROBES,
 }
 
 /// Add `n` to `counter`.

@@ -108,6 +108,14 @@ impl FilmModel for ThermalFinite {
         ENTRAINMENT_TOLERANCE
     }
 
+    /// Quasi-steady (module docs): on a dwell (unchanged load and shape) the previous angle's
+    /// film stands for this one while the entrainment stays within [`ENTRAINMENT_TOLERANCE`] of
+    /// it — the sliding velocity then within twice that of the solved one, the tolerance the
+    /// roller balance already accepts for a film at its own angle.
+    fn history_free(&self) -> bool {
+        true
+    }
+
     fn solve(&self, input: &ContactInput, previous: Option<&FilmSolution>) -> Result<FilmSolution, SolveError> {
         let load = input.load;
         if !(load > 0.0 && load.is_finite()) {
@@ -143,6 +151,7 @@ impl FilmModel for ThermalFinite {
             (input.sliding_velocity, th.traction.force_body_2)
         } else {
             let at = if input.sliding_velocity < 0.0 { -probe } else { probe };
+            crate::work::add(&crate::work::THERMAL_2D_PROBES, 1);
             (at, traction_at(&ThermalFiniteInput { sliding_velocity: at, ..tin }, s, &thermal)?.force_body_2)
         };
         let fluid = 1.0 - w_a / load;

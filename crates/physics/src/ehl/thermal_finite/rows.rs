@@ -122,6 +122,9 @@ pub(super) fn energy_pass(input: &ThermalFiniteInput, sol: &Ehl2dSolution, therm
         fields[j] = Some(r.field);
         rows.push(r.row);
     }
+    crate::work::add(&crate::work::THERMAL_2D_PASSES, 1);
+    crate::work::add(&crate::work::THERMAL_2D_ROW_SOLVES, rows.len() as u64);
+    crate::work::add(&crate::work::THERMAL_2D_SWEEPS, rows.iter().map(|r| r.summary.sweeps as u64).sum());
     let removed = heat.to_body_1 + heat.to_body_2 + heat.convected + heat.side;
     heat.error = if heat.generated.abs() > 0.0 { ((heat.generated - removed) / heat.generated).abs() } else { 0.0 };
     traction.friction_coefficient = (traction.force_body_2 - traction.force_body_1) / (2.0 * input.ehl.load);
