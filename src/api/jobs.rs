@@ -393,9 +393,9 @@ pub async fn get_job(State(state): State<AppState>, JobIdPath(id): JobIdPath) ->
     Ok(Json(view))
 }
 
-/// The cases of a fanned-out job counted by status (only sweeps on a shared store have any).
+/// The cases of a fanned-out job counted by status (only sweeps have any).
 pub async fn children_of(queue: &crate::jobs::queue::Queue, view: &JobView) -> ApiResult<Option<crate::store::ChildCounts>> {
-    if view.kind != "sweep" || !queue.store().is_shared() {
+    if view.kind != "sweep" {
         return Ok(None);
     }
     queue.store().child_counts(view.id).await.map_err(store_error)

@@ -60,8 +60,10 @@ impl Queue {
                 }
                 // Fan-out's safety net: parents whose last case finished on an instance that died
                 // (or failed at the attempt cap here) before it moved them on.
-                if let Err(e) = inner.store.release_parents(None, None).await {
-                    warn!(error = %e, "scanning for parents whose cases finished failed");
+                match inner.store.release_parents(None, None).await {
+                    Ok(0) => {}
+                    Ok(_) => inner.wake.notify_one(),
+                    Err(e) => warn!(error = %e, "scanning for parents whose cases finished failed"),
                 }
             }
         }
