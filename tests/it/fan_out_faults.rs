@@ -128,7 +128,7 @@ async fn a_cancel_mid_sweep_stops_its_cases_on_three_instances_within_a_second()
     let b = Instance::serve(&url, OPTS);
     let _c = Instance::worker(&url, OPTS);
     let client = reqwest::Client::new();
-    let id = post(&client, &a.base, &sleep_sweep(40, 2.0, 1200), "").await["id"].as_str().unwrap().to_string();
+    let id = post(&client, &a.base, &sleep_sweep(40, 1.0, 1200), "").await["id"].as_str().unwrap().to_string();
     let mut db = sqlx::PgConnection::connect(&url).await.unwrap();
     let mut owners = 0;
     let deadline = Instant::now() + Duration::from_secs(20);
