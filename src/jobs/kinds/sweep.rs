@@ -85,8 +85,8 @@ pub struct SweepResult {
     pub units: std::collections::BTreeMap<String, String>,
     /// One row per case: the parameter values, `status` (`succeeded` / `failed`), the
     /// quantities (absent when the case failed or the result lacks them) and `error_code`. A
-    /// sweep whose cases ran as jobs of their own on every instance (PostgreSQL, cases above
-    /// `--fan-out-min-case-seconds`) adds to each row `instance` (the instance that solved the
+    /// sweep whose cases ran as jobs of their own (cases above `--fan-out-min-case-seconds`, on
+    /// every instance sharing the store) adds to each row `instance` (the instance that solved the
     /// case) and `reused` (an identical case solved before was reused).
     #[schema(value_type = Vec<Object>)]
     pub cases: Vec<Map<String, Value>>,
