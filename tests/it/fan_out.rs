@@ -232,6 +232,7 @@ async fn kill_9_of_an_instance_mid_sweep_reruns_only_its_cases() {
     .unwrap()
     .get(0);
     assert_eq!(rerun, 1, "only the killed instance's case ran again");
+    assert_eq!(comparable(r), comparable(single_instance_result(&client, &sleep_sweep(40, 0.3, 100)).await));
     let _ = db.close().await;
 }
 

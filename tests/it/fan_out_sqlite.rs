@@ -48,6 +48,13 @@ async fn sqlite_a_sweep_fans_out_with_progress_and_equals_the_in_process_result(
         seen.push_str(&String::from_utf8_lossy(&chunk));
     }
     drop(events);
+    // Fairness: a tiny job submitted now waits for one case (0.2 s), not for the sweep.
+    let asked = Instant::now();
+    let tiny = post(&client, &one.base, &crate::common::hertz_job(777.0), "").await["id"].as_str().unwrap().to_string();
+    assert_eq!(finished(&client, &one.base, &tiny, Duration::from_secs(20)).await["status"], "succeeded");
+    let latency = asked.elapsed();
+    eprintln!("SQLite: tiny job latency during the fan-out: {latency:?}");
+    assert!(latency < Duration::from_secs(2), "tiny job waited {latency:?}");
     let done = finished(&client, &one.base, &id, Duration::from_secs(60)).await;
     assert_eq!(done["status"], "succeeded", "{done}");
     assert_eq!(done["children"]["succeeded"], 12, "{done}");
@@ -57,7 +64,7 @@ async fn sqlite_a_sweep_fans_out_with_progress_and_equals_the_in_process_result(
     assert!(rows.iter().all(|r| r["reused"] == false && r["instance"].is_string()), "{fanned}");
     assert_eq!(fanned["meta"]["fan_out"]["instances"], 1);
     // The list hides the cases unless asked.
-    assert_eq!(listed(&client, &one.base, "").await.len(), 1);
+    assert_eq!(listed(&client, &one.base, "").await.len(), 2, "the sweep and the tiny job");
     assert_eq!(cases_of(&client, &one.base, &id).await.len(), 12);
     assert_eq!(comparable(fanned), comparable(single_instance_result(&client, &job).await));
 }
