@@ -404,6 +404,8 @@ async fn case_jobs_are_hidden_from_the_list_and_not_counted_against_max_queue() 
     assert!(res.status().is_success());
 }
 
+/// Below the crossover (default 0.5 s per case) a sweep stays in-process: no case jobs, on SQLite
+/// as on PostgreSQL (SQLite's fan-out: `fan_out_sqlite.rs`).
 #[tokio::test(flavor = "multi_thread", worker_threads = 2)]
 async fn sqlite_lists_every_job_and_no_job_has_cases() {
     let dir = tempfile::tempdir().unwrap();
