@@ -64,9 +64,9 @@ struct QueueArgs {
     /// twice a second); after that any instance re-queues the job.
     #[arg(long, env = "TRIBOD_LEASE_SECONDS", default_value_t = 30.0)]
     lease_seconds: f64,
-    /// With a PostgreSQL store: a sweep whose cases the work model estimates at this many CPU
-    /// seconds or more (on average) spreads its cases over every instance as jobs of their own;
-    /// cheaper sweeps run in-process. `inf`: never.
+    /// A sweep whose cases the work model estimates at this many CPU seconds or more (on
+    /// average) spreads its cases, as jobs of their own, over every instance sharing the store
+    /// (SQLite: this instance's workers); cheaper sweeps run in-process. `inf`: never.
     #[arg(long, env = "TRIBOD_FAN_OUT_MIN_CASE_SECONDS", default_value_t = tribod::jobs::queue::DEFAULT_FAN_OUT_MIN_CASE_SECONDS)]
     fan_out_min_case_seconds: f64,
     #[command(flatten)]

@@ -91,8 +91,8 @@ pub struct JobView {
     /// dashboard can say "about 40 s"). Absent for jobs stored before the models existed.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub estimate: Option<Estimate>,
-    /// A job whose cases run as jobs of their own on every instance (a big sweep on a shared
-    /// PostgreSQL store): its cases counted by status. `progress.fraction` is the share finished.
+    /// A job whose cases run as jobs of their own (a sweep above `--fan-out-min-case-seconds` per
+    /// case; on every instance sharing the store): its cases counted by status. `progress.fraction` is the share finished.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub children: Option<crate::store::ChildCounts>,
     pub links: JobLinks,
@@ -281,7 +281,7 @@ pub struct ListQuery {
     /// joined or reused but that were submitted on their own are always listed.
     pub cases: Option<bool>,
     /// Only the case jobs of this fanned-out job (the ones it created, joined or reused; implies
-    /// `cases=true`). Empty on SQLite, where sweeps do not fan out.
+    /// `cases=true`). Empty for a job that did not fan out.
     pub parent: Option<Uuid>,
     /// Cursor: the `next` of the previous page (jobs older than this id). If that job was deleted
     /// meanwhile, the page resumes where it stood: at the creation instant its id (a UUIDv7)
@@ -393,9 +393,9 @@ pub async fn get_job(State(state): State<AppState>, JobIdPath(id): JobIdPath) ->
     Ok(Json(view))
 }
 
-/// The cases of a fanned-out job counted by status (only sweeps on a shared store have any).
+/// The cases of a fanned-out job counted by status (only sweeps have any).
 pub async fn children_of(queue: &crate::jobs::queue::Queue, view: &JobView) -> ApiResult<Option<crate::store::ChildCounts>> {
-    if view.kind != "sweep" || !queue.store().is_shared() {
+    if view.kind != "sweep" {
         return Ok(None);
     }
     queue.store().child_counts(view.id).await.map_err(store_error)

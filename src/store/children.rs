@@ -1,6 +1,9 @@
 //! Children of a fanned-out job (issue 44): the cases of a big sweep as ordinary jobs of their
-//! case kind, tied to the parent by table `job_children` (PostgreSQL only: fan-out needs a store
-//! that several instances share; on SQLite every method is a no-op and sweeps run in-process).
+//! case kind, tied to the parent by table `job_children` (both backends: on PostgreSQL every
+//! instance sharing the database claims the cases; a SQLite file has one instance, whose workers
+//! claim them — the case cache, the rows' `instance` and `reused`, the progress by case and a
+//! restart that re-runs only unfinished cases are the same). The PostgreSQL statements are here,
+//! SQLite's in `sqlite/children.rs`.
 //!
 //! Life of a parent: claimed like any job; the instance that claimed it creates (or reuses, or
 //! joins) one job per case, records them here and lets go of the parent — status stays
@@ -29,17 +32,18 @@ pub struct Child {
     pub owned: bool,
 }
 
-/// A case as it stands: its job's status, who solved it and its result or error.
+/// A case as it stands: its job's status, who solved it and its error (results are read a page
+/// at a time: [`Store::child_results`]).
 #[derive(Debug, Clone)]
 pub struct ChildOutcome {
     pub index: i64,
     pub job_id: Uuid,
     pub reused: bool,
+    /// Created for this parent (not joined or reused).
+    pub owned: bool,
     /// `None`: the case's job was deleted.
     pub status: Option<JobStatus>,
     pub solved_by: Option<String>,
-    /// The result JSON of a succeeded case.
-    pub result: Option<String>,
     /// problem+json of a failed case.
     pub error: Option<String>,
 }
@@ -60,7 +64,10 @@ pub struct ChildCounts {
 impl Store {
     /// Record the children of `parent` (a repeat of an index keeps the first record).
     pub async fn add_children(&self, parent: Uuid, children: &[Child]) -> StoreResult<()> {
-        let Store::Postgres(s) = self else { return Ok(()) };
+        let s = match self {
+            Store::Sqlite(s) => return s.add_children(parent, children).await,
+            Store::Postgres(s) => s,
+        };
         let idx: Vec<i64> = children.iter().map(|c| c.index).collect();
         let ids: Vec<String> = children.iter().map(|c| c.job_id.to_string()).collect();
         let reused: Vec<bool> = children.iter().map(|c| c.reused).collect();
@@ -83,14 +90,20 @@ impl Store {
     /// The parent's `due_at` (its children inherit it: a big job's cases keep the big job's place
     /// in the fair order).
     pub async fn due_at(&self, id: Uuid) -> StoreResult<Option<i64>> {
-        let Store::Postgres(s) = self else { return Ok(None) };
+        let s = match self {
+            Store::Sqlite(s) => return s.due_at(id).await,
+            Store::Postgres(s) => s,
+        };
         Ok(sqlx::query_scalar::<_, i64>("SELECT due_at FROM jobs WHERE id = $1").bind(id.to_string()).fetch_optional(&s.pool).await?)
     }
 
     /// Let go of a parent `owner` holds: it waits for its children without a lease or a thread.
     /// Then, if its children are all finished already (every case reused), back to the queue.
     pub async fn wait_for_children(&self, parent: Uuid, owner: &str) -> StoreResult<bool> {
-        let Store::Postgres(s) = self else { return Ok(false) };
+        let s = match self {
+            Store::Sqlite(s) => return s.wait_for_children(parent, owner).await,
+            Store::Postgres(s) => s,
+        };
         let r = sqlx::query(
             // Fanning out was not an interrupted attempt: the claim that assembles is counted
             // alone against --max-attempts (an assembler's death is one interruption, not two).
@@ -112,7 +125,10 @@ impl Store {
     /// whose children have all finished go back to the queue to be assembled. The number
     /// re-queued.
     pub async fn release_parents(&self, parents: Option<&[Uuid]>, children: Option<&[Uuid]>) -> StoreResult<u64> {
-        let Store::Postgres(s) = self else { return Ok(0) };
+        let s = match self {
+            Store::Sqlite(s) => return s.release_parents(parents, children).await,
+            Store::Postgres(s) => s,
+        };
         let parents: Option<Vec<String>> = parents.map(|p| p.iter().map(Uuid::to_string).collect());
         let children: Option<Vec<String>> = children.map(|p| p.iter().map(Uuid::to_string).collect());
         let rows = sqlx::query(
@@ -147,11 +163,13 @@ impl Store {
 
     /// The children of `parent` with their outcomes, by index (empty: not a fanned-out job).
     pub async fn child_outcomes(&self, parent: Uuid) -> StoreResult<Vec<ChildOutcome>> {
-        let Store::Postgres(s) = self else { return Ok(Vec::new()) };
+        let s = match self {
+            Store::Sqlite(s) => return s.child_outcomes(parent).await,
+            Store::Postgres(s) => s,
+        };
         let rows = sqlx::query(
-            "SELECT c.idx, c.job_id, c.reused, j.status, j.solved_by, r.encoding, r.body, j.error \
-             FROM job_children c LEFT JOIN jobs j ON j.id = c.job_id LEFT JOIN job_results r ON r.job_id = c.job_id \
-             WHERE c.parent_id = $1 ORDER BY c.idx",
+            "SELECT c.idx, c.job_id, c.reused, j.status, j.solved_by, j.error, c.owned \
+             FROM job_children c LEFT JOIN jobs j ON j.id = c.job_id WHERE c.parent_id = $1 ORDER BY c.idx",
         )
         .bind(parent.to_string())
         .fetch_all(&s.pool)
@@ -159,28 +177,67 @@ impl Store {
         rows.iter()
             .map(|r| {
                 let status: Option<String> = r.try_get(3)?;
-                let encoding: Option<String> = r.try_get(5)?;
-                let body: Option<Vec<u8>> = r.try_get(6)?;
-                let result = match (encoding, body) {
-                    (Some(e), Some(b)) => Some(decode_result(&e, &b).map_err(StoreError::Corrupt)?),
-                    _ => None,
-                };
                 Ok(ChildOutcome {
                     index: r.try_get(0)?,
                     job_id: parse_uuid(&r.try_get::<String, _>(1)?)?,
                     reused: r.try_get(2)?,
+                    owned: r.try_get(6)?,
                     status: status.as_deref().and_then(JobStatus::parse),
                     solved_by: r.try_get(4)?,
-                    result,
-                    error: r.try_get(7)?,
+                    error: r.try_get(5)?,
                 })
             })
             .collect()
     }
 
+    /// The stored results of the children of `parent` from index `from` on, at most `limit`, by
+    /// index (children without a result are skipped): the assembly reads them a page at a time.
+    pub async fn child_results(&self, parent: Uuid, from: i64, limit: i64) -> StoreResult<Vec<(i64, String)>> {
+        let s = match self {
+            Store::Sqlite(s) => return s.child_results(parent, from, limit).await,
+            Store::Postgres(s) => s,
+        };
+        let rows = sqlx::query(
+            "SELECT c.idx, r.encoding, r.body FROM job_children c JOIN job_results r ON r.job_id = c.job_id \
+             WHERE c.parent_id = $1 AND c.idx >= $2 ORDER BY c.idx LIMIT $3",
+        )
+        .bind(parent.to_string())
+        .bind(from)
+        .bind(limit)
+        .fetch_all(&s.pool)
+        .await?;
+        rows.iter()
+            .map(|r| {
+                let (e, b): (String, Vec<u8>) = (r.try_get(1)?, r.try_get(2)?);
+                Ok((r.try_get(0)?, decode_result(&e, &b).map_err(StoreError::Corrupt)?))
+            })
+            .collect()
+    }
+
+    /// Point case `child.index` of `parent` at another job: a case canceled for another parent
+    /// (a race of a join with that parent's cancel), solved again for this one.
+    pub async fn replace_child(&self, parent: Uuid, child: &Child) -> StoreResult<()> {
+        let s = match self {
+            Store::Sqlite(s) => return s.replace_child(parent, child).await,
+            Store::Postgres(s) => s,
+        };
+        sqlx::query("UPDATE job_children SET job_id = $1, reused = $2, owned = $3 WHERE parent_id = $4 AND idx = $5")
+            .bind(child.job_id.to_string())
+            .bind(child.reused)
+            .bind(child.owned)
+            .bind(parent.to_string())
+            .bind(child.index)
+            .execute(&s.pool)
+            .await?;
+        Ok(())
+    }
+
     /// The children of `id` counted by status (`None`: it has none).
     pub async fn child_counts(&self, id: Uuid) -> StoreResult<Option<ChildCounts>> {
-        let Store::Postgres(s) = self else { return Ok(None) };
+        let s = match self {
+            Store::Sqlite(s) => return s.child_counts(id).await,
+            Store::Postgres(s) => s,
+        };
         let r = sqlx::query(
             "SELECT count(*), count(*) FILTER (WHERE j.status = 'queued'), count(*) FILTER (WHERE j.status = 'running'), \
                     count(*) FILTER (WHERE j.status = 'succeeded'), \
@@ -213,7 +270,10 @@ impl Store {
     /// it at the next lease renewal, ≤ 0.5 s); a parent waiting for them is canceled at once.
     /// The children canceled or asked to stop.
     pub async fn cancel_children(&self, parent: Uuid, now: i64) -> StoreResult<u64> {
-        let Store::Postgres(s) = self else { return Ok(0) };
+        let s = match self {
+            Store::Sqlite(s) => return s.cancel_children(parent, now).await,
+            Store::Postgres(s) => s,
+        };
         // A case job (some parent created it) that no parent other than `parent` still needs:
         // every other parent linking it is finished or asked to stop. A constant: no request text.
         const UNNEEDED: &str = "EXISTS (SELECT 1 FROM job_children o WHERE o.job_id = jobs.id AND o.owned) \
@@ -258,10 +318,26 @@ impl Store {
         Ok(queued + running)
     }
 
+    /// The jobs the queue's backlog does not count (at start-up): cases of a fan-out that are
+    /// queued or running, and parents waiting for their cases.
+    pub async fn uncounted_jobs(&self) -> StoreResult<Vec<Uuid>> {
+        const SQL: &str = "SELECT id FROM jobs WHERE (status IN ('queued', 'running') \
+             AND EXISTS (SELECT 1 FROM job_children c WHERE c.job_id = jobs.id AND c.owned)) \
+             OR (status = 'running' AND EXISTS (SELECT 1 FROM job_children c WHERE c.parent_id = jobs.id))";
+        let ids: Vec<String> = match self {
+            Store::Sqlite(s) => s.read_strings(SQL).await?,
+            Store::Postgres(s) => sqlx::query_scalar(SQL).fetch_all(&s.pool).await?,
+        };
+        ids.iter().map(|id| parse_uuid(id)).collect()
+    }
+
     /// Remember that `id` is submitted with `?fresh=true` (its cases reuse nothing); written
     /// before the job itself.
     pub async fn set_fresh(&self, id: Uuid) -> StoreResult<()> {
-        let Store::Postgres(s) = self else { return Ok(()) };
+        let s = match self {
+            Store::Sqlite(s) => return s.set_fresh(id).await,
+            Store::Postgres(s) => s,
+        };
         sqlx::query("INSERT INTO job_options (job_id, fresh) VALUES ($1, TRUE) ON CONFLICT (job_id) DO UPDATE SET fresh = TRUE")
             .bind(id.to_string())
             .execute(&s.pool)
@@ -270,7 +346,10 @@ impl Store {
     }
 
     pub async fn is_fresh(&self, id: Uuid) -> StoreResult<bool> {
-        let Store::Postgres(s) = self else { return Ok(false) };
+        let s = match self {
+            Store::Sqlite(s) => return s.is_fresh(id).await,
+            Store::Postgres(s) => s,
+        };
         Ok(sqlx::query_scalar::<_, bool>("SELECT fresh FROM job_options WHERE job_id = $1")
             .bind(id.to_string())
             .fetch_optional(&s.pool)

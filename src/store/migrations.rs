@@ -20,6 +20,7 @@ pub const SQLITE: &[MigrationFile] = &[
     ("0003_leases.sql", include_str!("../../migrations/sqlite/0003_leases.sql")),
     ("0004_idempotency_keys.sql", include_str!("../../migrations/sqlite/0004_idempotency_keys.sql")),
     ("0005_estimates.sql", include_str!("../../migrations/sqlite/0005_estimates.sql")),
+    ("0006_children.sql", include_str!("../../migrations/sqlite/0006_children.sql")),
 ];
 
 /// `migrations/postgres/`, in version order.

@@ -21,6 +21,8 @@ use std::str::FromStr;
 use std::time::Duration;
 use uuid::Uuid;
 
+mod children;
+
 /// Handle to the database (cheap to clone).
 #[derive(Clone, Debug)]
 pub struct SqliteStore {
@@ -274,8 +276,9 @@ impl SqliteStore {
             sql.push_str(" AND kind = ?");
         }
         if f.parent.is_some() {
-            // No fan-out on SQLite: no job has case jobs.
-            sql.push_str(" AND 1 = 0");
+            sql.push_str(" AND id IN (SELECT job_id FROM job_children WHERE parent_id = ?)");
+        } else if !f.cases {
+            sql.push_str(" AND NOT EXISTS (SELECT 1 FROM job_children c WHERE c.job_id = jobs.id AND c.owned)");
         }
         if f.created_after.is_some() {
             sql.push_str(" AND created_at > ?");
@@ -290,6 +293,9 @@ impl SqliteStore {
         let mut q = sqlx::query(AssertSqlSafe(sql));
         if let Some(k) = &f.kind {
             q = q.bind(k.clone());
+        }
+        if let Some(p) = f.parent {
+            q = q.bind(p.to_string());
         }
         if let Some(t) = f.created_after {
             q = q.bind(t);
@@ -400,7 +406,8 @@ impl SqliteStore {
     /// Returns `(requeued, failed)`.
     pub async fn recover_interrupted(&self, max_attempts: i64, error: &str, now: i64) -> StoreResult<(u64, u64)> {
         let mut conn = self.writer.acquire().await?;
-        let result = recover_on(&mut conn, max_attempts, error, now, i64::MAX).await;
+        // Not a fanned-out job waiting for its cases (no worker holds it; its cases are re-queued).
+        let result = recover_on(&mut conn, max_attempts, error, now, crate::store::children::WAITING_UNTIL).await;
         self.settle(conn, result).await
     }
 
@@ -460,7 +467,11 @@ impl SqliteStore {
 
     /// Number of queued jobs.
     pub async fn queued_count(&self) -> StoreResult<i64> {
-        Ok(sqlx::query_scalar::<_, i64>("SELECT COUNT(*) FROM jobs WHERE status = 'queued'")
+        // A fanned-out job's cases are its work, admitted with it: not counted again.
+        Ok(sqlx::query_scalar::<_, i64>(
+            "SELECT COUNT(*) FROM jobs WHERE status = 'queued' \
+             AND NOT EXISTS (SELECT 1 FROM job_children c WHERE c.job_id = jobs.id AND c.owned)",
+        )
             .fetch_one(&self.reader)
             .await?)
     }
@@ -497,12 +508,12 @@ async fn finish_on(conn: &mut SqliteConnection, items: &[Finish], now: i64, owne
         // ?1 = now, ?2 = id, ?3 = owner, ?4 = error.
         let (sql, id) = match item {
             Finish::Succeeded { id, .. } => (
-                "UPDATE jobs SET status = 'succeeded', finished_at = ?1, progress = 1, stage = NULL, lease_owner = NULL \
+                "UPDATE jobs SET status = 'succeeded', finished_at = ?1, progress = 1, stage = NULL, solved_by = lease_owner, lease_owner = NULL \
                  WHERE id = ?2 AND status = 'running' AND lease_owner = ?3",
                 id,
             ),
             Finish::Failed { id, .. } => (
-                "UPDATE jobs SET status = 'failed', finished_at = ?1, error = ?4, lease_owner = NULL \
+                "UPDATE jobs SET status = 'failed', finished_at = ?1, error = ?4, solved_by = lease_owner, lease_owner = NULL \
                  WHERE id = ?2 AND status = 'running' AND lease_owner = ?3",
                 id,
             ),

@@ -5,7 +5,9 @@
 //! during a fan-out. The instances are real `tribod serve` / `tribod worker` processes.
 //!
 //! The PostgreSQL tests need `TRIBOD_TEST_POSTGRES_URL` (they say SKIPPED without it); the SQLite
-//! test checks that a store of one instance keeps today's in-process sweep.
+//! test checks that a sweep below the crossover stays in-process (no cases). SQLite's fan-out:
+//! `fan_out_sqlite.rs`; instances killed mid-fan-out and races of joins with cancels:
+//! `fan_out_faults.rs`.
 
 use crate::common::*;
 use crate::multi_instance::Instance;
@@ -15,10 +17,10 @@ use std::collections::BTreeSet;
 use std::time::{Duration, Instant};
 
 /// Instance options of these tests: 1 worker each, short leases, fan-out from 0.05 s per case.
-const OPTS: &[&str] = &["--workers", "1", "--lease-seconds", "2", "--fan-out-min-case-seconds", "0.05"];
+pub(crate) const OPTS: &[&str] = &["--workers", "1", "--lease-seconds", "2", "--fan-out-min-case-seconds", "0.05"];
 
 /// A sweep of `n` `test_sleep` cases of `seconds` each (nonces `first..first + n`).
-fn sleep_sweep(n: u64, seconds: f64, first: u64) -> Value {
+pub(crate) fn sleep_sweep(n: u64, seconds: f64, first: u64) -> Value {
     let nonces: Vec<u64> = (first..first + n).collect();
     json!({"kind": "sweep", "spec": {
         "kind": "test_sleep",
@@ -38,22 +40,22 @@ fn hertz_sweep() -> Value {
     }})
 }
 
-async fn post(client: &reqwest::Client, base: &str, job: &Value, query: &str) -> Value {
+pub(crate) async fn post(client: &reqwest::Client, base: &str, job: &Value, query: &str) -> Value {
     let res = client.post(format!("{base}/v1/jobs{query}")).json(job).send().await.unwrap();
     assert!(res.status().is_success(), "{}", res.status());
     res.json().await.unwrap()
 }
 
-async fn get(client: &reqwest::Client, base: &str, id: &str) -> Value {
+pub(crate) async fn get(client: &reqwest::Client, base: &str, id: &str) -> Value {
     client.get(format!("{base}/v1/jobs/{id}")).send().await.unwrap().json().await.unwrap()
 }
 
-async fn result(client: &reqwest::Client, base: &str, id: &str) -> Value {
+pub(crate) async fn result(client: &reqwest::Client, base: &str, id: &str) -> Value {
     client.get(format!("{base}/v1/jobs/{id}/result")).send().await.unwrap().json().await.unwrap()
 }
 
 /// Poll until the job is finished; the job.
-async fn finished(client: &reqwest::Client, base: &str, id: &str, timeout: Duration) -> Value {
+pub(crate) async fn finished(client: &reqwest::Client, base: &str, id: &str, timeout: Duration) -> Value {
     let deadline = Instant::now() + timeout;
     loop {
         let job = get(client, base, id).await;
@@ -66,7 +68,7 @@ async fn finished(client: &reqwest::Client, base: &str, id: &str, timeout: Durat
 }
 
 /// A sweep result without what only a fan-out adds (`instance`, `reused`) and without `meta`.
-fn comparable(mut r: Value) -> Value {
+pub(crate) fn comparable(mut r: Value) -> Value {
     r.as_object_mut().unwrap().remove("meta");
     for row in r["cases"].as_array_mut().unwrap() {
         let row = row.as_object_mut().unwrap();
@@ -79,7 +81,7 @@ fn comparable(mut r: Value) -> Value {
 }
 
 /// The result of `job` from one in-process instance on a SQLite file.
-async fn single_instance_result(client: &reqwest::Client, job: &Value) -> Value {
+pub(crate) async fn single_instance_result(client: &reqwest::Client, job: &Value) -> Value {
     let dir = tempfile::tempdir().unwrap();
     let db = dir.path().join("ref.db");
     let one = Instance::serve(db.to_str().unwrap(), &["--workers", "2"]);
@@ -230,6 +232,7 @@ async fn kill_9_of_an_instance_mid_sweep_reruns_only_its_cases() {
     .unwrap()
     .get(0);
     assert_eq!(rerun, 1, "only the killed instance's case ran again");
+    assert_eq!(comparable(r), comparable(single_instance_result(&client, &sleep_sweep(40, 0.3, 100)).await));
     let _ = db.close().await;
 }
 
@@ -343,7 +346,7 @@ async fn a_failed_case_is_a_failed_row_with_its_error() {
 }
 
 /// The ids of `GET /v1/jobs{query}` (one page of 500).
-async fn listed(client: &reqwest::Client, base: &str, query: &str) -> BTreeSet<String> {
+pub(crate) async fn listed(client: &reqwest::Client, base: &str, query: &str) -> BTreeSet<String> {
     let sep = if query.is_empty() { "?" } else { "&" };
     let res = client.get(format!("{base}/v1/jobs{query}{sep}limit=500")).send().await.unwrap();
     assert!(res.status().is_success(), "{query}: {}", res.status());
@@ -352,7 +355,7 @@ async fn listed(client: &reqwest::Client, base: &str, query: &str) -> BTreeSet<S
 }
 
 /// Poll until `id` has `n` children recorded.
-async fn fanned_out(client: &reqwest::Client, base: &str, id: &str, n: i64) {
+pub(crate) async fn fanned_out(client: &reqwest::Client, base: &str, id: &str, n: i64) {
     let deadline = Instant::now() + Duration::from_secs(10);
     loop {
         let j = get(client, base, id).await;
@@ -401,6 +404,8 @@ async fn case_jobs_are_hidden_from_the_list_and_not_counted_against_max_queue() 
     assert!(res.status().is_success());
 }
 
+/// Below the crossover (default 0.5 s per case) a sweep stays in-process: no case jobs, on SQLite
+/// as on PostgreSQL (SQLite's fan-out: `fan_out_sqlite.rs`).
 #[tokio::test(flavor = "multi_thread", worker_threads = 2)]
 async fn sqlite_lists_every_job_and_no_job_has_cases() {
     let dir = tempfile::tempdir().unwrap();

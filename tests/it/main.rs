@@ -22,6 +22,8 @@ mod ehl_2d_fields;
 mod ehl_2d_transient;
 mod examples_run;
 mod fan_out;
+mod fan_out_faults;
+mod fan_out_sqlite;
 mod house;
 mod house_plan;
 mod http_api;

@@ -31,9 +31,15 @@ impl Drop for Instance {
 impl Instance {
     /// `tribod serve` on `url`; returns once it listens (its migrations have run).
     pub(crate) fn serve(url: &str, extra: &[&str]) -> Instance {
+        Self::serve_with_env(url, extra, &[])
+    }
+
+    /// `tribod serve` with extra environment variables (the test builds' pause points).
+    pub(crate) fn serve_with_env(url: &str, extra: &[&str], env: &[(&str, &str)]) -> Instance {
         let mut child = Command::new(env!("CARGO_BIN_EXE_tribod"))
             .args(["serve", "--addr", "127.0.0.1:0", "--database-url", url])
             .args(extra)
+            .envs(env.iter().copied())
             .env("RUST_LOG", "warn")
             .stdout(Stdio::piped())
             .stderr(Stdio::null())

@@ -85,8 +85,8 @@ pub struct SweepResult {
     pub units: std::collections::BTreeMap<String, String>,
     /// One row per case: the parameter values, `status` (`succeeded` / `failed`), the
     /// quantities (absent when the case failed or the result lacks them) and `error_code`. A
-    /// sweep whose cases ran as jobs of their own on every instance (PostgreSQL, cases above
-    /// `--fan-out-min-case-seconds`) adds to each row `instance` (the instance that solved the
+    /// sweep whose cases ran as jobs of their own (cases above `--fan-out-min-case-seconds`, on
+    /// every instance sharing the store) adds to each row `instance` (the instance that solved the
     /// case) and `reused` (an identical case solved before was reused).
     #[schema(value_type = Vec<Object>)]
     pub cases: Vec<Map<String, Value>>,
@@ -397,42 +397,66 @@ pub fn case_specs(spec: &SweepSpec) -> Result<Vec<Value>, String> {
 /// The sweep's table from its cases' outcomes (results or problems, in case order): shared by the
 /// in-process solve and the assembly of a fanned-out sweep, so that both give the same result.
 pub fn assemble(spec: &SweepSpec, k: &dyn crate::jobs::kind::DynKind, all: &[Vec<Value>], outcomes: &[Result<Value, Problem>]) -> SweepResult {
-    let total = all.len();
-    // Quantities: explicit, or every number of the first successful result's summary.
+    let first = outcomes.iter().find_map(|o| o.as_ref().ok());
+    let (quantities, names) = quantities(spec, first);
+    let values: Vec<Result<Vec<Option<Value>>, Problem>> =
+        outcomes.iter().map(|o| o.as_ref().map(|r| extract(r, &quantities)).map_err(Clone::clone)).collect();
+    table(spec, k, all, &quantities, &names, &values)
+}
+
+/// The quantities a sweep tabulates (pointers) and their column names: explicit, or every number
+/// of the first successful result's summary (`first`: that result).
+pub fn quantities(spec: &SweepSpec, first: Option<&Value>) -> (Vec<String>, Vec<String>) {
     let quantities: Vec<String> = if !spec.quantities.is_empty() {
         spec.quantities.clone()
     } else {
-        outcomes
-            .iter()
-            .find_map(|o| o.as_ref().ok())
+        first
             .map(|r| match r.get("summary").and_then(Value::as_object) {
                 Some(summary) => summary.iter().filter(|(_, v)| v.is_number()).map(|(k, _)| format!("/summary/{k}")).collect(),
                 None => r.as_object().map(|o| o.iter().filter(|(_, v)| v.is_number()).map(|(k, _)| format!("/{k}")).collect()).unwrap_or_default(),
             })
             .unwrap_or_default()
     };
-    let first = outcomes.iter().find_map(|o| o.as_ref().ok());
     let names: Vec<String> = quantities.iter().map(|q| quantity_column(q, first)).collect();
+    (quantities, names)
+}
+
+/// A case result's values of the quantities (`None`: absent or null): all of a result a sweep's
+/// table keeps.
+pub fn extract(result: &Value, quantities: &[String]) -> Vec<Option<Value>> {
+    quantities.iter().map(|q| result.pointer(q).filter(|x| !x.is_null()).cloned()).collect()
+}
+
+/// The table from each case's quantity values (see [`extract`]) or problem, in case order.
+pub fn table(
+    spec: &SweepSpec,
+    k: &dyn crate::jobs::kind::DynKind,
+    all: &[Vec<Value>],
+    quantities: &[String],
+    names: &[String],
+    values: &[Result<Vec<Option<Value>>, Problem>],
+) -> SweepResult {
+    let total = all.len();
     let mut columns = vec!["case".to_string()];
     columns.extend(spec.parameters.iter().map(|p| column(&p.path)));
     columns.push("status".into());
     columns.push("error_code".into());
     columns.extend(names.iter().cloned());
-    let units = column_units(k, spec, &quantities, &names);
+    let units = column_units(k, spec, quantities, names);
     let mut rows = Vec::with_capacity(total);
     let (mut succeeded, mut failed) = (0, 0);
-    for (i, (values, outcome)) in all.iter().zip(outcomes).enumerate() {
+    for (i, (values, outcome)) in all.iter().zip(values).enumerate() {
         let mut row = Map::new();
         row.insert("case".into(), json!(i + 1));
         for (p, v) in spec.parameters.iter().zip(values) {
             row.insert(column(&p.path), v.clone());
         }
         match outcome {
-            Ok(result) => {
+            Ok(found) => {
                 succeeded += 1;
                 row.insert("status".into(), json!("succeeded"));
-                for (q, name) in quantities.iter().zip(&names) {
-                    if let Some(x) = result.pointer(q).filter(|x| !x.is_null()) {
+                for (x, name) in found.iter().zip(names) {
+                    if let Some(x) = x {
                         row.insert(name.clone(), x.clone());
                     }
                 }

@@ -69,9 +69,7 @@ impl Queue {
                         .store(FLAG_CANCEL, Ordering::Relaxed);
                     // A fanned-out job: its cases on every instance, and the job itself if it
                     // waits for them (no worker holds it).
-                    if store.is_shared() {
-                        store.cancel_children(id, now_ms()).await.map_err(storage_problem)?;
-                    }
+                    store.cancel_children(id, now_ms()).await.map_err(storage_problem)?;
                     let row = store.get(id).await.map_err(storage_problem)?;
                     if row.as_ref().is_some_and(|r| r.status.is_finished()) {
                         self.inner.running.lock().unwrap_or_else(|e| e.into_inner()).remove(&id);

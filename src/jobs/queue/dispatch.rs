@@ -21,7 +21,12 @@ impl Queue {
                 match inner.store.claim(free, now, &inner.instance, lease_until).await {
                     Ok(jobs) => {
                         claimed_all = jobs.len() == free;
-                        let n = jobs.len() as i64;
+                        // Cases of a fan-out (and parents back to be assembled) were admitted
+                        // with their sweep: not counted in the backlog.
+                        let n = {
+                            let set = inner.uncounted.lock().unwrap_or_else(|e| e.into_inner());
+                            jobs.iter().filter(|j| !set.contains(&j.id)).count() as i64
+                        };
                         if n > 0 {
                             let depth = inner.backlog.fetch_sub(n, Ordering::Relaxed) - n;
                             if depth < 0 {
@@ -92,7 +97,7 @@ impl Queue {
                         modelled = prepared.cost.cpu_seconds();
                         runner::run(prepared, &observer)
                     }
-                    Work::Assemble(children) => super::fanout::assemble(prepared, &children),
+                    Work::Assemble(assembly) => super::fanout::assemble(prepared, &assembly),
                 },
                 (Ok(()), Err(problem)) => (Outcome::Failed(problem), 0.0),
             };

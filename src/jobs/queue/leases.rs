@@ -3,6 +3,10 @@
 
 use super::*;
 
+/// Entries of the queue's set of uncounted jobs (fan-out cases) above which it is re-read from
+/// the store (it keeps the ids of cases canceled while queued until then).
+const UNCOUNTED_BOUND: usize = 50_000;
+
 impl Queue {
     /// Renew the leases of this instance's running jobs, pass on cancels made through other
     /// instances, stop jobs whose lease was lost, and re-queue jobs whose worker is gone.
@@ -60,8 +64,17 @@ impl Queue {
                 }
                 // Fan-out's safety net: parents whose last case finished on an instance that died
                 // (or failed at the attempt cap here) before it moved them on.
-                if let Err(e) = inner.store.release_parents(None, None).await {
-                    warn!(error = %e, "scanning for parents whose cases finished failed");
+                match inner.store.release_parents(None, None).await {
+                    Ok(0) => {}
+                    Ok(_) => inner.wake.notify_one(),
+                    Err(e) => warn!(error = %e, "scanning for parents whose cases finished failed"),
+                }
+                // Cases canceled while queued never finish here: past a bound, re-read the set.
+                if inner.uncounted.lock().unwrap_or_else(|e| e.into_inner()).len() > UNCOUNTED_BOUND {
+                    match inner.store.uncounted_jobs().await {
+                        Ok(ids) => *inner.uncounted.lock().unwrap_or_else(|e| e.into_inner()) = ids.into_iter().collect(),
+                        Err(e) => warn!(error = %e, "re-reading the fan-out's cases failed"),
+                    }
                 }
             }
         }

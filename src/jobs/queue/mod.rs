@@ -71,10 +71,10 @@ pub struct QueueConfig {
     /// every [`RENEW_EVERY`]; when an instance dies, others re-queue its jobs this long after
     /// its last renewal.
     pub lease: Duration,
-    /// Fan-out (issue 44): on a shared store (PostgreSQL), a sweep whose cases the work model
-    /// estimates at this many CPU seconds or more (on average) runs its cases as child jobs that
-    /// every instance claims; cheaper sweeps, and every sweep on SQLite, run in-process. `None`:
-    /// never fan out.
+    /// Fan-out (issue 44): a sweep whose cases the work model estimates at this many CPU seconds
+    /// or more (on average) runs its cases as child jobs that every instance sharing the store
+    /// claims (on SQLite: this instance's workers); cheaper sweeps run in-process. `None`: never
+    /// fan out.
     pub fan_out_min_case_seconds: Option<f64>,
 }
 
@@ -162,10 +162,10 @@ const FLAG_CANCEL: u8 = 1;
 const FLAG_SHUTDOWN: u8 = 2;
 
 /// What a worker does with a claimed job.
-pub(super) enum Work {
+enum Work {
     Solve,
     /// A fanned-out job whose children have all finished: its result from theirs.
-    Assemble(Vec<crate::store::ChildOutcome>),
+    Assemble(fanout::Assembly),
 }
 
 enum Event {
@@ -195,6 +195,9 @@ struct Inner {
     /// When `backlog` was last re-read from a shared store (unix ms).
     backlog_counted_at: AtomicI64,
     running: Mutex<HashMap<Uuid, Arc<AtomicU8>>>,
+    /// Jobs the backlog does not count (cases of a fan-out, parents waiting for theirs): their
+    /// claims take no place back. Removed when they finish.
+    uncounted: Mutex<std::collections::HashSet<Uuid>>,
     waiters: Mutex<HashMap<Uuid, Vec<oneshot::Sender<()>>>>,
     events: mpsc::UnboundedSender<Event>,
 }
@@ -235,6 +238,7 @@ impl Queue {
             info!(requeued, failed, "recovered jobs interrupted by a previous process");
         }
         let backlog = store.queued_count().await?;
+        let uncounted = store.uncounted_jobs().await?;
         let pool = rayon::ThreadPoolBuilder::new()
             .num_threads(config.workers.max(1))
             .thread_name(|i| format!("tribod-worker-{i}"))
@@ -258,6 +262,7 @@ impl Queue {
             backlog: AtomicI64::new(backlog),
             backlog_counted_at: AtomicI64::new(now_ms()),
             running: Mutex::new(HashMap::new()),
+            uncounted: Mutex::new(uncounted.into_iter().collect()),
             waiters: Mutex::new(HashMap::new()),
             events: tx,
         });

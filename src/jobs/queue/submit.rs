@@ -43,7 +43,7 @@ impl Queue {
         if let Some(answer) = self.earlier(&keyed).await? {
             return Ok(answer);
         }
-        if let Some(row) = self.inner.store.find_same(&hash, k.solver_version(), !fresh).await.map_err(storage_problem)? {
+        if let Some(row) = self.same(&hash, k.solver_version(), !fresh).await? {
             // None: deleted meanwhile (before its key could be recorded): a new job after all.
             if let Some(answer) = self.existing(row, &keyed).await? {
                 return Ok(answer);
@@ -86,7 +86,7 @@ impl Queue {
         };
         // A fanned-out job passes `fresh` on to its cases (`jobs::queue::fanout`): recorded
         // before the insert, so that no instance claims the job before it is there.
-        if fresh && self.inner.store.is_shared() && job.kind == "sweep" {
+        if fresh && job.kind == "sweep" {
             if let Err(e) = self.inner.store.set_fresh(job.id).await {
                 self.inner.backlog.fetch_sub(1, Ordering::Relaxed);
                 return Err(storage_problem(e));
@@ -102,10 +102,14 @@ impl Queue {
                 }
                 // An identical job was queued meanwhile (here or on another instance): join it.
                 if let StoreError::InFlight = e {
-                    if let Some(row) = self.inner.store.find_in_flight(&hash, k.solver_version()).await.map_err(storage_problem)? {
-                        if let Some(answer) = self.existing(row, &keyed).await? {
-                            return Ok(answer);
+                    match self.same(&hash, k.solver_version(), false).await? {
+                        Some(row) => {
+                            if let Some(answer) = self.existing(row, &keyed).await? {
+                                return Ok(answer);
+                            }
                         }
+                        // The identical job was being canceled and has stopped: submit anew.
+                        None => return Box::pin(self.submit(kind, spec, label, fresh, strict, idempotency_key)).await,
                     }
                 }
                 return Err(storage_problem(e));
@@ -115,6 +119,22 @@ impl Queue {
         self.inner.metrics.submitted.get_or_create(&KindLabel { kind: job.kind.clone() }).inc();
         self.inner.wake.notify_one();
         Ok(Submitted::Accepted(row))
+    }
+
+    /// The identical job this submission reuses (succeeded, when `reusable`) or joins (queued or
+    /// running). Never one whose cancel was requested (issue 44: a sweep joining a sweep being
+    /// canceled would be canceled with it): that one is waited for until it stops, and the look
+    /// repeated.
+    async fn same(&self, hash: &str, version: &str, reusable: bool) -> Result<Option<JobRow>, Problem> {
+        let store = &self.inner.store;
+        for _ in 0..3 {
+            let row = store.find_same(hash, version, reusable).await.map_err(storage_problem)?;
+            match row {
+                Some(r) if r.cancel_requested && !r.status.is_finished() => self.stopped(r.id).await.map_err(storage_problem)?,
+                other => return Ok(other),
+            }
+        }
+        Err(Problem::new(ErrorCode::StorageUnavailable, "identical jobs kept being canceled; try again"))
     }
 
     /// The replay (or refusal) an earlier request under the same `Idempotency-Key` gives, if any.

@@ -41,18 +41,25 @@ impl Queue {
             }
             // Fan-out: the parents of finished cases move on (the last case re-queues its parent).
             // Beside the next claim, not before it.
-            if inner.store.is_shared() {
-                let finished: Vec<Uuid> = done.iter().filter(|d| d.2 != JobStatus::Queued).map(|d| d.0).collect();
-                let store = inner.store.clone();
-                tokio::spawn(async move {
-                    if let Err(e) = store.release_parents(None, Some(&finished)).await {
-                        warn!(error = %e, "moving the parents of finished cases failed (the expiry scan retries)");
-                    }
-                });
-            }
+            let finished: Vec<Uuid> = done.iter().filter(|d| d.2 != JobStatus::Queued).map(|d| d.0).collect();
+            let queue = self.clone();
+            tokio::spawn(async move {
+                match queue.inner.store.release_parents(None, Some(&finished)).await {
+                    // SQLite has no notification: wake this instance's dispatcher.
+                    Ok(n) if n > 0 => queue.inner.wake.notify_one(),
+                    Ok(_) => {}
+                    Err(e) => warn!(error = %e, "moving the parents of finished cases failed (the expiry scan retries)"),
+                }
+            });
             for (id, kind, status, wall, modelled) in done {
                 inner.running.lock().unwrap_or_else(|e| e.into_inner()).remove(&id);
-                if status == JobStatus::Queued {
+                let uncounted = {
+                    let mut set = inner.uncounted.lock().unwrap_or_else(|e| e.into_inner());
+                    if status == JobStatus::Queued { set.contains(&id) } else { set.remove(&id) }
+                };
+                if status == JobStatus::Queued && uncounted {
+                    // A case (or a parent) back in the queue: not a new admission.
+                } else if status == JobStatus::Queued {
                     let depth = inner.backlog.fetch_add(1, Ordering::Relaxed) + 1;
                     inner.metrics.queue_depth.set(depth);
                 } else {
