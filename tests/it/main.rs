@@ -52,6 +52,7 @@ mod thermal_finite_cam;
 mod valvetrain_http;
 mod valvetrain_lever;
 mod valvetrain_springs;
+mod valvetrain_progressive;
 mod valvetrain_stability;
 mod valvetrain_validation;
 mod wear_stability;

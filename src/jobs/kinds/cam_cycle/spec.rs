@@ -400,7 +400,7 @@ fn default_max_revolutions() -> usize {
 
 /// A helical valve spring of round wire: its rate `G d⁴/(8 D³ n)`, active mass
 /// `ρ π² d² D n/4` and surge come from the coils.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, ToSchema)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, ToSchema)]
 #[serde(deny_unknown_fields)]
 pub struct ValveSpringSpec {
     /// Wire diameter d, m.
@@ -427,6 +427,14 @@ pub struct ValveSpringSpec {
     /// Absent: `spring_preload` is required and the spring is not checked.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub design: Option<super::train_spec::SpringDesignSpec>,
+    /// A progressive (variable-pitch) spring: its coil groups from the fixed end (cylinder
+    /// head) to the retainer, the coils summing to `active_coils` (at most 8 groups, and with
+    /// interior `elements` at least one segment each: `elements + 1 ≥` groups). The rate,
+    /// preload, checks and surge follow the groups closing in turn; in the dynamics each group
+    /// is its own segments of the chain, whose stiffness rises 1000-fold when its coils touch.
+    /// Absent: uniform pitch.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub pitch_groups: Option<Vec<super::train_spec::CoilGroupSpec>>,
 }
 
 /// The valve seat: a unilateral spring–damper stop.
@@ -535,8 +543,8 @@ pub struct DynamicLoadSpec {
     pub spring_preload: Option<f64>,
     pub spring: ValveSpringSpec,
     /// A nested inner spring in parallel with `spring` (both with a `design`): the checks are
-    /// per spring; the dynamics take one spring chain with the summed rate and mass (the
-    /// surge of the pair between the two springs' own surges).
+    /// per spring; in the dynamics each spring is its own chain (its own surge) between the
+    /// valve and the fixed end, the forces adding at the retainer.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub inner_spring: Option<ValveSpringSpec>,
     /// Criteria of the valve-spring checks (speed range for the surge orders, curvature factor,
