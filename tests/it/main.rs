@@ -53,6 +53,7 @@ mod valvetrain_http;
 mod valvetrain_lever;
 mod valvetrain_springs;
 mod valvetrain_progressive;
+mod polydyne_correction;
 mod valvetrain_stability;
 mod valvetrain_validation;
 mod wear_stability;

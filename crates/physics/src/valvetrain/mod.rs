@@ -28,6 +28,7 @@ pub mod periodic;
 pub mod progressive;
 pub mod spring;
 pub mod chain;
+pub mod polydyne;
 #[cfg(test)]
 mod lash_tests;
 #[cfg(test)]

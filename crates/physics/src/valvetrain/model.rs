@@ -35,7 +35,8 @@
 //! coordinates; [`Assembly`]'s valve outputs are converted back to the valve side. Kinetic and
 //! elastic energies are invariant under the reduction.
 
-use super::chain::{attach, ClosingGroup, Law, Parts};
+pub use super::chain::SpringChain;
+use super::chain::{attach, Element, Law, Parts};
 use std::f64::consts::PI;
 
 /// A linear spring–damper link, N/m and N·s/m.
@@ -43,30 +44,6 @@ use std::f64::consts::PI;
 pub struct Link {
     pub stiffness: f64,
     pub damping: f64,
-}
-
-/// The valve spring as a chain: `elements` interior masses joined by `elements + 1` equal
-/// segments of stiffness `(elements + 1) k_s`. Each segment's mass `m_s/(elements + 1)` is
-/// lumped half on each end node (the fixed end's half goes to ground, the moving end's to the
-/// valve), so the fixed–fixed chain's first mode is
-/// `ω₁ = 2 (N+1) √(k_s/m_s) sin(π/(2(N+1)))` → `π √(k_s/m_s)` (the continuous spring's surge,
-/// error ≈ (π/(2(N+1)))²/6). `elements = 0`: a massless spring with Rayleigh's `m_s/3` on the
-/// valve. Internal damping is stiffness-proportional, `c_seg = β k_seg` with
-/// `β = 2ζ/(π√(k_s/m_s))`, giving the first surge mode the damping ratio `ζ`.
-/// A progressive (variable-pitch) spring lists its coil `groups` ([`super::chain::attach`]).
-#[derive(Debug, Clone, PartialEq)]
-pub struct SpringChain {
-    /// Rate k_s, N/m.
-    pub rate: f64,
-    /// Active mass m_s, kg.
-    pub mass: f64,
-    /// Interior masses N.
-    pub elements: usize,
-    /// Damping ratio of the first surge mode.
-    pub damping_ratio: f64,
-    /// Coil groups of a progressive spring, from the fixed end (empty: uniform pitch). `rate`
-    /// and `mass` are then those with every coil open.
-    pub groups: Vec<ClosingGroup>,
 }
 
 /// A nested inner spring, in parallel with the outer one between the valve and the fixed end.
@@ -366,20 +343,6 @@ pub struct Seat {
     pub link: Link,
     /// Distance below the closed position, m (≥ 0).
     pub gap: f64,
-}
-
-/// One preloaded element between two nodes (`None`: ground), compression
-/// `P + k (x_b − x_a) + c (v_b − v_a)`; it pushes `b` by −compression and `a` by +compression
-/// (`b` lies on the cam side of `a`). With a `law` (a progressive spring's segment) the elastic
-/// part and the rate are the law's at `x_b − x_a`, the damping its `beta` × the stage's rate.
-#[derive(Debug, Clone, Copy)]
-pub(super) struct Element {
-    pub b: Option<usize>,
-    pub a: Option<usize>,
-    pub k: f64,
-    pub c: f64,
-    pub preload: f64,
-    pub law: Option<usize>,
 }
 
 /// The assembled model: masses and elements.

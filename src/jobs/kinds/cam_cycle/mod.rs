@@ -11,6 +11,7 @@
 
 mod cost;
 mod output;
+mod polydyne;
 mod result;
 mod solve;
 mod spec;
@@ -206,8 +207,14 @@ fn validate_cam(spec: &CamCycleSpec, limits: &Limits, v: &mut Validation) -> Opt
             }
             Some(*base_radius)
         }
-        p @ ProfileSpec::Synthesised { base_radius, .. } => {
+        p @ ProfileSpec::Synthesised { base_radius, dynamic_correction, .. } => {
             synthesised(p).inspect(|s| s.validate(v));
+            if let Some(c) = dynamic_correction {
+                let dynamic = matches!(spec.load, Some(LoadSpec::Dynamic(_)));
+                for (field, given, unit) in [("mass", c.mass, "kg"), ("stiffness", c.stiffness, "N/m")] {
+                    v.check(given.is_some() || dynamic, &format!("/cam/profile/dynamic_correction/{field}"), format!("is required ({unit}) without a dynamic load to take it from"));
+                }
+            }
             Some(*base_radius)
         }
         ProfileSpec::Table { base_radius, angle_deg, lift } => {

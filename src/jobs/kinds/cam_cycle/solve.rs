@@ -196,7 +196,7 @@ impl CamCycleSpec {
             Some(LoadSpec::Dynamic(_)) if dynamic_allowed => LoadModel::ValveTrain { preload: 0.0, stiffness: 0.0, mass: 0.0, external: None },
             Some(LoadSpec::Dynamic(_)) => return Err(SolveError::invalid("/load", "a dynamic load is solved by the cam_cycle kind only")),
         };
-        Ok(CycleSpec {
+        let mut cycle = CycleSpec {
             profile,
             geometry: FollowerGeometry { shape, clockwise: self.operation.direction == Direction::Cw },
             follower,
@@ -229,7 +229,15 @@ impl CamCycleSpec {
             } else {
                 Vec::new()
             },
-        })
+        };
+        // The polydyne's dynamic correction of a synthesised cam (its train from the dynamic
+        // load's when not given).
+        let from_load = match &self.load {
+            Some(LoadSpec::Dynamic(d)) => Some(valve_train(d, &cycle).polydyne_train()),
+            _ => None,
+        };
+        super::polydyne::apply(self, &mut cycle, from_load)?;
+        Ok(cycle)
     }
 }
 
@@ -445,7 +453,12 @@ pub(super) fn solve_spec(spec: &CamCycleSpec, observer: &dyn Observer) -> Result
         contour: None,
         spring_checks: None,
     };
-    if let Some((synthesis, contour)) = super::synthesis::synthesis_of(spec, &cycle.profile, cycle.geometry.shape) {
+    let from_load = match &spec.load {
+        Some(LoadSpec::Dynamic(d)) => Some(valve_train(d, &cycle).polydyne_train()),
+        _ => None,
+    };
+    let correction = super::polydyne::train_of(spec, from_load)?;
+    if let Some((synthesis, contour)) = super::synthesis::synthesis_of(spec, &cycle.profile, cycle.geometry.shape, correction) {
         result.synthesis = Some(synthesis);
         result.contour = Some(contour);
     }

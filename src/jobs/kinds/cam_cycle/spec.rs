@@ -86,6 +86,10 @@ pub enum ProfileSpec {
         /// Peak limits. Absent: none.
         #[serde(default, skip_serializing_if = "Option::is_none")]
         limits: Option<LawLimitsSpec>,
+        /// The polydyne's dynamic correction for a design speed: the law is then the valve's and
+        /// the cam leads it (`physics::cam::synthesis::dynamic`). Absent: none.
+        #[serde(default, skip_serializing_if = "Option::is_none")]
+        dynamic_correction: Option<super::synthesis_spec::DynamicCorrectionSpec>,
     },
     /// A measured follower lift table, interpolated by a periodic cubic spline.
     Table {
