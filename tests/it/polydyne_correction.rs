@@ -27,6 +27,10 @@ fn job(correct: bool) -> Value {
 }
 
 async fn run(s: &TestServer, job: &Value) -> Value {
+    run_id(s, job).await.1
+}
+
+async fn run_id(s: &TestServer, job: &Value) -> (String, Value) {
     let res = s.client.post(s.url("/v1/jobs")).header("prefer", "wait=60").json(job).send().await.unwrap();
     let mut done: Value = res.json().await.unwrap();
     let id = done["id"].as_str().unwrap_or_else(|| panic!("{done}")).to_string();
@@ -34,7 +38,8 @@ async fn run(s: &TestServer, job: &Value) -> Value {
         done = s.wait_finished(&id, Duration::from_secs(180)).await;
     }
     assert_eq!(done["status"], "succeeded", "{done}");
-    s.get_json(&format!("/v1/jobs/{id}/result")).await.1
+    let result = s.get_json(&format!("/v1/jobs/{id}/result")).await.1;
+    (id, result)
 }
 
 fn numbers(v: &Value) -> Vec<f64> {
@@ -49,7 +54,10 @@ fn deviation(r: &Value, designed: &[f64]) -> f64 {
 async fn corrected_polydyne_over_http() {
     let s = start().await;
     let plain = run(&s, &job(false)).await;
-    let corrected = run(&s, &job(true)).await;
+    let (id, corrected) = run_id(&s, &job(true)).await;
+    // The lift plot draws the designed valve law beside the cam's lift.
+    let svg = s.client.get(s.url(&format!("/v1/jobs/{id}/plots/lift_law"))).send().await.unwrap().text().await.unwrap();
+    assert!(svg.contains("designed valve lift") && svg.contains("cam lift"), "{}", &svg[..svg.len().min(400)]);
     let without = deviation(&plain, &numbers(&plain["contour"]["lift"]));
     let designed = numbers(&corrected["contour"]["valve_lift"]);
     let with = deviation(&corrected, &designed);
