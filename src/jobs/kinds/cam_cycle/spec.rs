@@ -243,6 +243,7 @@ pub enum FollowerSpec {
         /// Elastic constants. Default: steel.
         #[serde(default)]
         material: Material,
+        /// RMS surface roughness Rq of the follower, m. Default 0 (smooth).
         #[serde(default)]
         roughness_rq: f64,
     },
@@ -273,6 +274,7 @@ pub enum FollowerSpec {
         /// Elastic constants. Default: steel.
         #[serde(default)]
         material: Material,
+        /// RMS surface roughness Rq of the follower, m. Default 0 (smooth).
         #[serde(default)]
         roughness_rq: f64,
     },
@@ -285,6 +287,7 @@ pub enum FollowerSpec {
         /// Elastic constants. Default: steel.
         #[serde(default)]
         material: Material,
+        /// RMS surface roughness Rq of the follower, m. Default 0 (smooth).
         #[serde(default)]
         roughness_rq: f64,
     },
