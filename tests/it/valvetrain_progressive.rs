@@ -107,4 +107,10 @@ async fn progressive_and_nested_springs_over_http() {
     bad["spec"]["load"]["spring"]["elements"] = json!(1);
     let p = expect_problem(s.post_job(&bad).await, 422, "invalid_spec").await;
     assert_eq!(p["errors"][0]["path"], "/spec/load/spring/elements", "{p}");
+    // More closing segments than the integrator's regimes hold: refused at submission.
+    let mut bad = prog.clone();
+    bad["spec"]["load"]["spring"]["elements"] = json!(40);
+    let p = expect_problem(s.post_job(&bad).await, 422, "invalid_spec").await;
+    assert_eq!(p["errors"][0]["path"], "/spec/load/spring/elements", "{p}");
+    assert!(p["errors"][0]["message"].as_str().unwrap().contains("28"), "{p}");
 }

@@ -194,6 +194,10 @@ pub fn validate_springs(d: &DynamicLoadSpec, v: &mut Validation) {
         );
         validate_design(v, "/load/inner_spring", inner);
     }
+    // Each closing segment of a progressive spring is an event of the integrator, and a bit of
+    // its regime (physics::valvetrain::periodic: at most 28 in all).
+    let closing: usize = d.springs().filter_map(|(_, s)| s.pitch_groups.as_ref().map(|g| if s.elements == 0 { g.len() } else { s.elements + 1 })).sum();
+    v.check(closing <= 28, "/load/spring/elements", format!("progressive springs may have at most 28 chain segments in all (elements + 1 per progressive spring), not {closing} (count)"));
     if let Some(c) = &d.spring_checks {
         v.check(designed, "/load/spring_checks", "needs spring.design (free and installed length) to check the spring");
         if let Some([lo, hi]) = c.speed_range_rpm {
