@@ -15,7 +15,7 @@ use std::sync::OnceLock;
 const UNITS: &[&str] = &[
     "W/(m·K)", "J/(kg·K)", "W/(m²·K)", "W/m²", "W/m", "N·m·s/rad", "N·m/rad", "N·s/m", "N·m·s", "kg·m²", "kg/m³", "m³/s", "mm²/s", "m²/s", "Pa·s", "rad/s²",
     "rad/s", "m/rad³", "m/rad²", "m/rad", "m/s³", "m/s²", "mm/h", "m/s", "N/m", "N·m", "MPa", "GPa", "1/s", "1/m", "1/Pa", "Pa", "rpm", "rev/s", "kg", "m²", "m³", "Hz", "°C", "J", "W", "N",
-    "K", "s", "h", "m", "°",
+    "K", "s", "h", "m", "°", "%",
 ];
 
 /// Words that say a field is a pure number.

@@ -64,7 +64,8 @@ fn field_maps(table: &Value) -> Vec<Plot> {
 
 /// A synthesised profile (`contour` table): the law per cam angle — lift, velocity,
 /// acceleration and jerk, the last two with their limits (`synthesis.*_limit`) drawn at ± the
-/// limit — and the cam contour (surface and, for a roller, the pitch curve) in the cam frame.
+/// limit; with a dynamic correction the lift beside the designed valve law — and the cam contour
+/// (surface and, for a roller, the pitch curve) in the cam frame.
 fn synthesis_plots(result: &Value) -> Vec<Plot> {
     let Some(table) = result.get("contour") else { return Vec::new() };
     let Some(angle) = column(table, "angle_deg", 1.0) else { return Vec::new() };
@@ -79,6 +80,13 @@ fn synthesis_plots(result: &Value) -> Vec<Plot> {
     for (name, title, y_label, field, limit) in laws {
         let Some(y) = column(table, field, 1e3) else { continue };
         let mut series = vec![Series { label: field.replace('_', " "), points: angle.iter().copied().zip(y).collect() }];
+        // With the polydyne's dynamic correction: the designed valve law beside the cam's lift.
+        if field == "lift" {
+            if let Some(v) = column(table, "valve_lift", 1e3) {
+                series[0].label = "cam lift".into();
+                series.push(Series { label: "designed valve lift".into(), points: angle.iter().copied().zip(v).collect() });
+            }
+        }
         if let Some(l) = limit.and_then(|p| number(result, p, 1e3)) {
             series.push(Series { label: "limit".into(), points: vec![(first, l), (last, l)] });
             series.push(Series { label: "−limit".into(), points: vec![(first, -l), (last, -l)] });

@@ -59,6 +59,7 @@ const EXAMPLES: &[(&str, &str)] = examples![
     "seed002_optimised",
     "seed002_taguchi_l9",
     "seed003_cam_optimisation",
+    "seed003_cam_optimisation_dynamic",
     "seed003_cam_optimisation_synthesised",
     "seed003_cycloidal_auto",
     "seed003_cycloidal_flat",

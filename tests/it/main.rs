@@ -54,6 +54,8 @@ mod thermal_finite_cam;
 mod valvetrain_http;
 mod valvetrain_lever;
 mod valvetrain_springs;
+mod valvetrain_progressive;
+mod polydyne_correction;
 mod valvetrain_stability;
 mod valvetrain_validation;
 mod wear_stability;

@@ -185,10 +185,10 @@ fn is_default_micro_slip_exponent(n: &f64) -> bool {
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize, ToSchema)]
 #[serde(deny_unknown_fields)]
 pub struct AsperitySpec {
-    /// Roughness parameter ηβσ (summit density × summit radius × σ). Default 0.04.
+    /// Roughness parameter ηβσ (summit density × summit radius × σ), dimensionless. Default 0.04.
     #[serde(default = "default_ebs")]
     pub eta_beta_sigma: f64,
-    /// Summit slope parameter σ/β. Default 0.001.
+    /// Summit slope parameter σ/β, a ratio. Default 0.001.
     #[serde(default = "default_sob")]
     pub sigma_over_beta: f64,
     /// Boundary (asperity) friction coefficient μ_b. Default 0.1.
@@ -525,11 +525,11 @@ pub struct EhlSpec {
     /// smooth film). Cost: BENCHMARKS.md, issue 16.
     #[serde(default, skip_serializing_if = "EhlGeometry::is_line")]
     pub geometry: EhlGeometry,
-    /// `finite`: grid nodes along the rolling direction, 17–513 (odd numbers `2^k + 1` allow the
+    /// `finite`: the number of grid nodes along the rolling direction, 17–513 (odd numbers `2^k + 1` allow the
     /// resolution check and the nested start). Default 65.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub nx: Option<usize>,
-    /// `finite`: grid nodes across the rolling direction (along the roller), 17–513. Default 129
+    /// `finite`: the number of grid nodes across the rolling direction (along the roller), 17–513. Default 129
     /// for a roller, 65 for a point contact.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub ny: Option<usize>,

@@ -19,10 +19,10 @@ pub struct EhlThermalSpec {
     /// Oil specific heat c_f, J/(kg·K). Default 1700 (seed 000 Table 1).
     #[serde(default = "default_oil_specific_heat")]
     pub oil_specific_heat: f64,
-    /// Temperature levels across the film, 3–41. Default 7.
+    /// Number of temperature levels across the film, 3–41. Default 7.
     #[serde(default = "default_film_points")]
     pub film_points: usize,
-    /// Nodes in each solid from the surface to the depth 3.15 b, 4–81. Default 16.
+    /// Number of nodes in each solid from the surface to the depth 3.15 b, 4–81. Default 16.
     #[serde(default = "default_solid_points")]
     pub solid_points: usize,
     /// Key points (cam kinds): the full thermal solve only where the operating conditions moved

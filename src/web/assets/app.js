@@ -230,12 +230,38 @@ function sig4(x) {
   return Number.isInteger(x) && Math.abs(x) < 1e9 ? String(x) : String(Number(x.toPrecision(4)));
 }
 
-// A number with its unit, in the multiple that suits it, to 4 significant figures.
-function withUnit(v, unit) {
+// A number with its unit, in the multiple that suits it (or `ref`, the largest magnitude of its
+// quantity when several rows show it), to 4 significant figures.
+function withUnit(v, unit, ref) {
   if (typeof v !== "number" || !Number.isFinite(v)) return fmt(v);
-  const [factor, shown] = multipleFor(v, unit);
+  const [factor, shown] = multipleFor(ref ?? v, unit);
   const text = sig4(v / factor);
   return shown ? text + " " + shown : text;
+}
+
+// The unit of a result field: the kind's `result_units`, else the result's own `units` (column
+// → unit) for a field keyed by a quantity or a pointer (an optimisation's `objectives` and
+// `variables`: `/cam/width` is column `cam.width`).
+function unitIn(kind, result, path) {
+  const unit = unitOf(kind, path);
+  if (unit || !result || typeof result.units !== "object" || result.units === null) return unit;
+  const leaf = path.split(".").pop();
+  return result.units[leaf.replace(/^\//, "").split("/").join(".")] ?? "";
+}
+
+// One multiple per quantity over a result's rows ([[dotted path, value]]): a quantity is the
+// field's name with its unit, so `best.friction_power` and `baseline.objectives.friction_power`
+// read in the same multiple (as the compare view's rows do). Returns (path, value) => text.
+function quantityFormatter(rows, kind, result) {
+  const unitOf = (k, path) => unitIn(k, result, path);
+  const keyOf = (path) => path.split(".").pop() + "|" + unitOf(kind, path);
+  const largest = new Map();
+  for (const [path, v] of rows) {
+    if (typeof v !== "number" || !Number.isFinite(v)) continue;
+    const key = keyOf(path);
+    largest.set(key, Math.max(largest.get(key) || 0, Math.abs(v)));
+  }
+  return (path, v) => withUnit(v, unitOf(kind, path), largest.get(keyOf(path)) || undefined);
 }
 
 // The unit of a result field (dotted path) from the kind's `result_units` (GET /v1/kinds).
@@ -1090,8 +1116,9 @@ async function jobView(id) {
     const plots = h("div", { class: "plots", id: "plots" });
     const summary = summaryRows(result);
     const key = keyRows(result, kind);
+    const shown = quantityFormatter(key.concat(summary), kind, result);
     const cell = ([k, v]) => h("tr", {}, h("td", {}, k),
-      h("td", { class: typeof v === "number" ? "num" : (v === false ? "fail" : "") }, withUnit(v, unitOf(kind, k))));
+      h("td", { class: typeof v === "number" ? "num" : (v === false ? "fail" : "") }, shown(k, v)));
     const charts = chartsSection(result, kind);
     // The server's SVG plots (the CLI's and the reports'), folded under the interactive charts.
     const server = h("details", { id: "server-plots", open: !charts },

@@ -16,16 +16,24 @@
 //! contact's damping stands for them), the lever's changing ratio with its angle (first order in
 //! the angle, error bound in [`Lever`]).
 //! * [`spring`]: valve-spring design checks (rate, stresses, Goodman fatigue, coil clash, surge;
-//!   Shigley ch. 10).
+//!   Shigley ch. 10); [`progressive`]: variable-pitch springs (coil groups closing in turn);
+//!   [`chain`]: the spring(s) in the assembly — uniform or progressive chains, nested springs
+//!   as parallel chains.
 //!
 //! A run-up over a speed ramp is [`periodic::run_up`].
 
 pub mod integrator;
 pub mod model;
 pub mod periodic;
+pub mod progressive;
 pub mod spring;
+pub mod chain;
+pub mod polydyne;
 #[cfg(test)]
 mod lash_tests;
+#[cfg(test)]
+mod progressive_tests;
 
-pub use model::{damping_from_ratio, line_contact_stiffness, HelicalSpring, HydraulicLashAdjuster, Lash, Lever, Link, Pushrod, Seat, SpringChain, ValveTrain};
+pub use chain::ClosingGroup;
+pub use model::{damping_from_ratio, line_contact_stiffness, HelicalSpring, HydraulicLashAdjuster, Lash, Lever, Link, NestedSpring, Pushrod, Seat, SpringChain, ValveTrain};
 pub use periodic::{periodic_response, run_up, transient, RunUpResponse, Drive, DynamicsOptions, PeriodicResponse, Probe};

@@ -35,6 +35,8 @@
 //! coordinates; [`Assembly`]'s valve outputs are converted back to the valve side. Kinetic and
 //! elastic energies are invariant under the reduction.
 
+pub use super::chain::SpringChain;
+use super::chain::{attach, Element, Law, Parts};
 use std::f64::consts::PI;
 
 /// A linear spring–damper link, N/m and N·s/m.
@@ -44,24 +46,12 @@ pub struct Link {
     pub damping: f64,
 }
 
-/// The valve spring as a chain: `elements` interior masses joined by `elements + 1` equal
-/// segments of stiffness `(elements + 1) k_s`. Each segment's mass `m_s/(elements + 1)` is
-/// lumped half on each end node (the fixed end's half goes to ground, the moving end's to the
-/// valve), so the fixed–fixed chain's first mode is
-/// `ω₁ = 2 (N+1) √(k_s/m_s) sin(π/(2(N+1)))` → `π √(k_s/m_s)` (the continuous spring's surge,
-/// error ≈ (π/(2(N+1)))²/6). `elements = 0`: a massless spring with Rayleigh's `m_s/3` on the
-/// valve. Internal damping is stiffness-proportional, `c_seg = β k_seg` with
-/// `β = 2ζ/(π√(k_s/m_s))`, giving the first surge mode the damping ratio `ζ`.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct SpringChain {
-    /// Rate k_s, N/m.
-    pub rate: f64,
-    /// Active mass m_s, kg.
-    pub mass: f64,
-    /// Interior masses N.
-    pub elements: usize,
-    /// Damping ratio of the first surge mode.
-    pub damping_ratio: f64,
+/// A nested inner spring, in parallel with the outer one between the valve and the fixed end.
+#[derive(Debug, Clone, PartialEq)]
+pub struct NestedSpring {
+    pub spring: SpringChain,
+    /// Its share of the preload, N (the outer spring carries the rest of `ValveTrain::preload`).
+    pub preload: f64,
 }
 
 /// A helical compression spring (round wire).
@@ -168,7 +158,10 @@ pub struct ValveTrain {
     /// Follower–valve link; `None`: rigid (follower and valve one body).
     pub train: Option<Link>,
     pub spring: SpringChain,
-    /// Spring force at zero lift, N (> 0: the cam carries it on the base circle).
+    /// A nested inner spring (its own chain, in parallel). `None`: one spring.
+    pub inner_spring: Option<NestedSpring>,
+    /// Spring force at zero lift, N (> 0: the cam carries it on the base circle; with an inner
+    /// spring the sum of both).
     pub preload: f64,
     /// Cam–follower contact (unilateral).
     pub contact: Link,
@@ -319,10 +312,11 @@ impl ValveTrain {
     /// rigid train; the lever's reduction as in the module docs).
     pub fn quasi_static_equivalent(&self) -> (f64, f64, f64) {
         let r = self.ratio();
-        let valve_side = self.valve_mass + self.spring.mass / 3.0;
+        let inner = self.inner_spring.as_ref().map_or((0.0, 0.0), |n| (n.spring.rate, n.spring.mass));
+        let valve_side = self.valve_mass + (self.spring.mass + inner.1) / 3.0;
         let cam_side = self.follower_mass
             + self.lever.map_or(0.0, |l| l.cam_side_mass() + l.pushrod.map_or(0.0, |p| p.mass));
-        (r * self.preload, r * r * self.spring.rate, cam_side + r * r * valve_side)
+        (r * self.preload, r * r * (self.spring.rate + inner.0), cam_side + r * r * valve_side)
     }
 
     /// The rigid train's separation ("jump") speed, rad/s: with every part rigid and the spring
@@ -351,18 +345,6 @@ pub struct Seat {
     pub gap: f64,
 }
 
-/// One preloaded element between two nodes (`None`: ground), compression
-/// `P + k (x_b − x_a) + c (v_b − v_a)`; it pushes `b` by −compression and `a` by +compression
-/// (`b` lies on the cam side of `a`).
-#[derive(Debug, Clone, Copy)]
-struct Element {
-    b: Option<usize>,
-    a: Option<usize>,
-    k: f64,
-    c: f64,
-    preload: f64,
-}
-
 /// The assembled model: masses and elements.
 #[derive(Debug, Clone)]
 pub struct Assembly {
@@ -371,9 +353,15 @@ pub struct Assembly {
     /// Index of the follower and of the valve degree of freedom.
     pub follower: usize,
     pub valve: usize,
-    /// Element indices of the spring's segments at the moving (valve) and fixed ends.
-    spring_moving: usize,
-    spring_fixed: usize,
+    /// Element indices of the springs' segments at the moving (valve) and fixed ends (outer
+    /// spring first).
+    spring_moving: Vec<usize>,
+    spring_fixed: Vec<usize>,
+    /// Piecewise-linear laws of progressive springs' elements, and the element of each.
+    laws: Vec<Law>,
+    law_elements: Vec<usize>,
+    /// Per degree of freedom, its share of the valve's lift in the static state (1 for bodies).
+    pub shares: Vec<f64>,
     contact: Link,
     /// The seat in cam-side coordinates.
     seat: Option<Seat>,
@@ -424,7 +412,7 @@ impl ValveTrain {
                     masses[0] += 0.5 * p.mass;
                     masses.push(l.cam_side_mass() + 0.5 * p.mass);
                     lever_node = 1;
-                    elements.push(Element { b: Some(0), a: Some(1), k: p.link.stiffness, c: p.link.damping, preload: link_preload });
+                    elements.push(Element { b: Some(0), a: Some(1), k: p.link.stiffness, c: p.link.damping, preload: link_preload, law: None });
                 }
             }
         }
@@ -444,37 +432,23 @@ impl ValveTrain {
             Some(link) => {
                 masses.push(r2 * self.valve_mass);
                 let v = masses.len() - 1;
-                elements.push(Element { b: Some(lever_node), a: Some(v), k: r2 * link.stiffness, c: r2 * link.damping, preload: link_preload });
+                elements.push(Element { b: Some(lever_node), a: Some(v), k: r2 * link.stiffness, c: r2 * link.damping, preload: link_preload, law: None });
                 v
             }
         };
-        let sp = self.spring;
-        let n = sp.elements;
-        let (spring_moving, spring_fixed);
-        if n == 0 {
-            masses[valve] += r2 * sp.mass / 3.0;
-            let beta = surge_beta(&sp);
-            elements.push(Element { b: Some(valve), a: None, k: r2 * sp.rate, c: beta * r2 * sp.rate, preload });
-            spring_moving = elements.len() - 1;
-            spring_fixed = spring_moving;
-        } else {
-            let segs = (n + 1) as f64;
-            let (k_seg, m_node) = (r2 * sp.rate * segs, r2 * sp.mass / segs);
-            let c_seg = surge_beta(&sp) * k_seg;
-            masses[valve] += 0.5 * m_node;
-            let first = masses.len();
-            for _ in 0..n {
-                masses.push(m_node);
-            }
-            // Valve → node 1 → … → node N → ground (the fixed end).
-            let node = |j: usize| if j == 0 { valve } else { first + j - 1 };
-            spring_moving = elements.len();
-            for j in 0..=n {
-                let a = if j == n { None } else { Some(node(j + 1)) };
-                elements.push(Element { b: Some(node(j)), a, k: k_seg, c: c_seg, preload });
-            }
-            spring_fixed = elements.len() - 1;
+        let mut shares = vec![1.0; masses.len()];
+        let mut laws = Vec::new();
+        let inner_preload = self.inner_spring.as_ref().map_or(0.0, |n| n.preload);
+        let mut springs = vec![(&self.spring, self.preload - inner_preload)];
+        springs.extend(self.inner_spring.as_ref().map(|n| (&n.spring, n.preload)));
+        let (mut spring_moving, mut spring_fixed) = (Vec::new(), Vec::new());
+        for (sp, pre) in springs {
+            let parts = Parts { masses: &mut masses, shares: &mut shares, elements: &mut elements, laws: &mut laws };
+            let (m, f) = attach(parts, valve, r, sp, pre);
+            spring_moving.push(m);
+            spring_fixed.push(f);
         }
+        let law_elements: Vec<usize> = (0..laws.len()).map(|l| elements.iter().position(|e| e.law == Some(l)).expect("each law has its element")).collect();
         let gap = |g: f64| if lash > 0.0 { 0.0 } else { g / r };
         let seat = self.seat.map(|st| Seat { link: Link { stiffness: r2 * st.link.stiffness, damping: r2 * st.link.damping }, gap: gap(st.gap) });
         let (contact_preload, seat_preload) = match hla {
@@ -484,17 +458,13 @@ impl ValveTrain {
         };
         let gap = |st: Seat| if hla.is_some() { 0.0 } else { st.gap };
         let seat = seat.map(|st| Seat { gap: gap(st), ..st });
-        Assembly { masses, elements, follower, valve, spring_moving, spring_fixed, contact: self.contact, seat, ratio: r, lash, contact_preload, seat_preload, hla: hla_element }
+        Assembly { masses, elements, follower, valve, spring_moving, spring_fixed, laws, law_elements, shares, contact: self.contact, seat, ratio: r, lash, contact_preload, seat_preload, hla: hla_element }
     }
 }
 
-fn surge_beta(sp: &SpringChain) -> f64 {
-    if sp.mass > 0.0 && sp.rate > 0.0 {
-        2.0 * sp.damping_ratio / (PI * (sp.rate / sp.mass).sqrt())
-    } else {
-        0.0
-    }
-}
+/// First regime bit of the progressive springs' stages (bits 0–2: contact, seat, the lash
+/// adjuster's check valve).
+pub const SPRING_REGIME_SHIFT: u32 = 3;
 
 /// Contact and seat forces and whether each is closed.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -555,14 +525,74 @@ impl Assembly {
         let xa = e.a.map_or(0.0, |i| x[i]);
         let vb = e.b.map_or(0.0, |i| v[i]);
         let va = e.a.map_or(0.0, |i| v[i]);
-        e.preload + e.k * (xb - xa) + e.c * (vb - va)
+        match e.law {
+            None => e.preload + e.k * (xb - xa) + e.c * (vb - va),
+            Some(l) => {
+                let law = &self.laws[l];
+                let d = xb - xa;
+                law.force(d) + law.beta * law.rate(law.stage(d)) * (vb - va)
+            }
+        }
+    }
+
+    /// Stiffness and damping of element `e` in `regime` (a progressive segment's stage from the
+    /// regime's bits, [`Assembly::spring_regime`]).
+    fn stiffness_in(&self, e: &Element, regime: u32) -> (f64, f64) {
+        match e.law {
+            None => (e.k, e.c),
+            Some(l) => {
+                let law = &self.laws[l];
+                let shift = SPRING_REGIME_SHIFT + self.laws[..l].iter().map(|x| x.breaks().len() as u32).sum::<u32>();
+                let width = law.breaks().len() as u32;
+                let stage = ((regime >> shift) & ((1u32 << width) - 1)).count_ones() as usize;
+                let k = law.rate(stage);
+                (k, law.beta * k)
+            }
+        }
+    }
+
+    /// Regime bits of the progressive springs' elements (bit `SPRING_REGIME_SHIFT + l`: law `l`
+    /// past its break) at the displacements `x`. Elements with more than one break (a massless
+    /// progressive spring) use as many bits as breaks (one per break passed, in order).
+    pub fn spring_regime(&self, x: &[f64]) -> u32 {
+        let mut bits = 0u32;
+        let mut shift = SPRING_REGIME_SHIFT;
+        for (l, law) in self.laws.iter().enumerate() {
+            let e = &self.elements[self.law_elements[l]];
+            let d = e.b.map_or(0.0, |i| x[i]) - e.a.map_or(0.0, |i| x[i]);
+            let stage = law.stage(d) as u32;
+            // Thermometer code: `stage` ones.
+            bits |= ((1u32 << stage) - 1) << shift;
+            shift += law.breaks().len() as u32;
+        }
+        bits
+    }
+
+    /// Number of progressive-spring events (breaks of every law).
+    pub fn spring_events(&self) -> usize {
+        self.laws.iter().map(|l| l.breaks().len()).sum()
+    }
+
+    /// The progressive-spring event functions `Δ − break` (into `g`, [`Assembly::spring_events`]
+    /// long).
+    pub fn spring_event_values(&self, x: &[f64], g: &mut [f64]) {
+        let mut i = 0;
+        for (l, law) in self.laws.iter().enumerate() {
+            let e = &self.elements[self.law_elements[l]];
+            let d = e.b.map_or(0.0, |i| x[i]) - e.a.map_or(0.0, |i| x[i]);
+            for b in law.breaks() {
+                g[i] = d - b;
+                i += 1;
+            }
+        }
     }
 
     /// Spring force at the moving (retainer) and the fixed end, N (compression positive; the
-    /// valve side's own force, cam-side force over the ratio).
+    /// valve side's own force, cam-side force over the ratio; nested springs summed).
     pub fn spring_forces(&self, x: &[f64], v: &[f64]) -> (f64, f64) {
         let r = self.ratio;
-        (self.compression(&self.elements[self.spring_moving], x, v) / r, self.compression(&self.elements[self.spring_fixed], x, v) / r)
+        let sum = |idx: &[usize]| idx.iter().map(|&i| self.compression(&self.elements[i], x, v)).sum::<f64>() / r;
+        (sum(&self.spring_moving), sum(&self.spring_fixed))
     }
 
     /// Net force on each mass (`out`, length dofs) and the contact/seat state.
@@ -603,8 +633,10 @@ impl Assembly {
         f
     }
 
-    /// `∂F/∂x` and `∂F/∂v` (row-major dofs × dofs) with the contact and seat closed or open.
-    pub fn force_jacobian(&self, contact: bool, seat: bool, kx: &mut [f64], cv: &mut [f64]) {
+    /// `∂F/∂x` and `∂F/∂v` (row-major dofs × dofs) in `regime` (bit 0 the contact closed, bit
+    /// 1 the seat, the progressive springs' stages from bit [`SPRING_REGIME_SHIFT`]).
+    pub fn force_jacobian(&self, regime: u32, kx: &mut [f64], cv: &mut [f64]) {
+        let (contact, seat) = (regime & 1 != 0, regime & 2 != 0);
         let n = self.dofs();
         kx.iter_mut().for_each(|v| *v = 0.0);
         cv.iter_mut().for_each(|v| *v = 0.0);
@@ -613,17 +645,18 @@ impl Assembly {
             cv[i * n + j] += c;
         };
         for e in &self.elements {
+            let (k, c) = self.stiffness_in(e, regime);
             // Force on b: −(k (x_b − x_a) + …); on a: +(…).
             if let Some(b) = e.b {
-                add(b, b, -e.k, -e.c);
+                add(b, b, -k, -c);
                 if let Some(a) = e.a {
-                    add(b, a, e.k, e.c);
+                    add(b, a, k, c);
                 }
             }
             if let Some(a) = e.a {
-                add(a, a, -e.k, -e.c);
+                add(a, a, -k, -c);
                 if let Some(b) = e.b {
-                    add(a, b, e.k, e.c);
+                    add(a, b, k, c);
                 }
             }
         }
@@ -642,7 +675,9 @@ impl Assembly {
     pub fn energy(&self, x: &[f64], v: &[f64], s: f64) -> f64 {
         let mut e: f64 = self.masses.iter().zip(v).map(|(m, v)| 0.5 * m * v * v).sum();
         for el in &self.elements {
-            if el.k > 0.0 {
+            if let Some(l) = el.law {
+                e += self.laws[l].energy(el.b.map_or(0.0, |i| x[i]) - el.a.map_or(0.0, |i| x[i]));
+            } else if el.k > 0.0 {
                 let q = el.preload + el.k * (el.b.map_or(0.0, |i| x[i]) - el.a.map_or(0.0, |i| x[i]));
                 e += q * q / (2.0 * el.k);
             }
@@ -665,7 +700,8 @@ impl Assembly {
         let n = m.len();
         let total = self.dofs();
         let (mut kx, mut cv) = (vec![0.0; total * total], vec![0.0; total * total]);
-        self.force_jacobian(false, false, &mut kx, &mut cv);
+        let rest = self.spring_regime(&vec![0.0; total]);
+        self.force_jacobian(rest, &mut kx, &mut cv);
         let mut k = vec![0.0; n * n];
         for i in 0..n {
             for j in 0..n {

@@ -71,40 +71,10 @@ impl<'a> TrainSystem<'a> {
         if asm.hla.is_some() {
             scale.push(h);
         }
-        let (mut kx, mut cv) = (vec![0.0; n * n], vec![0.0; n * n]);
-        let dim = 2 * n + 1 + asm.hla.is_some() as usize;
+        let (kx, cv) = (vec![0.0; n * n], vec![0.0; n * n]);
         let regimes = if asm.hla.is_some() { 8 } else { 4 };
-        let mut jacobians = vec![Vec::new(); regimes];
-        for (r, jac) in jacobians.iter_mut().enumerate() {
-            asm.force_jacobian(r & 1 != 0, r & 2 != 0, &mut kx, &mut cv);
-            if let Some(e) = &asm.hla {
-                // The adjuster: F = … + k (x_b − x_a − z) + c (v_b − v_a), on b by −F, a by +F.
-                let (k, c) = (e.stiffness(), e.hla.damping);
-                for (i, j, sign) in [(e.b, e.b, -1.0), (e.b, e.a, 1.0), (e.a, e.a, -1.0), (e.a, e.b, 1.0)] {
-                    kx[i * n + j] += sign * k;
-                    cv[i * n + j] += sign * c;
-                }
-            }
-            let mut j = vec![0.0; dim * dim];
-            for i in 0..n {
-                j[i * dim + n + i] = 1.0;
-                for k in 0..n {
-                    j[(n + i) * dim + k] = kx[i * n + k] / asm.masses[i];
-                    j[(n + i) * dim + n + k] = cv[i * n + k] / asm.masses[i];
-                }
-            }
-            if let Some(e) = &asm.hla {
-                let iz = 2 * n + 1;
-                let k = e.stiffness();
-                j[(n + e.b) * dim + iz] = k / asm.masses[e.b];
-                j[(n + e.a) * dim + iz] = -k / asm.masses[e.a];
-                let (db, da, dz) = e.rate_jacobian(r & 4 != 0);
-                j[iz * dim + e.b] = db;
-                j[iz * dim + e.a] = da;
-                j[iz * dim + iz] = dz;
-            }
-            *jac = j;
-        }
+        // With progressive springs the regimes multiply: their Jacobians are built on demand.
+        let jacobians = if asm.spring_events() == 0 { (0..regimes).map(|r| jacobian_of(&asm, r)).collect() } else { Vec::new() };
         // The cam work row (Ẇ = F_c ṡ) is left out of the Jacobian: W does not feed back, and its
         // stage values follow from the stage equation exactly enough for a quadrature checked
         // against the energy.
@@ -161,11 +131,9 @@ impl<'a> TrainSystem<'a> {
         // With a lash the train moves only with the lift beyond it.
         let (s, ds) = if s > self.asm.lash { (s - self.asm.lash, ds) } else { (0.0, 0.0) };
         let mut y = vec![0.0; self.dim()];
-        let first = self.asm.valve.max(self.asm.follower) + 1;
-        let chain = n - first;
         for i in 0..n {
-            // Spring nodes share the lift linearly from the valve (1) to the fixed end (0).
-            let share = if i < first { 1.0 } else { 1.0 - (i - first + 1) as f64 / (chain + 1) as f64 };
+            // Spring nodes share the lift by their coils from the valve (1) to the fixed end (0).
+            let share = self.asm.shares[i];
             y[i] = share * s;
             y[n + i] = share * ds * self.drive.omega;
         }
@@ -194,6 +162,42 @@ pub struct Probe {
     pub cam_work: f64,
 }
 
+/// `∂f/∂y` of the train in `regime` (bit 0 contact, bit 1 seat, bit 2 the adjuster's check
+/// valve open, the progressive springs' stages above).
+fn jacobian_of(asm: &Assembly, r: u32) -> Vec<f64> {
+    let n = asm.dofs();
+    let dim = 2 * n + 1 + asm.hla.is_some() as usize;
+    let (mut kx, mut cv) = (vec![0.0; n * n], vec![0.0; n * n]);
+    asm.force_jacobian(r, &mut kx, &mut cv);
+    if let Some(e) = &asm.hla {
+        // The adjuster: F = … + k (x_b − x_a − z) + c (v_b − v_a), on b by −F, a by +F.
+        let (k, c) = (e.stiffness(), e.hla.damping);
+        for (i, j, sign) in [(e.b, e.b, -1.0), (e.b, e.a, 1.0), (e.a, e.a, -1.0), (e.a, e.b, 1.0)] {
+            kx[i * n + j] += sign * k;
+            cv[i * n + j] += sign * c;
+        }
+    }
+    let mut j = vec![0.0; dim * dim];
+    for i in 0..n {
+        j[i * dim + n + i] = 1.0;
+        for k in 0..n {
+            j[(n + i) * dim + k] = kx[i * n + k] / asm.masses[i];
+            j[(n + i) * dim + n + k] = cv[i * n + k] / asm.masses[i];
+        }
+    }
+    if let Some(e) = &asm.hla {
+        let iz = 2 * n + 1;
+        let k = e.stiffness();
+        j[(n + e.b) * dim + iz] = k / asm.masses[e.b];
+        j[(n + e.a) * dim + iz] = -k / asm.masses[e.a];
+        let (db, da, dz) = e.rate_jacobian(r & 4 != 0);
+        j[iz * dim + e.b] = db;
+        j[iz * dim + e.a] = da;
+        j[iz * dim + iz] = dz;
+    }
+    j
+}
+
 impl System for TrainSystem<'_> {
     fn dim(&self) -> usize {
         2 * self.asm.dofs() + 1 + self.asm.hla.is_some() as usize
@@ -220,14 +224,18 @@ impl System for TrainSystem<'_> {
         let (s, sd) = self.cam(t);
         let u = self.asm.unilateral(&y[..n], &y[n..2 * n], s, sd);
         let open = self.asm.hla.as_ref().is_some_and(|e| e.open(&y[..n], y[2 * n + 1]));
-        (u.contact_closed as u32) | ((u.seat_closed as u32) << 1) | ((open as u32) << 2)
+        (u.contact_closed as u32) | ((u.seat_closed as u32) << 1) | ((open as u32) << 2) | self.asm.spring_regime(&y[..n])
     }
     fn jacobian(&self, regime: u32, j: &mut [f64]) {
         let _ = (&self.kx, &self.cv);
-        j.copy_from_slice(&self.jacobians[regime as usize % self.jacobians.len()]);
+        if self.jacobians.is_empty() {
+            j.copy_from_slice(&jacobian_of(&self.asm, regime));
+        } else {
+            j.copy_from_slice(&self.jacobians[regime as usize % self.jacobians.len()]);
+        }
     }
     fn events(&self) -> usize {
-        if self.asm.has_seat() { 3 } else { 2 }
+        (if self.asm.has_seat() { 3 } else { 2 }) + self.asm.spring_events()
     }
     fn event_values(&self, t: f64, y: &[f64], g: &mut [f64]) {
         let n = self.asm.dofs();
@@ -235,9 +243,13 @@ impl System for TrainSystem<'_> {
         let u = self.asm.unilateral(&y[..n], &y[n..2 * n], s, sd);
         g[EVENT_CONTACT] = u.contact_gap;
         g[EVENT_SEATING] = self.seating_height - y[self.asm.valve];
-        if g.len() > EVENT_SEAT {
+        let first = if self.asm.has_seat() {
             g[EVENT_SEAT] = u.seat_gap;
-        }
+            EVENT_SEAT + 1
+        } else {
+            EVENT_SEAT
+        };
+        self.asm.spring_event_values(&y[..n], &mut g[first..]);
     }
     fn switches(&self, e: usize) -> bool {
         e != EVENT_SEATING
@@ -645,6 +657,29 @@ fn validate_hla(train: &ValveTrain, h: &HydraulicLashAdjuster) -> Result<(), Sol
     Ok(())
 }
 
+/// A spring chain's inputs; a progressive one's groups (shares summing to 1, closing forces > 0,
+/// at most as many groups as segments).
+fn validate_spring(sp: &super::model::SpringChain, field: &str) -> Result<(), SolveError> {
+    let pos = |v: f64| v.is_finite() && v > 0.0;
+    let nonneg = |v: f64| v.is_finite() && v >= 0.0;
+    if !nonneg(sp.rate) || !nonneg(sp.mass) || !nonneg(sp.damping_ratio) || (sp.elements > 0 && !pos(sp.mass)) {
+        return Err(SolveError::invalid(field, "rate ≥ 0, damping ratio ≥ 0, mass > 0 with interior elements"));
+    }
+    if (sp.elements > 0 || !sp.groups.is_empty()) && !pos(sp.rate) {
+        return Err(SolveError::invalid(field, "a spring chain needs a rate > 0"));
+    }
+    if !sp.groups.is_empty() {
+        let total: f64 = sp.groups.iter().map(|g| g.share).sum();
+        if !sp.groups.iter().all(|g| pos(g.share) && pos(g.closing_force)) || (total - 1.0).abs() > 1e-9 {
+            return Err(SolveError::invalid(field, "a progressive spring's groups need shares > 0 summing to 1 and closing forces > 0"));
+        }
+        if sp.elements > 0 && sp.groups.len() > sp.elements + 1 {
+            return Err(SolveError::invalid(field, "a progressive spring needs at least as many segments (elements + 1) as coil groups"));
+        }
+    }
+    Ok(())
+}
+
 /// Inputs the integration cannot use.
 fn validate(train: &ValveTrain, drive: &Drive) -> Result<(), SolveError> {
     let pos = |v: f64| v.is_finite() && v > 0.0;
@@ -672,12 +707,12 @@ fn validate(train: &ValveTrain, drive: &Drive) -> Result<(), SolveError> {
             return Err(SolveError::invalid("ValveTrain.train", "stiffness must be > 0, damping ≥ 0"));
         }
     }
-    let sp = train.spring;
-    if !nonneg(sp.rate) || !nonneg(sp.mass) || !nonneg(sp.damping_ratio) || (sp.elements > 0 && !pos(sp.mass)) {
-        return Err(SolveError::invalid("ValveTrain.spring", "rate ≥ 0, damping ratio ≥ 0, mass > 0 with interior elements"));
-    }
-    if sp.elements > 0 && !pos(sp.rate) {
-        return Err(SolveError::invalid("ValveTrain.spring", "a spring chain needs a rate > 0"));
+    validate_spring(&train.spring, "ValveTrain.spring")?;
+    if let Some(inner) = &train.inner_spring {
+        validate_spring(&inner.spring, "ValveTrain.inner_spring")?;
+        if !(inner.preload.is_finite() && inner.preload >= 0.0 && inner.preload <= train.preload) {
+            return Err(SolveError::invalid("ValveTrain.inner_spring.preload", "must be ≥ 0 and at most the total preload"));
+        }
     }
     if !pos(train.contact.stiffness) || !nonneg(train.contact.damping) {
         return Err(SolveError::invalid("ValveTrain.contact", "stiffness must be > 0, damping ≥ 0"));
@@ -711,6 +746,9 @@ fn validate(train: &ValveTrain, drive: &Drive) -> Result<(), SolveError> {
     // Every lumped body needs mass (with a lever the follower may be massless when the lever's
     // inertia stands for it; with a pushrod both of its ends need mass).
     let asm = train.assemble();
+    if asm.spring_events() > 28 {
+        return Err(SolveError::invalid("ValveTrain.spring", "progressive springs with more than 28 closing segments in all (elements + 1 per spring) are not supported"));
+    }
     if let Some(i) = asm.masses.iter().position(|m| !pos(*m)) {
         let field = if i == asm.follower { "ValveTrain.follower_mass" } else { "ValveTrain.lever" };
         return Err(SolveError::invalid(field, "a lumped body of the train has no mass (follower, lever or valve)"));

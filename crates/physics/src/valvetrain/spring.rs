@@ -6,8 +6,11 @@
 //!
 //! Nested springs (an inner spring inside the outer, both between the head and the retainer) act
 //! in parallel: the rates and forces add ([`nested_rate`]), each spring is checked on its own.
+//! A progressive (variable-pitch) spring ([`SpringDesign::groups`]) has its forces, rates, open
+//! coils and surge from [`super::progressive`] at installed length and full lift.
 
 use super::model::HelicalSpring;
+use super::progressive::{state_at, CoilGroup};
 use crate::SolveError;
 use std::f64::consts::PI;
 
@@ -94,7 +97,7 @@ impl WireStrength {
 }
 
 /// A valve spring's design data.
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, PartialEq)]
 pub struct SpringDesign {
     /// Wire, coil diameter, active coils, shear modulus, density.
     pub coil: HelicalSpring,
@@ -108,6 +111,9 @@ pub struct SpringDesign {
     pub wire: WireStrength,
     /// Shot-peened wire (Zimmerli's peened endurance data).
     pub peened: bool,
+    /// Coil groups of a progressive (variable-pitch) spring, their coils summing to the active
+    /// coils (empty: uniform pitch).
+    pub groups: Vec<CoilGroup>,
 }
 
 /// What each check requires.
@@ -140,7 +146,13 @@ impl Default for SpringCriteria {
 pub struct SpringCheck {
     /// Spring index C = D/d.
     pub index: f64,
+    /// Rate at installed length (the tangent rate of a progressive spring), N/m.
     pub rate: f64,
+    /// Rate at full lift, N/m (= `rate` for a uniform pitch).
+    pub rate_full_lift: f64,
+    /// Coils still open at installed length and at full lift.
+    pub active_coils_installed: f64,
+    pub active_coils_full_lift: f64,
     pub total_coils: f64,
     pub solid_length: f64,
     pub installed_force: f64,
@@ -171,8 +183,11 @@ pub struct SpringCheck {
     /// Fractional overrun to closure ξ.
     pub overrun: f64,
     pub clash_pass: bool,
-    /// Surge frequency with both ends fixed (Shigley eq. 10-25), Hz.
+    /// Surge frequency with both ends fixed (Shigley eq. 10-25) of the coils open at installed
+    /// length (the lowest of a progressive spring), Hz.
     pub surge_frequency: f64,
+    /// The same with the coils open at full lift, Hz.
+    pub surge_frequency_full_lift: f64,
     /// Surge frequency over the highest cam frequency.
     pub surge_ratio: f64,
     /// Cam orders k with k × cam frequency = surge frequency within the speed range
@@ -249,13 +264,22 @@ pub fn check_spring(design: &SpringDesign, lift: f64, cam_frequency: (f64, f64),
     if !pos(total) || total < c.active_coils {
         return Err(invalid("total_coils", "must be ≥ the active coils"));
     }
-    // Rate, Shigley eq. 10-9; forces at installed length, full lift and solid (Hooke's law).
-    let rate = c.rate();
+    if !design.groups.is_empty() {
+        let coils: f64 = design.groups.iter().map(|g| g.coils).sum();
+        if !design.groups.iter().all(|g| pos(g.coils) && g.pitch.is_finite() && g.pitch > c.wire_diameter) || (coils - c.active_coils).abs() > 1e-6 * c.active_coils {
+            return Err(invalid("groups", "coil groups need coils > 0 summing to the active coils and a pitch above the wire diameter"));
+        }
+    }
+    // Rate, Shigley eq. 10-9; forces at installed length, full lift and solid (Hooke's law; a
+    // progressive spring's groups closing in turn, `progressive::state_at`).
     let solid_length = design.ends.solid_length(c.wire_diameter, total);
     let full_lift_length = design.installed_length - lift;
-    let installed_force = rate * (design.free_length - design.installed_length);
-    let full_lift_force = rate * (design.free_length - full_lift_length);
-    let solid_force = rate * (design.free_length - solid_length).max(0.0);
+    let at = |length: f64| state_at(c, &design.groups, (design.free_length - length).max(0.0));
+    let (installed, full) = (at(design.installed_length), at(full_lift_length));
+    let rate = installed.rate;
+    let installed_force = installed.force;
+    let full_lift_force = full.force;
+    let solid_force = at(solid_length).force;
     let (kw, kb) = (wahl_factor(index), bergstrasser_factor(index));
     let k = match criteria.stress_factor {
         StressFactor::Wahl => kw,
@@ -274,13 +298,19 @@ pub fn check_spring(design: &SpringDesign, lift: f64, cam_frequency: (f64, f64),
     let clash_margin = full_lift_length - solid_length;
     let travel = design.free_length - full_lift_length;
     let overrun = clash_margin / travel;
-    let surge_frequency = c.surge_frequency();
+    // Surge of the coils still open (the closed ones move with the fixed end).
+    let open = |n: f64| HelicalSpring { active_coils: if n > 0.0 { n } else { c.active_coils }, ..*c }.surge_frequency();
+    let surge_frequency = open(installed.active_coils);
+    let surge_frequency_full_lift = open(full.active_coils);
     let surge_ratio = surge_frequency / f_hi;
     let (k_lo, k_hi) = ((surge_frequency / f_hi).ceil().max(1.0), (surge_frequency / f_lo).floor());
     let exciting_orders: Vec<u32> = if k_hi >= k_lo { (k_lo as u64..=k_hi as u64).take(MAX_ORDERS).map(|k| k.min(u32::MAX as u64) as u32).collect() } else { Vec::new() };
     let out = SpringCheck {
         index,
         rate,
+        rate_full_lift: full.rate,
+        active_coils_installed: installed.active_coils,
+        active_coils_full_lift: full.active_coils,
         total_coils: total,
         solid_length,
         installed_force,
@@ -305,6 +335,7 @@ pub fn check_spring(design: &SpringDesign, lift: f64, cam_frequency: (f64, f64),
         overrun,
         clash_pass: overrun >= criteria.min_overrun,
         surge_frequency,
+        surge_frequency_full_lift,
         surge_ratio,
         exciting_orders,
         surge_pass: surge_ratio >= criteria.min_surge_ratio,
@@ -338,7 +369,7 @@ mod tests {
         let free = 4.375 * IN;
         let installed = free - 5.0 * LBF / rate;
         let lift = 30.0 * LBF / rate;
-        let design = SpringDesign { coil, total_coils: None, ends: SpringEnds::SquaredGround, free_length: free, installed_length: installed, wire: WireStrength::Given(284.1 * KPSI), peened: false };
+        let design = SpringDesign { coil, total_coils: None, ends: SpringEnds::SquaredGround, free_length: free, installed_length: installed, wire: WireStrength::Given(284.1 * KPSI), peened: false, groups: Vec::new() };
         let criteria = SpringCriteria { stress_factor: StressFactor::Bergstrasser, ..Default::default() };
         let ch = check_spring(&design, lift, (1.0, 2.0), &criteria).unwrap();
         assert!((ch.index - 5.11).abs() < 0.01);
@@ -374,7 +405,7 @@ mod tests {
         fn checks_are_finite_or_refused(d in -1e-3f64..8e-3, dm in 0.0f64..0.05, n in -1.0f64..30.0, l0 in 0.0f64..0.1, li in 0.0f64..0.1,
                                         lift in -1e-3f64..0.03, f0 in 0.0f64..200.0, df in 0.0f64..200.0, peened in proptest::bool::ANY) {
             let coil = HelicalSpring { wire_diameter: d, mean_diameter: dm, active_coils: n, shear_modulus: 79.3e9, density: 7850.0 };
-            let design = SpringDesign { coil, total_coils: None, ends: SpringEnds::SquaredGround, free_length: l0, installed_length: li, wire: WireStrength::ChromeSilicon, peened };
+            let design = SpringDesign { coil, total_coils: None, ends: SpringEnds::SquaredGround, free_length: l0, installed_length: li, wire: WireStrength::ChromeSilicon, peened, groups: Vec::new() };
             match check_spring(&design, lift, (f0, f0 + df), &SpringCriteria::default()) {
                 Ok(ch) => {
                     for v in [ch.rate, ch.stress_full_lift, ch.stress_solid, ch.fatigue_safety, ch.solid_safety, ch.clash_margin, ch.overrun, ch.surge_frequency, ch.surge_ratio] {
@@ -388,12 +419,40 @@ mod tests {
         }
     }
 
+    /// A progressive spring by hand (the groups of `progressive`'s test): d = 4 mm, D = 24 mm,
+    /// two coils of pitch 5 mm and four of 7.5 mm, squared and ground (N_t = 8, L_s = 32 mm),
+    /// free length L_s + Σ n (p − d) = 48 mm, installed at 44 mm, 6 mm lift. Installed:
+    /// δ = 4 mm, all six coils open, F = K/6 × 4 mm = 122.38 N at 30 594 N/m; full lift:
+    /// δ = 10 mm, the 5 mm coils closed at 6 mm (183.56 N), F = 183.56 + K/4 × 4 mm = 367.13 N at
+    /// 45 891 N/m with four coils open, the surge 6/4 = 1.5 times the installed one; coil-clash
+    /// margin 38 − 32 = 6 mm.
+    #[test]
+    fn progressive_spring_by_hand() {
+        let coil = HelicalSpring { wire_diameter: 4e-3, mean_diameter: 24e-3, active_coils: 6.0, shear_modulus: 79.3e9, density: 7850.0 };
+        let groups = vec![CoilGroup { coils: 2.0, pitch: 5e-3 }, CoilGroup { coils: 4.0, pitch: 7.5e-3 }];
+        let design = SpringDesign { coil, total_coils: None, ends: SpringEnds::SquaredGround, free_length: 0.048, installed_length: 0.044, wire: WireStrength::ChromeSilicon, peened: true, groups };
+        let ch = check_spring(&design, 0.006, (20.0, 50.0), &SpringCriteria::default()).unwrap();
+        assert!((ch.installed_force - 122.38).abs() < 0.01, "{}", ch.installed_force);
+        assert!((ch.full_lift_force - 367.13).abs() < 0.01, "{}", ch.full_lift_force);
+        assert!((ch.rate - 30_594.0).abs() < 1.0 && (ch.rate_full_lift - 45_891.0).abs() < 1.0);
+        assert_eq!((ch.active_coils_installed, ch.active_coils_full_lift), (6.0, 4.0));
+        assert!((ch.surge_frequency_full_lift / ch.surge_frequency - 1.5).abs() < 1e-12);
+        assert!((ch.surge_frequency - coil.surge_frequency()).abs() < 1e-9);
+        assert!((ch.clash_margin - 0.006).abs() < 1e-12);
+        // τ = K_W 8 F D/(π d³) at full lift with C = 6 (K_W = 1.2525).
+        let tau = wahl_factor(6.0) * 8.0 * 367.13 * 24e-3 / (PI * 64e-9);
+        assert!((ch.stress_full_lift - tau).abs() < 1e-4 * tau);
+        // Groups that do not add up to the active coils are refused.
+        let bad = SpringDesign { groups: vec![CoilGroup { coils: 2.0, pitch: 5e-3 }], ..design };
+        assert!(check_spring(&bad, 0.006, (20.0, 50.0), &SpringCriteria::default()).is_err());
+    }
+
     /// Orders: f_n = 500 Hz with the cam at 20–30 Hz is excited by orders 17 ..= 25.
     #[test]
     fn exciting_orders_cover_the_speed_range() {
         let coil = HelicalSpring { wire_diameter: 4e-3, mean_diameter: 25e-3, active_coils: 6.0, shear_modulus: 79.3e9, density: 7850.0 };
         let fnat = coil.surge_frequency();
-        let design = SpringDesign { coil, total_coils: None, ends: SpringEnds::SquaredGround, free_length: 0.05, installed_length: 0.04, wire: WireStrength::ChromeSilicon, peened: true };
+        let design = SpringDesign { coil, total_coils: None, ends: SpringEnds::SquaredGround, free_length: 0.05, installed_length: 0.04, wire: WireStrength::ChromeSilicon, peened: true, groups: Vec::new() };
         let ch = check_spring(&design, 0.008, (20.0, 30.0), &SpringCriteria::default()).unwrap();
         let lo = (fnat / 30.0).ceil() as u32;
         let hi = (fnat / 20.0).floor() as u32;

@@ -57,9 +57,10 @@ pub fn cycle_cost(spec: &CamCycleSpec) -> Cost {
 /// The valve-train dynamics: about 9 ms per revolution at the default tolerance 1e-8 with 8
 /// spring elements (release, BENCHMARKS.md "Valve-train dynamics"), growing with the elements and
 /// as tolerance^(-1/3) (second-order steps); a run-up's revolutions cost as many periodic ones at
-/// the faster end (step ∝ 1/ω).
+/// the faster end (step ∝ 1/ω). A nested inner spring adds its elements (its own chain).
 fn dynamics_seconds(speed_rpm: f64, _startup: Option<&StartupSpec>, d: &DynamicLoadSpec) -> f64 {
-    let per_rev = 1.2e-2 * (d.spring.elements as f64 + 2.0) / 10.0 * (1e-8 / d.tolerance.max(1e-12)).powf(1.0 / 3.0).max(1.0);
+    let elements = d.spring.elements + d.inner_spring.as_ref().map_or(0, |s| s.elements);
+    let per_rev = 1.2e-2 * (elements as f64 + 2.0) / 10.0 * (1e-8 / d.tolerance.max(1e-12)).powf(1.0 / 3.0).max(1.0);
     let mut seconds = per_rev * DYNAMIC_REVOLUTIONS.min(d.max_revolutions as f64);
     if let Some(r) = &d.run_up {
         let speed = speed_rpm.max(1.0);

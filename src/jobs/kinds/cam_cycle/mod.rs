@@ -11,6 +11,7 @@
 
 mod cost;
 mod output;
+mod polydyne;
 mod result;
 mod solve;
 mod spec;
@@ -45,7 +46,7 @@ pub const MAX_FIELD_ROWS: usize = 1 << 17;
 
 impl Kind for CamCycle {
     const NAME: &'static str = "cam_cycle";
-    const SOLVER_VERSION: &'static str = "cam_cycle-18";
+    const SOLVER_VERSION: &'static str = "cam_cycle-19";
     const DESCRIPTION: &'static str = "Cam–follower pair over one revolution: kinematics, loads, Hertz contact, \
         lubricant film, friction and power loss, roller slip (steady or startup) and flash temperature \
         (fidelity fast: closed forms; accurate: numerical line-contact EHL with squeeze at every angle; auto: \
@@ -206,8 +207,14 @@ fn validate_cam(spec: &CamCycleSpec, limits: &Limits, v: &mut Validation) -> Opt
             }
             Some(*base_radius)
         }
-        p @ ProfileSpec::Synthesised { base_radius, .. } => {
+        p @ ProfileSpec::Synthesised { base_radius, dynamic_correction, .. } => {
             synthesised(p).inspect(|s| s.validate(v));
+            if let Some(c) = dynamic_correction {
+                let dynamic = matches!(spec.load, Some(LoadSpec::Dynamic(_)));
+                for (field, given, unit) in [("mass", c.mass, "kg"), ("stiffness", c.stiffness, "N/m")] {
+                    v.check(given.is_some() || dynamic, &format!("/cam/profile/dynamic_correction/{field}"), format!("is required ({unit}) without a dynamic load to take it from"));
+                }
+            }
             Some(*base_radius)
         }
         ProfileSpec::Table { base_radius, angle_deg, lift } => {

@@ -308,10 +308,11 @@ pub struct CamSummary {
     /// the first seat impact (sampled at the cycle's angles), m.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub max_bounce_height: Option<f64>,
-    /// `dynamic` load: valve spring rate from its coils, N/m.
+    /// `dynamic` load: valve spring rate from its coils (nested springs: the sum; progressive: with
+    /// every coil open), N/m.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub spring_rate: Option<f64>,
-    /// `dynamic` load: active spring mass, kg.
+    /// `dynamic` load: active spring mass (nested springs: the sum), kg.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub spring_mass: Option<f64>,
     /// `dynamic` load: first surge frequency with both ends fixed, ½√(k/m), Hz.

@@ -16,7 +16,7 @@ use crate::physics::geometry::Crown;
 use crate::physics::roller::{FinitePin, PinFriction, PinTable, PinThermal, RollerParams};
 use crate::physics::valvetrain::{
     damping_from_ratio, line_contact_stiffness, periodic_response, run_up, Drive, DynamicsOptions, Lash, Lever, Link,
-    PeriodicResponse, Pushrod, RunUpResponse, Seat, SpringChain, ValveTrain,
+    NestedSpring, PeriodicResponse, Pushrod, RunUpResponse, Seat, ValveTrain,
 };
 use crate::physics::{Observer, SolveError};
 use std::f64::consts::PI;
@@ -196,7 +196,7 @@ impl CamCycleSpec {
             Some(LoadSpec::Dynamic(_)) if dynamic_allowed => LoadModel::ValveTrain { preload: 0.0, stiffness: 0.0, mass: 0.0, external: None },
             Some(LoadSpec::Dynamic(_)) => return Err(SolveError::invalid("/load", "a dynamic load is solved by the cam_cycle kind only")),
         };
-        Ok(CycleSpec {
+        let mut cycle = CycleSpec {
             profile,
             geometry: FollowerGeometry { shape, clockwise: self.operation.direction == Direction::Cw },
             follower,
@@ -229,7 +229,15 @@ impl CamCycleSpec {
             } else {
                 Vec::new()
             },
-        })
+        };
+        // The polydyne's dynamic correction of a synthesised cam (its train from the dynamic
+        // load's when not given).
+        let from_load = match &self.load {
+            Some(LoadSpec::Dynamic(d)) => Some(valve_train(d, &cycle).polydyne_train()),
+            _ => None,
+        };
+        super::polydyne::apply(self, &mut cycle, from_load)?;
+        Ok(cycle)
     }
 }
 
@@ -265,9 +273,9 @@ pub fn valve_train(d: &DynamicLoadSpec, cycle: &CycleSpec) -> ValveTrain {
     });
     let rigid = d.train_stiffness.is_none();
     let reduced = |a: f64, b: f64| if a + b > 0.0 { a * b / (a + b) } else { 0.0 };
-    // Nested springs: one chain with the summed rate and mass.
-    let (rate, mass) = d.springs().map(|(_, s)| super::springs::coil_of(s)).fold((0.0, 0.0), |(k, m), c| (k + c.rate(), m + c.active_mass()));
-    let spring = SpringChain { rate, mass, elements: d.spring.elements, damping_ratio: d.spring.damping_ratio };
+    // Each spring its own chain; a nested inner spring with its installed force.
+    let spring = super::springs::chain_of(&d.spring);
+    let inner_spring = d.inner_spring.as_ref().map(|s| NestedSpring { spring: super::springs::chain_of(s), preload: super::springs::installed_force(s).unwrap_or(0.0) });
     let Some((cam_arm, valve_arm, inertia, pushrod)) = lever else {
         // Direct-acting.
         let follower_side = if rigid { d.follower_mass + d.valve_mass } else { d.follower_mass };
@@ -277,6 +285,7 @@ pub fn valve_train(d: &DynamicLoadSpec, cycle: &CycleSpec) -> ValveTrain {
             valve_mass: d.valve_mass,
             train: d.train_stiffness.map(|k| Link { stiffness: k, damping: damping_from_ratio(d.train_damping_ratio, k, reduced(d.follower_mass, d.valve_mass)) }),
             spring,
+            inner_spring,
             preload,
             contact: Link { stiffness: kc, damping: damping_from_ratio(d.contact_damping_ratio, kc, follower_side) },
             seat: d.seat.map(|st| Seat {
@@ -307,6 +316,7 @@ pub fn valve_train(d: &DynamicLoadSpec, cycle: &CycleSpec) -> ValveTrain {
         // Valve side: the lever's body reduced to the valve side against the valve.
         train: d.train_stiffness.map(|k| Link { stiffness: k, damping: damping_from_ratio(d.train_damping_ratio, k, reduced(lever_body / r2, d.valve_mass)) }),
         spring,
+        inner_spring,
         preload,
         contact: Link { stiffness: kc, damping: damping_from_ratio(d.contact_damping_ratio, kc, contact_mass) },
         seat: d.seat.map(|st| Seat {
@@ -443,7 +453,12 @@ pub(super) fn solve_spec(spec: &CamCycleSpec, observer: &dyn Observer) -> Result
         contour: None,
         spring_checks: None,
     };
-    if let Some((synthesis, contour)) = super::synthesis::synthesis_of(spec, &cycle.profile, cycle.geometry.shape) {
+    let from_load = match &spec.load {
+        Some(LoadSpec::Dynamic(d)) => Some(valve_train(d, &cycle).polydyne_train()),
+        _ => None,
+    };
+    let correction = super::polydyne::train_of(spec, from_load)?;
+    if let Some((synthesis, contour)) = super::synthesis::synthesis_of(spec, &cycle.profile, cycle.geometry.shape, correction) {
         result.synthesis = Some(synthesis);
         result.contour = Some(contour);
     }
@@ -486,9 +501,11 @@ fn add_dynamics(result: &mut CamCycleResult, train: &ValveTrain, r: PeriodicResp
     summary.seating_angle_deg = r.seating_angle.map(f64::to_degrees);
     summary.bounces = r.bounces;
     summary.max_bounce_height = r.max_bounce_height;
-    summary.spring_rate = Some(train.spring.rate);
-    summary.spring_mass = Some(train.spring.mass);
-    summary.spring_surge_frequency = Some(0.5 * (train.spring.rate / train.spring.mass).sqrt()).filter(|f| f.is_finite());
+    let inner = train.inner_spring.as_ref().map_or((0.0, 0.0), |n| (n.spring.rate, n.spring.mass));
+    let (rate, mass) = (train.spring.rate + inner.0, train.spring.mass + inner.1);
+    summary.spring_rate = Some(rate);
+    summary.spring_mass = Some(mass);
+    summary.spring_surge_frequency = Some(0.5 * (rate / mass).sqrt()).filter(|f| f.is_finite());
     summary.contact_stiffness = Some(train.contact.stiffness);
     summary.rigid_jump_speed_rpm = r.rigid_jump_speed.map(|w| w * 30.0 / std::f64::consts::PI).filter(|w| w.is_finite());
     summary.equivalent_mass = Some(train.quasi_static_equivalent().2);

@@ -86,6 +86,10 @@ pub enum ProfileSpec {
         /// Peak limits. Absent: none.
         #[serde(default, skip_serializing_if = "Option::is_none")]
         limits: Option<LawLimitsSpec>,
+        /// The polydyne's dynamic correction for a design speed: the law is then the valve's and
+        /// the cam leads it (`physics::cam::synthesis::dynamic`). Absent: none.
+        #[serde(default, skip_serializing_if = "Option::is_none")]
+        dynamic_correction: Option<super::synthesis_spec::DynamicCorrectionSpec>,
     },
     /// A measured follower lift table, interpolated by a periodic cubic spline.
     Table {
@@ -239,6 +243,7 @@ pub enum FollowerSpec {
         /// Elastic constants. Default: steel.
         #[serde(default)]
         material: Material,
+        /// RMS surface roughness Rq of the follower, m. Default 0 (smooth).
         #[serde(default)]
         roughness_rq: f64,
     },
@@ -269,6 +274,7 @@ pub enum FollowerSpec {
         /// Elastic constants. Default: steel.
         #[serde(default)]
         material: Material,
+        /// RMS surface roughness Rq of the follower, m. Default 0 (smooth).
         #[serde(default)]
         roughness_rq: f64,
     },
@@ -281,6 +287,7 @@ pub enum FollowerSpec {
         /// Elastic constants. Default: steel.
         #[serde(default)]
         material: Material,
+        /// RMS surface roughness Rq of the follower, m. Default 0 (smooth).
         #[serde(default)]
         roughness_rq: f64,
     },
@@ -400,7 +407,7 @@ fn default_max_revolutions() -> usize {
 
 /// A helical valve spring of round wire: its rate `G d⁴/(8 D³ n)`, active mass
 /// `ρ π² d² D n/4` and surge come from the coils.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, ToSchema)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, ToSchema)]
 #[serde(deny_unknown_fields)]
 pub struct ValveSpringSpec {
     /// Wire diameter d, m.
@@ -427,6 +434,14 @@ pub struct ValveSpringSpec {
     /// Absent: `spring_preload` is required and the spring is not checked.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub design: Option<super::train_spec::SpringDesignSpec>,
+    /// A progressive (variable-pitch) spring: its coil groups from the fixed end (cylinder
+    /// head) to the retainer, the coils summing to `active_coils` (at most 8 groups, and with
+    /// interior `elements` at least one segment each: `elements + 1 ≥` groups). The rate,
+    /// preload, checks and surge follow the groups closing in turn; in the dynamics each group
+    /// is its own segments of the chain, whose stiffness rises 1000-fold when its coils touch.
+    /// Absent: uniform pitch.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub pitch_groups: Option<Vec<super::train_spec::CoilGroupSpec>>,
 }
 
 /// The valve seat: a unilateral spring–damper stop.
@@ -535,8 +550,8 @@ pub struct DynamicLoadSpec {
     pub spring_preload: Option<f64>,
     pub spring: ValveSpringSpec,
     /// A nested inner spring in parallel with `spring` (both with a `design`): the checks are
-    /// per spring; the dynamics take one spring chain with the summed rate and mass (the
-    /// surge of the pair between the two springs' own surges).
+    /// per spring; in the dynamics each spring is its own chain (its own surge) between the
+    /// valve and the fixed end, the forces adding at the retainer.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub inner_spring: Option<ValveSpringSpec>,
     /// Criteria of the valve-spring checks (speed range for the surge orders, curvature factor,

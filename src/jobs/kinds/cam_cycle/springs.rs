@@ -6,7 +6,8 @@ use super::spec::{DynamicLoadSpec, ValveSpringSpec};
 use crate::jobs::kind::Validation;
 use crate::jobs::quantity as Q;
 use crate::physics::valvetrain::spring::{check_spring, SpringCheck, SpringCriteria, SpringDesign, SpringEnds, StressFactor, WireStrength};
-use crate::physics::valvetrain::HelicalSpring;
+use crate::physics::valvetrain::progressive::{coil_constant, state_at, CoilGroup};
+use crate::physics::valvetrain::{ClosingGroup, HelicalSpring, SpringChain};
 use crate::physics::SolveError;
 use super::train_spec::*;
 use serde::Serialize;
@@ -22,8 +23,14 @@ pub struct SpringCheckResult {
     pub pass: bool,
     /// Spring index D/d (a ratio).
     pub spring_index: f64,
-    /// Rate, N/m.
+    /// Rate at installed length (a progressive spring's tangent rate), N/m.
     pub rate: f64,
+    /// Rate at full lift, N/m (the same as `rate` for a uniform pitch).
+    pub rate_full_lift: f64,
+    /// Coils open at installed length (a count).
+    pub active_coils_installed: f64,
+    /// Coils open at full lift (a count; fewer than installed when pitch groups have closed).
+    pub active_coils_full_lift: f64,
     /// Solid length, m.
     pub solid_length: f64,
     /// Force at installed length (preload), N.
@@ -56,8 +63,11 @@ pub struct SpringCheckResult {
     pub overrun_ratio: f64,
     /// Coil-clash check passed.
     pub clash_pass: bool,
-    /// First surge frequency, both ends fixed, Hz.
+    /// First surge frequency, both ends fixed, of the coils open at installed length (the
+    /// lowest), Hz.
     pub surge_frequency: f64,
+    /// First surge frequency of the coils open at full lift, Hz.
+    pub surge_frequency_full_lift: f64,
     /// Surge frequency over the highest cam frequency (a ratio).
     pub surge_ratio: f64,
     /// Cam orders (harmonics of the cam frequency) that meet the surge frequency within the
@@ -65,6 +75,26 @@ pub struct SpringCheckResult {
     pub exciting_orders: Vec<u32>,
     /// Surge check passed.
     pub surge_pass: bool,
+}
+
+/// The coil groups of a progressive spring (empty: uniform pitch).
+pub fn groups_of(s: &ValveSpringSpec) -> Vec<CoilGroup> {
+    s.pitch_groups.iter().flatten().map(|g| CoilGroup { coils: g.coils, pitch: g.pitch }).collect()
+}
+
+/// The spring chain of the dynamics: rate and mass with every coil open, a progressive spring's
+/// groups (share of the coils, closing force `K (p − d)`) from the fixed end.
+pub fn chain_of(s: &ValveSpringSpec) -> SpringChain {
+    let coil = coil_of(s);
+    let k = coil_constant(&coil);
+    let groups = groups_of(s).iter().map(|g| ClosingGroup { share: g.coils / coil.active_coils, closing_force: k * (g.pitch - coil.wire_diameter) }).collect();
+    SpringChain { rate: coil.rate(), mass: coil.active_mass(), elements: s.elements, damping_ratio: s.damping_ratio, groups }
+}
+
+/// A spring's installed force, N: from its design (the progressive curve at
+/// `free − installed`), if any.
+pub fn installed_force(s: &ValveSpringSpec) -> Option<f64> {
+    s.design.map(|d| state_at(&coil_of(s), &groups_of(s), d.free_length - d.installed_length).force)
 }
 
 fn design_of(s: &ValveSpringSpec) -> Option<SpringDesign> {
@@ -90,6 +120,7 @@ fn design_of(s: &ValveSpringSpec) -> Option<SpringDesign> {
         installed_length: d.installed_length,
         wire,
         peened: d.shot_peened,
+        groups: groups_of(s),
     })
 }
 
@@ -105,11 +136,10 @@ impl DynamicLoadSpec {
     }
 
     /// Spring force with the valve closed, N: `spring_preload`, or from the springs' designs
-    /// (rate × (free − installed length), summed over nested springs).
+    /// (rate × (free − installed length), a progressive spring's curve there; summed over nested
+    /// springs).
     pub fn preload(&self) -> f64 {
-        self.spring_preload.unwrap_or_else(|| {
-            self.springs().filter_map(|(_, s)| s.design.map(|d| coil_of(s).rate() * (d.free_length - d.installed_length))).sum()
-        })
+        self.spring_preload.unwrap_or_else(|| self.springs().filter_map(|(_, s)| installed_force(s)).sum())
     }
 }
 
@@ -164,6 +194,10 @@ pub fn validate_springs(d: &DynamicLoadSpec, v: &mut Validation) {
         );
         validate_design(v, "/load/inner_spring", inner);
     }
+    // Each closing segment of a progressive spring is an event of the integrator, and a bit of
+    // its regime (physics::valvetrain::periodic: at most 28 in all).
+    let closing: usize = d.springs().filter_map(|(_, s)| s.pitch_groups.as_ref().map(|g| if s.elements == 0 { g.len() } else { s.elements + 1 })).sum();
+    v.check(closing <= 28, "/load/spring/elements", format!("progressive springs may have at most 28 chain segments in all (elements + 1 per progressive spring), not {closing} (count)"));
     if let Some(c) = &d.spring_checks {
         v.check(designed, "/load/spring_checks", "needs spring.design (free and installed length) to check the spring");
         if let Some([lo, hi]) = c.speed_range_rpm {
@@ -189,6 +223,27 @@ pub fn validate_coils(v: &mut Validation, path: &str, sp: &ValveSpringSpec) {
     v.in_range(&format!("{path}/density"), sp.density, 1.0, 1e5);
     v.count_in_range(&format!("{path}/elements"), sp.elements, 0, 64);
     v.in_range(&format!("{path}/damping_ratio"), sp.damping_ratio, 0.0, 10.0);
+    validate_pitch_groups(v, path, sp);
+}
+
+/// A progressive spring's groups: coils summing to the active coils, pitches above the wire
+/// diameter, at least one chain segment per group.
+fn validate_pitch_groups(v: &mut Validation, path: &str, sp: &ValveSpringSpec) {
+    let Some(groups) = &sp.pitch_groups else { return };
+    let at = format!("{path}/pitch_groups");
+    v.check((1..=8).contains(&groups.len()), &at, "needs 1 to 8 coil groups");
+    for (i, g) in groups.iter().enumerate() {
+        v.in_range(&format!("{at}/{i}/coils"), g.coils, 0.05, 1000.0);
+        v.quantity(&format!("{at}/{i}/pitch"), g.pitch, Q::LENGTH);
+        v.check(g.pitch > sp.wire_diameter, &format!("{at}/{i}/pitch"), format!("must exceed the wire diameter {:.4e} m (the coils would already touch)", sp.wire_diameter));
+    }
+    let coils: f64 = groups.iter().map(|g| g.coils).sum();
+    v.check((coils - sp.active_coils).abs() <= 1e-6 * sp.active_coils, &at, format!("the groups' coils sum to {coils}, not active_coils = {} (count of coils)", sp.active_coils));
+    v.check(
+        sp.elements == 0 || groups.len() <= sp.elements + 1,
+        &format!("{path}/elements"),
+        format!("a progressive spring needs at least one chain segment per coil group: elements + 1 ≥ {} (count)", groups.len()),
+    );
 }
 
 /// The checks of every designed spring for the valve lift `lift` (m) at camshaft speed
@@ -245,6 +300,9 @@ fn result_of(name: &str, ch: SpringCheck) -> SpringCheckResult {
         pass: ch.pass(),
         spring_index: ch.index,
         rate: ch.rate,
+        rate_full_lift: ch.rate_full_lift,
+        active_coils_installed: ch.active_coils_installed,
+        active_coils_full_lift: ch.active_coils_full_lift,
         solid_length: ch.solid_length,
         installed_force: ch.installed_force,
         full_lift_force: ch.full_lift_force,
@@ -262,6 +320,7 @@ fn result_of(name: &str, ch: SpringCheck) -> SpringCheckResult {
         overrun_ratio: ch.overrun,
         clash_pass: ch.clash_pass,
         surge_frequency: ch.surge_frequency,
+        surge_frequency_full_lift: ch.surge_frequency_full_lift,
         surge_ratio: ch.surge_ratio,
         exciting_orders: ch.exciting_orders,
         surge_pass: ch.surge_pass,

@@ -11,6 +11,7 @@ use super::synthesis_spec::SynthesisedSpec;
 use crate::physics::cam::contour::{contour, ContourPoint};
 use crate::physics::cam::synthesis::{shortest_duration, LawLimits};
 use crate::physics::cam::{CamProfile, FollowerShape};
+use crate::physics::valvetrain::polydyne::PolydyneTrain;
 use serde::Serialize;
 use utoipa::ToSchema;
 
@@ -70,8 +71,28 @@ pub struct SynthesisReport {
     pub min_face_radius: Option<f64>,
     /// The cam surface has a cusp somewhere (it cannot be made for this follower).
     pub undercut: bool,
+    /// With `dynamic_correction`: what the cam was corrected with.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub dynamic_correction: Option<CorrectionReport>,
     /// Limits exceeded, said in words.
     pub warnings: Vec<String>,
+}
+
+/// The polydyne's dynamic correction used: `s = y + (k_s/k) y + (m ω²/k) y''`.
+#[derive(Debug, Clone, PartialEq, Serialize, ToSchema)]
+pub struct CorrectionReport {
+    /// Design camshaft speed, rpm.
+    pub design_speed_rpm: f64,
+    /// Effective mass m (cam side), kg.
+    pub mass: f64,
+    /// Effective stiffness k between cam and valve (cam side), N/m.
+    pub stiffness: f64,
+    /// Valve spring rate k_s (cam side), N/m.
+    pub spring_rate: f64,
+    /// Largest lift of the corrected cam, m (the designed valve law reaches `lift`).
+    pub cam_max_lift: f64,
+    /// Largest difference between cam lift and designed valve lift over the event, m.
+    pub max_correction: f64,
 }
 
 /// The law per cam angle and the cam contour (cam frame, cam turning as `operation.direction`,
@@ -83,6 +104,9 @@ pub struct ContourTable {
     pub angle_deg: Vec<f64>,
     /// Follower lift, m.
     pub lift: Vec<f64>,
+    /// With `dynamic_correction`: the designed valve law (cam side), m; `lift` is the cam's.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub valve_lift: Option<Vec<f64>>,
     /// ds/dθ, m/rad.
     pub lift_velocity: Vec<f64>,
     /// d²s/dθ², m/rad².
@@ -111,15 +135,16 @@ pub struct ContourTable {
 /// The fields of a `synthesised` profile.
 pub fn synthesised(p: &ProfileSpec) -> Option<SynthesisedSpec> {
     match *p {
-        ProfileSpec::Synthesised { base_radius, lift, duration_deg, ramp, law, dwell_deg, nose_deg, limits } => {
-            Some(SynthesisedSpec { base_radius, lift, duration_deg, ramp, law, dwell_deg, nose_deg, limits })
+        ProfileSpec::Synthesised { base_radius, lift, duration_deg, ramp, law, dwell_deg, nose_deg, limits, dynamic_correction } => {
+            Some(SynthesisedSpec { base_radius, lift, duration_deg, ramp, law, dwell_deg, nose_deg, limits, dynamic_correction })
         }
         _ => None,
     }
 }
 
 /// The `synthesis` and `contour` of a `synthesised` profile (`None` for other profiles).
-pub(super) fn synthesis_of(spec: &CamCycleSpec, profile: &CamProfile, shape: FollowerShape) -> Option<(SynthesisReport, ContourTable)> {
+/// `correction`: the design speed (rpm) and the train the cam was corrected with, if it was.
+pub(super) fn synthesis_of(spec: &CamCycleSpec, profile: &CamProfile, shape: FollowerShape, correction: Option<(f64, PolydyneTrain)>) -> Option<(SynthesisReport, ContourTable)> {
     let s = synthesised(&spec.cam.profile)?;
     let CamProfile::Synthesised { law, .. } = profile else { return None };
     // Clockwise running: the mirror image of the counter-clockwise cam for the mirrored offset.
@@ -177,12 +202,24 @@ pub(super) fn synthesis_of(spec: &CamCycleSpec, profile: &CamProfile, shape: Fol
         min_face_radius: rf.is_none().then(|| c.points.iter().map(|q| (q.lift.d1 - e).abs()).fold(0.0, f64::max)),
         undercut: c.undercut,
         warnings,
+        dynamic_correction: correction.filter(|_| law.correction.is_some()).map(|(rpm, t)| {
+            let diff = c.points.iter().map(|q| (q.lift.v - law.valve(q.theta).v).abs()).fold(0.0, f64::max);
+            CorrectionReport {
+                design_speed_rpm: rpm,
+                mass: t.mass,
+                stiffness: t.stiffness,
+                spring_rate: t.spring_rate,
+                cam_max_lift: c.points.iter().map(|q| q.lift.v).fold(0.0, f64::max),
+                max_correction: diff,
+            }
+        }),
     };
     let col = |f: &dyn Fn(&ContourPoint) -> f64| c.points.iter().map(f).collect::<Vec<f64>>();
     let curved = rf.is_some();
     let table = ContourTable {
         angle_deg: col(&|q| q.theta.to_degrees()),
         lift: col(&|q| q.lift.v),
+        valve_lift: law.correction.is_some().then(|| col(&|q| law.valve(q.theta).v)),
         lift_velocity: col(&|q| q.lift.d1),
         lift_acceleration: col(&|q| q.lift.d2),
         lift_jerk: col(&|q| q.lift.d3),

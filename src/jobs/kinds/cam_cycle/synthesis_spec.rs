@@ -8,7 +8,7 @@
 
 use crate::jobs::kind::Validation;
 use crate::jobs::quantity::{self as Q, Quantity};
-use crate::physics::cam::synthesis::{LiftSpec, Ramp, RiseLaw};
+use crate::physics::cam::synthesis::{DynamicCorrection, LiftSpec, Ramp, RiseLaw};
 use crate::physics::cam::SynthesisedLift;
 use crate::physics::SolveError;
 use serde::{Deserialize, Serialize};
@@ -27,6 +27,35 @@ const LIFT_RATE: Quantity = Quantity {
 const LIFT_ACCELERATION: Quantity = Quantity { name: "an acceleration per cam angle²", unit: "m/rad²", min: 1e-9, max: 1e3, typical: 1.0, slip: "mm/rad²: SI expects m/rad²" };
 /// A jerk per cam angle cubed, m/rad³.
 const LIFT_JERK: Quantity = Quantity { name: "a jerk per cam angle³", unit: "m/rad³", min: 1e-9, max: 1e5, typical: 100.0, slip: "mm/rad³: SI expects m/rad³" };
+
+/// A stiffness, N/m.
+const STIFFNESS: Quantity = Quantity { name: "a stiffness", unit: "N/m", min: 1.0, max: 1e13, typical: 1e9, slip: "N/mm or N/µm: SI expects N/m" };
+
+/// The polydyne's dynamic correction (Stoddart 1953; Norton, *Cam Design and Manufacturing
+/// Handbook*): the law is the *valve's* lift `y`, and the cam is cut to
+/// `y + (k_s/k) y + (m ω²/k) y''` so that the train, a mass `m` behind the stiffness `k` against
+/// the valve spring `k_s`, follows the law at the design speed ω. Law `polydyne` only; the ramps
+/// then take 4-5-6-7 velocity blends (continuous to the fourth derivative). The result's
+/// `synthesis.dynamic_correction` reports what was used, `contour.valve_lift` the designed law
+/// (`lift` and `summary.max_lift` are the cam's).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, ToSchema)]
+#[serde(deny_unknown_fields)]
+pub struct DynamicCorrectionSpec {
+    /// Camshaft speed the cam is corrected for, rpm.
+    pub design_speed_rpm: f64,
+    /// Effective mass m, kg. Absent: from the `dynamic` load — each link of the train carries
+    /// the masses beyond it (`m = k Σ M_i/k_i`, cam side; `physics::valvetrain::polydyne`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub mass: Option<f64>,
+    /// Effective stiffness k between cam and valve, N/m. Absent: the `dynamic` load's links in
+    /// series (cam contact, pushrod, train link, lash adjuster).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub stiffness: Option<f64>,
+    /// Valve spring rate k_s, N/m. Absent: the `dynamic` load's springs (cam side), 0 without
+    /// one.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub spring_rate: Option<f64>,
+}
 
 /// Law of the main rise of a synthesised profile.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize, ToSchema)]
@@ -84,6 +113,7 @@ pub struct SynthesisedSpec {
     pub dwell_deg: f64,
     pub nose_deg: f64,
     pub limits: Option<LawLimitsSpec>,
+    pub dynamic_correction: Option<DynamicCorrectionSpec>,
 }
 
 /// The spec path of a `LiftSpec` field.
@@ -138,9 +168,35 @@ impl SynthesisedSpec {
                 v.quantity("/cam/profile/limits/max_jerk", j, LIFT_JERK);
             }
         }
+        if let Some(c) = self.dynamic_correction {
+            let at = "/cam/profile/dynamic_correction";
+            v.check(self.law == SynthesisLaw::Polydyne, at, "the dynamic correction is the polydyne's: needs law polydyne");
+            v.quantity(&format!("{at}/design_speed_rpm"), c.design_speed_rpm, Q::SPEED_RPM);
+            if let Some(m) = c.mass {
+                v.quantity(&format!("{at}/mass"), m, Q::MASS.from(1e-6));
+            }
+            if let Some(k) = c.stiffness {
+                v.quantity(&format!("{at}/stiffness"), k, STIFFNESS);
+            }
+            if let Some(k) = c.spring_rate {
+                v.quantity(&format!("{at}/spring_rate"), k, STIFFNESS.from(0.0));
+            }
+        }
         if v.is_ok() {
-            if let Err(SolveError::InvalidInput { field, message }) = self.law() {
-                v.error(&field, message);
+            match self.law() {
+                Err(SolveError::InvalidInput { field, message }) => {
+                    v.error(&field, message);
+                }
+                // With every coefficient given the corrected cam is checked here too.
+                Ok(law) => {
+                    if let Some(DynamicCorrectionSpec { design_speed_rpm, mass: Some(m), stiffness: Some(k), spring_rate: Some(ks) }) = self.dynamic_correction {
+                        let c = DynamicCorrection::new(m, k, ks, design_speed_rpm * std::f64::consts::PI / 30.0);
+                        if let Err(SolveError::InvalidInput { message, .. }) = law.with_correction(c) {
+                            v.error("/cam/profile/dynamic_correction", message);
+                        }
+                    }
+                }
+                Err(_) => {}
             }
         }
     }

@@ -63,6 +63,20 @@ pub struct SpringDesignSpec {
     pub shot_peened: bool,
 }
 
+/// A group of coils of one pitch of a progressive (variable-pitch) spring. The groups are in
+/// series and carry the same force; a group closes when its coils touch, at the force
+/// `G d⁴ (pitch − d)/(8 D³)`, and the rate `G d⁴/(8 D³ n_open)` rises as the open coils
+/// `n_open` fall (Wahl, *Mechanical Springs*; SAE HS-795).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, ToSchema)]
+#[serde(deny_unknown_fields)]
+pub struct CoilGroupSpec {
+    /// Active coils of the group (a count; the groups' coils sum to `active_coils`).
+    pub coils: f64,
+    /// Pitch of the free spring (axial distance between successive coils' centres), m
+    /// (> wire diameter).
+    pub pitch: f64,
+}
+
 /// Stress-correction (curvature) factor on the shear stress.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize, ToSchema)]
 #[serde(rename_all = "snake_case")]

@@ -193,10 +193,10 @@ pub fn result(spec: &CamOptimisationSpec, searched: Searched) -> Result<CamOptim
     let baseline = report(spec, 0, base, base_j);
     let best = report(spec, best_i, measured(best_i).ok_or_else(failed)?, best_j);
     let friction_power_change = match (best.friction_power, baseline.friction_power) {
-        (Some(b), Some(a)) if a != 0.0 => Some((b - a) / a),
+        (Some(b), Some(a)) if a != 0.0 => Some(100.0 * (b - a) / a),
         _ => None,
     };
-    let score_change = if base_j.score != 0.0 { (best_j.score - base_j.score) / base_j.score.abs() } else { 0.0 };
+    let score_change = if base_j.score != 0.0 { 100.0 * (best_j.score - base_j.score) / base_j.score.abs() } else { 0.0 };
     let (mut columns, units) = columns(spec);
     let designs: Vec<Map<String, Value>> = records.iter().enumerate().map(|(i, r)| row(spec, i, r, judged[i].as_ref())).collect();
     let failed_count = designs.iter().filter(|r| r["status"] == "failed").count();

@@ -50,10 +50,10 @@ pub struct Report {
     pub objectives: Map<String, Value>,
     pub constraints: Vec<ConstraintOutcome>,
     /// The design's `cam_cycle` spec (run it as a `cam_cycle` job for its full cycle).
-    #[schema(value_type = Object)]
+    #[schema(value_type = crate::jobs::kinds::cam_cycle::CamCycleSpec)]
     pub spec: Value,
     /// The design's cycle summary at the base speed (the `cam_cycle` result's `summary`, its units).
-    #[schema(value_type = Object)]
+    #[schema(value_type = crate::jobs::kinds::cam_cycle::CamSummary)]
     pub cycle: Value,
 }
 
@@ -78,11 +78,11 @@ pub struct CamOptimisationResult {
     /// The best design: the lowest score among the feasible designs (the baseline among them,
     /// so never worse than a feasible baseline); the least violating when none is feasible.
     pub best: Report,
-    /// Relative change of the friction power from the baseline to the best design
-    /// (−0.2: 20 % lower).
+    /// Change of the friction power from the baseline to the best design, % (−20: 20 % lower).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub friction_power_change: Option<f64>,
-    /// Relative change of the score (negative: better).
+    /// Change of the score from the baseline to the best design, % of the baseline's
+    /// (negative: better).
     pub score_change: f64,
     /// With two or more objectives.
     #[serde(skip_serializing_if = "Option::is_none")]

@@ -28,10 +28,12 @@
 //! lift, a ramp so fast that the rise would fall back) is refused with a typed
 //! `InvalidInput` naming the `LiftSpec` field.
 
+pub mod dynamic;
 pub mod laws;
 
 use super::jet::Jet;
 use crate::{Convergence, SolveError, Termination};
+pub use dynamic::DynamicCorrection;
 pub use laws::RiseLaw;
 use std::f64::consts::TAU;
 
@@ -105,6 +107,9 @@ pub struct SynthesisedLift {
     pub ramp_angle: f64,
     /// Angle of the main rise (and return) β_m, rad.
     pub rise_angle: f64,
+    /// The polydyne's dynamic correction ([`dynamic`]): `lift` is then the cam's, the designed
+    /// valve law is [`SynthesisedLift::valve`]. `None`: the cam lift is the designed law.
+    pub correction: Option<DynamicCorrection>,
 }
 
 /// Samples per piece of the peak search (then refined by golden section).
@@ -159,7 +164,23 @@ impl SynthesisedLift {
                 ),
             ));
         }
-        let law = SynthesisedLift { spec, blend_angle: blend, ramp_angle: ramp, rise_angle: rise };
+        let law = SynthesisedLift { spec, blend_angle: blend, ramp_angle: ramp, rise_angle: rise, correction: None };
+        law.check_monotonic()?;
+        Ok(law)
+    }
+
+    /// The same valve law with the polydyne's dynamic correction: the cam lift leads it by
+    /// `(k_s/k) y + (m ω²/k) y''` ([`dynamic`]; the ramps take the smooth pieces). Only for the
+    /// polydyne (its derivatives are continuous to the fourth; the other laws' would put steps in
+    /// the cam's acceleration), and the corrected cam must still rise monotonically.
+    pub fn with_correction(self, correction: DynamicCorrection) -> Result<Self, SolveError> {
+        if self.spec.law != RiseLaw::Polydyne {
+            return Err(SolveError::invalid("LiftSpec.law", "the dynamic correction is the polydyne's: its law must be polydyne"));
+        }
+        if !(correction.inertia.is_finite() && correction.inertia >= 0.0 && correction.compliance.is_finite() && correction.compliance >= 0.0) {
+            return Err(SolveError::invalid("DynamicCorrection", "m ω²/k and k_s/k must be finite and ≥ 0"));
+        }
+        let law = SynthesisedLift { correction: Some(correction), ..self };
         law.check_monotonic()?;
         Ok(law)
     }
@@ -192,8 +213,60 @@ impl SynthesisedLift {
     }
 
     /// Piece `k` of the rise half (0 ramp blend, 1 constant-velocity ramp, 2 main rise, 3 top
-    /// dwell) at `phi` from the event start, evaluated by its own formula.
+    /// dwell) at `phi` from the event start, evaluated by its own formula: the cam's lift (with
+    /// the correction: from the smooth valve law's derivatives to the fifth).
     fn piece(&self, k: usize, phi: f64) -> Jet {
+        match self.correction {
+            None => self.plain_piece(k, phi),
+            Some(c) => {
+                let [s0, s1, s2, s3] = c.cam(self.smooth_piece(k, phi));
+                Jet::new(s0, s1, s2, s3)
+            }
+        }
+    }
+
+    /// The valve law's piece to the fifth derivative from the smooth set (module [`dynamic`]).
+    fn smooth_piece(&self, k: usize, phi: f64) -> [f64; 6] {
+        let h = self.spec.lift;
+        let (hr, v) = self.spec.ramp.map_or((0.0, 0.0), |r| (r.height, r.velocity));
+        let bb = self.blend_angle;
+        match k {
+            0 => {
+                let b = dynamic::smooth_blend(phi / bb);
+                [v * bb * b[0], v * b[1], v * b[2] / bb, v * b[3] / bb.powi(2), v * b[4] / bb.powi(3), v * b[5] / bb.powi(4)]
+            }
+            1 => [0.5 * v * bb + v * (phi - bb), v, 0.0, 0.0, 0.0, 0.0],
+            2 => {
+                let bm = self.rise_angle;
+                let u = ((phi - self.ramp_angle) / bm).clamp(0.0, 1.0);
+                // x = 1 − u from the nose: odd derivatives change sign.
+                let p = dynamic::polydyne6(1.0 - u);
+                let g = dynamic::smooth_ramp_correction(u);
+                let mut y = [0.0; 6];
+                for n in 0..6 {
+                    let sign = if n % 2 == 0 { 1.0 } else { -1.0 };
+                    y[n] = ((h - hr) * sign * p[n] + v * bm * g[n]) / bm.powi(n as i32);
+                }
+                y[0] += hr;
+                y
+            }
+            _ => [h, 0.0, 0.0, 0.0, 0.0, 0.0],
+        }
+    }
+
+    /// The designed valve law `y(θ)` (with the correction: the smooth set's; without, the cam's
+    /// own lift), m and its derivatives per cam angle.
+    pub fn valve(&self, theta: f64) -> Jet {
+        if self.correction.is_none() {
+            return self.lift(theta);
+        }
+        self.mirrored(theta, &|k, phi| {
+            let y = self.smooth_piece(k, phi);
+            Jet::new(y[0], y[1], y[2], y[3])
+        })
+    }
+
+    fn plain_piece(&self, k: usize, phi: f64) -> Jet {
         let h = self.spec.lift;
         let (hr, v) = self.spec.ramp.map_or((0.0, 0.0), |r| (r.height, r.velocity));
         let bb = self.blend_angle;
@@ -227,7 +300,7 @@ impl SynthesisedLift {
     }
 
     /// The rise half at `phi ∈ [0, D/2]` from the event start.
-    fn rise_half(&self, phi: f64) -> Jet {
+    fn rise_half(&self, phi: f64, piece: &dyn Fn(usize, f64) -> Jet) -> Jet {
         // The main rise owns its end (the polydyne's nose acceleration at the nose).
         let k = if phi < self.blend_angle {
             0
@@ -238,20 +311,25 @@ impl SynthesisedLift {
         } else {
             3
         };
-        self.piece(k, phi)
+        piece(k, phi)
     }
 
     /// Lift `s(θ)` with its exact derivatives with respect to the cam angle `θ` (rad).
     pub fn lift(&self, theta: f64) -> Jet {
+        self.mirrored(theta, &|k, phi| self.piece(k, phi))
+    }
+
+    /// The event from its pieces: the rise half, the return its mirror image.
+    fn mirrored(&self, theta: f64, piece: &dyn Fn(usize, f64) -> Jet) -> Jet {
         let phi = (theta - self.start()).rem_euclid(TAU);
         let d = self.spec.duration;
         if phi >= d {
             return Jet::constant(0.0);
         }
         if phi <= 0.5 * d {
-            self.rise_half(phi)
+            self.rise_half(phi, piece)
         } else {
-            let j = self.rise_half(d - phi);
+            let j = self.rise_half(d - phi, piece);
             Jet::new(j.v, -j.d1, j.d2, -j.d3)
         }
     }
