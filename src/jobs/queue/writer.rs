@@ -34,14 +34,20 @@ impl Queue {
             }
             // A finished job must not be lost: retry until the database takes it.
             let mut delay = Duration::from_millis(50);
-            while let Err(e) = inner.store.finish_batch(&finishes, now_ms(), &inner.instance).await {
-                warn!(error = %e, "writing finished jobs failed; retrying");
+            let mut retried = false;
+            let cases = loop {
+                match inner.store.finish_batch(&finishes, now_ms(), &inner.instance).await {
+                    Ok(cases) => break cases,
+                    Err(e) => warn!(error = %e, "writing finished jobs failed; retrying"),
+                }
+                retried = true;
                 tokio::time::sleep(delay).await;
                 delay = (delay * 2).min(Duration::from_secs(5));
-            }
+            };
             // Fan-out: the parents of finished cases move on (the last case re-queues its parent).
-            // Beside the next claim, not before it.
-            if inner.store.is_shared() {
+            // Beside the next claim, not before it; skipped when no finished job is a case (a
+            // retried batch may have been committed by the failed attempt: not skipped then).
+            if inner.store.is_shared() && (cases || retried) {
                 let finished: Vec<Uuid> = done.iter().filter(|d| d.2 != JobStatus::Queued).map(|d| d.0).collect();
                 let store = inner.store.clone();
                 tokio::spawn(async move {
