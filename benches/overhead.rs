@@ -8,6 +8,7 @@
 //! it), the result text and its encoding for the store — then each job end to end through a
 //! release `tribod serve` on SQLite (`Prefer: wait`, one client: POST → solved → stored →
 //! answered), whose difference from the in-process stages is the store, HTTP and hand-off.
+//! `TRIBOD_BENCH_BIN` names another build of the server (an A/B in one run).
 
 use serde_json::{json, Value};
 use std::io::{BufRead, BufReader};
@@ -125,7 +126,8 @@ fn main() {
 
     let dir = tempfile::tempdir().unwrap();
     let db = dir.path().join("overhead.db").display().to_string();
-    let mut child = Command::new(env!("CARGO_BIN_EXE_tribod"))
+    let binary = std::env::var("TRIBOD_BENCH_BIN").unwrap_or_else(|_| env!("CARGO_BIN_EXE_tribod").to_string());
+    let mut child = Command::new(binary)
         .args(["serve", "--addr", "127.0.0.1:0", "--database-url", &db, "--workers", "1"])
         .env("RUST_LOG", "warn")
         .stdout(Stdio::piped())
