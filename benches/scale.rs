@@ -46,8 +46,13 @@ impl Drop for Instance {
     }
 }
 
+/// The tribod binary: this build's, or `TRIBOD_BENCH_BIN` (an older build, for an A/B in one run).
+fn binary() -> String {
+    std::env::var("TRIBOD_BENCH_BIN").unwrap_or_else(|_| env!("CARGO_BIN_EXE_tribod").to_string())
+}
+
 fn serve(url: &str, extra: &[&str]) -> Instance {
-    let mut child = Command::new(env!("CARGO_BIN_EXE_tribod"))
+    let mut child = Command::new(binary())
         .args(["serve", "--addr", "127.0.0.1:0", "--database-url", url, "--max-queue", "1000000"])
         .args(extra)
         .env("RUST_LOG", "warn")
@@ -62,7 +67,7 @@ fn serve(url: &str, extra: &[&str]) -> Instance {
 }
 
 fn worker(url: &str, extra: &[&str]) -> Instance {
-    let child = Command::new(env!("CARGO_BIN_EXE_tribod"))
+    let child = Command::new(binary())
         .args(["worker", "--database-url", url, "--max-queue", "1000000"])
         .args(extra)
         .env("RUST_LOG", "warn")
@@ -308,6 +313,23 @@ async fn main() {
             .await
             .unwrap();
             eprintln!("jobs table: {} seq scans reading {} rows; {} index scans fetching {} rows", t.0, t.1, t.2, t.3);
+            let u: (i64, i64, i64) = sqlx::query_as(
+                "SELECT n_tup_upd, n_tup_hot_upd, n_dead_tup FROM pg_stat_user_tables WHERE relname = 'jobs'",
+            )
+            .fetch_one(&mut conn)
+            .await
+            .unwrap();
+            eprintln!("jobs updates per job: {:.2}, of them HOT {:.2}; dead rows {:.2} per job", per(u.0), per(u.1), per(u.2));
+            let rows: Vec<(String, i64, i64, i64, i64)> = sqlx::query_as(
+                "SELECT indexrelname::text, idx_scan, idx_tup_read, idx_tup_fetch, pg_relation_size(indexrelid) \
+                 FROM pg_stat_user_indexes ORDER BY idx_tup_read DESC",
+            )
+            .fetch_all(&mut conn)
+            .await
+            .unwrap();
+            for (name, scans, read, fetched, bytes) in rows {
+                eprintln!("  index {name}: scans {:.2}, entries read {:.1}, rows fetched {:.1} per job; {} kB", per(scans), per(read), per(fetched), bytes / 1024);
+            }
             let _ = conn.close().await;
         }
         drop(instances);

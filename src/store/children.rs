@@ -131,10 +131,22 @@ impl Store {
         };
         let parents: Option<Vec<String>> = parents.map(|p| p.iter().map(Uuid::to_string).collect());
         let children: Option<Vec<String>> = children.map(|p| p.iter().map(Uuid::to_string).collect());
-        let rows = sqlx::query(
-            "WITH p AS (SELECT id FROM jobs WHERE status = 'running' AND lease_owner IS NULL AND lease_until = $1 \
-                        AND ($2::text[] IS NULL OR id = ANY($2)) \
-                        AND ($3::text[] IS NULL OR id IN (SELECT parent_id FROM job_children WHERE job_id = ANY($3)))), \
+        // Which parents to look at: the parents of finished cases (through `job_children_by_job`),
+        // given parents by id, else every waiting parent (the periodic safety net) — only the
+        // conditions that apply, so that each plan looks rows up by what it is given (one plan
+        // for all three read every running row; issue 46, with migration 0006).
+        // Given ids: the status as an expression, so that the rows are looked up by id (see
+        // `store::postgres`).
+        let status = if parents.is_some() || children.is_some() { "(status || '')" } else { "status" };
+        let mut p = format!("SELECT id FROM jobs WHERE {status} = 'running' AND lease_owner IS NULL AND lease_until = $1");
+        if parents.is_some() {
+            p.push_str(" AND id = ANY($2)");
+        }
+        if children.is_some() {
+            p.push_str(" AND id IN (SELECT parent_id FROM job_children WHERE job_id = ANY($3))");
+        }
+        let rows = sqlx::query(AssertSqlSafe(format!(
+            "WITH p AS ({p}), \
              n AS (SELECT c.parent_id, count(*) AS total, \
                           count(*) FILTER (WHERE j.status IS NULL OR j.status IN ('succeeded', 'failed', 'canceled')) AS done \
                    FROM job_children c LEFT JOIN jobs j ON j.id = c.job_id \
@@ -144,11 +156,11 @@ impl Store {
                         lease_until = CASE WHEN n.done = n.total THEN NULL ELSE jobs.lease_until END, \
                         due_at = CASE WHEN n.done = n.total THEN 0 ELSE jobs.due_at END, \
                         attempts = CASE WHEN n.done = n.total THEN GREATEST(jobs.attempts - 1, 0) ELSE jobs.attempts END \
-                    FROM n WHERE jobs.id = n.parent_id AND jobs.status = 'running' AND jobs.lease_owner IS NULL \
+                    FROM n WHERE jobs.id = n.parent_id AND (jobs.status || '') = 'running' AND jobs.lease_owner IS NULL \
                     AND jobs.lease_until = $1 \
                     AND (n.done = n.total OR jobs.progress <> n.done::float8 / n.total) RETURNING jobs.status) \
-             SELECT count(*) FILTER (WHERE status = 'queued') FROM up",
-        )
+             SELECT count(*) FILTER (WHERE status = 'queued') FROM up"
+        )))
         .bind(WAITING_UNTIL)
         .bind(parents)
         .bind(children)

@@ -30,6 +30,7 @@ pub const POSTGRES: &[MigrationFile] = &[
     ("0003_estimates.sql", include_str!("../../migrations/postgres/0003_estimates.sql")),
     ("0004_hot_updates.sql", include_str!("../../migrations/postgres/0004_hot_updates.sql")),
     ("0005_children.sql", include_str!("../../migrations/postgres/0005_children.sql")),
+    ("0006_no_status_index.sql", include_str!("../../migrations/postgres/0006_no_status_index.sql")),
 ];
 
 /// The migrator of one backend's files.

@@ -314,7 +314,8 @@ impl Store {
     }
     /// Write final words of jobs `owner` still holds (others' are dropped: their lease expired
     /// and the job was handed to another worker).
-    pub async fn finish_batch(&self, items: &[Finish], now: i64, owner: &str) -> StoreResult<()> {
+    /// Commit workers' final words; whether any finished job is a fanned-out job's case.
+    pub async fn finish_batch(&self, items: &[Finish], now: i64, owner: &str) -> StoreResult<bool> {
         each!(self, s => s.finish_batch(items, now, owner).await)
     }
     pub async fn progress_batch(&self, items: &[(Uuid, f64, String)]) -> StoreResult<()> {

@@ -10,6 +10,11 @@
 //! * Identical in-flight submissions are decided by the unique partial index `jobs_in_flight`
 //!   (not an advisory lock: the index holds across every code path and survives crashes, and the
 //!   loser of the race simply reads the winner's row).
+//! * Statements on given running jobs (finish, progress, lease renewal) test the status as
+//!   `(status || '') = 'running'`: an expression no partial index's predicate matches, so the
+//!   planner looks the rows up by `id` instead of AND-ing that with a bitmap scan of every entry
+//!   of `jobs_in_flight` — dead ones included, which bitmap scans never mark (issue 46: ≈ 1 000
+//!   index entries read per tiny job under `cargo bench --bench scale`).
 
 use super::*;
 use sqlx::postgres::{PgListener, PgPool, PgPoolOptions, PgRow};
@@ -357,15 +362,16 @@ impl PgStore {
         Ok(jobs.into_iter().map(|(_, j)| j).collect())
     }
 
-    pub async fn finish_batch(&self, items: &[Finish], now: i64, owner: &str) -> StoreResult<()> {
+    /// Whether a finished job is a fanned-out job's case (its parent may move on).
+    pub async fn finish_batch(&self, items: &[Finish], now: i64, owner: &str) -> StoreResult<bool> {
         let r = self.finish_tx(items, now, owner).await;
         self.note(r)
     }
 
     /// Finish a batch in one statement: the terminal updates (guarded by the lease), the results of
     /// the succeeded ones, and a `finished:<id>` notification per finished job; re-queues (rare:
-    /// shutdown) follow in the same transaction.
-    async fn finish_tx(&self, items: &[Finish], now: i64, owner: &str) -> Result<(), sqlx::Error> {
+    /// shutdown) follow in the same transaction. Whether any finished job is a case.
+    async fn finish_tx(&self, items: &[Finish], now: i64, owner: &str) -> Result<bool, sqlx::Error> {
         let mut ids = Vec::new();
         let mut statuses = Vec::new();
         let mut errors: Vec<Option<String>> = Vec::new();
@@ -391,22 +397,24 @@ impl PgStore {
             bodies.push(result.map(|r| r.body.clone()));
         }
         let mut tx = self.pool.begin().await?;
+        let mut cases = false;
         if !ids.is_empty() {
             // Only the lease holder finishes a job: after a lost lease the job runs elsewhere.
-            sqlx::query(
+            let rows = sqlx::query(
                 "WITH u AS (SELECT * FROM UNNEST($1::text[], $2::text[], $3::text[], $4::text[], $5::bigint[], $6::bytea[]) \
                             AS u(id, status, error, encoding, size, body)), \
                  done AS (UPDATE jobs SET status = u.status, finished_at = $7, solved_by = jobs.lease_owner, lease_owner = NULL, error = u.error, \
                           progress = CASE WHEN u.status = 'succeeded' THEN 1 ELSE jobs.progress END, \
                           stage = CASE WHEN u.status = 'succeeded' THEN NULL ELSE jobs.stage END \
-                          FROM u WHERE jobs.id = ANY($1) AND jobs.id = u.id AND jobs.status = 'running' AND jobs.lease_owner = $8 \
+                          FROM u WHERE jobs.id = ANY($1) AND jobs.id = u.id AND (jobs.status || '') = 'running' AND jobs.lease_owner = $8 \
                           RETURNING jobs.id, jobs.status), \
                  stored AS (INSERT INTO job_results (job_id, encoding, size, body) \
                             SELECT u.id, u.encoding, u.size, u.body FROM u JOIN done ON done.id = u.id \
                             WHERE done.status = 'succeeded' \
                             ON CONFLICT (job_id) DO UPDATE SET encoding = EXCLUDED.encoding, size = EXCLUDED.size, \
                             body = EXCLUDED.body RETURNING job_id) \
-                 SELECT pg_notify($9, 'finished:' || done.id), (SELECT count(*) FROM stored) FROM done",
+                 SELECT pg_notify($9, 'finished:' || done.id), (SELECT count(*) FROM stored), \
+                        EXISTS (SELECT 1 FROM job_children c WHERE c.job_id = ANY($1)) FROM done",
             )
             .bind(&ids)
             .bind(&statuses)
@@ -419,12 +427,15 @@ impl PgStore {
             .bind(CHANNEL)
             .fetch_all(&mut *tx)
             .await?;
+            for row in &rows {
+                cases |= row.try_get::<bool, _>(2)?;
+            }
         }
         if !requeue.is_empty() {
             let n = sqlx::query(
                 "UPDATE jobs SET status = 'queued', started_at = NULL, progress = 0, stage = NULL, \
                  attempts = GREATEST(attempts - 1, 0), lease_owner = NULL, lease_until = NULL \
-                 WHERE id = ANY($1) AND status = 'running' AND lease_owner = $2",
+                 WHERE id = ANY($1) AND (status || '') = 'running' AND lease_owner = $2",
             )
             .bind(&requeue)
             .bind(owner)
@@ -435,7 +446,8 @@ impl PgStore {
                 sqlx::query("SELECT pg_notify($1, 'queued')").bind(CHANNEL).execute(&mut *tx).await?;
             }
         }
-        tx.commit().await
+        tx.commit().await?;
+        Ok(cases)
     }
 
     pub async fn progress_batch(&self, items: &[(Uuid, f64, String)]) -> StoreResult<()> {
@@ -445,7 +457,7 @@ impl PgStore {
         let r = sqlx::query(
             "UPDATE jobs SET progress = u.fraction, stage = u.stage \
              FROM UNNEST($1::text[], $2::float8[], $3::text[]) AS u(id, fraction, stage) \
-             WHERE jobs.id = ANY($1) AND jobs.id = u.id AND jobs.status = 'running'",
+             WHERE jobs.id = ANY($1) AND jobs.id = u.id AND (jobs.status || '') = 'running'",
         )
         .bind(ids)
         .bind(fractions)
@@ -534,7 +546,7 @@ impl PgStore {
         }
         let ids: Vec<String> = ids.iter().map(Uuid::to_string).collect();
         let rows = sqlx::query(
-            "UPDATE jobs SET lease_until = $1 WHERE lease_owner = $2 AND status = 'running' AND id = ANY($3) \
+            "UPDATE jobs SET lease_until = $1 WHERE lease_owner = $2 AND (status || '') = 'running' AND id = ANY($3) \
              RETURNING id, cancel_requested",
         )
         .bind(until)

@@ -34,23 +34,32 @@ impl Queue {
             }
             // A finished job must not be lost: retry until the database takes it.
             let mut delay = Duration::from_millis(50);
-            while let Err(e) = inner.store.finish_batch(&finishes, now_ms(), &inner.instance).await {
-                warn!(error = %e, "writing finished jobs failed; retrying");
+            let mut retried = false;
+            let cases = loop {
+                match inner.store.finish_batch(&finishes, now_ms(), &inner.instance).await {
+                    Ok(cases) => break cases,
+                    Err(e) => warn!(error = %e, "writing finished jobs failed; retrying"),
+                }
+                retried = true;
                 tokio::time::sleep(delay).await;
                 delay = (delay * 2).min(Duration::from_secs(5));
-            }
+            };
             // Fan-out: the parents of finished cases move on (the last case re-queues its parent).
-            // Beside the next claim, not before it.
-            let finished: Vec<Uuid> = done.iter().filter(|d| d.2 != JobStatus::Queued).map(|d| d.0).collect();
-            let queue = self.clone();
-            tokio::spawn(async move {
-                match queue.inner.store.release_parents(None, Some(&finished)).await {
-                    // SQLite has no notification: wake this instance's dispatcher.
-                    Ok(n) if n > 0 => queue.inner.wake.notify_one(),
-                    Ok(_) => {}
-                    Err(e) => warn!(error = %e, "moving the parents of finished cases failed (the expiry scan retries)"),
-                }
-            });
+            // Beside the next claim, not before it. On PostgreSQL skipped when no finished job is a
+            // case (a retried batch may have been committed by the failed attempt: not skipped
+            // then); SQLite's finish does not tell, and its release is a read when none is.
+            if !inner.store.is_shared() || cases || retried {
+                let finished: Vec<Uuid> = done.iter().filter(|d| d.2 != JobStatus::Queued).map(|d| d.0).collect();
+                let queue = self.clone();
+                tokio::spawn(async move {
+                    match queue.inner.store.release_parents(None, Some(&finished)).await {
+                        // SQLite has no notification: wake this instance's dispatcher.
+                        Ok(n) if n > 0 => queue.inner.wake.notify_one(),
+                        Ok(_) => {}
+                        Err(e) => warn!(error = %e, "moving the parents of finished cases failed (the expiry scan retries)"),
+                    }
+                });
+            }
             for (id, kind, status, wall, modelled) in done {
                 inner.running.lock().unwrap_or_else(|e| e.into_inner()).remove(&id);
                 let uncounted = {
