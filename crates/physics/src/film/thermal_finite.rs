@@ -20,6 +20,10 @@
 //!   thermal whole-contact traction at the calibration slip and follows the shear law's slip
 //!   dependence with the thermal viscosity reduction held around it: the stronger heating of
 //!   larger slips is not in the slope (stated in docs/seeds.md).
+//! * **Dwells.** Quasi-steady, the model is history-free: on a stretch of unchanged load and
+//!   shape (seed 000's base circle, 205 of 360°) the cycle reuses the previous angle's film while
+//!   the roller's entrainment stays within [`ENTRAINMENT_TOLERANCE`] (BENCHMARKS.md, "The 360-angle
+//!   thermal finite cycle": 146 of 377 films at 65×129).
 //! * A contact at rest (no entrainment) keeps the closed form, as [`super::Finite`].
 
 use super::closed_form::ClosedForm;
