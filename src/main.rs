@@ -320,28 +320,6 @@ fn serve(args: ServeArgs) -> ExitCode {
 }
 
 /// Print a problem as JSON on stderr and return `code`.
-/// Heap that `tribod run` faults in before the solve starts.
-const WARM_HEAP_BYTES: usize = 4 << 20;
-
-/// Fault in `bytes` of the main thread's heap and keep them (glibc trims no free heap below
-/// 256 MiB from here on), so that the one solve of `tribod run` — on this thread — finds warm
-/// pages as a server's worker does after its first job, instead of a page fault at the first touch
-/// of each 4 KiB of its arrays. Issue 46: the ROSS case's `meta.wall_time_seconds` was ≈ 1.45 ms
-/// in `tribod run` against 0.94–0.97 ms in a warm process (≈ 300 more page faults).
-fn warm_heap(bytes: usize) {
-    #[cfg(all(target_os = "linux", target_env = "gnu"))]
-    // SAFETY: mallopt only sets an allocator parameter; no pointer is passed.
-    unsafe {
-        libc::mallopt(libc::M_TRIM_THRESHOLD, 256 << 20);
-    }
-    // Blocks below glibc's mmap threshold (128 KiB) come from the heap; written (not calloc'd,
-    // which may skip fresh pages) so that each page is faulted now. Freed together, they merge
-    // back into the heap's top, which the threshold above keeps.
-    const BLOCK: usize = 64 << 10;
-    let blocks: Vec<Vec<u8>> = (0..bytes / BLOCK).map(|_| vec![1u8; BLOCK]).collect();
-    std::hint::black_box(&blocks);
-}
-
 fn fail(problem: &Problem, code: u8) -> ExitCode {
     eprintln!("{}", serde_json::to_string_pretty(problem).unwrap_or_default());
     ExitCode::from(code)
@@ -403,7 +381,6 @@ fn run(args: RunArgs) -> ExitCode {
         eprintln!("warning: /spec{}: {}", w.path, w.message);
     }
     tribod::jobs::warm_up();
-    warm_heap(WARM_HEAP_BYTES);
     let (outcome, _) = runner::run(prepared, &Silent);
     let value = match outcome {
         runner::Outcome::Succeeded(v) => v,
