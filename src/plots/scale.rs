@@ -19,10 +19,13 @@ pub fn multiple(unit: &str, max_abs: f64) -> (f64, String) {
     let Some((_, steps)) = MULTIPLES.iter().find(|(u, _)| *u == unit) else {
         return (1.0, if unit == "1" { String::new() } else { unit.to_string() });
     };
-    // The largest multiple that shows the largest value as 0.1 or more (0.3 µm, not 300 nm).
+    // The largest multiple that shows the largest value as 0.1 or more for films and pressures
+    // as tribologists quote them (0.3 µm, not 300 nm; 0.5 GPa), as 1 or more for the rest
+    // (129.7 W, not 0.1297 kW). The dashboard's `multipleFor` does the same.
+    let from = if matches!(unit, "m" | "Pa") { 0.1 } else { 1.0 };
     let mut pick = steps[0];
     for s in steps.iter() {
-        if max_abs >= 0.1 * s.0 {
+        if max_abs >= from * s.0 {
             pick = *s;
         }
     }
@@ -35,4 +38,20 @@ pub fn axis(name: &str, unit: &str, values: impl Iterator<Item = f64>) -> (f64, 
     let max_abs = values.filter(|v| v.is_finite()).fold(0.0f64, |m, v| m.max(v.abs()));
     let (factor, shown) = multiple(unit, max_abs);
     (factor, if shown.is_empty() { name.to_string() } else { format!("{name}, {shown}") })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::multiple;
+
+    /// Films and pressures read in a multiple from a tenth of it, the rest from one.
+    #[test]
+    fn films_and_pressures_from_a_tenth_the_rest_from_one() {
+        assert_eq!(multiple("m", 3e-7).1, "µm");
+        assert_eq!(multiple("Pa", 5e8).1, "GPa");
+        assert_eq!(multiple("W", 129.7).1, "W");
+        assert_eq!(multiple("W", 1297.0).1, "kW");
+        assert_eq!(multiple("N", 600.0).1, "N");
+        assert_eq!(multiple("1", 0.5).1, "");
+    }
 }

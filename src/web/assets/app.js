@@ -213,13 +213,19 @@ const MULTIPLES = {
   "s": [[1e-6, "µs"], [1e-3, "ms"], [1, "s"]],
 };
 
+// From which fraction of a multiple a value reads in it: films and pressures as tribologists
+// quote them (0.3 µm, not 300 nm; 0.5 GPa), forces, powers and the rest from one (129.7 W, not
+// 0.1297 kW).
+const EARLY_MULTIPLES = new Set(["m", "Pa"]);
+
 // The multiple of `unit` that suits a value of magnitude `v`: [factor, shown unit].
 function multipleFor(v, unit) {
   let pick = [1, unit === "1" ? "" : (unit || "")];
   const steps = MULTIPLES[unit];
   if (steps && Number.isFinite(v) && v !== 0) {
+    const from = EARLY_MULTIPLES.has(unit) ? 0.1 : 1;
     pick = steps[0];
-    for (const s of steps) if (Math.abs(v) >= 0.1 * s[0]) pick = s; // 0.3 µm, not 300 nm
+    for (const s of steps) if (Math.abs(v) >= from * s[0]) pick = s;
   }
   return pick;
 }
