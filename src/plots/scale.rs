@@ -39,19 +39,3 @@ pub fn axis(name: &str, unit: &str, values: impl Iterator<Item = f64>) -> (f64, 
     let (factor, shown) = multiple(unit, max_abs);
     (factor, if shown.is_empty() { name.to_string() } else { format!("{name}, {shown}") })
 }
-
-#[cfg(test)]
-mod tests {
-    use super::multiple;
-
-    /// Films and pressures read in a multiple from a tenth of it, the rest from one.
-    #[test]
-    fn films_and_pressures_from_a_tenth_the_rest_from_one() {
-        assert_eq!(multiple("m", 3e-7).1, "µm");
-        assert_eq!(multiple("Pa", 5e8).1, "GPa");
-        assert_eq!(multiple("W", 129.7).1, "W");
-        assert_eq!(multiple("W", 1297.0).1, "kW");
-        assert_eq!(multiple("N", 600.0).1, "N");
-        assert_eq!(multiple("1", 0.5).1, "");
-    }
-}

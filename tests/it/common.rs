@@ -48,7 +48,9 @@ pub async fn start_in(dir: tempfile::TempDir, cfg: ServeConfig) -> TestServer {
     let server = Server::start(cfg).await.expect("server starts");
     TestServer {
         base: format!("http://{}", server.addr),
-        client: reqwest::Client::new(),
+        // A server that never answers fails the test by name instead of hanging the suite (one
+        // run hung in `reliability::postgres::idempotency_key_makes_a_retried_post_safe`).
+        client: reqwest::Client::builder().read_timeout(Duration::from_secs(120)).build().expect("HTTP client"),
         server: Some(server),
         dir,
         db,

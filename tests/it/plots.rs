@@ -197,3 +197,16 @@ fn tribod_run_writes_the_plots_of_a_result() {
         assert!(svg.starts_with("<svg") && texts(&svg).iter().any(|t| t.contains("x, mm")), "{name}.svg");
     }
 }
+
+/// Axis and dashboard multiples: films and pressures read in a multiple from a tenth of it
+/// (0.3 µm, 0.5 GPa), forces, powers and the rest from one (129.7 W, not 0.1297 kW).
+#[test]
+fn films_and_pressures_from_a_tenth_the_rest_from_one() {
+    use tribod::plots::scale::multiple;
+    assert_eq!(multiple("m", 3e-7).1, "µm");
+    assert_eq!(multiple("Pa", 5e8).1, "GPa");
+    assert_eq!(multiple("W", 129.7).1, "W");
+    assert_eq!(multiple("W", 1297.0).1, "kW");
+    assert_eq!(multiple("N", 600.0).1, "N");
+    assert_eq!(multiple("1", 0.5).1, "");
+}
