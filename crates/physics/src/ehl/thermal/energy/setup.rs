@@ -31,8 +31,7 @@ pub(super) struct EnergyGrid<'a> {
     /// Surface velocities, m/s.
     pub(super) u1: f64,
     pub(super) u2: f64,
-    /// The film's conductivity and specific heat.
-    pub(super) kf: f64,
+    /// The film's specific heat.
     pub(super) cf: f64,
     /// Node depths of body 1 and body 2 from their surfaces, m.
     pub(super) z1: Vec<f64>,
@@ -55,6 +54,10 @@ pub(super) struct EnergyGrid<'a> {
     pub(super) p_peak: f64,
     /// The previous time step's field on these columns and the time step, s (transient).
     pub(super) old: Option<(TemperatureField, f64)>,
+    /// Each column's segment lengths between its nodes, m (`nn − 1` per column), and their
+    /// conductances `k / length`, W/(m²·K): fixed while the film's shape is.
+    pub(super) lengths: Vec<f64>,
+    pub(super) conductances: Vec<f64>,
 }
 
 impl<'a> EnergyGrid<'a> {
@@ -83,6 +86,9 @@ impl<'a> EnergyGrid<'a> {
                 }
             })
             .collect();
+        let (z1, z2) = (solid_depths(d, ns, pen(&bodies.body_1, u1)), solid_depths(d, ns, pen(&bodies.body_2, u2)));
+        let conductivity = [bodies.body_1.conductivity, bodies.film.conductivity, bodies.body_2.conductivity];
+        let (lengths, conductances) = segments(h, &z1, &z2, nz, conductivity);
         let old = input.previous.filter(|(f, dt)| f.film_points == nz && f.solid_points == ns && *dt > 0.0).map(|(f, dt)| (f.resampled(x), dt));
         Ok(EnergyGrid {
             x,
@@ -101,10 +107,9 @@ impl<'a> EnergyGrid<'a> {
             t0: input.inlet_temperature,
             u1,
             u2,
-            kf: bodies.film.conductivity,
             cf: bodies.film.specific_heat,
-            z1: solid_depths(d, ns, pen(&bodies.body_1, u1)),
-            z2: solid_depths(d, ns, pen(&bodies.body_2, u2)),
+            z1,
+            z2,
             rc1: bodies.body_1.density * bodies.body_1.specific_heat,
             rc2: bodies.body_2.density * bodies.body_2.specific_heat,
             compressive: lub.density_model == DensityModel::DowsonHigginson,
@@ -115,6 +120,8 @@ impl<'a> EnergyGrid<'a> {
             anderson: options.iteration == EnergyIteration::Anderson,
             p_peak: p.iter().fold(0.0f64, |m, &v| m.max(v)),
             old,
+            lengths,
+            conductances,
         })
     }
 
@@ -142,4 +149,33 @@ impl<'a> EnergyGrid<'a> {
     pub(super) fn node_temperature(&self, f: &TemperatureField, i: usize, j: usize) -> f64 {
         node_temperature(f, i, j, self.ns, self.nz, self.i_film0, self.i_film1)
     }
+}
+
+/// The segment lengths between the nodes of every column (body 1 from its depth, the film's
+/// `nz` uniform levels across `h`, body 2 to its depth) and their conductances, with the
+/// conductivities of body 1, the film and body 2.
+fn segments(h: &[f64], z1: &[f64], z2: &[f64], nz: usize, conductivity: [f64; 3]) -> (Vec<f64>, Vec<f64>) {
+    let ns = z1.len();
+    let nn = 2 * ns + nz - 2;
+    let (i_film0, i_film1) = (ns - 1, ns + nz - 2);
+    let mut pos = vec![0.0; nn];
+    let mut lengths = Vec::with_capacity(h.len() * (nn - 1));
+    let mut conductances = Vec::with_capacity(h.len() * (nn - 1));
+    for &hi in h {
+        let dz = hi / (nz - 1) as f64;
+        for k in 0..ns {
+            pos[ns - 1 - k] = -z1[k];
+            pos[i_film1 + k] = hi + z2[k];
+        }
+        for k in 0..nz {
+            pos[i_film0 + k] = dz * k as f64;
+        }
+        for seg in 0..nn - 1 {
+            let length = pos[seg + 1] - pos[seg];
+            let k = if seg < i_film0 { conductivity[0] } else if seg >= i_film1 { conductivity[2] } else { conductivity[1] };
+            lengths.push(length);
+            conductances.push(k / length);
+        }
+    }
+    (lengths, conductances)
 }
