@@ -185,7 +185,14 @@ fn fidelity_table(flat: &Value, roller: &Value) {
         let (t_ref, reference) = job(&reference_spec, 1);
         let closed_only = name.contains("Pan–Hamrock");
         // (fidelity, nodes, auto tolerance, Richardson extrapolation, repetitions)
-        let runs: Vec<(&str, usize, f64, bool, usize)> = if closed_only {
+        // `fidelity nodes=a,b,…`: only those Richardson grids (the accuracy ladder's rungs).
+        let ladder: Option<Vec<usize>> = std::env::args().find_map(|a| a.strip_prefix("nodes=").map(|l| l.split(',').filter_map(|n| n.parse().ok()).collect()));
+        let runs: Vec<(&str, usize, f64, bool, usize)> = if let Some(l) = &ladder {
+            if closed_only {
+                continue;
+            }
+            l.iter().map(|&n| ("accurate", n, 0.0, true, 1)).collect()
+        } else if closed_only {
             vec![("fast", 0, 0.0, true, 5), ("auto", 192, 0.05, true, 2), ("auto", 192, 0.25, true, 2), ("auto", 192, 1.0, true, 2)]
         } else {
             vec![
@@ -225,7 +232,7 @@ fn fidelity_table(flat: &Value, roller: &Value) {
                 _ => fidelity.to_string(),
             };
             println!(
-                "| {name} | {label} | {} | {numerical} | {:.2} | {:.1} % ({:.1} %) | {:.1} % ({:.1} %) | {} |",
+                "| {name} | {label} | {} | {numerical} | {:.2} | {:.2} % ({:.2} %) | {:.2} % ({:.2} %) | {} |",
                 if nodes > 0 { nodes.to_string() } else { "–".into() },
                 ms / 1e3,
                 100.0 * max_rel(&fc.0, &fc.1),

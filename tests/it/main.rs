@@ -9,6 +9,7 @@
 mod common;
 mod in_process;
 
+mod accuracy_targets;
 mod cam_stability;
 mod cam_optimisation;
 mod cam_synthesis;

@@ -7,6 +7,7 @@
 
 use crate::in_process::{example, run, Failure};
 use serde_json::{json, Value};
+use tribod::jobs::kinds::accuracy::LineFamily;
 use tribod::jobs::kinds::common::{composite_sigma, AsperitySpec, EhlSpec, LubricantSpec};
 use tribod::physics::film::{model_for, ClosedForm, ContactInput, ContactShape, Fidelity, FilmFormula, FilmModel, FilmSolution};
 use tribod::physics::friction::{AsperityFriction, AsperityModel, Rheology, Roughness, TractionLaw};
@@ -85,7 +86,7 @@ impl Nose {
 }
 
 fn accurate() -> Box<dyn FilmModel> {
-    model_for(Fidelity::Accurate, ClosedForm { formula: FilmFormula::PanHamrock, squeeze: false }, EhlSpec::default().to_physics())
+    model_for(Fidelity::Accurate, ClosedForm { formula: FilmFormula::PanHamrock, squeeze: false }, EhlSpec { nodes: Some(192), ..EhlSpec::default() }.to_physics(LineFamily::Roller))
 }
 
 const PINS: [f64; 8] = [0.001, 0.004, 0.008, 0.013, 0.02, 0.03, 0.045, 0.06];

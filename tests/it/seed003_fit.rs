@@ -63,7 +63,7 @@ fn print_fit(label: &str, f: &CamFit) {
 fn run_fit(weights: [f64; STATEMENT_COUNT], span: bool, label: &str) -> CamFit {
     let spec = template_spec();
     let template = spec.cycle_spec().unwrap();
-    let model = spec.film_model(spec.ehl.to_physics());
+    let model = spec.film_model(spec.ehl.to_physics(spec.line_family()));
     let setup = FitSetup { template: &template, model: model.as_ref(), face_radius: Some(0.017) };
     let opts = options(weights, span);
     let starts = grid_starts(&setup, &opts, 3, 4);

@@ -252,6 +252,10 @@ pub struct CamPointResult {
     pub fidelity_used: Fidelity,
     #[schema(value_type = crate::jobs::schemas::FilmModelIdDoc)]
     pub film_model: FilmModelId,
+    /// The numerical line model's settings as they ran (fidelity `accurate` or `auto`, line
+    /// geometry; see `cam_cycle`'s `ehl_settings`).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub ehl_settings: Option<super::accuracy::EhlSettingsUsed>,
     /// E*, Pa.
     pub contact_modulus: f64,
     pub rows: Vec<PointRow>,
@@ -265,7 +269,7 @@ pub struct CamPointResult {
 
 impl Kind for CamPoint {
     const NAME: &'static str = "cam_point";
-    const SOLVER_VERSION: &'static str = "cam_point-14";
+    const SOLVER_VERSION: &'static str = "cam_point-15";
     const DESCRIPTION: &'static str = "Cam–roller contact at a fixed operating point: roller slip against \
         roller–pin friction, minimum cam–roller friction to drive the roller, gross-sliding threshold (seed 001).";
     const TABLES: &'static [&'static str] = &["rows"];
@@ -332,7 +336,7 @@ impl Kind for CamPoint {
         // One film solve at rolling, then a torque balance per pin friction value: each
         // evaluates the traction at trial slips (the thermal model's traction table solves the
         // energy equation at a few slips per balance).
-        let film = super::film_cost::film_cost(spec.fidelity, &spec.ehl, super::film_cost::ContactKind::Line);
+        let film = super::film_cost::film_cost(spec.fidelity, &spec.ehl, super::film_cost::ContactKind::Line(super::accuracy::LineFamily::Roller));
         // 0.5 ms a balance (the seed 001 points: 30 balances in 15 ms); the numerical mixed
         // film's Greenwood–Tripp traction over its nodes 7 ms (seed001_mixed_nose).
         let rough = spec.cam.roughness_rq > 0.0 || spec.follower.roughness_rq > 0.0;
@@ -359,10 +363,10 @@ fn solve_point(spec: &CamPointSpec, observer: &dyn Observer) -> Result<CamPointR
         spec.cam.material.elastic(),
         spec.follower.material.elastic(),
     );
-    let mut settings = spec.ehl.to_physics();
+    let mut settings = spec.ehl.to_physics(super::accuracy::LineFamily::Roller);
     // A point analysis has no heat properties of its own: steel cam and follower (seed 000).
     let steel = crate::physics::thermal::ThermalSolid::STEEL;
-    settings.thermal = spec.ehl.thermal.map(|t| t.settings(steel, steel));
+    settings.thermal = spec.ehl.thermal_settings(steel, steel);
     if let (Some(f), Some(c)) = (settings.finite.as_mut(), spec.roller.crown) {
         f.crown = Some(crate::physics::geometry::Crown { length: spec.contact_length, middle_length: c.middle_length, crown_height: c.crown_height, end_radius: c.end_radius, profile: c.profile.into() });
     }
@@ -464,6 +468,7 @@ fn solve_point(spec: &CamPointSpec, observer: &dyn Observer) -> Result<CamPointR
     Ok(CamPointResult {
         fidelity_used: spec.fidelity,
         film_model: rolling.model,
+        ehl_settings: (spec.fidelity != Fidelity::Fast && spec.ehl.geometry.is_line()).then(|| spec.ehl.settings_used(super::accuracy::LineFamily::Roller)),
         contact_modulus: es,
         rows,
         summary,

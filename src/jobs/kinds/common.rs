@@ -4,17 +4,18 @@
 
 use crate::jobs::quantity as Q;
 use crate::jobs::kind::{Limits, Validation};
+use crate::jobs::kinds::accuracy::{self, LineFamily};
 use crate::physics::contact::Elastic;
 use crate::physics::ehl::{EhlOptions, Extrapolation};
 use crate::physics::ehl::twod::Ehl2dOptions;
-use crate::physics::film::{AccurateSettings, ClosedForm, FilmFormula, FiniteSettings};
+use crate::physics::film::{AccurateSettings, ClosedForm, FilmFormula, FiniteSettings, ThermalFilmSettings};
 use crate::physics::thermal::ThermalSolid;
 use crate::physics::friction::{AsperityFriction, AsperityModel, Rheology, Roughness, TractionLaw};
 use crate::physics::lubricant::{DensityModel, Lubricant, ViscosityModel};
 use serde::{Deserialize, Serialize};
 use utoipa::ToSchema;
 
-pub use super::thermal_spec::{EhlThermalSpec, DEFAULT_CARRY_TOLERANCE};
+pub use super::thermal_spec::EhlThermalSpec;
 
 /// Elastic constants of one body (every kind: `hertz` bodies, `ehl_point` bodies, the cam and
 /// follower of the cam kinds). Default: steel.
@@ -446,9 +447,9 @@ pub fn composite_sigma(a: f64, b: f64) -> f64 {
     (a * a + b * b).sqrt()
 }
 
-fn default_ehl_nodes() -> usize {
-    192
-}
+/// The line grid with the thermal model when the spec gives none (its grid error is not in
+/// the accuracy ladder).
+const THERMAL_DEFAULT_NODES: usize = 192;
 fn default_ehl_tolerance() -> f64 {
     1e-6
 }
@@ -467,13 +468,23 @@ fn default_auto_tolerance() -> f64 {
 #[serde(deny_unknown_fields)]
 pub struct EhlSpec {
     /// Grid nodes per contact (graded towards the inlet and the exit constriction), 32 … the
-    /// server's grid limit; with Richardson extrapolation the fine grid. Default 192: measured on
-    /// the seed 000 roller cycle against the grid-converged cycle, central and minimum films within
-    /// 0.5–0.6 % on average and 1.9 % at worst with Richardson extrapolation (3 % / 4.4 % on one
-    /// grid); 385 for ≈ 0.1–0.2 % on average (BENCHMARKS.md, "Film models"). The cost grows like
-    /// nodes^1.5–2.
-    #[serde(default = "default_ehl_nodes")]
-    pub nodes: usize,
+    /// server's grid limit; with Richardson extrapolation the fine grid. Absent: the cheapest
+    /// grid whose measured error is within `accuracy` (isothermal line model at the default 1 %: 288
+    /// for a roller, 208 for a flat-faced follower; `kinds::accuracy`), and 192 with `thermal`
+    /// (its grid error is not in the ladder). Measured on 720-angle cycles against the
+    /// grid-converged cycle, the largest central or minimum film error at any angle, roller /
+    /// flat: 96 nodes 4.8 / 5.1 %, 128 2.7 / 2.3 %, 192 1.9 / 1.2 %, 208 1.5 / 0.83 %, 288 0.88 /
+    /// 0.39 %, 384 0.40 / 0.20 % (BENCHMARKS.md, "Accuracy targets"). The cost grows like nodes^1.5–2.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub nodes: Option<usize>,
+    /// The films' target accuracy: the largest relative error of the central and the minimum
+    /// film at any angle against the grid-converged solution, 0.001–0.2. Default 0.01. It chooses
+    /// what the spec leaves out: `nodes` (line model) and `thermal.carry_tolerance` (the thermal
+    /// cycle's key points), from tables measured on seed 000's roller and seed 003's flat
+    /// follower; `result.ehl_settings` reports the choice and its measured error. Not the
+    /// Newton iteration's `tolerance`; the 2-D model's grid has its own check (`grid_tolerance`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub accuracy: Option<f64>,
     /// Residual tolerance of the Newton iteration (relative load balance and scaled Reynolds
     /// residual). Default 1e-6.
     #[serde(default = "default_ehl_tolerance")]
@@ -579,7 +590,8 @@ pub enum ExtrapolationSpec {
 impl Default for EhlSpec {
     fn default() -> Self {
         EhlSpec {
-            nodes: default_ehl_nodes(),
+            nodes: None,
+            accuracy: None,
             tolerance: default_ehl_tolerance(),
             max_iterations: default_ehl_iterations(),
             auto_tolerance: default_auto_tolerance(),
@@ -595,10 +607,49 @@ impl Default for EhlSpec {
 }
 
 impl EhlSpec {
-    pub fn to_physics(&self) -> AccurateSettings {
+    /// The films' target accuracy ([`accuracy::DEFAULT_ACCURACY`] unless the spec says).
+    pub fn accuracy(&self) -> f64 {
+        self.accuracy.unwrap_or(accuracy::DEFAULT_ACCURACY)
+    }
+
+    /// The line model's grid for a contact of `family`: the spec's, else chosen by the accuracy
+    /// (192 with `thermal`).
+    pub fn nodes(&self, family: LineFamily) -> usize {
+        match (self.nodes, &self.thermal) {
+            (Some(n), _) => n,
+            (None, Some(_)) => THERMAL_DEFAULT_NODES,
+            (None, None) => accuracy::line_rung(self.accuracy(), family).nodes,
+        }
+    }
+
+    /// The thermal line model's settings with the heat properties of body 1 and body 2 (key
+    /// points by the spec's `carry_tolerance`, else by the accuracy).
+    pub fn thermal_settings(&self, body_1: ThermalSolid, body_2: ThermalSolid) -> Option<ThermalFilmSettings> {
+        self.thermal.map(|t| t.settings(body_1, body_2, self.accuracy()))
+    }
+
+    /// What the numerical film ran with, for the result (`ehl_settings`).
+    pub fn settings_used(&self, family: LineFamily) -> accuracy::EhlSettingsUsed {
+        let nodes = self.nodes(family);
+        let carry = self.thermal.and_then(|t| t.key_point_tolerance(self.accuracy()));
+        let grid_error = accuracy::rung_error(nodes, self.extrapolation == ExtrapolationSpec::Richardson && self.thermal.is_none(), family);
+        let carry_error = match carry {
+            Some(c) => accuracy::carry_error(c),
+            None => Some(0.0),
+        };
+        accuracy::EhlSettingsUsed {
+            accuracy: self.accuracy(),
+            nodes,
+            nodes_from_accuracy: self.nodes.is_none() && self.thermal.is_none(),
+            carry_tolerance: carry,
+            measured_error: grid_error.zip(carry_error).map(|(g, c)| g + c),
+        }
+    }
+
+    pub fn to_physics(&self, family: LineFamily) -> AccurateSettings {
         AccurateSettings {
             options: EhlOptions {
-                nodes: self.nodes,
+                nodes: self.nodes(family),
                 tolerance: self.tolerance,
                 max_iterations: self.max_iterations,
                 ..EhlOptions::default()
@@ -626,8 +677,15 @@ impl EhlSpec {
     }
 
     pub fn validate(&self, path: &str, limits: &Limits, v: &mut Validation) {
-        v.count_in_range(&format!("{path}/nodes"), self.nodes, 32, 1 << 16);
-        v.limit(&format!("{path}/nodes"), self.nodes, limits.max_grid_nodes, "the number of EHL grid nodes");
+        if let Some(nodes) = self.nodes {
+            v.count_in_range(&format!("{path}/nodes"), nodes, 32, 1 << 16);
+        }
+        if let Some(a) = self.accuracy {
+            v.in_range(&format!("{path}/accuracy"), a, 0.001, 0.2);
+        }
+        // The finer of the two ladders' choices (the family is the kind's to say).
+        let nodes = self.nodes(LineFamily::Roller).max(self.nodes(LineFamily::FlatFaced));
+        v.limit(&format!("{path}/nodes"), nodes, limits.max_grid_nodes, "the number of EHL grid nodes");
         v.in_range(&format!("{path}/tolerance"), self.tolerance, 1e-13, 1e-2);
         v.count_in_range(&format!("{path}/max_iterations"), self.max_iterations as usize, 1, 1000);
         v.in_range(&format!("{path}/auto_tolerance"), self.auto_tolerance, 0.0, 10.0);

@@ -1,6 +1,7 @@
 //! The work and memory model of one cam contact's film by the model a spec's `fidelity` and
 //! `ehl` block select (`physics::film::model_for`): shared by `cam_point`, `cam_cycle` and `wear`.
 
+use super::accuracy::LineFamily;
 use super::common::{EhlGeometry, EhlSpec, ExtrapolationSpec};
 use crate::jobs::cost;
 use crate::physics::film::Fidelity;
@@ -9,7 +10,7 @@ use crate::physics::film::Fidelity;
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum ContactKind {
     /// A line contact (flat-faced or roller follower).
-    Line,
+    Line(LineFamily),
     /// A point contact (spherical follower): the line model leaves it to the closed form.
     Point,
 }
@@ -104,10 +105,8 @@ pub fn film_cost(fidelity: Fidelity, ehl: &EhlSpec, contact: ContactKind) -> Fil
             None => finite,
         };
     }
-    if contact == ContactKind::Point {
-        return closed;
-    }
-    let n = ehl.nodes;
+    let ContactKind::Line(family) = contact else { return closed };
+    let n = ehl.nodes(family);
     let line = FilmCost {
         cold: cost::ehl_line_seconds(n, ehl.extrapolation == ExtrapolationSpec::Richardson),
         isothermal: cost::ehl_line_seconds(n, ehl.extrapolation == ExtrapolationSpec::Richardson),
@@ -126,7 +125,7 @@ pub fn film_cost(fidelity: Fidelity, ehl: &EhlSpec, contact: ContactKind) -> Fil
             thermal_angle: cost::ehl_thermal_angle_seconds(n, t.film_points, t.solid_points),
             // Key points: the full solve only where the conditions moved by more than the
             // carry tolerance.
-            thermal_share: t.key_point_tolerance().map_or(1.0, |c| (KEY_SHARE_AT_005 * (0.05 / c).powf(0.7)).clamp(0.01, 1.0)),
+            thermal_share: t.key_point_tolerance(ehl.accuracy()).map_or(1.0, |c| (KEY_SHARE_AT_005 * (0.05 / c).powf(0.7)).clamp(0.01, 1.0)),
             // The temperature fields of the film and the solids at each angle.
             kept_per_angle: line.kept_per_angle + 6.0 * 8.0 * (t.film_points + 2 * t.solid_points) as f64 * n as f64,
             path: "/ehl/thermal",

@@ -1,5 +1,6 @@
 //! One module per job kind: its spec, its output, validation and the call into `physics`.
 
+pub mod accuracy;
 pub mod bearing;
 pub mod bearing_optimisation;
 pub mod common;

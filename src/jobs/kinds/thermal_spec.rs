@@ -34,16 +34,15 @@ pub struct EhlThermalSpec {
     /// conditions jump (by more than this within the film's transit time), the full transient
     /// solve runs at every angle until its film agrees with the carried one to a tenth of this.
     /// The carried traction's closed-form ratio is calibrated between each key and the one
-    /// before it. 0 (the full solve at every angle) or 0.001–0.5. Default (line geometry) 0.05: seed 000 at 720
-    /// angles keeps films and slide-to-roll ratio within 1 % of the every-angle cycle in 1.3–1.6 s
-    /// against its 8–10.5 s (release; BENCHMARKS.md, "Thermal EHL").
+    /// before it. 0 (the full solve at every angle) or 0.001–0.5. Default (line geometry): the
+    /// loosest whose measured error is within `ehl.accuracy` — 0.05 at the default 1 %: seed 000
+    /// at 720 angles keeps films and slide-to-roll ratio within 0.94 % of the every-angle cycle in
+    /// 0.8 s against its 8–10.5 s (release; BENCHMARKS.md, "Thermal EHL"); 0.02 within 0.76 %,
+    /// 0.01 within 0.31 %, 0.1 within 3.3 %.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub carry_tolerance: Option<f64>,
 }
 
-/// The thermal cycle's key-point tolerance unless the spec says otherwise (issue 46: the fast
-/// path is the default; films and SRR within 1 % of the every-angle cycle on seed 000).
-pub const DEFAULT_CARRY_TOLERANCE: f64 = 0.05;
 
 
 fn default_oil_conductivity() -> f64 {
@@ -61,19 +60,20 @@ fn default_solid_points() -> usize {
 
 impl EhlThermalSpec {
     /// The model's settings with the heat properties of body 1 (the cam, `z = 0`) and body 2.
-    pub fn settings(&self, body_1: ThermalSolid, body_2: ThermalSolid) -> ThermalFilmSettings {
+    pub fn settings(&self, body_1: ThermalSolid, body_2: ThermalSolid, accuracy: f64) -> ThermalFilmSettings {
         ThermalFilmSettings {
             options: ThermalOptions { film_points: self.film_points, solid_points: self.solid_points, ..ThermalOptions::default() },
             bodies: ThermalBodies { film: FilmHeat { conductivity: self.oil_conductivity, specific_heat: self.oil_specific_heat }, body_1, body_2 },
-            carry_tolerance: self.key_point_tolerance(),
+            carry_tolerance: self.key_point_tolerance(accuracy),
         }
     }
 
-    /// The key points' tolerance the line model uses: the spec's, [`DEFAULT_CARRY_TOLERANCE`]
-    /// when absent, none (every angle) at 0.
-    pub fn key_point_tolerance(&self) -> Option<f64> {
+    /// The key points' tolerance the line model uses: the spec's, else the loosest whose
+    /// measured error is within the films' `accuracy` (0.05 at the default 1 %), none (every
+    /// angle) at 0.
+    pub fn key_point_tolerance(&self, accuracy: f64) -> Option<f64> {
         match self.carry_tolerance {
-            None => Some(DEFAULT_CARRY_TOLERANCE),
+            None => crate::jobs::kinds::accuracy::carry_tolerance(accuracy),
             Some(t) if t == 0.0 => None,
             Some(t) => Some(t),
         }

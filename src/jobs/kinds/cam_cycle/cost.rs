@@ -19,7 +19,7 @@ pub fn cycle_cost_with(spec: &CamCycleSpec, per_angle_fast: f64) -> Cost {
     let needs = spec.needs();
     let contact = match spec.follower {
         FollowerSpec::Spherical { .. } => ContactKind::Point,
-        FollowerSpec::Roller { .. } | FollowerSpec::FlatFaced { .. } => ContactKind::Line,
+        FollowerSpec::Roller { .. } | FollowerSpec::FlatFaced { .. } => ContactKind::Line(spec.line_family()),
     };
     let mut seconds = cost::JOB_OVERHEAD_S + cost::CYCLE_BASE_S + angles * per_angle_fast;
     let mut bytes = cost::CAM_BASE_BYTES + angles * 2_000.0;

@@ -422,6 +422,11 @@ pub struct CamCycleResult {
     #[serde(skip_serializing_if = "Option::is_none")]
     #[schema(value_type = Option<crate::jobs::schemas::FilmModelIdDoc>)]
     pub film_model: Option<FilmModelId>,
+    /// The numerical line model's settings as they ran (fidelity `accurate` or `auto`, line
+    /// geometry): `ehl.accuracy`, the grid it chose where the spec gave none, the thermal key
+    /// points, and the largest film error measured with them on the reference cycles.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub ehl_settings: Option<crate::jobs::kinds::accuracy::EhlSettingsUsed>,
     /// E* = 1/Σ(1−ν²)/E, Pa (Hertz, Greenwood–Tripp).
     pub contact_modulus: f64,
     /// E' = 2E*, Pa (film formulas).

@@ -19,6 +19,8 @@ use crate::physics::valvetrain::{
     NestedSpring, PeriodicResponse, Pushrod, RunUpResponse, Seat, ValveTrain,
 };
 use crate::physics::{Observer, SolveError};
+use crate::jobs::kinds::accuracy::LineFamily;
+use crate::physics::film::Fidelity;
 use std::f64::consts::PI;
 
 fn deg(x: f64) -> f64 {
@@ -38,6 +40,14 @@ impl CamCycleSpec {
             temperature: has(CamOutput::Temperature),
         }
         .closed(self.is_roller())
+    }
+
+    /// The line contact whose measured accuracy ladder chooses the grid (`kinds::accuracy`).
+    pub fn line_family(&self) -> LineFamily {
+        match self.follower {
+            FollowerSpec::FlatFaced { .. } => LineFamily::FlatFaced,
+            FollowerSpec::Roller { .. } | FollowerSpec::Spherical { .. } => LineFamily::Roller,
+        }
     }
 
     fn is_roller(&self) -> bool {
@@ -412,8 +422,8 @@ pub(super) fn solve_spec(spec: &CamCycleSpec, observer: &dyn Observer) -> Result
         }
         _ => None,
     };
-    let mut settings = spec.ehl.to_physics();
-    settings.thermal = spec.ehl.thermal.map(|t| t.settings(spec.thermal.cam.to_physics(), spec.thermal.follower.to_physics()));
+    let mut settings = spec.ehl.to_physics(spec.line_family());
+    settings.thermal = spec.ehl.thermal_settings(spec.thermal.cam.to_physics(), spec.thermal.follower.to_physics());
     if let Some(f) = settings.finite.as_mut() {
         // The roller's crown (the whole roller: the cam's width does not cut a crowned contact,
         // as in the slice model), or a point contact's grid.
@@ -437,6 +447,7 @@ pub(super) fn solve_spec(spec: &CamCycleSpec, observer: &dyn Observer) -> Result
     let mut result = CamCycleResult {
         fidelity_used: spec.fidelity,
         film_model: single_film_model(&out.series),
+        ehl_settings: (needs.film && spec.fidelity != Fidelity::Fast && spec.ehl.geometry.is_line()).then(|| spec.ehl.settings_used(spec.line_family())),
         contact_modulus: es,
         effective_modulus: 2.0 * es,
         angles: spec.angles,

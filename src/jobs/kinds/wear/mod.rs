@@ -59,7 +59,7 @@ pub const STANDARD_CYCLE_WORK: usize = 720 * 192;
 
 impl Kind for Wear {
     const NAME: &'static str = "wear";
-    const SOLVER_VERSION: &'static str = "wear-8";
+    const SOLVER_VERSION: &'static str = "wear-9";
     const DESCRIPTION: &'static str = "Cam wear over running hours: Archard wear over the cam cycle (asperity load share in \
         mixed lubrication, roller slip) with worn-profile evolution, or seed 004's method (model irgashev).";
     const TABLES: &'static [&'static str] = &["series", "rows", "history", "follower_face"];
@@ -115,7 +115,7 @@ impl Kind for Wear {
                     );
                     // Budget of numerical work: every angle of every cycle may run the EHL solver.
                     let cycles = spec.max_updates().saturating_add(1);
-                    let work = (spec.cycle.angles as f64) * (cycles as f64) * (spec.cycle.ehl.nodes as f64);
+                    let work = (spec.cycle.angles as f64) * (cycles as f64) * (spec.cycle.ehl.nodes(spec.cycle.line_family()) as f64);
                     let units = (work / STANDARD_CYCLE_WORK as f64).ceil().min(1e15) as usize;
                     v.limit(
                         "/cycle/ehl/nodes",
@@ -125,7 +125,7 @@ impl Kind for Wear {
                             "the numerical EHL work of this run — {} angles × {cycles} cycles (at most {NUMERICAL_UPDATE_FACTOR} × the planned \
                              updates, plus the unworn cycle) × {} nodes, counted in cycles of 720 angles × 192 nodes (fewer nodes, \
                              angles or updates reduce it)",
-                            spec.cycle.angles, spec.cycle.ehl.nodes
+                            spec.cycle.angles, spec.cycle.ehl.nodes(spec.cycle.line_family())
                         ),
                     );
                 }

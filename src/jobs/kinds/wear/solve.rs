@@ -47,7 +47,7 @@ pub(super) fn solve_archard(spec: &WearSpec, observer: &dyn Observer) -> Result<
     let cc = spec.cycle_spec();
     let cycle = cc.cycle_spec()?;
     let needs = cc.needs();
-    let model = spec.cycle.film_model(spec.cycle.ehl.to_physics());
+    let model = spec.cycle.film_model(spec.cycle.ehl.to_physics(spec.cycle.line_family()));
     let mut cycle = cycle;
     if spec.cycle.fidelity != Fidelity::Fast {
         // The wear model reads the numerical film's pressure at every angle where it ran.
