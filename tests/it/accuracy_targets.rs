@@ -49,6 +49,10 @@ fn the_default_accuracy_picks_the_cheapest_measured_grid_per_follower() {
     let own = settings("cam_cycle", &with(flat(8), |s| s["ehl"] = json!({"nodes": 100, "accuracy": 0.002})));
     assert_eq!((own["nodes"].as_u64(), own["nodes_from_accuracy"].as_bool()), (Some(100), Some(false)));
     assert!(own.get("measured_error").is_none(), "{own}");
+    // A single point keeps 192 nodes unless the spec asks (the ladders were measured on cycles).
+    let nose = with(example("seed001_nose_point"), |s| s["fidelity"] = "accurate".into());
+    assert_eq!(settings("cam_point", &nose)["nodes"], 192);
+    assert_eq!(settings("cam_point", &with(nose, |s| s["ehl"] = json!({"accuracy": 0.01})))["nodes"], 288);
     // `fast` runs no numerical film: nothing to report.
     let fast = run("cam_cycle", &with(flat(8), |s| s["fidelity"] = "fast".into())).unwrap();
     assert!(fast.get("ehl_settings").is_none());

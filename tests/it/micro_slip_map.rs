@@ -86,7 +86,7 @@ impl Nose {
 }
 
 fn accurate() -> Box<dyn FilmModel> {
-    model_for(Fidelity::Accurate, ClosedForm { formula: FilmFormula::PanHamrock, squeeze: false }, EhlSpec { nodes: Some(192), ..EhlSpec::default() }.to_physics(LineFamily::Roller))
+    model_for(Fidelity::Accurate, ClosedForm { formula: FilmFormula::PanHamrock, squeeze: false }, EhlSpec::default().for_point().to_physics(LineFamily::Roller))
 }
 
 const PINS: [f64; 8] = [0.001, 0.004, 0.008, 0.013, 0.02, 0.03, 0.045, 0.06];

@@ -336,7 +336,7 @@ impl Kind for CamPoint {
         // One film solve at rolling, then a torque balance per pin friction value: each
         // evaluates the traction at trial slips (the thermal model's traction table solves the
         // energy equation at a few slips per balance).
-        let film = super::film_cost::film_cost(spec.fidelity, &spec.ehl, super::film_cost::ContactKind::Line(super::accuracy::LineFamily::Roller));
+        let film = super::film_cost::film_cost(spec.fidelity, &spec.ehl.for_point(), super::film_cost::ContactKind::Line(super::accuracy::LineFamily::Roller));
         // 0.5 ms a balance (the seed 001 points: 30 balances in 15 ms); the numerical mixed
         // film's Greenwood–Tripp traction over its nodes 7 ms (seed001_mixed_nose).
         let rough = spec.cam.roughness_rq > 0.0 || spec.follower.roughness_rq > 0.0;
@@ -363,7 +363,7 @@ fn solve_point(spec: &CamPointSpec, observer: &dyn Observer) -> Result<CamPointR
         spec.cam.material.elastic(),
         spec.follower.material.elastic(),
     );
-    let mut settings = spec.ehl.to_physics(super::accuracy::LineFamily::Roller);
+    let mut settings = spec.ehl.for_point().to_physics(super::accuracy::LineFamily::Roller);
     // A point analysis has no heat properties of its own: steel cam and follower (seed 000).
     let steel = crate::physics::thermal::ThermalSolid::STEEL;
     settings.thermal = spec.ehl.thermal_settings(steel, steel);
@@ -468,7 +468,7 @@ fn solve_point(spec: &CamPointSpec, observer: &dyn Observer) -> Result<CamPointR
     Ok(CamPointResult {
         fidelity_used: spec.fidelity,
         film_model: rolling.model,
-        ehl_settings: (spec.fidelity != Fidelity::Fast && spec.ehl.geometry.is_line()).then(|| spec.ehl.settings_used(super::accuracy::LineFamily::Roller)),
+        ehl_settings: (spec.fidelity != Fidelity::Fast && spec.ehl.geometry.is_line()).then(|| spec.ehl.for_point().settings_used(super::accuracy::LineFamily::Roller)),
         contact_modulus: es,
         rows,
         summary,

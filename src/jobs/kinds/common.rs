@@ -450,6 +450,9 @@ pub fn composite_sigma(a: f64, b: f64) -> f64 {
 /// The line grid with the thermal model when the spec gives none (its grid error is not in
 /// the accuracy ladder).
 const THERMAL_DEFAULT_NODES: usize = 192;
+
+/// A single contact point's grid when the spec gives neither `nodes` nor `accuracy`.
+const POINT_DEFAULT_NODES: usize = 192;
 fn default_ehl_tolerance() -> f64 {
     1e-6
 }
@@ -620,6 +623,18 @@ impl EhlSpec {
             (None, Some(_)) => THERMAL_DEFAULT_NODES,
             (None, None) => accuracy::line_rung(self.accuracy(), family).nodes,
         }
+    }
+
+    /// A single contact point's settings (`cam_point`): the ladders were measured on cycles'
+    /// films, and the seed 001 nose's friction balance (film rolling resistance against asperity
+    /// friction) moves by up to 10 % between 192 and 288 nodes, so a point keeps its 192 nodes
+    /// unless the spec gives `nodes` or `accuracy` (BENCHMARKS.md, "Accuracy targets").
+    pub fn for_point(&self) -> EhlSpec {
+        let nodes = match (self.nodes, self.accuracy) {
+            (None, None) => Some(POINT_DEFAULT_NODES),
+            (n, _) => n,
+        };
+        EhlSpec { nodes, ..*self }
     }
 
     /// The thermal line model's settings with the heat properties of body 1 and body 2 (key
