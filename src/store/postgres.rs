@@ -39,6 +39,11 @@ pub struct PgStore {
     /// progress): committed with `synchronous_commit = off`, so they do not wait for a WAL flush.
     /// A lost claim or renewal leaves the job queued or its lease expiring: it runs again.
     relaxed: PgPool,
+    /// The writer's finishes with the next claims ([`finish`]): durable commits, statements
+    /// prepared once per connection and planned at each call (`plan_cache_mode =
+    /// force_custom_plan`: a generic plan cached while the table was small scans it sequentially
+    /// for ever after — found with auto_explain under `cargo bench --bench scale`).
+    finishes: PgPool,
     /// Submissions for the batch writer (one multi-row insert, one commit, per batch).
     inserts: mpsc::Sender<(NewJob, oneshot::Sender<StoreResult<i64>>)>,
     events: broadcast::Sender<StoreEvent>,
@@ -77,7 +82,19 @@ impl PgStore {
             .acquire_timeout(ACQUIRE_TIMEOUT)
             .after_connect(|conn, _| {
                 Box::pin(async move {
-                    sqlx::query("SET synchronous_commit = off").execute(conn).await?;
+                    sqlx::query("SET synchronous_commit = off").execute(&mut *conn).await?;
+                    sqlx::query("SET plan_cache_mode = force_custom_plan").execute(conn).await?;
+                    Ok(())
+                })
+            })
+            .connect(url)
+            .await?;
+        let finishes = PgPoolOptions::new()
+            .max_connections(2)
+            .acquire_timeout(ACQUIRE_TIMEOUT)
+            .after_connect(|conn, _| {
+                Box::pin(async move {
+                    sqlx::query("SET plan_cache_mode = force_custom_plan").execute(conn).await?;
                     Ok(())
                 })
             })
@@ -90,7 +107,7 @@ impl PgStore {
         let last_write_failure = Arc::new(AtomicI64::new(0));
         let (inserts, queue) = mpsc::channel(4 * INSERT_BATCH);
         tokio::spawn(insert_batches(pool.clone(), queue, last_write_failure.clone()));
-        Ok(PgStore { pool, relaxed, inserts, events, last_write_failure })
+        Ok(PgStore { pool, relaxed, finishes, inserts, events, last_write_failure })
     }
 
     pub fn events(&self) -> broadcast::Receiver<StoreEvent> {
@@ -115,6 +132,7 @@ impl PgStore {
 
     pub async fn close(&self) {
         self.relaxed.close().await;
+        self.finishes.close().await;
         self.pool.close().await;
     }
 
@@ -337,9 +355,7 @@ impl PgStore {
                                    FOR UPDATE SKIP LOCKED)) \
              RETURNING id, kind, spec, attempts, due_at, seq",
         )
-        // Planned at each call: a plan cached while the table was small scans it sequentially
-        // for ever after (found with auto_explain under `cargo bench --bench scale`).
-        .persistent(false)
+        // Prepared once, planned at each call (the relaxed pool's `plan_cache_mode`; see `finishes`).
         .bind(now)
         .bind(owner)
         .bind(lease_until)

@@ -29,6 +29,10 @@ pub struct SqliteStore {
     writer: SqlitePool,
     /// Unix ms of the last failed write (0: none) — `/readyz` reports a recent failure.
     last_write_failure: std::sync::Arc<std::sync::atomic::AtomicI64>,
+    /// Whether the file may hold children of a fanned-out job (any row of `job_children` at open
+    /// or added since; one process owns the file): until then no finished job is a case, and the
+    /// writer does not look for parents to move on after each finish.
+    children_seen: std::sync::Arc<std::sync::atomic::AtomicBool>,
     reader: SqlitePool,
     /// Accepted jobs on their way to the group-commit task ([`insert_batches`]).
     inserts: tokio::sync::mpsc::Sender<PendingInsert>,
@@ -172,7 +176,9 @@ impl SqliteStore {
         let (inserts, rx) = tokio::sync::mpsc::channel(4 * INSERT_BATCH);
         let last_write_failure = std::sync::Arc::new(std::sync::atomic::AtomicI64::new(0));
         tokio::spawn(insert_batches(writer.clone(), rx, last_write_failure.clone()));
-        Ok(SqliteStore { writer, reader, inserts, last_write_failure })
+        let seen: bool = sqlx::query_scalar("SELECT EXISTS (SELECT 1 FROM job_children)").fetch_one(&reader).await?;
+        let children_seen = std::sync::Arc::new(std::sync::atomic::AtomicBool::new(seen));
+        Ok(SqliteStore { writer, reader, inserts, last_write_failure, children_seen })
     }
 
     /// Can the database be read *and written* (for `/readyz`)? Fails while any write failed in the
@@ -338,11 +344,14 @@ impl SqliteStore {
     }
 
     /// Write several workers' final words and claim up to `next.n` jobs in one transaction.
-    /// `cases` stays false: the caller looks for parents to move on itself (on a reader).
+    /// `cases`: whether the file may hold any fanned-out job's case (read after the commit; a case
+    /// linked just before the commit is linked after setting the flag); the caller then looks for
+    /// the parents to move on (on a reader).
     pub async fn finish_batch(&self, items: &[Finish], now: i64, owner: &str, next: ClaimNext) -> StoreResult<Finished> {
         let mut conn = self.writer.acquire().await?;
         let result = finish_on(&mut conn, items, now, owner, next).await;
-        self.settle(conn, result).await.map(|claimed| Finished { cases: false, claimed })
+        let claimed = self.settle(conn, result).await?;
+        Ok(Finished { cases: self.children_seen.load(std::sync::atomic::Ordering::SeqCst), claimed })
     }
 
     /// Record progress of running jobs (one transaction).

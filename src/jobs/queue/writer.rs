@@ -56,10 +56,10 @@ impl Queue {
             let cases = finished.cases;
             self.take_claimed(finished.claimed);
             // Fan-out: the parents of finished cases move on (the last case re-queues its parent).
-            // Beside the next claim, not before it. On PostgreSQL skipped when no finished job is a
-            // case (a retried batch may have been committed by the failed attempt: not skipped
-            // then); SQLite's finish does not tell, and its release is a read when none is.
-            if !inner.store.is_shared() || cases || retried {
+            // Beside the next claim, not before it. Skipped when no finished job is a case
+            // (PostgreSQL: told by the finish; SQLite: none while the file holds no case at all; a
+            // retried batch may have been committed by the failed attempt: not skipped then).
+            if cases || retried {
                 let finished: Vec<Uuid> = done.iter().filter(|d| d.2 != JobStatus::Queued).map(|d| d.0).collect();
                 let queue = self.clone();
                 tokio::spawn(async move {

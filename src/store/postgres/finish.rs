@@ -97,9 +97,8 @@ impl PgStore {
             bodies.push(result.map(|r| r.body.clone()));
         }
         let claim = if requeue.is_empty() { next.n } else { 0 };
+        // On `finishes`: prepared once per connection, planned at each call.
         let q = sqlx::query(FINISH_AND_CLAIM)
-            // Planned at each call, as the claim (see `PgStore::claim`).
-            .persistent(false)
             .bind(&ids)
             .bind(&statuses)
             .bind(&errors)
@@ -112,9 +111,9 @@ impl PgStore {
             .bind(claim as i64)
             .bind(next.lease_until);
         if requeue.is_empty() {
-            return q.fetch_all(&self.pool).await;
+            return q.fetch_all(&self.finishes).await;
         }
-        let mut tx = self.pool.begin().await?;
+        let mut tx = self.finishes.begin().await?;
         let rows = if ids.is_empty() { Vec::new() } else { q.fetch_all(&mut *tx).await? };
         let n = sqlx::query(
             "UPDATE jobs SET status = 'queued', started_at = NULL, progress = 0, stage = NULL, \
