@@ -97,7 +97,7 @@ impl PgStore {
             bodies.push(result.map(|r| r.body.clone()));
         }
         let claim = if requeue.is_empty() { next.n } else { 0 };
-        // On `finishes`: prepared once per connection, planned at each call.
+        // On `finishes`: prepared and planned once per connection, every table read by an index.
         let q = sqlx::query(FINISH_AND_CLAIM)
             .bind(&ids)
             .bind(&statuses)
