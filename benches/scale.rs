@@ -12,6 +12,9 @@
 //!   instance (`serve --workers 0`) and 1 or 2 `tribod worker --workers 1` instances: jobs/s and
 //!   the speed-up of the second worker.
 //!
+//! `TRIBOD_BENCH_LOG_STATEMENTS=1` logs every statement of the PostgreSQL rows in the server's log
+//! (with its duration), to count round trips by kind.
+//!
 //! A third argument runs only the rows whose name contains it: `sqlite`, `pg1`, `pg2`, `pg4`,
 //! `heavy`. Client, servers and PostgreSQL share the machine's cores: on 2 cores the numbers are a floor.
 
@@ -285,6 +288,13 @@ async fn main() {
             ] {
                 conn.execute(sqlx::AssertSqlSafe(sql)).await.unwrap();
             }
+            let _ = conn.close().await;
+        }
+        if std::env::var_os("TRIBOD_BENCH_LOG_STATEMENTS").is_some() {
+            // Diagnosis: the server log gets every statement of this database (count them by kind).
+            let mut conn = sqlx::PgConnection::connect(&admin).await.unwrap();
+            let sql = format!("ALTER DATABASE \"{name}\" SET log_min_duration_statement = 0");
+            conn.execute(sqlx::AssertSqlSafe(sql)).await.unwrap();
             let _ = conn.close().await;
         }
         let instances: Vec<Instance> = (0..n).map(|_| serve(&url, &[])).collect();

@@ -170,6 +170,23 @@ pub enum Finish {
     Requeue { id: Uuid },
 }
 
+/// The jobs to claim in the commit that finishes a batch: at most `n` (the worker slots the batch
+/// frees), leased until `lease_until` (unix ms).
+#[derive(Debug, Clone, Copy, Default)]
+pub struct ClaimNext {
+    pub n: usize,
+    pub lease_until: i64,
+}
+
+/// What [`Store::finish_batch`] did besides finishing.
+#[derive(Debug, Default)]
+pub struct Finished {
+    /// Some finished job is a fanned-out job's case (its parent may move on).
+    pub cases: bool,
+    /// The jobs claimed for the freed slots, in virtual-deadline order.
+    pub claimed: Vec<ClaimedJob>,
+}
+
 /// Filters of `GET /v1/jobs`.
 #[derive(Debug, Clone, Default)]
 pub struct ListFilter {
@@ -312,11 +329,12 @@ impl Store {
     pub async fn claim(&self, n: usize, now: i64, owner: &str, lease_until: i64) -> StoreResult<Vec<ClaimedJob>> {
         each!(self, s => s.claim(n, now, owner, lease_until).await)
     }
-    /// Write final words of jobs `owner` still holds (others' are dropped: their lease expired
-    /// and the job was handed to another worker).
-    /// Commit workers' final words; whether any finished job is a fanned-out job's case.
-    pub async fn finish_batch(&self, items: &[Finish], now: i64, owner: &str) -> StoreResult<bool> {
-        each!(self, s => s.finish_batch(items, now, owner).await)
+    /// Commit workers' final words on jobs `owner` still holds (others' are dropped: their lease
+    /// expired and the job was handed to another worker), and in the same commit claim up to
+    /// `next.n` queued jobs for `owner` (none when the batch re-queues a job: shutdown); whether
+    /// any finished job is a fanned-out job's case, and the jobs claimed.
+    pub async fn finish_batch(&self, items: &[Finish], now: i64, owner: &str, next: ClaimNext) -> StoreResult<Finished> {
+        each!(self, s => s.finish_batch(items, now, owner, next).await)
     }
     pub async fn progress_batch(&self, items: &[(Uuid, f64, String)]) -> StoreResult<()> {
         each!(self, s => s.progress_batch(items).await)

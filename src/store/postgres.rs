@@ -25,6 +25,9 @@ use std::time::Duration;
 use tokio::sync::{broadcast, mpsc, oneshot};
 use tracing::warn;
 
+mod finish;
+use finish::claimed_from_rows;
+
 /// The `LISTEN/NOTIFY` channel of tribod's events.
 pub const CHANNEL: &str = "tribod_events";
 
@@ -36,6 +39,13 @@ pub struct PgStore {
     /// progress): committed with `synchronous_commit = off`, so they do not wait for a WAL flush.
     /// A lost claim or renewal leaves the job queued or its lease expiring: it runs again.
     relaxed: PgPool,
+    /// The writer's finishes with the next claims ([`finish`]): durable commits; one statement,
+    /// prepared and planned once per connection (`plan_cache_mode = force_generic_plan`: planning
+    /// it took ≈ 0.45 ms a call) with `enable_seqscan = off`, so that its plan, made while the
+    /// table may be empty, reads every table through an index (by id, the queue's partial index in
+    /// deadline order) and never scans the grown table (a generic plan cached while the table was
+    /// small did: found with auto_explain under `cargo bench --bench scale`).
+    finishes: PgPool,
     /// Submissions for the batch writer (one multi-row insert, one commit, per batch).
     inserts: mpsc::Sender<(NewJob, oneshot::Sender<StoreResult<i64>>)>,
     events: broadcast::Sender<StoreEvent>,
@@ -74,7 +84,20 @@ impl PgStore {
             .acquire_timeout(ACQUIRE_TIMEOUT)
             .after_connect(|conn, _| {
                 Box::pin(async move {
-                    sqlx::query("SET synchronous_commit = off").execute(conn).await?;
+                    sqlx::query("SET synchronous_commit = off").execute(&mut *conn).await?;
+                    sqlx::query("SET plan_cache_mode = force_custom_plan").execute(conn).await?;
+                    Ok(())
+                })
+            })
+            .connect(url)
+            .await?;
+        let finishes = PgPoolOptions::new()
+            .max_connections(2)
+            .acquire_timeout(ACQUIRE_TIMEOUT)
+            .after_connect(|conn, _| {
+                Box::pin(async move {
+                    sqlx::query("SET plan_cache_mode = force_generic_plan").execute(&mut *conn).await?;
+                    sqlx::query("SET enable_seqscan = off").execute(conn).await?;
                     Ok(())
                 })
             })
@@ -87,7 +110,7 @@ impl PgStore {
         let last_write_failure = Arc::new(AtomicI64::new(0));
         let (inserts, queue) = mpsc::channel(4 * INSERT_BATCH);
         tokio::spawn(insert_batches(pool.clone(), queue, last_write_failure.clone()));
-        Ok(PgStore { pool, relaxed, inserts, events, last_write_failure })
+        Ok(PgStore { pool, relaxed, finishes, inserts, events, last_write_failure })
     }
 
     pub fn events(&self) -> broadcast::Receiver<StoreEvent> {
@@ -112,6 +135,7 @@ impl PgStore {
 
     pub async fn close(&self) {
         self.relaxed.close().await;
+        self.finishes.close().await;
         self.pool.close().await;
     }
 
@@ -334,120 +358,16 @@ impl PgStore {
                                    FOR UPDATE SKIP LOCKED)) \
              RETURNING id, kind, spec, attempts, due_at, seq",
         )
-        // Planned at each call: a plan cached while the table was small scans it sequentially
-        // for ever after (found with auto_explain under `cargo bench --bench scale`).
-        .persistent(false)
+        // Prepared once, planned at each call (the relaxed pool's `plan_cache_mode =
+        // force_custom_plan`: a generic plan cached while the table was small scans it
+        // sequentially for ever after — found with auto_explain under `cargo bench --bench scale`).
         .bind(now)
         .bind(owner)
         .bind(lease_until)
         .bind(n as i64)
         .fetch_all(&self.relaxed)
         .await;
-        let rows = self.note(rows)?;
-        let mut jobs = rows
-            .iter()
-            .map(|r| {
-                Ok((
-                    (r.try_get::<i64, _>(4)?, r.try_get::<i64, _>(5)?),
-                    ClaimedJob {
-                        id: parse_uuid(&r.try_get::<String, _>(0)?)?,
-                        kind: r.try_get(1)?,
-                        spec: r.try_get(2)?,
-                        attempts: r.try_get(3)?,
-                    },
-                ))
-            })
-            .collect::<StoreResult<Vec<_>>>()?;
-        jobs.sort_by_key(|(order, _)| *order);
-        Ok(jobs.into_iter().map(|(_, j)| j).collect())
-    }
-
-    /// Whether a finished job is a fanned-out job's case (its parent may move on).
-    pub async fn finish_batch(&self, items: &[Finish], now: i64, owner: &str) -> StoreResult<bool> {
-        let r = self.finish_tx(items, now, owner).await;
-        self.note(r)
-    }
-
-    /// Finish a batch in one statement: the terminal updates (guarded by the lease), the results of
-    /// the succeeded ones, and a `finished:<id>` notification per finished job; re-queues (rare:
-    /// shutdown) follow in the same transaction. Whether any finished job is a case.
-    async fn finish_tx(&self, items: &[Finish], now: i64, owner: &str) -> Result<bool, sqlx::Error> {
-        let mut ids = Vec::new();
-        let mut statuses = Vec::new();
-        let mut errors: Vec<Option<String>> = Vec::new();
-        let mut encodings: Vec<Option<String>> = Vec::new();
-        let mut sizes: Vec<Option<i64>> = Vec::new();
-        let mut bodies: Vec<Option<Vec<u8>>> = Vec::new();
-        let mut requeue = Vec::new();
-        for item in items {
-            let (id, status, error, result) = match item {
-                Finish::Succeeded { id, result } => (id, "succeeded", None, Some(result)),
-                Finish::Failed { id, error } => (id, "failed", Some(error.clone()), None),
-                Finish::Canceled { id } => (id, "canceled", None, None),
-                Finish::Requeue { id } => {
-                    requeue.push(id.to_string());
-                    continue;
-                }
-            };
-            ids.push(id.to_string());
-            statuses.push(status);
-            errors.push(error);
-            encodings.push(result.map(|r| r.encoding.to_string()));
-            sizes.push(result.map(|r| r.size as i64));
-            bodies.push(result.map(|r| r.body.clone()));
-        }
-        let mut tx = self.pool.begin().await?;
-        let mut cases = false;
-        if !ids.is_empty() {
-            // Only the lease holder finishes a job: after a lost lease the job runs elsewhere.
-            let rows = sqlx::query(
-                "WITH u AS (SELECT * FROM UNNEST($1::text[], $2::text[], $3::text[], $4::text[], $5::bigint[], $6::bytea[]) \
-                            AS u(id, status, error, encoding, size, body)), \
-                 done AS (UPDATE jobs SET status = u.status, finished_at = $7, solved_by = jobs.lease_owner, lease_owner = NULL, error = u.error, \
-                          progress = CASE WHEN u.status = 'succeeded' THEN 1 ELSE jobs.progress END, \
-                          stage = CASE WHEN u.status = 'succeeded' THEN NULL ELSE jobs.stage END \
-                          FROM u WHERE jobs.id = ANY($1) AND jobs.id = u.id AND (jobs.status || '') = 'running' AND jobs.lease_owner = $8 \
-                          RETURNING jobs.id, jobs.status), \
-                 stored AS (INSERT INTO job_results (job_id, encoding, size, body) \
-                            SELECT u.id, u.encoding, u.size, u.body FROM u JOIN done ON done.id = u.id \
-                            WHERE done.status = 'succeeded' \
-                            ON CONFLICT (job_id) DO UPDATE SET encoding = EXCLUDED.encoding, size = EXCLUDED.size, \
-                            body = EXCLUDED.body RETURNING job_id) \
-                 SELECT pg_notify($9, 'finished:' || done.id), (SELECT count(*) FROM stored), \
-                        EXISTS (SELECT 1 FROM job_children c WHERE c.job_id = ANY($1)) FROM done",
-            )
-            .bind(&ids)
-            .bind(&statuses)
-            .bind(&errors)
-            .bind(&encodings)
-            .bind(&sizes)
-            .bind(&bodies)
-            .bind(now)
-            .bind(owner)
-            .bind(CHANNEL)
-            .fetch_all(&mut *tx)
-            .await?;
-            for row in &rows {
-                cases |= row.try_get::<bool, _>(2)?;
-            }
-        }
-        if !requeue.is_empty() {
-            let n = sqlx::query(
-                "UPDATE jobs SET status = 'queued', started_at = NULL, progress = 0, stage = NULL, \
-                 attempts = GREATEST(attempts - 1, 0), lease_owner = NULL, lease_until = NULL \
-                 WHERE id = ANY($1) AND (status || '') = 'running' AND lease_owner = $2",
-            )
-            .bind(&requeue)
-            .bind(owner)
-            .execute(&mut *tx)
-            .await?
-            .rows_affected();
-            if n > 0 {
-                sqlx::query("SELECT pg_notify($1, 'queued')").bind(CHANNEL).execute(&mut *tx).await?;
-            }
-        }
-        tx.commit().await?;
-        Ok(cases)
+        Ok(claimed_from_rows(&self.note(rows)?, 0)?)
     }
 
     pub async fn progress_batch(&self, items: &[(Uuid, f64, String)]) -> StoreResult<()> {

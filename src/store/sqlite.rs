@@ -29,6 +29,10 @@ pub struct SqliteStore {
     writer: SqlitePool,
     /// Unix ms of the last failed write (0: none) — `/readyz` reports a recent failure.
     last_write_failure: std::sync::Arc<std::sync::atomic::AtomicI64>,
+    /// Whether the file may hold children of a fanned-out job (any row of `job_children` at open
+    /// or added since; one process owns the file): until then no finished job is a case, and the
+    /// writer does not look for parents to move on after each finish.
+    children_seen: std::sync::Arc<std::sync::atomic::AtomicBool>,
     reader: SqlitePool,
     /// Accepted jobs on their way to the group-commit task ([`insert_batches`]).
     inserts: tokio::sync::mpsc::Sender<PendingInsert>,
@@ -172,7 +176,9 @@ impl SqliteStore {
         let (inserts, rx) = tokio::sync::mpsc::channel(4 * INSERT_BATCH);
         let last_write_failure = std::sync::Arc::new(std::sync::atomic::AtomicI64::new(0));
         tokio::spawn(insert_batches(writer.clone(), rx, last_write_failure.clone()));
-        Ok(SqliteStore { writer, reader, inserts, last_write_failure })
+        let seen: bool = sqlx::query_scalar("SELECT EXISTS (SELECT 1 FROM job_children)").fetch_one(&reader).await?;
+        let children_seen = std::sync::Arc::new(std::sync::atomic::AtomicBool::new(seen));
+        Ok(SqliteStore { writer, reader, inserts, last_write_failure, children_seen })
     }
 
     /// Can the database be read *and written* (for `/readyz`)? Fails while any write failed in the
@@ -333,43 +339,19 @@ impl SqliteStore {
             return Ok(Vec::new());
         }
         let mut conn = self.writer.acquire().await?;
-        let rows = sqlx::query(
-            "UPDATE jobs SET status = 'running', started_at = ?, attempts = attempts + 1, \
-             progress = 0, stage = NULL, lease_owner = ?, lease_until = ? \
-             WHERE seq IN (SELECT seq FROM jobs WHERE status = 'queued' ORDER BY due_at, seq LIMIT ?) \
-             RETURNING id, kind, spec, attempts, due_at, seq",
-        )
-        .bind(now)
-        .bind(owner)
-        .bind(lease_until)
-        .bind(n as i64)
-        .fetch_all(&mut *conn)
-        .await;
-        let rows = self.settle(conn, rows.map_err(StoreError::from)).await?;
-        let mut jobs = rows
-            .iter()
-            .map(|r| {
-                Ok((
-                    (r.try_get::<i64, _>(4)?, r.try_get::<i64, _>(5)?),
-                    ClaimedJob {
-                        id: parse_uuid(&r.try_get::<String, _>(0)?)?,
-                        kind: r.try_get(1)?,
-                        spec: r.try_get(2)?,
-                        attempts: r.try_get(3)?,
-                    },
-                ))
-            })
-            .collect::<StoreResult<Vec<_>>>()?;
-        jobs.sort_by_key(|(order, _)| *order);
-        Ok(jobs.into_iter().map(|(_, j)| j).collect())
+        let result = claim_on(&mut conn, n, now, owner, lease_until).await;
+        self.settle(conn, result).await
     }
 
-    /// Write several workers' final words in one transaction. `false`: no fan-out on SQLite, so
-    /// no finished job is a case.
-    pub async fn finish_batch(&self, items: &[Finish], now: i64, owner: &str) -> StoreResult<bool> {
+    /// Write several workers' final words and claim up to `next.n` jobs in one transaction.
+    /// `cases`: whether the file may hold any fanned-out job's case (read after the commit; a case
+    /// linked just before the commit is linked after setting the flag); the caller then looks for
+    /// the parents to move on (on a reader).
+    pub async fn finish_batch(&self, items: &[Finish], now: i64, owner: &str, next: ClaimNext) -> StoreResult<Finished> {
         let mut conn = self.writer.acquire().await?;
-        let result = finish_on(&mut conn, items, now, owner).await;
-        self.settle(conn, result).await.map(|()| false)
+        let result = finish_on(&mut conn, items, now, owner, next).await;
+        let claimed = self.settle(conn, result).await?;
+        Ok(Finished { cases: self.children_seen.load(std::sync::atomic::Ordering::SeqCst), claimed })
     }
 
     /// Record progress of running jobs (one transaction).
@@ -518,7 +500,42 @@ impl SqliteStore {
     }
 }
 
-async fn finish_on(conn: &mut SqliteConnection, items: &[Finish], now: i64, owner: &str) -> StoreResult<()> {
+/// Claim up to `n` queued jobs in virtual-deadline order (on the writer, in or out of a
+/// transaction).
+async fn claim_on(conn: &mut SqliteConnection, n: usize, now: i64, owner: &str, lease_until: i64) -> StoreResult<Vec<ClaimedJob>> {
+    let rows = sqlx::query(
+        "UPDATE jobs SET status = 'running', started_at = ?, attempts = attempts + 1, \
+         progress = 0, stage = NULL, lease_owner = ?, lease_until = ? \
+         WHERE seq IN (SELECT seq FROM jobs WHERE status = 'queued' ORDER BY due_at, seq LIMIT ?) \
+         RETURNING id, kind, spec, attempts, due_at, seq",
+    )
+    .bind(now)
+    .bind(owner)
+    .bind(lease_until)
+    .bind(n as i64)
+    .fetch_all(&mut *conn)
+    .await?;
+    let mut jobs = rows
+        .iter()
+        .map(|r| {
+            Ok((
+                (r.try_get::<i64, _>(4)?, r.try_get::<i64, _>(5)?),
+                ClaimedJob {
+                    id: parse_uuid(&r.try_get::<String, _>(0)?)?,
+                    kind: r.try_get(1)?,
+                    spec: r.try_get(2)?,
+                    attempts: r.try_get(3)?,
+                },
+            ))
+        })
+        .collect::<StoreResult<Vec<_>>>()?;
+    jobs.sort_by_key(|(order, _)| *order);
+    Ok(jobs.into_iter().map(|(_, j)| j).collect())
+}
+
+/// Finish `items` and claim up to `next.n` jobs (none when a job goes back to the queue: shutdown)
+/// in one transaction; the jobs claimed.
+async fn finish_on(conn: &mut SqliteConnection, items: &[Finish], now: i64, owner: &str, next: ClaimNext) -> StoreResult<Vec<ClaimedJob>> {
     let mut tx = conn.begin().await?;
     for item in items {
         // Only the lease holder finishes a job: after a lost lease the job runs elsewhere.
@@ -561,8 +578,10 @@ async fn finish_on(conn: &mut SqliteConnection, items: &[Finish], now: i64, owne
                 .await?;
         }
     }
+    let requeue = items.iter().any(|i| matches!(i, Finish::Requeue { .. }));
+    let claimed = if next.n > 0 && !requeue { claim_on(&mut tx, next.n, now, owner, next.lease_until).await? } else { Vec::new() };
     tx.commit().await?;
-    Ok(())
+    Ok(claimed)
 }
 
 async fn progress_on(conn: &mut SqliteConnection, items: &[(Uuid, f64, String)]) -> StoreResult<()> {

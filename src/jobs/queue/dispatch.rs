@@ -21,24 +21,7 @@ impl Queue {
                 match inner.store.claim(free, now, &inner.instance, lease_until).await {
                     Ok(jobs) => {
                         claimed_all = jobs.len() == free;
-                        // Cases of a fan-out (and parents back to be assembled) were admitted
-                        // with their sweep: not counted in the backlog.
-                        let n = {
-                            let set = inner.uncounted.lock().unwrap_or_else(|e| e.into_inner());
-                            jobs.iter().filter(|j| !set.contains(&j.id)).count() as i64
-                        };
-                        if n > 0 {
-                            let depth = inner.backlog.fetch_sub(n, Ordering::Relaxed) - n;
-                            if depth < 0 {
-                                // Claimed case jobs of a fan-out, which the backlog does not
-                                // count (their sweep was counted): not a credit for more jobs.
-                                inner.backlog.fetch_max(0, Ordering::Relaxed);
-                            }
-                            inner.metrics.queue_depth.set(depth.max(0));
-                        }
-                        for job in jobs {
-                            self.spawn(job);
-                        }
+                        self.take_claimed(jobs);
                     }
                     Err(e) => warn!(error = %e, "claiming jobs failed; retrying"),
                 }
@@ -48,6 +31,29 @@ impl Queue {
             }
             // Woken by a submission or a finished job; the timeout is a safety net only.
             let _ = tokio::time::timeout(Duration::from_secs(2), notified).await;
+        }
+    }
+
+    /// Count claimed jobs out of the backlog and start them (each takes a worker slot).
+    pub(super) fn take_claimed(&self, jobs: Vec<crate::store::ClaimedJob>) {
+        let inner = &self.inner;
+        // Cases of a fan-out (and parents back to be assembled) were admitted with their sweep:
+        // not counted in the backlog.
+        let n = {
+            let set = inner.uncounted.lock().unwrap_or_else(|e| e.into_inner());
+            jobs.iter().filter(|j| !set.contains(&j.id)).count() as i64
+        };
+        if n > 0 {
+            let depth = inner.backlog.fetch_sub(n, Ordering::Relaxed) - n;
+            if depth < 0 {
+                // Claimed case jobs of a fan-out, which the backlog does not count (their sweep
+                // was counted): not a credit for more jobs.
+                inner.backlog.fetch_max(0, Ordering::Relaxed);
+            }
+            inner.metrics.queue_depth.set(depth.max(0));
+        }
+        for job in jobs {
+            self.spawn(job);
         }
     }
 

@@ -2,6 +2,7 @@
 //! fair-scheduling ratios, then wake waiters and the dispatcher.
 
 use super::*;
+use crate::store::ClaimNext;
 
 impl Queue {
     pub(super) async fn writer(self, mut rx: mpsc::UnboundedReceiver<Event>) {
@@ -32,23 +33,33 @@ impl Queue {
             if finishes.is_empty() {
                 continue;
             }
+            // The slots this batch frees are refilled in its commit (the dispatcher never sees
+            // them free: `active` still counts the finished jobs until the claimed ones started).
+            // Not on a retry: a failed attempt may have committed its claim, which then comes
+            // back to the queue when its lease expires (as any lost claim).
+            let freed = done.iter().filter(|d| d.2 != JobStatus::Queued).count();
+            let refill = if inner.claiming.load(Ordering::Relaxed) { freed } else { 0 };
             // A finished job must not be lost: retry until the database takes it.
             let mut delay = Duration::from_millis(50);
             let mut retried = false;
-            let cases = loop {
-                match inner.store.finish_batch(&finishes, now_ms(), &inner.instance).await {
-                    Ok(cases) => break cases,
+            let finished = loop {
+                let now = now_ms();
+                let next = ClaimNext { n: if retried { 0 } else { refill }, lease_until: now + inner.config.lease.as_millis() as i64 };
+                match inner.store.finish_batch(&finishes, now, &inner.instance, next).await {
+                    Ok(finished) => break finished,
                     Err(e) => warn!(error = %e, "writing finished jobs failed; retrying"),
                 }
                 retried = true;
                 tokio::time::sleep(delay).await;
                 delay = (delay * 2).min(Duration::from_secs(5));
             };
+            let cases = finished.cases;
+            self.take_claimed(finished.claimed);
             // Fan-out: the parents of finished cases move on (the last case re-queues its parent).
-            // Beside the next claim, not before it. On PostgreSQL skipped when no finished job is a
-            // case (a retried batch may have been committed by the failed attempt: not skipped
-            // then); SQLite's finish does not tell, and its release is a read when none is.
-            if !inner.store.is_shared() || cases || retried {
+            // Beside the next claim, not before it. Skipped when no finished job is a case
+            // (PostgreSQL: told by the finish; SQLite: none while the file holds no case at all; a
+            // retried batch may have been committed by the failed attempt: not skipped then).
+            if cases || retried {
                 let finished: Vec<Uuid> = done.iter().filter(|d| d.2 != JobStatus::Queued).map(|d| d.0).collect();
                 let queue = self.clone();
                 tokio::spawn(async move {

@@ -17,6 +17,8 @@ impl SqliteStore {
     }
 
     pub(crate) async fn add_children(&self, parent: Uuid, children: &[Child]) -> StoreResult<()> {
+        // Before the rows exist: a finish committed after them sees the flag.
+        self.children_seen.store(true, std::sync::atomic::Ordering::SeqCst);
         let mut conn = self.writer.acquire().await?;
         let result = async {
             let mut tx = conn.begin().await?;
