@@ -7,7 +7,8 @@
 //! crowned roller at the cam nose (`-- roller`). Times are the best of a few repetitions, one
 //! thread for the solver's own work (faer's sparse LU may use the rayon pool).
 //!
-//! `-- cycle [angles=360] [nx=65] [ny=129] [stride=30] [reference] [cycle-only] [steady] [auto]`:
+//! `-- cycle [angles=360] [nx=65] [ny=129] [stride=30] [reference] [cycle-only] [steady] [auto]
+//! [dump=FILE] [ref=FILE]`:
 //! the seed 000 roller cycle (`examples/seed000_roller_accurate.json`) with `ehl.geometry: finite`
 //! through the `cam_cycle` kind (with the squeeze term; `steady`: `ehl.squeeze: false`; `auto`:
 //! `fidelity: auto`) — wall time, Newton steps per angle, warm/cold solves; then the film model
@@ -183,6 +184,7 @@ fn cycle(args: &[String]) {
         let peak = if edge[i].is_finite() { format!("{:.3} GPa", edge[i] * 1e-9) } else { "none".to_string() };
         println!("  {what} (angle {i}): load {:.1} N, u_e {:.3} m/s, R_x {:.3} mm, h_c {:.4} µm, h_min {:.4} µm at y = {:.2} mm, edge peak {peak}", load[i], ue[i], rx[i] * 1e3, hc[i] * 1e6, hm[i] * 1e6, ymin[i] * 1e3);
     }
+    dump_and_compare(args, &out);
     grids(args, &load, &ue, &rx, imax, inose, ibase);
     // `cycle-only`: stop here (the counters and the cycle's time only).
     if args.iter().any(|a| a == "cycle-only") {
@@ -278,6 +280,29 @@ fn cycle(args: &[String]) {
                 (c, f) => println!("  {what}: reference failed: {:?} / {:?}", c.err(), f.err()),
             }
         }
+    }
+}
+
+/// `dump=FILE`: the cycle job's output as JSON; `ref=FILE` (an earlier dump): the largest relative
+/// differences of the films, the load and the entrainment at every angle against it.
+fn dump_and_compare(args: &[String], out: &serde_json::Value) {
+    let col = |v: &serde_json::Value, name: &str| -> Vec<f64> { v["series"][name].as_array().map(|a| a.iter().map(|x| x.as_f64().unwrap_or(f64::NAN)).collect()).unwrap_or_default() };
+    if let Some(file) = args.iter().find_map(|a| a.strip_prefix("dump=")) {
+        std::fs::write(file, out.to_string()).expect("dump");
+    }
+    let Some(file) = args.iter().find_map(|a| a.strip_prefix("ref=")) else { return };
+    let reference: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(file).expect("ref file")).expect("ref JSON");
+    for name in ["film_central", "film_min", "contact_load", "entrainment_velocity"] {
+        let (a, b) = (col(&reference, name), col(out, name));
+        let (mut worst, mut at, mut sum) = (0.0f64, 0, 0.0);
+        for i in 0..a.len().min(b.len()) {
+            let d = (b[i] / a[i] - 1.0).abs();
+            sum += d;
+            if d > worst {
+                (worst, at) = (d, i);
+            }
+        }
+        println!("  against {file}: {name} worst {:.3e} at angle {at}, mean {:.3e}", worst, sum / a.len().max(1) as f64);
     }
 }
 

@@ -202,12 +202,14 @@ pub fn ehl_2d_step_fraction(step_deg: f64) -> f64 {
 }
 
 /// Peak memory of one 2-D EHL solve on `nx × ny` nodes, bytes: node arrays, the padded FFT
-/// buffers of the elastic kernel, the near-field sparse LU and flexible GMRES' basis (two vectors
-/// per iteration): an upper bound of ≈ 10.4 kB per node (peak resident memory of `tribod run`
-/// above idle: 140 MiB at 129², 610 MiB at 257², 2585 MiB at 513²).
+/// buffers of the elastic kernel, the near-field sparse LU (single precision since issue 46) and
+/// flexible GMRES' basis (two vectors per iteration): an upper bound of ≈ 8 kB per node (peak
+/// resident memory of `tribod run` above idle: 104 MiB at 129², 464 MiB at 257²; with the double
+/// LU before, 140 / 610 / 2585 MiB at 129² / 257² / 513²: 513² not measured again, ≈ 7.8 kB per
+/// node by the ratio at the two smaller grids).
 pub fn ehl_2d_bytes(nx: usize, ny: usize) -> f64 {
     let n = nx as f64 * ny as f64;
-    8.0 * n * 1300.0 + 8.0 * MIB
+    8.0 * n * 1000.0 + 8.0 * MIB
 }
 
 /// Memory a cam cycle keeps per angle of a 2-D film (the converged pressure and mass fields as

@@ -143,7 +143,15 @@ impl Convolution {
 
     /// `out = K x`.
     pub(crate) fn apply(&self, x: &[f64], out: &mut [f64], w: &mut ConvWorkspace) {
-        if w.rows.is_empty() { self.apply_complex(x, out, w) } else { self.apply_real(x, out, w) }
+        if w.rows.is_empty() { self.apply_complex(x, out, w) } else { self.apply_real(x, out, w, self.fft.ny, self.fft.ny) }
+    }
+
+    /// [`Convolution::apply`] of an `x` that is zero beyond its first `rows_in` rows, `out`
+    /// wanted in its first `rows_out` rows only (the rest left as they were): the x transforms of
+    /// the zero row pairs and of the unwanted output pairs are skipped (a padded DC-FFT product,
+    /// `ehl::twod::elastic`). The same arithmetic on the rows computed: bit-identical to `apply`.
+    pub(crate) fn apply_rows(&self, x: &[f64], out: &mut [f64], w: &mut ConvWorkspace, rows_in: usize, rows_out: usize) {
+        if w.rows.is_empty() { self.apply_complex(x, out, w) } else { self.apply_real(x, out, w, rows_in, rows_out) }
     }
 
     /// The plain complex transform (odd grid sides).
@@ -165,24 +173,32 @@ impl Convolution {
     /// x transforms (`C = A + iB`, `A_k = (C_k + C̄_{n−k})/2`, `B_k = (C_k − C̄_{n−k})/(2i)`),
     /// only the `nx/2 + 1` non-negative x wavenumbers transformed along y; the multiplier is real
     /// and even, so the inverse rebuilds the Hermitian row spectra and unpacks the same way.
-    fn apply_real(&self, x: &[f64], out: &mut [f64], w: &mut ConvWorkspace) {
+    /// `rows_in`/`rows_out`: see [`Convolution::apply_rows`].
+    fn apply_real(&self, x: &[f64], out: &mut [f64], w: &mut ConvWorkspace, rows_in: usize, rows_out: usize) {
         let (nx, ny) = (self.fft.nx, self.fft.ny);
         let (h, pairs) = (nx / 2 + 1, ny / 2);
+        let (pin, pout) = (rows_in.div_ceil(2).min(pairs), rows_out.div_ceil(2).min(pairs));
         let (rows, half, scratch) = (&mut w.rows, &mut w.half, &mut w.fft.scratch);
-        for jp in 0..pairs {
+        for jp in 0..pin {
             let (r0, r1) = (&x[2 * jp * nx..(2 * jp + 1) * nx], &x[(2 * jp + 1) * nx..(2 * jp + 2) * nx]);
             for (i, c) in rows[jp * nx..(jp + 1) * nx].iter_mut().enumerate() {
                 *c = Complex::new(r0[i], r1[i]);
             }
         }
-        self.fft.fx.process_with_scratch(rows, scratch);
+        self.fft.fx.process_with_scratch(&mut rows[..pin * nx], scratch);
         let minus_half_i = Complex::new(0.0, -0.5);
-        for jp in 0..pairs {
+        for jp in 0..pin {
             let r = &rows[jp * nx..(jp + 1) * nx];
             for k in 0..h {
                 let (c, cc) = (r[k], r[(nx - k) % nx].conj());
                 half[k * ny + 2 * jp] = (c + cc) * 0.5;
                 half[k * ny + 2 * jp + 1] = (c - cc) * minus_half_i;
+            }
+        }
+        // The zero rows' spectra (the transform of zeros, exactly).
+        if pin < pairs {
+            for k in 0..h {
+                half[k * ny + 2 * pin..(k + 1) * ny].iter_mut().for_each(|b| *b = Complex::new(0.0, 0.0));
             }
         }
         self.fft.fy.process_with_scratch(half, scratch);
@@ -191,7 +207,7 @@ impl Convolution {
         }
         self.fft.iy.process_with_scratch(half, scratch);
         let i1 = Complex::new(0.0, 1.0);
-        for jp in 0..pairs {
+        for jp in 0..pout {
             let r = &mut rows[jp * nx..(jp + 1) * nx];
             for (k, c) in r.iter_mut().enumerate() {
                 let (a, b) = if k < h {
@@ -202,9 +218,9 @@ impl Convolution {
                 *c = a + i1 * b;
             }
         }
-        self.fft.ix.process_with_scratch(rows, scratch);
+        self.fft.ix.process_with_scratch(&mut rows[..pout * nx], scratch);
         let s = 1.0 / (nx * ny) as f64;
-        for jp in 0..pairs {
+        for jp in 0..pout {
             for i in 0..nx {
                 let c = rows[jp * nx + i];
                 out[2 * jp * nx + i] = c.re * s;

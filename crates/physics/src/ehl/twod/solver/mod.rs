@@ -132,6 +132,15 @@ const fn floor_contact() -> bool {
     true
 }
 
+/// The near-field zone: rows at `X < −NEAR_ZONE` (units of `a`; the far inlet, where the film is
+/// thick and the Poiseuille terms dominate) carry the Reynolds terms and the deflection's self
+/// term only, not the deflection near field of their neighbours nor the Poiseuille terms' film
+/// dependence, so their part of the sparse LU stays narrow. The seed 000 roller's inlet reaches
+/// `−12 a`: measured on its 360-angle finite cycle, 65×129 (`BENCHMARKS.md` issue 46), CPU −12 %
+/// (f32 factor), GMRES iterations and factorisations within 1 % and +4 %, films within 3.1e-7
+/// (zone at `−3 a`: the same time).
+const NEAR_ZONE: f64 = 2.0;
+
 /// Row kinds of the semismooth Newton matrix ([`Problem::row_kind`]).
 const FLUID: u8 = 0;
 const CAVITATED: u8 = 1;
@@ -252,6 +261,12 @@ struct Buffers {
     dw: Vec<f64>,
     dq: Vec<f64>,
     de: Vec<f64>,
+    /// The face coefficients [`face_of`] of the faces `(k, k + 1)` and `(k, k + nx)` and
+    /// `3ε/H` at the nodes, at the iterate of one linear solve ([`Problem::faces`]): fixed while
+    /// GMRES applies the Newton matrix.
+    fx: Vec<(f64, f64, f64)>,
+    fy: Vec<(f64, f64, f64)>,
+    e3h: Vec<f64>,
     /// GMRES' work arrays.
     krylov: krylov::Workspace,
 }

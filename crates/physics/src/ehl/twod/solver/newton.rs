@@ -30,6 +30,7 @@ pub(super) fn gmres(prob: &mut Problem, p: &[f64], v: &Fields, active: &[u8], c:
         test: krylov::Test::Ratio,
         update: krylov::Update::Flexible,
     };
+    prob.faces(v, buf);
     let mut ws = std::mem::take(&mut buf.krylov);
     let out = krylov::gmres(&mut |z, y| prob.apply(p, v, active, c, z, y, buf), &mut |z| lu.apply(z, lw, &rescale), b, x, &settings, &mut ws, observer);
     buf.krylov = ws;

@@ -72,6 +72,7 @@ impl Problem {
         let mut row: Vec<(usize, f64)> = Vec::with_capacity(64);
         for (u, &k) in self.nodes.iter().enumerate() {
             let (i, j) = (k % nx, k / nx);
+            let zone = self.x[i] >= -NEAR_ZONE;
             row.clear();
             let e = &v.eps;
             for (nb, d2) in [(k + 1, dx2), (k - 1, dx2), (k + nx, dy2), (k - nx, dy2)] {
@@ -94,6 +95,13 @@ impl Problem {
                 }
                 let lw = lw * v.on[kk];
                 row.push((m, lw * v.rho[kk]));
+                if !zone {
+                    // Outside the zone: the deflection's self term alone (the row scale unchanged).
+                    if s <= self.near {
+                        row.push((u, lw * v.rho[kk] * self.defl.coefficient(s, 0)));
+                    }
+                    continue;
+                }
                 for dj in -r..=r {
                     let lj = kj as isize + dj;
                     if lj < 1 || lj >= ny as isize - 1 {
@@ -110,7 +118,7 @@ impl Problem {
                 }
             }
             let diag: f64 = row.iter().filter(|(col, _)| *col == u).map(|(_, val)| val).sum();
-            if poiseuille_film() {
+            if poiseuille_film() && zone {
                 self.poiseuille_film_entries(p, v, k, &mut row);
             }
             let cu = 1.0 / diag.abs().max(1e-300);
@@ -210,7 +218,11 @@ impl Problem {
                 for lj in (j - r).max(1)..=(j + r).min(ny as isize - 2) {
                     for li in (i - r).max(1)..=(i + r).min(nx as isize - 2) {
                         let l = lj as usize * nx + li as usize;
-                        values[slot[self.unk[l]]] += sc * self.defl.coefficient((li - i).unsigned_abs(), (lj - j).unsigned_abs());
+                        // Only the columns of this row's pattern (a row outside the near-field
+                        // zone carries its own column alone).
+                        if pattern.row_col[a..b].binary_search(&self.unk[l]).is_ok() {
+                            values[slot[self.unk[l]]] += sc * self.defl.coefficient((li - i).unsigned_abs(), (lj - j).unsigned_abs());
+                        }
                     }
                 }
                 continue;

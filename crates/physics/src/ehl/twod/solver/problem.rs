@@ -176,6 +176,19 @@ impl Problem {
         v.f.iter().all(|x| x.is_finite()) && v.g.is_finite()
     }
 
+    /// The face coefficients and `3ε/H` of [`Buffers`] at the iterate `v` (before a linear solve's
+    /// [`Problem::apply`]s): `face_of(θ, ε_k, ε_{k+1})` and `face_of(θ, ε_k, ε_{k+nx})`.
+    pub(super) fn faces(&self, v: &Fields, buf: &mut Buffers) {
+        let (n, nx) = (self.nx * self.ny, self.nx);
+        let e = &v.eps;
+        buf.fx.clear();
+        buf.fy.clear();
+        buf.e3h.clear();
+        buf.fx.extend((0..n).map(|k| if k + 1 < n { face_of(self.theta, e[k], e[k + 1]) } else { (0.0, 0.0, 0.0) }));
+        buf.fy.extend((0..n).map(|k| if k + nx < n { face_of(self.theta, e[k], e[k + nx]) } else { (0.0, 0.0, 0.0) }));
+        buf.e3h.extend((0..n).map(|k| 3.0 * e[k] / v.h[k]));
+    }
+
     /// `out = A x`: the scaled Newton matrix applied to `x` (`dP` at the unknowns, then `dH0`).
     pub(super) fn apply(&mut self, p: &[f64], v: &Fields, active: &[u8], c: &[f64], x: &[f64], out: &mut [f64], buf: &mut Buffers) {
         let n = self.nx * self.ny;
@@ -193,7 +206,7 @@ impl Problem {
         for k in 0..n {
             let dh = (dh0 + buf.dw[k]) * v.on[k];
             buf.dq[k] = v.drho[k] * buf.dp[k] * v.h[k] + v.rho[k] * dh;
-            buf.de[k] = v.deps[k] * buf.dp[k] + 3.0 * v.eps[k] / v.h[k] * dh;
+            buf.de[k] = v.deps[k] * buf.dp[k] + buf.e3h[k] * dh;
         }
         let (nx, dx2, dy2) = (self.nx, self.dx * self.dx, self.dy * self.dy);
         let mut sum = 0.0;
@@ -209,10 +222,12 @@ impl Problem {
                 continue;
             }
             let i = k % nx;
-            let (e, de) = (&v.eps, &buf.de);
+            let de = &buf.de;
             let mut df = 0.0;
-            for (nb, d2) in [(k + 1, dx2), (k - 1, dx2), (k + nx, dy2), (k - nx, dy2)] {
-                let (ef, w1, w2) = face_of(self.theta, e[k], e[nb]);
+            // The faces of `Problem::faces`, each with this node first (`face_of` is symmetric
+            // but for the order of its weights).
+            let (xe, xw, yn, ys) = (buf.fx[k], buf.fx[k - 1], buf.fy[k], buf.fy[k - nx]);
+            for (nb, d2, (ef, w1, w2)) in [(k + 1, dx2, xe), (k - 1, dx2, (xw.0, xw.2, xw.1)), (k + nx, dy2, yn), (k - nx, dy2, (ys.0, ys.2, ys.1))] {
                 let def = w1 * de[k] + w2 * de[nb];
                 df += (def * (p[nb] - p[k]) + ef * (dp[nb] - dp[k])) / d2;
             }
