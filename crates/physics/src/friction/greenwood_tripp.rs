@@ -250,7 +250,8 @@ impl LnTable {
 
     fn locate(lambda: f64) -> (usize, f64) {
         let x = ((lambda - GENERAL_LO) / GENERAL_STEP).clamp(0.0, (GENERAL_NODES - 1) as f64);
-        let i = (x.floor() as usize).min(GENERAL_NODES - 2);
+        // x ≥ 0 (clamped; NaN maps to 0 either way): truncation is the floor, without a libm call.
+        let i = (x as usize).min(GENERAL_NODES - 2);
         (i, x - i as f64)
     }
 
