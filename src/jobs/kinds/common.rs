@@ -447,12 +447,9 @@ pub fn composite_sigma(a: f64, b: f64) -> f64 {
     (a * a + b * b).sqrt()
 }
 
-/// The line grid with the thermal model when the spec gives none (its grid error is not in
-/// the accuracy ladder).
-const THERMAL_DEFAULT_NODES: usize = 192;
-
-/// A single contact point's grid when the spec gives neither `nodes` nor `accuracy`.
-const POINT_DEFAULT_NODES: usize = 192;
+/// The line grid where the accuracy ladders do not apply and the spec gives none: the thermal
+/// model (its grid error is not tabulated) and a single contact point without `accuracy`.
+const UNLADDERED_NODES: usize = 192;
 fn default_ehl_tolerance() -> f64 {
     1e-6
 }
@@ -620,7 +617,7 @@ impl EhlSpec {
     pub fn nodes(&self, family: LineFamily) -> usize {
         match (self.nodes, &self.thermal) {
             (Some(n), _) => n,
-            (None, Some(_)) => THERMAL_DEFAULT_NODES,
+            (None, Some(_)) => UNLADDERED_NODES,
             (None, None) => accuracy::line_rung(self.accuracy(), family).nodes,
         }
     }
@@ -631,7 +628,7 @@ impl EhlSpec {
     /// unless the spec gives `nodes` or `accuracy` (BENCHMARKS.md, "Accuracy targets").
     pub fn for_point(&self) -> EhlSpec {
         let nodes = match (self.nodes, self.accuracy) {
-            (None, None) => Some(POINT_DEFAULT_NODES),
+            (None, None) => Some(UNLADDERED_NODES),
             (n, _) => n,
         };
         EhlSpec { nodes, ..*self }
