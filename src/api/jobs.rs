@@ -104,11 +104,13 @@ fn spec_warnings(kind: &str, spec: &Value) -> Vec<crate::problem::FieldError> {
     k.warnings(spec).into_iter().map(|w| crate::problem::FieldError::new(format!("/spec{}", w.path), w.message)).collect()
 }
 
+/// A stored instant (unix ms) as RFC 3339 in UTC with always three fraction digits, so that the
+/// times of one server sort as text too (the well-known format drops trailing zeros: "10.53Z"
+/// would sort after "10.532Z").
 pub fn rfc3339(ms: i64) -> String {
-    time::OffsetDateTime::from_unix_timestamp_nanos(ms as i128 * 1_000_000)
-        .ok()
-        .and_then(|t| t.format(&time::format_description::well_known::Rfc3339).ok())
-        .unwrap_or_default()
+    const FORMAT: &[time::format_description::BorrowedFormatItem<'_>] =
+        time::macros::format_description!("[year]-[month]-[day]T[hour]:[minute]:[second].[subsecond digits:3]Z");
+    time::OffsetDateTime::from_unix_timestamp_nanos(ms as i128 * 1_000_000).ok().and_then(|t| t.format(FORMAT).ok()).unwrap_or_default()
 }
 
 impl JobView {
