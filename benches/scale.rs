@@ -12,6 +12,7 @@
 //!   instance (`serve --workers 0`) and 1 or 2 `tribod worker --workers 1` instances: jobs/s and
 //!   the speed-up of the second worker.
 //!
+//! `TRIBOD_BENCH_SERVE_ARGS` adds options to every `serve` (e.g. `--workers 4`).
 //! `TRIBOD_BENCH_LOG_STATEMENTS=1` logs every statement of the PostgreSQL rows in the server's log
 //! (with its duration), to count round trips by kind.
 //!
@@ -55,9 +56,12 @@ fn binary() -> String {
 }
 
 fn serve(url: &str, extra: &[&str]) -> Instance {
+    // `TRIBOD_BENCH_SERVE_ARGS`: more options for every `serve` (e.g. `--workers 4`), to try them.
+    let more = std::env::var("TRIBOD_BENCH_SERVE_ARGS").unwrap_or_default();
     let mut child = Command::new(binary())
         .args(["serve", "--addr", "127.0.0.1:0", "--database-url", url, "--max-queue", "1000000"])
         .args(extra)
+        .args(more.split_whitespace())
         .env("RUST_LOG", "warn")
         .stdout(Stdio::piped())
         .stderr(Stdio::null())
@@ -208,11 +212,13 @@ async fn drive(bases: &[String], jobs: usize, clients: usize, body: impl Fn(usiz
     for w in writers {
         w.await.unwrap();
     }
+    let posted = start.elapsed().as_secs_f64();
     // Poll for completion every 100 ms (each poll counts the whole table by status).
     while succeeded(&client, &bases[0]).await < jobs {
         tokio::time::sleep(Duration::from_millis(100)).await;
     }
     let elapsed = start.elapsed().as_secs_f64();
+    eprintln!("all {jobs} POSTs answered after {posted:.2} s, all solved after {elapsed:.2} s");
     running.store(false, Ordering::Relaxed);
     for r in readers {
         r.await.unwrap();
