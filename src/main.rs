@@ -48,6 +48,11 @@ struct QueueArgs {
     /// Worker threads (jobs solved at once); default: number of cores. 0 with `serve`: API only.
     #[arg(long, env = "TRIBOD_WORKERS")]
     workers: Option<usize>,
+    /// Short-job slots besides the workers: threads that take only jobs the work model
+    /// estimates at 10 ms of CPU or less, so tiny jobs neither wait behind heavy ones nor are
+    /// held to the workers' count. 0: none.
+    #[arg(long, env = "TRIBOD_SHORT_SLOTS", default_value_t = tribod::jobs::queue::DEFAULT_SHORT_SLOTS)]
+    short_slots: usize,
     /// Queued jobs accepted before POST answers 503.
     #[arg(long, env = "TRIBOD_MAX_QUEUE", default_value_t = 10_000)]
     max_queue: usize,
@@ -77,6 +82,7 @@ impl QueueArgs {
     fn queue(&self, default_workers: usize) -> QueueConfig {
         QueueConfig {
             workers: self.workers.unwrap_or(default_workers),
+            short_slots: self.short_slots,
             max_backlog: self.max_queue,
             job_timeout: (self.job_timeout > 0.0).then(|| Duration::from_secs_f64(self.job_timeout)),
             max_attempts: self.max_attempts.max(1),

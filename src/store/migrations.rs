@@ -21,6 +21,7 @@ pub const SQLITE: &[MigrationFile] = &[
     ("0004_idempotency_keys.sql", include_str!("../../migrations/sqlite/0004_idempotency_keys.sql")),
     ("0005_estimates.sql", include_str!("../../migrations/sqlite/0005_estimates.sql")),
     ("0006_children.sql", include_str!("../../migrations/sqlite/0006_children.sql")),
+    ("0007_short_jobs.sql", include_str!("../../migrations/sqlite/0007_short_jobs.sql")),
 ];
 
 /// `migrations/postgres/`, in version order.
@@ -31,6 +32,7 @@ pub const POSTGRES: &[MigrationFile] = &[
     ("0004_hot_updates.sql", include_str!("../../migrations/postgres/0004_hot_updates.sql")),
     ("0005_children.sql", include_str!("../../migrations/postgres/0005_children.sql")),
     ("0006_no_status_index.sql", include_str!("../../migrations/postgres/0006_no_status_index.sql")),
+    ("0007_short_jobs.sql", include_str!("../../migrations/postgres/0007_short_jobs.sql")),
 ];
 
 /// The migrator of one backend's files.

@@ -158,7 +158,20 @@ pub struct ClaimedJob {
     pub kind: String,
     pub spec: String,
     pub attempts: i64,
+    /// Its stored estimate is at most [`SHORT_JOB_SECONDS`]: it may take a short-job slot (the
+    /// queue clears it when the job takes an ordinary slot instead).
+    pub short: bool,
 }
+
+/// The CPU seconds (the work model's stored estimate) up to which a job is *short*: besides the
+/// ordinary worker slots, an instance has short-job slots that take only such jobs (issue 46
+/// item 5: a tiny job's claim → solve → commit cycle is ≈ 1.5 ms of waiting on the database for
+/// 30 µs of solving, so a few slots bound the throughput; and a tiny job need not wait behind
+/// heavy ones). The partial indexes `jobs_short_queue` (migrations) carry the same predicate,
+/// [`SHORT_JOB_SQL`], literally, so that the planners use them.
+pub const SHORT_JOB_SECONDS: f64 = 0.01;
+/// [`SHORT_JOB_SECONDS`] as the SQL predicate of the short-job claims and indexes.
+pub const SHORT_JOB_SQL: &str = "estimate_cpu_seconds <= 0.01";
 
 /// A worker's final word on a job, written by [`Store::finish_batch`].
 #[derive(Debug, Clone)]
@@ -170,12 +183,22 @@ pub enum Finish {
     Requeue { id: Uuid },
 }
 
-/// The jobs to claim in the commit that finishes a batch: at most `n` (the worker slots the batch
-/// frees), leased until `lease_until` (unix ms).
+/// The jobs to claim (alone, or in the commit that finishes a batch): up to `n` queued jobs of any
+/// size in virtual-deadline order (the free ordinary slots), and up to `short` more among the
+/// short ones (the free short-job slots, [`SHORT_JOB_SECONDS`]), leased until `lease_until` (unix
+/// ms). A job claimed is marked [`ClaimedJob::short`] when short; at most `n` of those claimed are
+/// not short.
 #[derive(Debug, Clone, Copy, Default)]
 pub struct ClaimNext {
     pub n: usize,
+    pub short: usize,
     pub lease_until: i64,
+}
+
+impl ClaimNext {
+    pub fn is_empty(&self) -> bool {
+        self.n + self.short == 0
+    }
 }
 
 /// What [`Store::finish_batch`] did besides finishing.
@@ -325,13 +348,13 @@ impl Store {
     pub async fn list(&self, f: &ListFilter) -> StoreResult<Vec<JobRow>> {
         each!(self, s => s.list(f).await)
     }
-    /// Claim up to `n` queued jobs for `owner` with a lease until `lease_until` (unix ms).
-    pub async fn claim(&self, n: usize, now: i64, owner: &str, lease_until: i64) -> StoreResult<Vec<ClaimedJob>> {
-        each!(self, s => s.claim(n, now, owner, lease_until).await)
+    /// Claim queued jobs for `owner` as `next` says.
+    pub async fn claim(&self, next: ClaimNext, now: i64, owner: &str) -> StoreResult<Vec<ClaimedJob>> {
+        each!(self, s => s.claim(next, now, owner).await)
     }
     /// Commit workers' final words on jobs `owner` still holds (others' are dropped: their lease
-    /// expired and the job was handed to another worker), and in the same commit claim up to
-    /// `next.n` queued jobs for `owner` (none when the batch re-queues a job: shutdown); whether
+    /// expired and the job was handed to another worker), and in the same commit claim the
+    /// queued jobs `next` says for `owner` (none when the batch re-queues a job: shutdown); whether
     /// any finished job is a fanned-out job's case, and the jobs claimed.
     pub async fn finish_batch(&self, items: &[Finish], now: i64, owner: &str, next: ClaimNext) -> StoreResult<Finished> {
         each!(self, s => s.finish_batch(items, now, owner, next).await)

@@ -344,29 +344,33 @@ impl PgStore {
     /// Claim up to `n` queued jobs in virtual-deadline order. The locked `seq`s come back as an
     /// array (`= ANY(ARRAY(…))`), so the update is a primary-key lookup: written as `IN (…)` the
     /// generic plan hash-joins against a scan of the whole table on every claim.
-    pub async fn claim(&self, n: usize, now: i64, owner: &str, lease_until: i64) -> StoreResult<Vec<ClaimedJob>> {
-        if n == 0 {
+    pub async fn claim(&self, next: ClaimNext, now: i64, owner: &str) -> StoreResult<Vec<ClaimedJob>> {
+        if next.is_empty() {
             return Ok(Vec::new());
         }
-        let rows = sqlx::query(
+        static CLAIM: std::sync::LazyLock<String> = std::sync::LazyLock::new(|| {
             // A fanned-out job claimed to be assembled keeps its start and progress (a queued
             // job has neither: never started, or reset when it was handed back).
-            "UPDATE jobs SET status = 'running', started_at = COALESCE(started_at, $1), attempts = attempts + 1, \
-             progress = CASE WHEN started_at IS NULL THEN 0 ELSE progress END, \
-             stage = CASE WHEN started_at IS NULL THEN NULL ELSE stage END, lease_owner = $2, lease_until = $3 \
-             WHERE seq = ANY(ARRAY(SELECT seq FROM jobs WHERE status = 'queued' ORDER BY due_at, seq LIMIT $4 \
-                                   FOR UPDATE SKIP LOCKED)) \
-             RETURNING id, kind, spec, attempts, due_at, seq",
-        )
-        // Prepared once, planned at each call (the relaxed pool's `plan_cache_mode =
-        // force_custom_plan`: a generic plan cached while the table was small scans it
-        // sequentially for ever after — found with auto_explain under `cargo bench --bench scale`).
-        .bind(now)
-        .bind(owner)
-        .bind(lease_until)
-        .bind(n as i64)
-        .fetch_all(&self.relaxed)
-        .await;
+            format!(
+                "UPDATE jobs SET status = 'running', started_at = COALESCE(started_at, $1), attempts = attempts + 1, \
+                 progress = CASE WHEN started_at IS NULL THEN 0 ELSE progress END, \
+                 stage = CASE WHEN started_at IS NULL THEN NULL ELSE stage END, lease_owner = $2, lease_until = $3 \
+                 WHERE {} \
+                 RETURNING id, kind, spec, attempts, due_at, seq, COALESCE({SHORT_JOB_SQL}, FALSE)",
+                finish::claim_where("$4", "$5")
+            )
+        });
+        let rows = sqlx::query(AssertSqlSafe(CLAIM.as_str()))
+            // Prepared once, planned at each call (the relaxed pool's `plan_cache_mode =
+            // force_custom_plan`: a generic plan cached while the table was small scans it
+            // sequentially for ever after — found with auto_explain under `cargo bench --bench scale`).
+            .bind(now)
+            .bind(owner)
+            .bind(next.lease_until)
+            .bind(next.n as i64)
+            .bind(next.short as i64)
+            .fetch_all(&self.relaxed)
+            .await;
         Ok(claimed_from_rows(&self.note(rows)?, 0)?)
     }
 

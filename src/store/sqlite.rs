@@ -334,12 +334,12 @@ impl SqliteStore {
 
     /// Claim up to `n` queued jobs, earliest virtual deadline (`due_at`) first, then oldest:
     /// `running`, attempts + 1.
-    pub async fn claim(&self, n: usize, now: i64, owner: &str, lease_until: i64) -> StoreResult<Vec<ClaimedJob>> {
-        if n == 0 {
+    pub async fn claim(&self, next: ClaimNext, now: i64, owner: &str) -> StoreResult<Vec<ClaimedJob>> {
+        if next.is_empty() {
             return Ok(Vec::new());
         }
         let mut conn = self.writer.acquire().await?;
-        let result = claim_on(&mut conn, n, now, owner, lease_until).await;
+        let result = claim_on(&mut conn, next, now, owner).await;
         self.settle(conn, result).await
     }
 
@@ -500,21 +500,29 @@ impl SqliteStore {
     }
 }
 
-/// Claim up to `n` queued jobs in virtual-deadline order (on the writer, in or out of a
-/// transaction).
-async fn claim_on(conn: &mut SqliteConnection, n: usize, now: i64, owner: &str, lease_until: i64) -> StoreResult<Vec<ClaimedJob>> {
-    let rows = sqlx::query(
-        "UPDATE jobs SET status = 'running', started_at = ?, attempts = attempts + 1, \
-         progress = 0, stage = NULL, lease_owner = ?, lease_until = ? \
-         WHERE seq IN (SELECT seq FROM jobs WHERE status = 'queued' ORDER BY due_at, seq LIMIT ?) \
-         RETURNING id, kind, spec, attempts, due_at, seq",
-    )
-    .bind(now)
-    .bind(owner)
-    .bind(lease_until)
-    .bind(n as i64)
-    .fetch_all(&mut *conn)
-    .await?;
+/// Claim the queued jobs `next` says, in virtual-deadline order (on the writer, in or out of a
+/// transaction): the first `next.n` of all, and the first `next.short` short ones after those.
+async fn claim_on(conn: &mut SqliteConnection, next: ClaimNext, now: i64, owner: &str) -> StoreResult<Vec<ClaimedJob>> {
+    static CLAIM: std::sync::LazyLock<String> = std::sync::LazyLock::new(|| {
+        format!(
+            "UPDATE jobs SET status = 'running', started_at = ?1, attempts = attempts + 1, \
+             progress = 0, stage = NULL, lease_owner = ?2, lease_until = ?3 \
+             WHERE seq IN (SELECT seq FROM (SELECT seq FROM jobs WHERE status = 'queued' ORDER BY due_at, seq LIMIT ?4) \
+                           UNION ALL \
+                           SELECT seq FROM (SELECT seq FROM jobs WHERE status = 'queued' AND {SHORT_JOB_SQL} \
+                             AND seq NOT IN (SELECT seq FROM jobs WHERE status = 'queued' ORDER BY due_at, seq LIMIT ?4) \
+                             ORDER BY due_at, seq LIMIT ?5)) \
+             RETURNING id, kind, spec, attempts, due_at, seq, COALESCE({SHORT_JOB_SQL}, 0)"
+        )
+    });
+    let rows = sqlx::query(AssertSqlSafe(CLAIM.as_str()))
+        .bind(now)
+        .bind(owner)
+        .bind(next.lease_until)
+        .bind(next.n as i64)
+        .bind(next.short as i64)
+        .fetch_all(&mut *conn)
+        .await?;
     let mut jobs = rows
         .iter()
         .map(|r| {
@@ -525,6 +533,7 @@ async fn claim_on(conn: &mut SqliteConnection, n: usize, now: i64, owner: &str, 
                     kind: r.try_get(1)?,
                     spec: r.try_get(2)?,
                     attempts: r.try_get(3)?,
+                    short: r.try_get::<bool, _>(6)?,
                 },
             ))
         })
@@ -579,7 +588,7 @@ async fn finish_on(conn: &mut SqliteConnection, items: &[Finish], now: i64, owne
         }
     }
     let requeue = items.iter().any(|i| matches!(i, Finish::Requeue { .. }));
-    let claimed = if next.n > 0 && !requeue { claim_on(&mut tx, next.n, now, owner, next.lease_until).await? } else { Vec::new() };
+    let claimed = if !next.is_empty() && !requeue { claim_on(&mut tx, next, now, owner).await? } else { Vec::new() };
     tx.commit().await?;
     Ok(claimed)
 }

@@ -277,3 +277,32 @@ async fn a_tiny_job_does_not_wait_behind_a_backlog_after_a_restart() {
     assert!(jumped.is_empty(), "heavy jobs started at {jumped:?}, after the tiny one was queued at {tiny_created} and before it started at {tiny_started}");
     s.stop().await;
 }
+
+/// Short-job slots (issue 46 item 5): with the only worker busy on a long job and another long one
+/// queued, a tiny job (estimated ≤ 10 ms) runs at once on a short-job slot instead of waiting
+/// seconds; a long job never takes a short-job slot.
+#[tokio::test]
+async fn a_tiny_job_runs_beside_long_jobs_that_fill_every_worker() {
+    let s = start_with(|c| {
+        c.queue.workers = 1;
+        c.queue.short_slots = 2;
+    })
+    .await;
+    let mut long = Vec::new();
+    for i in 0..2 {
+        let res: Value = s.post_job(&sleep_job(3.0, 800 + i)).await.json().await.unwrap();
+        long.push(res["id"].as_str().unwrap().to_string());
+    }
+    s.wait_status(&long[0], "running", Duration::from_secs(10)).await;
+    let t = Instant::now();
+    let tiny: Value = s.post_job(&hertz_job(4322.0)).await.json().await.unwrap();
+    let tiny = s.wait_finished(tiny["id"].as_str().unwrap(), Duration::from_secs(20)).await;
+    let took = t.elapsed();
+    assert_eq!(tiny["status"], "succeeded");
+    assert!(took < Duration::from_millis(1500), "the tiny job took {took:?} beside a 3 s job on the only worker");
+    let (_, first) = s.get_json(&format!("/v1/jobs/{}", long[0])).await;
+    let (_, second) = s.get_json(&format!("/v1/jobs/{}", long[1])).await;
+    assert_eq!(first["status"], "running", "{first}");
+    assert_eq!(second["status"], "queued", "a long job took a short-job slot: {second}");
+    s.stop().await;
+}

@@ -386,24 +386,36 @@ async fn lease_renewals_and_progress_are_hot_updates() {
     assert_eq!(updates - hot, claims_and_finishes, "{updates} updates, {hot} HOT: only the claims and finishes may touch an index");
 }
 
-/// Issue 46 item 5: a finish claims the next jobs for the slots it frees in the same commit. Two
-/// instances of 2 workers drain 120 short jobs while a trigger records, at every claim, how
-/// many jobs the claiming instance then holds: never more than its workers (a claim is a start),
-/// and every job is finished exactly once.
+/// Issue 46 item 5: a finish claims the next jobs for the slots it frees in the same commit, and
+/// short jobs (estimated ≤ 10 ms) also take short-job slots. Two instances of 2 workers and 2
+/// short-job slots drain 120 jobs (long: sleeping 20 ms; short: sleeping 5 ms, or Hertz) while
+/// a trigger records, at every claim, how many jobs the claiming instance then holds: never
+/// more than its 4 slots, never more long jobs than its 2 workers (a claim is a start), the
+/// short slots used, and every job finished exactly once.
 #[tokio::test(flavor = "multi_thread", worker_threads = 2)]
 async fn finishes_that_claim_the_next_jobs_never_hold_more_than_the_workers() {
     if !postgres_available("finishes_that_claim_the_next_jobs_never_hold_more_than_the_workers") {
         return;
     }
     let url = fresh_postgres_database().await;
-    let servers = servers_on(&url, &[2, 2]).await;
+    let mut servers = Vec::new();
+    for _ in 0..2 {
+        let dir = tempfile::tempdir().unwrap();
+        let mut cfg = config(&dir);
+        cfg.database_url = url.to_string();
+        cfg.queue.workers = 2;
+        cfg.queue.short_slots = 2;
+        cfg.shutdown_grace = Duration::from_millis(500);
+        servers.push(start_in(dir, cfg).await);
+    }
     install_finish_log(&url).await;
     let mut conn = sqlx::PgConnection::connect(&url).await.unwrap();
     conn.execute(
-        "CREATE TABLE claim_log (owner TEXT NOT NULL, held BIGINT NOT NULL);
+        "CREATE TABLE claim_log (owner TEXT NOT NULL, held BIGINT NOT NULL, held_long BIGINT NOT NULL);
          CREATE FUNCTION log_claim() RETURNS trigger AS $$
          BEGIN
-             INSERT INTO claim_log SELECT NEW.lease_owner, count(*) FROM jobs WHERE status = 'running' AND lease_owner = NEW.lease_owner;
+             INSERT INTO claim_log SELECT NEW.lease_owner, count(*), count(*) FILTER (WHERE NOT COALESCE(estimate_cpu_seconds <= 0.01, FALSE))
+                 FROM jobs WHERE status = 'running' AND lease_owner = NEW.lease_owner;
              RETURN NEW;
          END $$ LANGUAGE plpgsql;
          CREATE TRIGGER jobs_claim AFTER UPDATE OF status ON jobs FOR EACH ROW
@@ -414,7 +426,11 @@ async fn finishes_that_claim_the_next_jobs_never_hold_more_than_the_workers() {
     let n = 120;
     let mut ids = Vec::new();
     for i in 0..n {
-        let job = if i % 2 == 0 { sleep_job(0.005, 9000 + i as u64) } else { hertz_job(300.0 + i as f64) };
+        let job = match i % 3 {
+            0 => sleep_job(0.02, 9000 + i as u64),
+            1 => sleep_job(0.005, 9000 + i as u64),
+            _ => hertz_job(300.0 + i as f64),
+        };
         let s = &servers[i % 2];
         let body: Value = s.post_job(&job).await.json().await.unwrap();
         ids.push(body["id"].as_str().unwrap().to_string());
@@ -423,14 +439,18 @@ async fn finishes_that_claim_the_next_jobs_never_hold_more_than_the_workers() {
         let done = servers[0].wait_finished(id, Duration::from_secs(60)).await;
         assert_eq!(done["status"], "succeeded", "{done}");
     }
-    let rows = sqlx::query("SELECT owner, max(held), count(*) FROM claim_log GROUP BY owner").fetch_all(&mut conn).await.unwrap();
-    let claims: i64 = rows.iter().map(|r| r.get::<i64, _>(2)).sum();
+    let rows = sqlx::query("SELECT owner, max(held), max(held_long), count(*) FROM claim_log GROUP BY owner").fetch_all(&mut conn).await.unwrap();
+    let claims: i64 = rows.iter().map(|r| r.get::<i64, _>(3)).sum();
     assert_eq!(claims, n as i64, "one claim per job: {claims}");
+    let mut most = 0;
     for r in &rows {
-        let (owner, held): (String, i64) = (r.get(0), r.get(1));
-        eprintln!("{owner}: at most {held} jobs held at a claim");
-        assert!(held <= 2, "{owner} held {held} jobs at once with at most 2 workers");
+        let (owner, held, held_long): (String, i64, i64) = (r.get(0), r.get(1), r.get(2));
+        eprintln!("{owner}: at most {held} jobs ({held_long} long) held at a claim");
+        assert!(held <= 4, "{owner} held {held} jobs at once with 2 workers and 2 short-job slots");
+        assert!(held_long <= 2, "{owner} held {held_long} long jobs at once with 2 workers");
+        most = most.max(held);
     }
+    assert!(most > 2, "the short-job slots were never used (at most {most} jobs held)");
     let finishes: Vec<(String, i64)> = sqlx::query("SELECT job_id, count(*) FROM finish_log WHERE what = 'succeeded' GROUP BY job_id")
         .fetch_all(&mut conn)
         .await

@@ -2,6 +2,7 @@
 //! an observer that carries progress, cancel, shutdown and the deadline.
 
 use super::*;
+use crate::store::ClaimNext;
 
 impl Queue {
     pub(super) async fn dispatcher(self) {
@@ -12,21 +13,19 @@ impl Queue {
             if !inner.claiming.load(Ordering::Relaxed) {
                 return;
             }
-            let target = inner.config.workers.max(1);
-            let free = target.saturating_sub(inner.active.load(Ordering::Relaxed));
+            let now = now_ms();
+            let free = self.free_slots(now);
             let mut claimed_all = false;
-            if free > 0 {
-                let now = now_ms();
-                let lease_until = now + inner.config.lease.as_millis() as i64;
-                match inner.store.claim(free, now, &inner.instance, lease_until).await {
+            if !free.is_empty() {
+                match inner.store.claim(free, now, &inner.instance).await {
                     Ok(jobs) => {
-                        claimed_all = jobs.len() == free;
-                        self.take_claimed(jobs);
+                        claimed_all = jobs.len() == free.n + free.short;
+                        self.take_claimed(jobs, free.short);
                     }
                     Err(e) => warn!(error = %e, "claiming jobs failed; retrying"),
                 }
             }
-            if claimed_all && inner.active.load(Ordering::Relaxed) < target {
+            if claimed_all && !self.free_slots(now).is_empty() {
                 continue;
             }
             // Woken by a submission or a finished job; the timeout is a safety net only.
@@ -34,8 +33,21 @@ impl Queue {
         }
     }
 
-    /// Count claimed jobs out of the backlog and start them (each takes a worker slot).
-    pub(super) fn take_claimed(&self, jobs: Vec<crate::store::ClaimedJob>) {
+    /// The slots free now: ordinary ones (`n`) and short-job ones (`short`), as a claim.
+    fn free_slots(&self, now: i64) -> ClaimNext {
+        let inner = &self.inner;
+        let (active, short) = (inner.active.load(Ordering::Relaxed), inner.active_short.load(Ordering::Relaxed));
+        ClaimNext {
+            n: inner.config.workers.max(1).saturating_sub(active.saturating_sub(short)),
+            short: inner.config.short_slots.saturating_sub(short),
+            lease_until: now + inner.config.lease.as_millis() as i64,
+        }
+    }
+
+    /// Count claimed jobs out of the backlog and start them, each in a slot: a short job in one
+    /// of the `short` short-job slots claimed for (while they last), any other in an ordinary
+    /// one (the claim took at most as many of those as it had ordinary slots).
+    pub(super) fn take_claimed(&self, jobs: Vec<crate::store::ClaimedJob>, short: usize) {
         let inner = &self.inner;
         // Cases of a fan-out (and parents back to be assembled) were admitted with their sweep:
         // not counted in the backlog.
@@ -52,13 +64,19 @@ impl Queue {
             }
             inner.metrics.queue_depth.set(depth.max(0));
         }
-        for job in jobs {
+        let mut short_left = short;
+        for mut job in jobs {
+            job.short = job.short && short_left > 0;
+            short_left -= usize::from(job.short);
             self.spawn(job);
         }
     }
 
     fn spawn(&self, job: crate::store::ClaimedJob) {
         let inner = &self.inner;
+        if job.short {
+            inner.active_short.fetch_add(1, Ordering::Relaxed);
+        }
         inner.active.fetch_add(1, Ordering::Relaxed);
         inner.metrics.running.set(inner.active.load(Ordering::Relaxed) as i64);
         let flag = inner
@@ -82,7 +100,9 @@ impl Queue {
         let limits = inner.config.limits;
         let timeout = inner.config.job_timeout;
         let interval = inner.config.progress_interval;
-        inner.pool.spawn(move || {
+        let short = job.short;
+        let pool = if short { inner.short_pool.as_ref().unwrap_or(&inner.pool) } else { &inner.pool };
+        pool.spawn(move || {
             let deadline = timeout.map(|t| Instant::now() + t);
             let span = info_span!("job", id = %job.id, kind = %job.kind, attempt = job.attempts);
             let _entered = span.enter();
@@ -124,7 +144,7 @@ impl Queue {
                 Outcome::Interrupted(_) => (Finish::Canceled { id: job.id }, JobStatus::Canceled),
             };
             info!(status = status.as_str(), wall_seconds = wall, "job done");
-            let _ = events.send(Event::Finished { id: job.id, kind: job.kind.clone(), finish, status, wall, modelled });
+            let _ = events.send(Event::Finished { id: job.id, kind: job.kind.clone(), finish, status, wall, modelled, short });
         });
     }
 }

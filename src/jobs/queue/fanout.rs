@@ -92,7 +92,7 @@ impl Queue {
             Ok(Plan::Assemble(assembly)) => self.run(job, flag, Work::Assemble(assembly)),
             Ok(Plan::Waiting) => {
                 info!(id = %job.id, "sweep fanned out: waiting for its cases");
-                self.let_go(job.id);
+                self.let_go(&job);
             }
             Err(e) => {
                 // The children recorded so far finish on their own; this attempt solves the
@@ -266,8 +266,11 @@ impl Queue {
     }
 
     /// A parent that waits for its children gives its worker slot back.
-    fn let_go(&self, id: Uuid) {
-        let inner = &self.inner;
+    fn let_go(&self, job: &ClaimedJob) {
+        let (inner, id) = (&self.inner, job.id);
+        if job.short {
+            inner.active_short.fetch_sub(1, Ordering::Relaxed);
+        }
         inner.running.lock().unwrap_or_else(|e| e.into_inner()).remove(&id);
         inner.uncounted.lock().unwrap_or_else(|e| e.into_inner()).insert(id);
         let active = inner.active.fetch_sub(1, Ordering::Relaxed) - 1;

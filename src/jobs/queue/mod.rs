@@ -53,8 +53,13 @@ use uuid::Uuid;
 /// Tuning of the queue.
 #[derive(Debug, Clone)]
 pub struct QueueConfig {
-    /// Worker threads (rayon pool size) = jobs solved at once.
+    /// Worker threads (rayon pool size) = jobs of any size solved at once.
     pub workers: usize,
+    /// Short-job slots besides the workers: threads of their own that take only short jobs (the
+    /// stored estimate at most [`crate::store::SHORT_JOB_SECONDS`] of CPU), so that tiny jobs do
+    /// not wait behind heavy ones and their throughput is not bound by the workers' count (a
+    /// tiny job waits ≈ 1.5 ms on its commits for 30 µs of solving). None without workers.
+    pub short_slots: usize,
     /// Queued jobs accepted before `POST` answers 503.
     pub max_backlog: usize,
     /// Per-job wall-time limit.
@@ -82,6 +87,7 @@ impl Default for QueueConfig {
     fn default() -> Self {
         QueueConfig {
             workers: std::thread::available_parallelism().map(|n| n.get()).unwrap_or(2),
+            short_slots: DEFAULT_SHORT_SLOTS,
             max_backlog: 10_000,
             job_timeout: Some(Duration::from_secs(600)),
             max_attempts: 3,
@@ -121,6 +127,9 @@ pub enum Cancellation {
 /// The default crossover of fan-out, estimated CPU seconds per case (BENCHMARKS.md: the
 /// fan-out's own cost per case is 4–9 ms of wall time; at 0.5 s it is 1–2 % of a case).
 pub const DEFAULT_FAN_OUT_MIN_CASE_SECONDS: f64 = 0.5;
+
+/// The default number of short-job slots ([`QueueConfig::short_slots`]; BENCHMARKS.md, scale-out).
+pub const DEFAULT_SHORT_SLOTS: usize = 6;
 
 /// Virtual-deadline weight of the estimated solve time (fair scheduling, see the module docs).
 pub const AGING: f64 = 100.0;
@@ -170,7 +179,8 @@ enum Work {
 
 enum Event {
     /// `modelled`: the work model's CPU seconds of the job (0 when it did not run).
-    Finished { id: Uuid, kind: String, finish: Finish, status: JobStatus, wall: f64, modelled: f64 },
+    /// `short`: it held a short-job slot.
+    Finished { id: Uuid, kind: String, finish: Finish, status: JobStatus, wall: f64, modelled: f64, short: bool },
     Progress { id: Uuid, fraction: f64, stage: String },
 }
 
@@ -183,10 +193,15 @@ struct Inner {
     config: QueueConfig,
     metrics: Arc<Metrics>,
     pool: rayon::ThreadPool,
+    /// The short-job slots' threads (none without short slots).
+    short_pool: Option<rayon::ThreadPool>,
     wake: Notify,
     idle: Notify,
     claiming: AtomicBool,
+    /// Jobs this instance holds (claimed, not yet finished), in either kind of slot.
     active: AtomicUsize,
+    /// Of `active`, those in short-job slots.
+    active_short: AtomicUsize,
     /// Moving mean of measured solve wall time per kind, seconds (fair scheduling).
     estimates: Mutex<HashMap<String, f64>>,
     /// Specs being validated (bounded by `config.validators`).
@@ -244,6 +259,19 @@ impl Queue {
             .thread_name(|i| format!("tribod-worker-{i}"))
             .build()
             .map_err(|e| StoreError::Corrupt(format!("worker pool: {e}")))?;
+        let short_slots = if config.workers > 0 { config.short_slots } else { 0 };
+        let short_pool = if short_slots > 0 {
+            Some(
+                rayon::ThreadPoolBuilder::new()
+                    .num_threads(short_slots)
+                    .thread_name(|i| format!("tribod-short-{i}"))
+                    .build()
+                    .map_err(|e| StoreError::Corrupt(format!("short-job pool: {e}")))?,
+            )
+        } else {
+            None
+        };
+        let config = QueueConfig { short_slots, ..config };
         let (tx, rx) = mpsc::unbounded_channel();
         let validators = config.validators.max(1);
         let inner = Arc::new(Inner {
@@ -253,10 +281,12 @@ impl Queue {
             config,
             metrics,
             pool,
+            short_pool,
             wake: Notify::new(),
             idle: Notify::new(),
             claiming: AtomicBool::new(true),
             active: AtomicUsize::new(0),
+            active_short: AtomicUsize::new(0),
             estimates: Mutex::new(HashMap::new()),
             validating: tokio::sync::Semaphore::new(validators),
             backlog: AtomicI64::new(backlog),

@@ -17,10 +17,10 @@ impl Queue {
                     Event::Progress { id, fraction, stage } => {
                         progress.insert(id, (fraction, stage));
                     }
-                    Event::Finished { id, kind, finish, status, wall, modelled } => {
+                    Event::Finished { id, kind, finish, status, wall, modelled, short } => {
                         progress.remove(&id);
                         finishes.push(finish);
-                        done.push((id, kind, status, wall, modelled));
+                        done.push((id, kind, status, wall, modelled, short));
                     }
                 }
             }
@@ -37,14 +37,15 @@ impl Queue {
             // them free: `active` still counts the finished jobs until the claimed ones started).
             // Not on a retry: a failed attempt may have committed its claim, which then comes
             // back to the queue when its lease expires (as any lost claim).
-            let freed = done.iter().filter(|d| d.2 != JobStatus::Queued).count();
-            let refill = if inner.claiming.load(Ordering::Relaxed) { freed } else { 0 };
+            let freed = |short: bool| done.iter().filter(|d| d.2 != JobStatus::Queued && d.5 == short).count();
+            let refill = if inner.claiming.load(Ordering::Relaxed) { (freed(false), freed(true)) } else { (0, 0) };
             // A finished job must not be lost: retry until the database takes it.
             let mut delay = Duration::from_millis(50);
             let mut retried = false;
             let finished = loop {
                 let now = now_ms();
-                let next = ClaimNext { n: if retried { 0 } else { refill }, lease_until: now + inner.config.lease.as_millis() as i64 };
+                let (n, short) = if retried { (0, 0) } else { refill };
+                let next = ClaimNext { n, short, lease_until: now + inner.config.lease.as_millis() as i64 };
                 match inner.store.finish_batch(&finishes, now, &inner.instance, next).await {
                     Ok(finished) => break finished,
                     Err(e) => warn!(error = %e, "writing finished jobs failed; retrying"),
@@ -54,7 +55,7 @@ impl Queue {
                 delay = (delay * 2).min(Duration::from_secs(5));
             };
             let cases = finished.cases;
-            self.take_claimed(finished.claimed);
+            self.take_claimed(finished.claimed, if retried { 0 } else { refill.1 });
             // Fan-out: the parents of finished cases move on (the last case re-queues its parent).
             // Beside the next claim, not before it. Skipped when no finished job is a case
             // (PostgreSQL: told by the finish; SQLite: none while the file holds no case at all; a
@@ -71,7 +72,7 @@ impl Queue {
                     }
                 });
             }
-            for (id, kind, status, wall, modelled) in done {
+            for (id, kind, status, wall, modelled, short) in done {
                 inner.running.lock().unwrap_or_else(|e| e.into_inner()).remove(&id);
                 let uncounted = {
                     let mut set = inner.uncounted.lock().unwrap_or_else(|e| e.into_inner());
@@ -95,6 +96,9 @@ impl Queue {
                         }
                         inner.metrics.solve_seconds.get_or_create(&KindLabel { kind }).observe(wall);
                     }
+                }
+                if short {
+                    inner.active_short.fetch_sub(1, Ordering::Relaxed);
                 }
                 let active = inner.active.fetch_sub(1, Ordering::Relaxed) - 1;
                 inner.metrics.running.set(active as i64);

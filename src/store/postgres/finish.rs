@@ -5,8 +5,8 @@
 
 use super::*;
 
-/// Rows of claimed jobs (`id, kind, spec, attempts, due_at, seq` from column `first` on) in
-/// virtual-deadline order.
+/// Rows of claimed jobs (`id, kind, spec, attempts, due_at, seq, short` from column `first` on)
+/// in virtual-deadline order.
 pub(super) fn claimed_from_rows<'a>(rows: impl IntoIterator<Item = &'a PgRow>, first: usize) -> StoreResult<Vec<ClaimedJob>> {
     let mut jobs = rows
         .into_iter()
@@ -18,6 +18,7 @@ pub(super) fn claimed_from_rows<'a>(rows: impl IntoIterator<Item = &'a PgRow>, f
                     kind: r.try_get(first + 1)?,
                     spec: r.try_get(first + 2)?,
                     attempts: r.try_get(first + 3)?,
+                    short: r.try_get(first + 6)?,
                 },
             ))
         })
@@ -26,13 +27,31 @@ pub(super) fn claimed_from_rows<'a>(rows: impl IntoIterator<Item = &'a PgRow>, f
     Ok(jobs.into_iter().map(|(_, j)| j).collect())
 }
 
+/// The claim of [`ClaimNext`] as the `WHERE` of an update of `jobs`: the first `$n` queued jobs
+/// in virtual-deadline order and the first `$short` short ones after them, each locked (`FOR
+/// UPDATE SKIP LOCKED`: another instance's claim takes others). Short ones are read through
+/// `jobs_short_queue`, whose predicate is the same text.
+pub(super) fn claim_where(n: &str, short: &str) -> String {
+    format!(
+        "seq = ANY(ARRAY(WITH g AS MATERIALIZED (SELECT seq FROM jobs WHERE status = 'queued' ORDER BY due_at, seq LIMIT {n} \
+                                               FOR UPDATE SKIP LOCKED) \
+                        SELECT seq FROM g \
+                        UNION ALL \
+                        SELECT seq FROM (SELECT seq FROM jobs WHERE status = 'queued' AND {SHORT_JOB_SQL} \
+                                         AND NOT EXISTS (SELECT 1 FROM g WHERE g.seq = jobs.seq) \
+                                         ORDER BY due_at, seq LIMIT {short} FOR UPDATE SKIP LOCKED) s))"
+    )
+}
+
 /// The batch statement. `done`: the terminal updates, only by the lease holder (after a lost lease
-/// the job runs elsewhere); `stored`: the results of the succeeded ones; `claimed`: up to `$10`
-/// queued jobs in virtual-deadline order, leased to `$8` until `$11` (as [`PgStore::claim`]; the
-/// rows `done` updates are running, the rows `claimed` locks are queued: never the same row).
-/// One row per finished job (`claimed` false; it sends `finished:<id>`, and tells whether any
-/// finished job is a fanned-out job's case), then one per claimed job.
-const FINISH_AND_CLAIM: &str = "WITH u AS (SELECT * FROM UNNEST($1::text[], $2::text[], $3::text[], $4::text[], $5::bigint[], $6::bytea[]) \
+/// the job runs elsewhere); `stored`: the results of the succeeded ones; `claimed`: the queued
+/// jobs of [`claim_where`] (`$10` of any size, `$12` short), leased to `$8` until `$11` (as
+/// [`PgStore::claim`]; the rows `done` updates are running, the rows `claimed` locks are queued:
+/// never the same row). One row per finished job (`claimed` false; it sends `finished:<id>`, and
+/// tells whether any finished job is a fanned-out job's case), then one per claimed job.
+static FINISH_AND_CLAIM: std::sync::LazyLock<String> = std::sync::LazyLock::new(|| {
+    format!(
+        "WITH u AS (SELECT * FROM UNNEST($1::text[], $2::text[], $3::text[], $4::text[], $5::bigint[], $6::bytea[]) \
                 AS u(id, status, error, encoding, size, body)), \
      done AS (UPDATE jobs SET status = u.status, finished_at = $7, solved_by = jobs.lease_owner, lease_owner = NULL, error = u.error, \
               progress = CASE WHEN u.status = 'succeeded' THEN 1 ELSE jobs.progress END, \
@@ -47,14 +66,16 @@ const FINISH_AND_CLAIM: &str = "WITH u AS (SELECT * FROM UNNEST($1::text[], $2::
      claimed AS (UPDATE jobs SET status = 'running', started_at = COALESCE(started_at, $7), attempts = attempts + 1, \
                  progress = CASE WHEN started_at IS NULL THEN 0 ELSE progress END, \
                  stage = CASE WHEN started_at IS NULL THEN NULL ELSE stage END, lease_owner = $8, lease_until = $11 \
-                 WHERE seq = ANY(ARRAY(SELECT seq FROM jobs WHERE status = 'queued' ORDER BY due_at, seq LIMIT $10 \
-                                       FOR UPDATE SKIP LOCKED)) \
-                 RETURNING id, kind, spec, attempts, due_at, seq) \
+                 WHERE {} \
+                 RETURNING id, kind, spec, attempts, due_at, seq, COALESCE({SHORT_JOB_SQL}, FALSE) AS short) \
      SELECT FALSE AS claimed, (SELECT count(*) FROM stored) >= 0 AND EXISTS (SELECT 1 FROM job_children c WHERE c.job_id = ANY($1)) AS cases, \
             pg_notify($9, 'finished:' || done.id)::text AS note, done.id, NULL::text AS kind, NULL::text AS spec, \
-            0::bigint AS attempts, 0::bigint AS due_at, 0::bigint AS seq FROM done \
+            0::bigint AS attempts, 0::bigint AS due_at, 0::bigint AS seq, FALSE AS short FROM done \
      UNION ALL \
-     SELECT TRUE, FALSE, NULL, id, kind, spec, attempts, due_at, seq FROM claimed";
+     SELECT TRUE, FALSE, NULL, id, kind, spec, attempts, due_at, seq, short FROM claimed",
+        claim_where("$10", "$12")
+    )
+});
 
 impl PgStore {
     /// Finish a batch and claim up to `next.n` jobs, in one commit; see [`Store::finish_batch`].
@@ -96,9 +117,9 @@ impl PgStore {
             sizes.push(result.map(|r| r.size as i64));
             bodies.push(result.map(|r| r.body.clone()));
         }
-        let claim = if requeue.is_empty() { next.n } else { 0 };
+        let (claim, short) = if requeue.is_empty() { (next.n, next.short) } else { (0, 0) };
         // On `finishes`: prepared and planned once per connection, every table read by an index.
-        let q = sqlx::query(FINISH_AND_CLAIM)
+        let q = sqlx::query(AssertSqlSafe(FINISH_AND_CLAIM.as_str()))
             .bind(&ids)
             .bind(&statuses)
             .bind(&errors)
@@ -109,7 +130,8 @@ impl PgStore {
             .bind(owner)
             .bind(CHANNEL)
             .bind(claim as i64)
-            .bind(next.lease_until);
+            .bind(next.lease_until)
+            .bind(short as i64);
         if requeue.is_empty() {
             return q.fetch_all(&self.finishes).await;
         }
