@@ -105,26 +105,40 @@ fn unique_violation(e: sqlx::Error) -> StoreError {
 
 async fn insert_on(conn: &mut SqliteConnection, jobs: &[&NewJob]) -> StoreResult<Vec<i64>> {
     let mut tx = conn.begin().await?;
-    let mut seqs = Vec::with_capacity(jobs.len());
+    // One statement for the whole batch (each statement is a round trip to the connection's
+    // thread); RETURNING gives the rows in no promised order, so each `seq` is matched by id.
+    let mut sql = String::from(
+        "INSERT INTO jobs (id, kind, label, status, spec, spec_hash, solver_version, created_at, due_at, \
+         estimate_cpu_seconds, estimate_memory_bytes) VALUES ",
+    );
+    for k in 0..jobs.len() {
+        sql.push_str(if k == 0 { "(?, ?, ?, 'queued', ?, ?, ?, ?, ?, ?, ?)" } else { ", (?, ?, ?, 'queued', ?, ?, ?, ?, ?, ?, ?)" });
+    }
+    sql.push_str(" RETURNING id, seq");
+    let mut q = sqlx::query(AssertSqlSafe(sql));
     for job in jobs {
-        let row = sqlx::query(
-            "INSERT INTO jobs (id, kind, label, status, spec, spec_hash, solver_version, created_at, due_at, \
-             estimate_cpu_seconds, estimate_memory_bytes) VALUES (?, ?, ?, 'queued', ?, ?, ?, ?, ?, ?, ?) RETURNING seq",
-        )
-        .bind(job.id.to_string())
-        .bind(&job.kind)
-        .bind(&job.label)
-        .bind(&job.spec)
-        .bind(&job.spec_hash)
-        .bind(&job.solver_version)
-        .bind(job.created_at)
-        .bind(job.due_at)
-        .bind(job.estimate_cpu_seconds)
-        .bind(job.estimate_memory_bytes)
-        .fetch_one(&mut *tx)
-        .await
-        .map_err(unique_violation)?;
-        seqs.push(row.try_get(0)?);
+        q = q
+            .bind(job.id.to_string())
+            .bind(&job.kind)
+            .bind(&job.label)
+            .bind(&job.spec)
+            .bind(&job.spec_hash)
+            .bind(&job.solver_version)
+            .bind(job.created_at)
+            .bind(job.due_at)
+            .bind(job.estimate_cpu_seconds)
+            .bind(job.estimate_memory_bytes);
+    }
+    let rows = q.fetch_all(&mut *tx).await.map_err(unique_violation)?;
+    let mut seq_of = std::collections::HashMap::with_capacity(rows.len());
+    for row in &rows {
+        seq_of.insert(row.try_get::<String, _>(0)?, row.try_get::<i64, _>(1)?);
+    }
+    let seqs = jobs
+        .iter()
+        .map(|job| seq_of.get(&job.id.to_string()).copied().ok_or_else(|| StoreError::Corrupt(format!("job {} was not inserted", job.id))))
+        .collect::<StoreResult<Vec<_>>>()?;
+    for job in jobs {
         if let Some(key) = &job.idempotency_key {
             sqlx::query(
                 "INSERT INTO idempotency_keys (key, job_id, spec_hash, label, reused, created_at) \
@@ -546,15 +560,12 @@ async fn claim_on(conn: &mut SqliteConnection, next: ClaimNext, now: i64, owner:
 /// in one transaction; the jobs claimed.
 async fn finish_on(conn: &mut SqliteConnection, items: &[Finish], now: i64, owner: &str, next: ClaimNext) -> StoreResult<Vec<ClaimedJob>> {
     let mut tx = conn.begin().await?;
+    finish_succeeded_on(&mut tx, items, now, owner).await?;
     for item in items {
         // Only the lease holder finishes a job: after a lost lease the job runs elsewhere.
         // ?1 = now, ?2 = id, ?3 = owner, ?4 = error.
         let (sql, id) = match item {
-            Finish::Succeeded { id, .. } => (
-                "UPDATE jobs SET status = 'succeeded', finished_at = ?1, progress = 1, stage = NULL, solved_by = lease_owner, lease_owner = NULL \
-                 WHERE id = ?2 AND status = 'running' AND lease_owner = ?3",
-                id,
-            ),
+            Finish::Succeeded { .. } => continue,
             Finish::Failed { id, .. } => (
                 "UPDATE jobs SET status = 'failed', finished_at = ?1, error = ?4, solved_by = lease_owner, lease_owner = NULL \
                  WHERE id = ?2 AND status = 'running' AND lease_owner = ?3",
@@ -576,21 +587,50 @@ async fn finish_on(conn: &mut SqliteConnection, items: &[Finish], now: i64, owne
         if let Finish::Failed { error, .. } = item {
             q = q.bind(error);
         }
-        let held = q.execute(&mut *tx).await?.rows_affected() == 1;
-        if let (true, Finish::Succeeded { id, result }) = (held, item) {
-            sqlx::query("INSERT OR REPLACE INTO job_results (job_id, encoding, size, body) VALUES (?, ?, ?, ?)")
-                .bind(id.to_string())
-                .bind(result.encoding)
-                .bind(result.size as i64)
-                .bind(&result.body)
-                .execute(&mut *tx)
-                .await?;
-        }
+        q.execute(&mut *tx).await?;
     }
     let requeue = items.iter().any(|i| matches!(i, Finish::Requeue { .. }));
     let claimed = if !next.is_empty() && !requeue { claim_on(&mut tx, next, now, owner).await? } else { Vec::new() };
     tx.commit().await?;
     Ok(claimed)
+}
+
+/// The succeeded jobs of a finish batch in two statements whatever their number (each statement is
+/// a round trip to the connection's thread): their rows, only those the lease holder still holds,
+/// and the results of those.
+async fn finish_succeeded_on(conn: &mut SqliteConnection, items: &[Finish], now: i64, owner: &str) -> StoreResult<()> {
+    let succeeded: Vec<(&Uuid, &Encoded)> = items
+        .iter()
+        .filter_map(|i| match i {
+            Finish::Succeeded { id, result } => Some((id, result)),
+            _ => None,
+        })
+        .collect();
+    if succeeded.is_empty() {
+        return Ok(());
+    }
+    let marks = vec!["?"; succeeded.len()].join(", ");
+    let sql = format!(
+        "UPDATE jobs SET status = 'succeeded', finished_at = ?, progress = 1, stage = NULL, solved_by = lease_owner, lease_owner = NULL \
+         WHERE id IN ({marks}) AND status = 'running' AND lease_owner = ? RETURNING id"
+    );
+    let mut q = sqlx::query(AssertSqlSafe(sql)).bind(now);
+    for (id, _) in &succeeded {
+        q = q.bind(id.to_string());
+    }
+    let held: std::collections::HashSet<String> =
+        q.bind(owner).fetch_all(&mut *conn).await?.iter().map(|r| r.try_get::<String, _>(0)).collect::<Result<_, _>>()?;
+    let stored: Vec<_> = succeeded.iter().filter(|(id, _)| held.contains(&id.to_string())).collect();
+    if stored.is_empty() {
+        return Ok(());
+    }
+    let rows = vec!["(?, ?, ?, ?)"; stored.len()].join(", ");
+    let mut q = sqlx::query(AssertSqlSafe(format!("INSERT OR REPLACE INTO job_results (job_id, encoding, size, body) VALUES {rows}")));
+    for (id, result) in stored {
+        q = q.bind(id.to_string()).bind(result.encoding).bind(result.size as i64).bind(&result.body);
+    }
+    q.execute(&mut *conn).await?;
+    Ok(())
 }
 
 async fn progress_on(conn: &mut SqliteConnection, items: &[(Uuid, f64, String)]) -> StoreResult<()> {

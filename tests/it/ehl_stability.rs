@@ -9,12 +9,10 @@ use tribod::physics::{Silent, SolveError};
 
 /// `must_converge`: a typed error fails the case too (the range where the solver is measured to
 /// converge: 200 of 200 random cases down to u_m = 3 mm/s; below, M exceeds ~2e4 and a 128-node
-/// grid may not resolve the contact — 198 of 200 converged down to 0.1 mm/s; and Moes' L ≤ 25:
-/// of 1500 random cases of the steady test's ranges at u_m ≥ 3 mm/s (L below 20: 1321, 20–30:
-/// 139, above: 40), on 128 nodes within 40 steps a stage, the 5 that did not converge all had L
-/// from 28 to 39 — speeds near 10 m/s, η0 above 0.3 Pa s, α p0 = 42–77 — and stalled at
-/// residuals 3e-4 to 2e-3, 4 of them still with 60 steps: the pressure spike is then sharper
-/// than the grid; they fail with the typed error, which is what the test asks of them).
+/// grid may not resolve the contact — 198 of 200 converged down to 0.1 mm/s. Of 1500 random
+/// cases of the steady test's ranges at u_m ≥ 3 mm/s all converge on 128 nodes within 40 steps a
+/// stage, up to Moes' L ≈ 40 (5 at L 28–39 did not while the Newton steps' loose linear solves
+/// ran far from the solution too, found by this test at L 47; issue 46).
 fn check(input: &EhlInput, options: &EhlOptions, must_converge: bool) -> Result<(), TestCaseError> {
     let result = solve(input, options, &Silent);
     if must_converge {
@@ -94,9 +92,7 @@ proptest! {
         let u = 10f64.powf(log_u) * if sign { 1.0 } else { -1.0 };
         let inp = input(p0, r, u, eta0, alpha, roelands, slide);
         let opts = EhlOptions { nodes: 128, tolerance: 1e-7, max_iterations: 40, ..EhlOptions::default() };
-        // Moes' L = α E' (2U)^¼, U = η0 |u| / (E' R) (E' = 2.3e11 Pa in `input`).
-        let moes_l = alpha * 2.3e11 * (2.0 * eta0 * u.abs() / (2.3e11 * r)).powf(0.25);
-        check(&inp, &opts, log_u > -2.5 && moes_l <= 25.0)?;
+        check(&inp, &opts, log_u > -2.5)?;
     }
 
     #[test]

@@ -269,7 +269,7 @@ pub struct CamPointResult {
 
 impl Kind for CamPoint {
     const NAME: &'static str = "cam_point";
-    const SOLVER_VERSION: &'static str = "cam_point-15";
+    const SOLVER_VERSION: &'static str = "cam_point-16";
     const DESCRIPTION: &'static str = "Cam–roller contact at a fixed operating point: roller slip against \
         roller–pin friction, minimum cam–roller friction to drive the roller, gross-sliding threshold (seed 001).";
     const TABLES: &'static [&'static str] = &["rows"];

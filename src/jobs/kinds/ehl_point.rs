@@ -426,7 +426,7 @@ pub struct EhlPointResult {
 
 impl Kind for EhlPoint {
     const NAME: &'static str = "ehl_point";
-    const SOLVER_VERSION: &'static str = "ehl_point-12";
+    const SOLVER_VERSION: &'static str = "ehl_point-13";
     const DESCRIPTION: &'static str = "Numerical elastohydrodynamic line contact (compressible \
         Reynolds, elastic half-space, cavitation; isothermal or, with `thermal`, the thermal model \
         of seed 000), or with `geometry` a point or finite-length (crowned roller) contact on a 2-D \

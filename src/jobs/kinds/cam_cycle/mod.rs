@@ -46,7 +46,7 @@ pub const MAX_FIELD_ROWS: usize = 1 << 17;
 
 impl Kind for CamCycle {
     const NAME: &'static str = "cam_cycle";
-    const SOLVER_VERSION: &'static str = "cam_cycle-21";
+    const SOLVER_VERSION: &'static str = "cam_cycle-22";
     const DESCRIPTION: &'static str = "Cam–follower pair over one revolution: kinematics, loads, Hertz contact, \
         lubricant film, friction and power loss, roller slip (steady or startup) and flash temperature \
         (fidelity fast: closed forms; accurate: numerical line-contact EHL with squeeze at every angle; auto: \

@@ -31,7 +31,7 @@ const SPECIAL: &[&str] = &["no_separation", "no_undercut"];
 
 impl Kind for CamOptimisation {
     const NAME: &'static str = "cam_optimisation";
-    const SOLVER_VERSION: &'static str = "cam_optimisation-4";
+    const SOLVER_VERSION: &'static str = "cam_optimisation-5";
     const DESCRIPTION: &'static str = "Cam design over the cycle: design variables are JSON pointers into a base \
         cam_cycle spec (bounds or listed values), objectives and constraints are cycle quantities (friction power, \
         film, Hertz, separation up to a speed, …); a seeded Latin hypercube then Nelder–Mead, every design a cam_cycle \

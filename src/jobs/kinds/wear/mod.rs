@@ -59,7 +59,7 @@ pub const STANDARD_CYCLE_WORK: usize = 720 * 192;
 
 impl Kind for Wear {
     const NAME: &'static str = "wear";
-    const SOLVER_VERSION: &'static str = "wear-9";
+    const SOLVER_VERSION: &'static str = "wear-10";
     const DESCRIPTION: &'static str = "Cam wear over running hours: Archard wear over the cam cycle (asperity load share in \
         mixed lubrication, roller slip) with worn-profile evolution, or seed 004's method (model irgashev).";
     const TABLES: &'static [&'static str] = &["series", "rows", "history", "follower_face"];

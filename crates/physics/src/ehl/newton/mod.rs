@@ -23,7 +23,7 @@
 
 use super::formulas::{moes_central, Groups};
 use super::grid::{Grid, GridCache, Layout};
-use super::linear::{assemble, forcing, gmres, Factor, Krylov, System, GMRES_MAX, GMRES_REFRESH};
+use super::linear::{assemble, forcing, gmres, Factor, Krylov, System, GMRES_MAX, GMRES_REFRESH, GMRES_TOL};
 use super::rheology::PressureRheology;
 use super::traction::traction;
 use super::{EhlInput, EhlOptions, EhlSolution, EhlState, PressureSpike, Profiles, Upwind};

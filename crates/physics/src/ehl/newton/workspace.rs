@@ -60,13 +60,12 @@ impl Workspace {
     }
 }
 
-/// Solve the Newton system in `ws.sys` into `ws.sol` (Newton residual `res`, tolerance `tol`):
-/// GMRES to the relative residual [`forcing`] with the kept factors when they belong to this grid,
+/// Solve the Newton system in `ws.sys` into `ws.sol` with the relative linear residual `eta`
+/// (the forcing term, [`forcing`]): GMRES with the kept factors when they belong to this grid,
 /// else (or when GMRES stalls) a fresh factorisation; after more than [`GMRES_REFRESH`] GMRES
 /// iterations the next step factorises afresh. `false` when the Jacobian is singular.
-pub(super) fn linear_solve(ws: &mut Workspace, grid: &Grid, res: f64, tol: f64) -> bool {
+pub(super) fn linear_solve(ws: &mut Workspace, grid: &Grid, eta: f64) -> bool {
     if ws.factor.grid_id == grid.id {
-        let eta = forcing(res, tol);
         if let Some(it) = gmres(&ws.sys, grid, &mut ws.factor, &mut ws.krylov, &mut ws.sol, eta) {
             ws.stats.gmres_iterations += it as u64;
             // The kept factors have drifted from the Jacobian: refresh them at the next step.
