@@ -215,7 +215,8 @@ impl Engine {
                         break;
                     }
                     let meta = Meta { b, ph, moes_m: sc.moes_m, moes_l: sc.moes_l, iterations: total_iter, residual: run.residual };
-                    return finish(input, options, &prob, &p, h0, &meta);
+                    // `ws.v` holds Newton's evaluation at the converged `(p, h0)`.
+                    return finish(input, options, &prob, &p, &ws.v, &meta);
                 }
                 // A coarse level: its solution (converged or the last finite iterate) is the next guess.
                 let mut v = Fields::new(nl);
