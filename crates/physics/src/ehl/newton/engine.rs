@@ -117,7 +117,8 @@ impl Engine {
             };
             let thermal = thermal.map(|f| NodeFactors::on(&grid.x, b, f));
             let asperity = input.asperity.map(|law| AsperityScale { law, film_scale: b * b / r, ph });
-            Discretisation { grid, lambda: sc.lambda, kappa: sc.kappa, q_old, upwind: options.upwind, rheology, ph, thermal, asperity }
+            let wedge = super::discretisation::wedge_stencils(&grid.x, sc.lambda, options.upwind);
+            Discretisation { grid, lambda: sc.lambda, kappa: sc.kappa, q_old, wedge, rheology, ph, thermal, asperity }
         };
         // Nested iteration: from the previous state straight on the target grid; from a cold
         // start (or when the warm start fails), solve on grids of n/2^k ≥ 64 nodes first and
