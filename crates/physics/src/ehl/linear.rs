@@ -119,6 +119,8 @@ pub(super) struct Krylov {
     pub(super) g: Vec<f64>,
     pub(super) w: Vec<f64>,
     pub(super) z: Vec<f64>,
+    /// Preconditioned directions `M⁻¹ v_i` ([`krylov::Update::Flexible`]).
+    pub(super) zs: Vec<f64>,
     /// Padded (two zeros each side) `δP` and `δH` at the nodes, and the deflection.
     pub(super) dp: Vec<f64>,
     pub(super) dh: Vec<f64>,
@@ -184,7 +186,8 @@ pub(super) fn assemble(sys: &System, grid: &Grid, kr: &mut Krylov, out: &mut [f6
 
 /// Right-preconditioned GMRES for `A x = b` (`A` from `sys`), preconditioned by `factor`, from
 /// `x = 0`: one cycle of the shared GMRES ([`krylov::gmres`]) in this solver's arithmetic
-/// (`hypot` rotations, a breakdown ends it unconverged; `|g| ≤ tol‖b‖`; `x = M⁻¹ V y`). Returns
+/// (`hypot` rotations, a breakdown ends it unconverged; `|g| ≤ tol‖b‖`; `x = Σ y_i M⁻¹ v_i` from
+/// the kept directions, which saves the preconditioner solve of `x = M⁻¹ V y`). Returns
 /// the iterations when the relative residual reached `tol` within `GMRES_MAX`.
 pub(super) fn gmres(sys: &System, grid: &Grid, factor: &mut Factor, kr: &mut Krylov, x: &mut [f64], tol: f64) -> Option<usize> {
     let take = std::mem::take::<Vec<f64>>;
@@ -196,6 +199,7 @@ pub(super) fn gmres(sys: &System, grid: &Grid, factor: &mut Factor, kr: &mut Kry
         g: take(&mut kr.g),
         w: take(&mut kr.w),
         z: take(&mut kr.z),
+        zs: take(&mut kr.zs),
         ..Default::default()
     };
     let settings = krylov::Settings {
@@ -205,10 +209,10 @@ pub(super) fn gmres(sys: &System, grid: &Grid, factor: &mut Factor, kr: &mut Kry
         from_x: false,
         rotation: krylov::Rotation::Hypot,
         test: krylov::Test::Product,
-        update: krylov::Update::Right,
+        update: krylov::Update::Flexible,
     };
     // The silent observer never interrupts.
     let out = krylov::gmres(&mut |z, y| apply(sys, grid, kr, z, y), &mut |z| factor.solve(z), &sys.rhs, x, &settings, &mut ws, &crate::Silent);
-    (kr.basis, kr.hess, kr.cs, kr.sn, kr.g, kr.w, kr.z) = (ws.basis, ws.hess, ws.cs, ws.sn, ws.g, ws.w, ws.z);
+    (kr.basis, kr.hess, kr.cs, kr.sn, kr.g, kr.w, kr.z, kr.zs) = (ws.basis, ws.hess, ws.cs, ws.sn, ws.g, ws.w, ws.z, ws.zs);
     out.ok().filter(|o| o.converged).map(|o| o.iterations)
 }

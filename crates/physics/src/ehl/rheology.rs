@@ -46,7 +46,8 @@ impl PressureRheology {
         let on = if p < 0.0 { 0.0 } else { 1.0 };
         let (ln_eta, dln) = if self.roelands {
             let s = 1.0 + pc / ROELANDS_PRESSURE;
-            let q = s.powf(self.z);
+            // `1^z = 1` exactly: no `powf` for a cavitated node.
+            let q = if pc == 0.0 { 1.0 } else { s.powf(self.z) };
             (self.a1_theta * (q - 1.0), on * self.a1_theta * self.z * q / (s * ROELANDS_PRESSURE))
         } else {
             (self.alpha * pc, on * self.alpha)

@@ -273,10 +273,11 @@ impl LnTable {
     fn inverse(&self, target: f64) -> f64 {
         let goal = target.max(1e-300).ln();
         let (mut lo, mut hi) = (GENERAL_LO, GENERAL_LO + (GENERAL_NODES - 1) as f64 * GENERAL_STEP);
-        if self.ln_value_slope(hi).0 >= goal {
+        // The interpolant at the table's ends is the end values (u = 1 and u = 0 exactly).
+        if self.ln_f[GENERAL_NODES - 1] >= goal {
             return hi;
         }
-        if self.ln_value_slope(lo).0 <= goal {
+        if self.ln_f[0] <= goal {
             return lo;
         }
         let mut x = 0.5 * (lo + hi);

@@ -42,30 +42,48 @@ impl Discretisation<'_> {
         self.grid.n
     }
 
-    /// Wedge stencil at node `i`: `(offset, weight)` of `d(ρ̄H)/dX`, upwind for the sign of `λ`
-    /// (three-point one-sided derivative on the graded grid for the second-order scheme).
+    /// Wedge stencil at the interior node `i` (kept in `self.wedge`, see [`wedge_stencils`]).
+    #[inline]
     pub(super) fn wedge(&self, i: usize) -> [(isize, f64); 3] {
-        let x = &self.grid.x;
-        let second = self.upwind == Upwind::Second;
-        if self.lambda >= 0.0 {
-            let a = x[i] - x[i - 1];
-            if second && i >= 2 {
-                let b = x[i - 1] - x[i - 2];
-                [(0, (2.0 * a + b) / (a * (a + b))), (-1, -(a + b) / (a * b)), (-2, a / (b * (a + b)))]
-            } else {
-                [(0, 1.0 / a), (-1, -1.0 / a), (0, 0.0)]
-            }
+        self.wedge[i]
+    }
+}
+
+/// Wedge stencils of the interior nodes of `x` (the ends zero): `(offset, weight)` of
+/// `d(ρ̄H)/dX`, upwind for the sign of `λ` (three-point one-sided derivative on the graded grid for
+/// the second-order scheme). They depend on `λ` through its sign only (a continuation that scales
+/// `λ` by positive factors keeps them).
+pub(super) fn wedge_stencils(x: &[f64], lambda: f64, upwind: Upwind) -> Vec<[(isize, f64); 3]> {
+    let n = x.len();
+    let mut out = vec![[(0, 0.0); 3]; n];
+    for (i, w) in out.iter_mut().enumerate().take(n.saturating_sub(1)).skip(1) {
+        *w = wedge_at(x, lambda, upwind, i);
+    }
+    out
+}
+
+fn wedge_at(x: &[f64], lambda: f64, upwind: Upwind, i: usize) -> [(isize, f64); 3] {
+    let second = upwind == Upwind::Second;
+    if lambda >= 0.0 {
+        let a = x[i] - x[i - 1];
+        if second && i >= 2 {
+            let b = x[i - 1] - x[i - 2];
+            [(0, (2.0 * a + b) / (a * (a + b))), (-1, -(a + b) / (a * b)), (-2, a / (b * (a + b)))]
         } else {
-            let a = x[i + 1] - x[i];
-            if second && i + 2 < self.n() {
-                let b = x[i + 2] - x[i + 1];
-                [(0, -(2.0 * a + b) / (a * (a + b))), (1, (a + b) / (a * b)), (2, -a / (b * (a + b)))]
-            } else {
-                [(0, -1.0 / a), (1, 1.0 / a), (0, 0.0)]
-            }
+            [(0, 1.0 / a), (-1, -1.0 / a), (0, 0.0)]
+        }
+    } else {
+        let a = x[i + 1] - x[i];
+        if second && i + 2 < x.len() {
+            let b = x[i + 2] - x[i + 1];
+            [(0, -(2.0 * a + b) / (a * (a + b))), (1, (a + b) / (a * b)), (2, -a / (b * (a + b)))]
+        } else {
+            [(0, -1.0 / a), (1, 1.0 / a), (0, 0.0)]
         }
     }
+}
 
+impl Discretisation<'_> {
     /// Evaluate the film, rheology and residuals at `(p, h0)`. `false` when the film is not
     /// positive everywhere or a value is not finite.
     pub(super) fn evaluate(&self, p: &[f64], h0: f64, v: &mut Fields) -> bool {
@@ -93,7 +111,9 @@ impl Discretisation<'_> {
             let ce = self.thermal.as_ref().map_or(1.0, |t| t.poiseuille[i]);
             v.rho[i] = rho;
             v.drho[i] = drho * self.ph;
-            v.e[i] = ce * rho * h * h * h * (-ln_eta).exp();
+            // `e^0 = 1` exactly: no `exp` at zero pressure.
+            let visc = if ln_eta == 0.0 { 1.0 } else { (-ln_eta).exp() };
+            v.e[i] = ce * rho * h * h * h * visc;
             v.ep[i] = v.e[i] * (v.drho[i] / rho - dln * self.ph);
             v.eh[i] = 3.0 * v.e[i] / h;
         }

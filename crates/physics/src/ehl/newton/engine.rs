@@ -117,7 +117,8 @@ impl Engine {
             };
             let thermal = thermal.map(|f| NodeFactors::on(&grid.x, b, f));
             let asperity = input.asperity.map(|law| AsperityScale { law, film_scale: b * b / r, ph });
-            Discretisation { grid, lambda: sc.lambda, kappa: sc.kappa, q_old, upwind: options.upwind, rheology, ph, thermal, asperity }
+            let wedge = super::discretisation::wedge_stencils(&grid.x, sc.lambda, options.upwind);
+            Discretisation { grid, lambda: sc.lambda, kappa: sc.kappa, q_old, wedge, rheology, ph, thermal, asperity }
         };
         // Nested iteration: from the previous state straight on the target grid; from a cold
         // start (or when the warm start fails), solve on grids of n/2^k ≥ 64 nodes first and
@@ -215,7 +216,8 @@ impl Engine {
                         break;
                     }
                     let meta = Meta { b, ph, moes_m: sc.moes_m, moes_l: sc.moes_l, iterations: total_iter, residual: run.residual };
-                    return finish(input, options, &prob, &p, h0, &meta);
+                    // `ws.v` holds Newton's evaluation at the converged `(p, h0)`.
+                    return finish(input, options, &prob, &p, &ws.v, &meta);
                 }
                 // A coarse level: its solution (converged or the last finite iterate) is the next guess.
                 let mut v = Fields::new(nl);

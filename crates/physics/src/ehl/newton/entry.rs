@@ -125,14 +125,12 @@ pub(super) fn interpolate(x: &[f64], f: &[f64], at: f64) -> f64 {
     f[i - 1] * (1.0 - t) + f[i] * t
 }
 
-pub(super) fn finish(input: &EhlInput, options: &EhlOptions, prob: &Discretisation, p: &[f64], h0: f64, meta: &Meta) -> Result<EhlSolution, SolveError> {
+/// The solution from the converged pressure `p` and the fields `v` Newton evaluated at it (its
+/// last evaluation: the film is positive and every value finite — not evaluated again).
+pub(super) fn finish(input: &EhlInput, options: &EhlOptions, prob: &Discretisation, p: &[f64], v: &Fields, meta: &Meta) -> Result<EhlSolution, SolveError> {
     let &Meta { b, ph, moes_m, moes_l, iterations, residual } = meta;
     let n = prob.n();
     let r = input.reduced_radius;
-    let mut v = Fields::new(n);
-    if !prob.evaluate(p, h0, &mut v) {
-        return Err(SolveError::physical(crate::PhysicalFailure::FilmCollapse, "the converged film is not positive"));
-    }
     let hs = b * b / r; // film scale
     let x: Vec<f64> = prob.grid.x.iter().map(|&x| x * b).collect();
     let pressure: Vec<f64> = p.iter().map(|&p| p.max(0.0) * ph).collect();
@@ -203,7 +201,7 @@ pub(super) fn finish(input: &EhlInput, options: &EhlOptions, prob: &Discretisati
         [&traction.force_body_1, &traction.force_body_2, &traction.friction_coefficient, &traction.rolling_force],
     )?;
     ensure_finite("ehl films", [&central_film, &min_film, &exit_film, &max_pressure])?;
-    let density_ratio = (0..n).map(|i| prob.mass_density(&v, i)).collect();
+    let density_ratio = (0..n).map(|i| prob.mass_density(v, i)).collect();
     let state = EhlState { x: x.clone(), pressure: pressure.clone(), film: film.clone(), density_ratio, asperity_pressure: asperity_pressure.clone() };
     let profiles = options.profiles.then(|| Profiles { x, pressure, film, asperity_pressure });
     Ok(EhlSolution {

@@ -75,7 +75,9 @@ struct Discretisation<'a> {
     kappa: f64,
     /// `(ρ̄H)` of the previous time step at the nodes.
     q_old: Vec<f64>,
-    upwind: Upwind,
+    /// Wedge stencils of the nodes ([`discretisation::wedge_stencils`] for `grid`, the sign of
+    /// `lambda` and the upwind scheme).
+    wedge: Vec<[(isize, f64); 3]>,
     rheology: PressureRheology,
     /// Hertzian pressure, Pa.
     ph: f64,
@@ -262,7 +264,8 @@ mod tests {
         let sc = scales(&input);
         let layout = Layout::for_film(sc.h_est, 1.0, None, None, true);
         let grid = Arc::new(Grid::new(80, layout));
-        let prob = Discretisation { grid: grid.clone(), lambda: sc.lambda, kappa: 0.0, q_old: Vec::new(), upwind: Upwind::Second, rheology: PressureRheology::new(&lub, input.temperature), ph: sc.ph, thermal: None, asperity: None };
+        let wedge = discretisation::wedge_stencils(&grid.x, sc.lambda, Upwind::Second);
+        let prob = Discretisation { grid: grid.clone(), lambda: sc.lambda, kappa: 0.0, q_old: Vec::new(), wedge, rheology: PressureRheology::new(&lub, input.temperature), ph: sc.ph, thermal: None, asperity: None };
         let (mut p, mut h0) = cold(&prob, sc.h_est, sc.h_est);
         let mut ws = Workspace::new();
         // Two Newton steps to get an active set with cavitated nodes, then inspect the system.

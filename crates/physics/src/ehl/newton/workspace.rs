@@ -53,6 +53,7 @@ impl Workspace {
             g: vec![0.0; k],
             w: vec![0.0; dim],
             z: vec![0.0; dim],
+            zs: vec![0.0; GMRES_MAX * dim],
             dp: vec![0.0; n + 4],
             dh: vec![0.0; n + 4],
             defl: vec![0.0; n],
